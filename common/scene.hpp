@@ -1,0 +1,52 @@
+#pragma once
+// A simulation scene: the surface and every model parameter of Table 1 of the paper, in SI units
+// (angles in degrees in the file, radians here). Read from one flat JSON object (DESIGN.md, "Scene
+// files"); every bad value is an InputError naming the key, the value and the allowed range, and an
+// unknown key is an error too.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace physarum {
+
+enum class Integrator { ForwardEuler, BackwardEuler };
+
+struct Scene {
+  std::string source;  // the scene file, for messages ("" when built in code)
+
+  // ---- surface ----
+  std::string mesh;                        // resolved file path, or "shape:NAME"
+  std::optional<double> scale_to_area;     // rescale the input so its area is this many m^2
+  std::optional<double> max_circumradius;  // intrinsic refinement bound, in scaled units (m)
+  double min_angle_deg = 0.0;              // optional refinement angle bound
+
+  // ---- agents (Table 1) ----
+  int agents = 0;                  // N
+  double sensor_distance = 0.0;    // m
+  double sensor_angle = 0.0;       // rad (negative = chemo-repulsion)
+  double move_rate = 0.0;          // m/s
+  double turn_rate = 0.0;          // rad/s
+  double turn_frequency = 0.0;     // 1/s, turn decisions per second
+  double deposit_rate = 0.0;       // amount/s per agent
+  std::optional<double> mean_lifetime;  // s; nullopt = no turnover (infinite lifetime)
+  double activation_time = 0.0;    // s, age before an agent deposits
+
+  // ---- pheromone (Eq. 1) ----
+  double decay_rate = 0.0;    // 1/s
+  double diffuse_rate = 0.0;  // m^2/s
+  Integrator integrator = Integrator::ForwardEuler;
+
+  // ---- time ----
+  double time_step = 0.0;  // s
+  std::uint32_t seed = 1;
+  std::optional<long long> steps;   // run length, if the file gives one
+  std::optional<double> sim_time;   // s, alternative to steps
+};
+
+// Parses and validates a scene file. A relative "mesh" path is resolved against the scene file's folder.
+Scene load_scene(const std::string& path);
+
+// Validates a scene built in code (the same checks as load_scene).
+void validate_scene(const Scene& scene);
+
+}  // namespace physarum

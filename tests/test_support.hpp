@@ -1,0 +1,76 @@
+#pragma once
+// Helpers shared by the test suites: locating the shared test meshes (skipping cleanly when the
+// folder is absent) and running the `physarum` program as a user would.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace physarum::testing {
+
+// Absolute path of ../shared/meshes/NAME, or "" when it is not there.
+inline std::string shared_mesh_path(const std::string& name) {
+  const std::filesystem::path p = std::filesystem::path(PHYSARUM_SHARED_MESHES) / name;
+  return std::filesystem::exists(p) ? p.string() : std::string();
+}
+
+// Use at the top of a test: binds `var` to the mesh path or skips the test with a clear message.
+#define PHYSARUM_REQUIRE_SHARED_MESH(var, name)                                                  \
+  const std::string var = ::physarum::testing::shared_mesh_path(name);                           \
+  if (var.empty()) GTEST_SKIP() << "shared test mesh " << (name) << " not found under "           \
+                                << PHYSARUM_SHARED_MESHES << " (the shared/ folder is absent)"
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  // standard output
+  std::string err;  // standard error
+};
+
+// Runs `physarum ARGS` through the shell (ARGS is shell-quoted by the caller) and captures both
+// streams and the exit code.
+inline CommandResult run_physarum(const std::string& args) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("physarum_cmd_" + std::to_string(::getpid()) + "_" +
+                                     std::to_string(reinterpret_cast<uintptr_t>(&args)));
+  std::filesystem::create_directories(dir);
+  const std::string out_file = (dir / "out").string(), err_file = (dir / "err").string();
+  const std::string cmd = std::string("'") + PHYSARUM_EXE + "' " + args + " >'" + out_file + "' 2>'" + err_file + "'";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  auto slurp = [](const std::string& path) {
+    std::string s;
+    if (FILE* f = std::fopen(path.c_str(), "rb")) {
+      std::array<char, 4096> buf;
+      size_t n;
+      while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) s.append(buf.data(), n);
+      std::fclose(f);
+    }
+    return s;
+  };
+  r.out = slurp(out_file);
+  r.err = slurp(err_file);
+  std::filesystem::remove_all(dir);
+  return r;
+}
+
+// A fresh empty temporary directory, removed when the object goes out of scope.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    static int counter = 0;
+    path = std::filesystem::temp_directory_path() /
+           ("physarum_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
+
+}  // namespace physarum::testing

@@ -1,0 +1,18 @@
+#pragma once
+// Each subcommand of the `physarum` program lives in its own file and registers itself here.
+// A registered command parses into its own options and returns its exit code when run.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+
+namespace physarum::cli {
+
+struct Command {
+  CLI::App* app = nullptr;     // the subcommand, to test whether it was chosen
+  std::function<int()> run;    // runs it; returns the exit code
+};
+
+Command add_mesh_command(CLI::App& parent);
+
+}  // namespace physarum::cli

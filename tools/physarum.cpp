@@ -1,0 +1,47 @@
+// The `physarum` command-line program: one entry point for users, tests and benchmarks.
+// Exit codes (DESIGN.md): 0 success, 1 bad input or a failed check, 2 usage error.
+#include "common/errors.hpp"
+#include "tools/commands.hpp"
+
+#include <iostream>
+#include <vector>
+
+int main(int argc, char** argv) {
+  CLI::App app{"physarum — Physarum slime-mold patterns grown on intrinsic triangulations of curved surfaces"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "physarum 0.1");
+
+  std::vector<physarum::cli::Command> commands;
+  commands.push_back(physarum::cli::add_mesh_command(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    for (const auto& command : commands)
+      if (command.app->parsed()) return command.run();
+  } catch (const physarum::UsageError& e) {
+    std::cerr << "physarum: usage error: " << e.what() << "\n";
+    return 2;
+  } catch (const physarum::InputError& e) {
+    std::cerr << "physarum: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "physarum: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "physarum: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
