@@ -17,4 +17,11 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The compute device failed us: no OpenCL platform or device, a kernel that does not build (the
+// message carries the build log), an OpenCL call that returned an error (named), out of device
+// resources. Exit code 1.
+struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace physarum

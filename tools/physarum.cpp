@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
 
   std::vector<physarum::cli::Command> commands;
   commands.push_back(physarum::cli::add_mesh_command(app));
+  commands.push_back(physarum::cli::add_devices_command(app));
 
   try {
     app.parse(argc, argv);
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   } catch (const physarum::UsageError& e) {
     std::cerr << "physarum: usage error: " << e.what() << "\n";
     return 2;
+  } catch (const physarum::DeviceError& e) {
+    std::cerr << "physarum: device error: " << e.what() << "\n";
+    return 1;
   } catch (const physarum::InputError& e) {
     std::cerr << "physarum: error: " << e.what() << "\n";
     return 1;

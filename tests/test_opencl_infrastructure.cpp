@@ -1,0 +1,138 @@
+// The OpenCL plumbing every backend kernel relies on: device choice, embedded sources, program
+// build and cache, and the device's Philox against the host's known answers.
+#include "common/philox.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/kernel_sources.hpp"
+#include "opencl/program_cache.hpp"
+#include "test_support.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace physarum::opencl {
+namespace {
+
+TEST(OpenCLDevices, AtLeastOneDeviceIsListed) {
+  const auto devices = list_devices();
+  ASSERT_FALSE(devices.empty()) << "setup installs PoCL, so an OpenCL device must exist";
+  for (size_t i = 0; i < devices.size(); ++i) {
+    EXPECT_EQ(devices[i].index, static_cast<int>(i));
+    EXPECT_FALSE(devices[i].device_name.empty());
+    EXPECT_GT(devices[i].max_work_group_size, 0u);
+  }
+}
+
+TEST(OpenCLDevices, SelectionByIndexAndSubstring) {
+  const auto devices = list_devices();
+  ASSERT_FALSE(devices.empty());
+  EXPECT_EQ(select_device("0").device_name, devices[0].device_name);
+  // A case-insensitive piece of the platform name picks that platform's first device.
+  std::string piece = devices[0].platform_name.substr(0, 4);
+  for (char& ch : piece) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  EXPECT_EQ(select_device(piece).platform_name, devices[0].platform_name);
+}
+
+TEST(OpenCLDevices, NoMatchListsWhatWasFound) {
+  try {
+    select_device("no-such-device-xyz");
+    FAIL() << "expected DeviceError";
+  } catch (const DeviceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no-such-device-xyz"), std::string::npos) << m;
+    EXPECT_NE(m.find("devices found"), std::string::npos) << m;
+    EXPECT_NE(m.find(list_devices()[0].device_name), std::string::npos) << m;
+  }
+  EXPECT_THROW(select_device("999"), DeviceError);
+}
+
+TEST(OpenCLDevices, CommandLineListsDevicesAndRejectsUnknownOnes) {
+  const auto r = testing::run_physarum("devices");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("0: "), std::string::npos) << r.out;
+}
+
+TEST(OpenCLKernelSources, QuotedIncludesAreInlinedOnce) {
+  // Every embedded file must assemble without a missing include.
+  for (const EmbeddedFile& f : embedded_kernel_files()) EXPECT_NO_THROW(kernel_source(f.name)) << f.name;
+  EXPECT_THROW(kernel_source("does_not_exist.cl"), DeviceError);
+}
+
+TEST(OpenCLProgramCache, BuildFailureCarriesTheLog) {
+  const ComputeContext c = make_compute_context("");
+  try {
+    build_program(c.context, c.device, "broken.cl", "__kernel void k(__global float* x) { x[0] = undefined_name; }");
+    FAIL() << "expected DeviceError";
+  } catch (const DeviceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("broken.cl"), std::string::npos) << m;
+    EXPECT_NE(m.find("undefined_name"), std::string::npos) << "the build log should name the bad identifier: " << m;
+  }
+}
+
+TEST(OpenCLProgramCache, SecondBuildComesFromTheCache) {
+  testing::TempDir dir;
+  ::setenv("PHYSARUM_CACHE_DIR", dir.path.c_str(), 1);
+  const ComputeContext c = make_compute_context("");
+  const std::string src = "__kernel void twice(__global float* x) { x[get_global_id(0)] *= 2.0f; }";
+  build_program(c.context, c.device, "twice.cl", src);
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
+  EXPECT_EQ(files, 1u) << "one binary cached";
+  // The cached binary must still produce a working program.
+  cl::Program p = build_program(c.context, c.device, "twice.cl", src);
+  cl::Buffer buf(c.context, CL_MEM_READ_WRITE, 4 * sizeof(float));
+  std::vector<float> v{1, 2, 3, 4};
+  c.queue.enqueueWriteBuffer(buf, CL_TRUE, 0, 4 * sizeof(float), v.data());
+  cl::Kernel k(p, "twice");
+  k.setArg(0, buf);
+  c.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(4));
+  c.queue.enqueueReadBuffer(buf, CL_TRUE, 0, 4 * sizeof(float), v.data());
+  EXPECT_EQ(v, (std::vector<float>{2, 4, 6, 8}));
+  // A different option set is a different key.
+  build_program(c.context, c.device, "twice.cl", src, "-DSOMETHING=1");
+  files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
+  EXPECT_EQ(files, 2u);
+  ::unsetenv("PHYSARUM_CACHE_DIR");
+}
+
+// Random123's published known-answer vectors for philox4x32-10 (kat_vectors in its distribution),
+// computed on the device with the same header the host compiles.
+TEST(OpenCLPhilox, KnownAnswersInsideAKernel) {
+  const std::vector<cl_uint4> counters = {{{0, 0, 0, 0}},
+                                          {{0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu}},
+                                          {{0x243f6a88u, 0x85a308d3u, 0x13198a2eu, 0x03707344u}}};
+  const std::vector<cl_uint2> keys = {{{0, 0}}, {{0xffffffffu, 0xffffffffu}}, {{0xa4093822u, 0x299f31d0u}}};
+  const std::vector<std::array<cl_uint, 4>> expected = {{0x6627e8d5u, 0xe169c58du, 0xbc57ac4cu, 0x9b00dbd8u},
+                                                        {0x408f276du, 0x41c83b0eu, 0xa20bc7c6u, 0x6d5451fdu},
+                                                        {0xd16cfe09u, 0x94fdccebu, 0x5001e420u, 0x24126ea1u}};
+  const ComputeContext c = make_compute_context("");
+  cl::Program p = build_program(c.context, c.device, "philox_check.cl", kernel_source("philox_check.cl"));
+  const cl_uint n = static_cast<cl_uint>(counters.size());
+  cl::Buffer bc(c.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(cl_uint4), const_cast<cl_uint4*>(counters.data()));
+  cl::Buffer bk(c.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(cl_uint2), const_cast<cl_uint2*>(keys.data()));
+  // One canary element after the outputs catches a kernel that writes past its range.
+  cl::Buffer br(c.context, CL_MEM_READ_WRITE, (n + 1) * sizeof(cl_uint4));
+  std::vector<cl_uint4> results(n + 1);
+  results[n] = {{0xdeadbeefu, 0xdeadbeefu, 0xdeadbeefu, 0xdeadbeefu}};
+  c.queue.enqueueWriteBuffer(br, CL_TRUE, 0, (n + 1) * sizeof(cl_uint4), results.data());
+  cl::Kernel k(p, "philox_known_answers");
+  k.setArg(0, bc);
+  k.setArg(1, bk);
+  k.setArg(2, br);
+  k.setArg(3, n);
+  c.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
+  c.queue.enqueueReadBuffer(br, CL_TRUE, 0, (n + 1) * sizeof(cl_uint4), results.data());
+  for (cl_uint i = 0; i < n; ++i) {
+    const auto host = philox4x32_10({counters[i].s[0], counters[i].s[1], counters[i].s[2], counters[i].s[3]},
+                                    {keys[i].s[0], keys[i].s[1]});
+    for (int w = 0; w < 4; ++w) {
+      EXPECT_EQ(results[i].s[w], expected[i][w]) << "device, vector " << i << " word " << w;
+      EXPECT_EQ(host[w], expected[i][w]) << "host, vector " << i << " word " << w;
+    }
+  }
+  for (int w = 0; w < 4; ++w) EXPECT_EQ(results[n].s[w], 0xdeadbeefu) << "canary overwritten";
+}
+
+}  // namespace
+}  // namespace physarum::opencl
