@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   std::vector<physarum::cli::Command> commands;
   commands.push_back(physarum::cli::add_mesh_command(app));
   commands.push_back(physarum::cli::add_devices_command(app));
+  commands.push_back(physarum::cli::add_run_command(app));
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,44 @@
+#pragma once
+// Device buffers that know their name (for messages), are checked against the device's largest
+// allocation before they are made, and, when written by kernels, carry a canary region after the
+// payload so a kernel that writes past its range is caught (tests ask canaries_intact()).
+#include "opencl/compute_context.hpp"
+#include "opencl/opencl_api.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace physarum::opencl {
+
+// 64 bytes of canary: more than one float4 element, so an off-by-one write of any element type lands in it.
+inline constexpr std::size_t kCanaryBytes = 64;
+inline constexpr std::uint8_t kCanaryByte = 0xA5;
+
+struct DeviceBuffer {
+  cl::Buffer buffer;
+  std::string name;
+  std::size_t payload_bytes = 0;
+  bool guarded = false;  // a canary region follows the payload
+};
+
+// Allocates payload_bytes (+ kCanaryBytes when guarded, with the canary written). Throws DeviceError
+// naming the buffer, its size and the device's limit when the size exceeds max_allocation_bytes,
+// and a DeviceError with the OpenCL error name when the allocation itself fails.
+DeviceBuffer allocate_buffer(const ComputeContext& compute, const std::string& name, std::size_t payload_bytes,
+                             cl_mem_flags flags, bool guarded);
+
+// allocate_buffer + a blocking upload of `values`.
+template <class T>
+DeviceBuffer upload_buffer(const ComputeContext& compute, const std::string& name, const std::vector<T>& values,
+                           cl_mem_flags flags, bool guarded) {
+  DeviceBuffer b = allocate_buffer(compute, name, values.size() * sizeof(T), flags, guarded);
+  if (!values.empty()) compute.queue.enqueueWriteBuffer(b.buffer, CL_TRUE, 0, b.payload_bytes, values.data());
+  return b;
+}
+
+// Reads the canary back (blocking); true for an unguarded buffer.
+bool canary_intact(const ComputeContext& compute, const DeviceBuffer& buffer);
+
+}  // namespace physarum::opencl

@@ -1,0 +1,113 @@
+#pragma once
+// The pheromone field of the OpenCL backend (mirrors reference/pheromone.hpp): one float per
+// intrinsic vertex on the device, advanced by the diffusion-decay PDE with the cotan Laplacian L and
+// lumped mass M (Eq. 6 forward Euler with automatic sub-steps, Eq. 7 backward Euler by conjugate
+// gradients on the device). The field stays on the device; the host reads it only on demand.
+#include "common/field_statistics.hpp"
+#include "common/scene.hpp"
+#include "common/surface_domain.hpp"
+#include "common/vertex_parameters.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/device_buffer.hpp"
+#include "opencl/field_statistics.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace physarum::opencl {
+
+struct OpenCLPheromoneOptions {
+  // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system, see
+  // pheromone.cpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
+  double cg_relative_tolerance = 1e-6;
+  int cg_max_iterations = 1000;  // a bound, so a solve always ends
+  // Iterations enqueued between two reads of the solver state (a 32-byte read): fewer reads, but up
+  // to this many no-op launches after convergence.
+  int cg_check_interval = 16;
+};
+
+// What the last backward-Euler solve did.
+struct ConjugateGradientReport {
+  int iterations = 0;
+  double relative_residual = 0.0;  // of the recursively updated residual, as the solver saw it
+  bool converged = true;
+};
+
+class OpenCLPheromone {
+ public:
+  // Uploads the domain's Laplacian (float values, int indices), masses and the per-vertex rates of
+  // params; builds pheromone.cl. Throws InputError like ReferencePheromone (sizes, time step,
+  // masses, rates) and DeviceError when a buffer exceeds the device's limits or a build fails.
+  OpenCLPheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                  Integrator integrator, double time_step, const OpenCLPheromoneOptions& options = {});
+  ~OpenCLPheromone();
+  OpenCLPheromone(const OpenCLPheromone&) = delete;
+  OpenCLPheromone& operator=(const OpenCLPheromone&) = delete;
+
+  // ---- the field ----
+  std::vector<double> concentration() const;  // blocking read-back, converted to double
+  void set_concentration(const std::vector<double>& u);
+  void fill(double value);
+  // An AMOUNT at a vertex raises its concentration by amount / vertex_mass.
+  void add_deposits(const std::vector<double>& amount_per_vertex);
+  // The device buffer holding u (float, vertex_count): the same buffer for the object's lifetime,
+  // so agent kernels may keep it as an argument.
+  const cl::Buffer& concentration_buffer() const;
+  const cl::Buffer& mass_buffer() const;
+
+  // ---- time ----
+  // One time step: forward Euler enqueues its sub-steps back to back with no host round trip;
+  // backward Euler runs conjugate gradients, reading only the 32-byte solver state every
+  // cg_check_interval iterations. Throws DeviceError when a solve ends far from convergence.
+  void step();
+  double time_step() const { return time_step_; }
+  Integrator integrator() const { return integrator_; }
+  double stable_time_step() const { return stable_time_step_; }  // same bound as the reference
+  int sub_steps() const { return sub_steps_; }
+  const ConjugateGradientReport& last_solve() const { return last_solve_; }
+
+  // ---- summaries, reduced on the device ----
+  double total_amount() const;  // sum_i m_i u_i
+  FieldStatistics statistics(double U) const;
+  int vertex_count() const { return vertex_count_; }
+
+  // Names of the device buffers whose canary region a kernel overwrote (empty when none): the
+  // out-of-bounds check of the tests.
+  std::vector<std::string> damaged_canaries() const;
+
+ private:
+  struct Kernels;
+  void forward_step();
+  void backward_step();
+  void diagonal_step();
+
+  ComputeContext compute_;
+  OpenCLPheromoneOptions options_;
+  Integrator integrator_;
+  double time_step_;
+  int vertex_count_ = 0;
+  double stable_time_step_ = 0.0;
+  int sub_steps_ = 1;
+  double sub_step_ = 0.0;
+  // Backward Euler with R_dif = 0 everywhere: the system is diagonal and one multiply solves it.
+  bool diagonal_only_ = false;
+
+  std::unique_ptr<Kernels> kernels_;
+  std::size_t group_ = 1;        // local size of every per-vertex kernel
+  std::size_t final_group_ = 1;  // local size of the one-group reduction passes
+  std::size_t group_count_ = 1;  // work-groups of a per-vertex launch (= partials per reduction)
+
+  // Operators and per-vertex data (read-only on the device).
+  DeviceBuffer row_start_, column_, laplacian_, diffuse_over_mass_, decay_rate_, mass_, inverse_mass_;
+  // Backward Euler: S x = B u, S symmetric positive definite (same sparsity as L), B mostly diagonal.
+  DeviceBuffer system_row_start_, system_column_, system_value_, inverse_diagonal_;
+  DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;
+  // Written by kernels: canary-guarded.
+  DeviceBuffer u_, scratch_, amount_, b_, r_, z_, p_, q_, partials_, cg_state_;
+
+  std::unique_ptr<DeviceFieldStatistics> statistics_;
+  ConjugateGradientReport last_solve_;
+};
+
+}  // namespace physarum::opencl

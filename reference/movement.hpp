@@ -1,0 +1,18 @@
+#pragma once
+// Movement (paper Sec. 3.2, Fig. 2b): each step an agent walks the geodesic of length v * dt along
+// its heading across the intrinsic faces; at a boundary it reflects (BoundaryRule::Reflect), so it
+// never leaves the surface.
+#include "common/surface_domain.hpp"
+#include "common/trace.hpp"
+#include "reference/agents.hpp"
+
+#include <vector>
+
+namespace physarum {
+
+// Moves agent `a` by `distance` and updates its face, position and heading. `segments` receives the
+// per-face pieces of the path (for deposition). Returns the trace (face crossings, boundary hits).
+TraceResult move_agent(const SurfaceDomain& domain, Agents& agents, int a, double distance,
+                       std::vector<TraceSegment>& segments);
+
+}  // namespace physarum

@@ -1,0 +1,154 @@
+#include "reference/pheromone.hpp"
+
+#include "common/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace physarum {
+
+ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const VertexParameters& params,
+                                       Integrator integrator, double time_step)
+    : domain_(domain), integrator_(integrator), time_step_(time_step) {
+  const int n = domain.vertex_count;
+  const size_t un = static_cast<size_t>(n);
+  if (!(time_step > 0.0) || !std::isfinite(time_step))
+    throw InputError("pheromone: time step " + std::to_string(time_step) + " must be > 0");
+  if (domain.vertex_mass.size() != un || domain.laplacian.rows != n || domain.laplacian.cols != n)
+    throw InputError("pheromone: the surface domain's mass (" + std::to_string(domain.vertex_mass.size()) +
+                     ") or Laplacian (" + std::to_string(domain.laplacian.rows) + ") size differs from its " +
+                     std::to_string(n) + " vertices");
+  if (params.diffuse_rate.size() != un || params.decay_rate.size() != un)
+    throw InputError("pheromone: parameter maps have " + std::to_string(params.decay_rate.size()) +
+                     " values for " + std::to_string(n) + " vertices");
+
+  u_.assign(un, 0.0);
+  scratch_.assign(un, 0.0);
+  inverse_mass_.resize(un);
+  diffuse_over_mass_.resize(un);
+  decay_rate_ = params.decay_rate;
+  for (int i = 0; i < n; ++i) {
+    const double m = domain.vertex_mass[i];
+    if (!(m > 0.0)) throw InputError("pheromone: vertex " + std::to_string(i) + " has lumped mass " + std::to_string(m) + " (must be > 0)");
+    if (!(params.diffuse_rate[i] >= 0.0) || !(params.decay_rate[i] >= 0.0))
+      throw InputError("pheromone: vertex " + std::to_string(i) + " has a negative diffuse or decay rate");
+    inverse_mass_[i] = 1.0 / m;
+    diffuse_over_mass_[i] = params.diffuse_rate[i] / m;
+  }
+
+  // Forward Euler step limit. One sub-step is u' = u - h (M^-1 R_dif L u + R_dec u), i.e. row i:
+  //   u'_i = (1 - h a_i) u_i + h (r_dif,i / m_i) sum_j w_ij u_j,   a_i = r_dif,i L_ii / m_i + r_dec,i.
+  // (1) Non-negativity: with non-negative cotan weights w_ij (intrinsic Delaunay), every coefficient
+  //     is >= 0, so u stays >= 0, iff h a_i <= 1 for all i.
+  // (2) Stability: the eigenvalues of M^-1 R_dif L + R_dec are real and >= 0 (the matrix is similar
+  //     to a symmetric PSD one plus a non-negative diagonal); Gershgorin bounds the largest by
+  //     g = max_i (r_dif,i sum_j |L_ij| / m_i + r_dec,i), and the step is stable when h g <= 2.
+  //     (1) implies (2) when all weights are >= 0; (2) still holds the field bounded when a
+  //     triangulation has negative weights (non-Delaunay input), where (1) alone is not enough.
+  // A safety factor of 0.9 keeps rounding away from the edge of both bounds.
+  const CsrMatrix& L = domain.laplacian;
+  double max_a = 0.0, max_g = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double diagonal = 0.0, absolute_row = 0.0;
+    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
+      if (L.column[k] == i) diagonal += L.value[k];
+      absolute_row += std::abs(L.value[k]);
+    }
+    max_a = std::max(max_a, diffuse_over_mass_[i] * diagonal + decay_rate_[i]);
+    max_g = std::max(max_g, diffuse_over_mass_[i] * absolute_row + decay_rate_[i]);
+  }
+  constexpr double kSafety = 0.9;
+  const double bound = std::min(max_a > 0 ? 1.0 / max_a : std::numeric_limits<double>::infinity(),
+                                max_g > 0 ? 2.0 / max_g : std::numeric_limits<double>::infinity());
+  stable_time_step_ = kSafety * bound;
+
+  if (integrator == Integrator::ForwardEuler) {
+    sub_steps_ = time_step <= stable_time_step_ ? 1 : static_cast<int>(std::ceil(time_step / stable_time_step_));
+    sub_step_ = time_step / sub_steps_;
+    return;
+  }
+
+  // Backward Euler: A = M + dt (R_dif L + R_dec M). Symmetric when R_dif is a multiple of the identity
+  // (L is symmetric), then LDL^T; a varying R_dif makes R_dif L non-symmetric, then LU.
+  sub_steps_ = 1;
+  symmetric_ = is_uniform(params.diffuse_rate);
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(L.value.size() + un);
+  for (int i = 0; i < n; ++i) {
+    const double m = domain.vertex_mass[i];
+    triplets.emplace_back(i, i, m * (1.0 + time_step * decay_rate_[i]));
+    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k)
+      triplets.emplace_back(i, L.column[k], time_step * params.diffuse_rate[i] * L.value[k]);
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  A.makeCompressed();
+  if (symmetric_) {
+    ldlt_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(A);
+    if (ldlt_->info() != Eigen::Success)
+      throw InputError("pheromone: the backward-Euler system could not be factorised (LDLT)");
+  } else {
+    lu_ = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>>>();
+    lu_->analyzePattern(A);
+    lu_->factorize(A);
+    if (lu_->info() != Eigen::Success)
+      throw InputError("pheromone: the backward-Euler system could not be factorised (LU): " + lu_->lastErrorMessage());
+  }
+  rhs_.resize(n);
+  solution_.resize(n);
+}
+
+void ReferencePheromone::set_concentration(const std::vector<double>& u) {
+  if (u.size() != u_.size())
+    throw InputError("pheromone: set_concentration got " + std::to_string(u.size()) + " values for " +
+                     std::to_string(u_.size()) + " vertices");
+  std::copy(u.begin(), u.end(), u_.begin());
+}
+
+void ReferencePheromone::fill(double value) { std::fill(u_.begin(), u_.end(), value); }
+
+void ReferencePheromone::add_deposits(const std::vector<double>& amount_per_vertex) {
+  if (amount_per_vertex.size() != u_.size())
+    throw InputError("pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) + " values for " +
+                     std::to_string(u_.size()) + " vertices");
+  for (size_t i = 0; i < u_.size(); ++i) u_[i] += amount_per_vertex[i] * inverse_mass_[i];
+}
+
+void ReferencePheromone::step() {
+  if (integrator_ == Integrator::BackwardEuler) {
+    backward_step();
+    return;
+  }
+  for (int s = 0; s < sub_steps_; ++s) forward_sub_step(sub_step_);
+}
+
+// Eq. 6 divided by M: u' = u - h (M^-1 R_dif L u + R_dec u), row by row through the CSR Laplacian.
+void ReferencePheromone::forward_sub_step(double h) {
+  const CsrMatrix& L = domain_.laplacian;
+  const int n = static_cast<int>(u_.size());
+  for (int i = 0; i < n; ++i) {
+    double Lu = 0.0;
+    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) Lu += L.value[k] * u_[L.column[k]];
+    scratch_[i] = u_[i] - h * (diffuse_over_mass_[i] * Lu + decay_rate_[i] * u_[i]);
+  }
+  u_.swap(scratch_);
+}
+
+// Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u with the factorisation made in the constructor.
+void ReferencePheromone::backward_step() {
+  const int n = static_cast<int>(u_.size());
+  for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u_[i];
+  if (symmetric_) solution_ = ldlt_->solve(rhs_);
+  else solution_ = lu_->solve(rhs_);
+  for (int i = 0; i < n; ++i) u_[i] = solution_[i];
+}
+
+double ReferencePheromone::total_amount() const {
+  double total = 0.0;
+  for (size_t i = 0; i < u_.size(); ++i) total += domain_.vertex_mass[i] * u_[i];
+  return total;
+}
+
+}  // namespace physarum

@@ -1,0 +1,134 @@
+// Runs every kernel of the pheromone and statistics programs (and philox_check.cl) once on a small
+// problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
+// API checks. Exit 0 when every run finished and every canary is intact.
+//
+//   physarum_oclgrind_probe               the clean run
+//   physarum_oclgrind_probe --fault-demo  a kernel that writes one element past its buffer: proves
+//                                         the oclgrind check can fail
+#include "common/errors.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/kernel_sources.hpp"
+#include "opencl/pheromone.hpp"
+#include "opencl/program_cache.hpp"
+#include "pheromone_test_meshes.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+namespace physarum::opencl {
+namespace {
+
+int failures = 0;
+
+void check(bool ok, const std::string& what) {
+  std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
+  if (!ok) ++failures;
+}
+
+VertexParameters rates(int n, double diffuse, double decay) {
+  VertexParameters p;
+  p.diffuse_rate.assign(static_cast<size_t>(n), diffuse);
+  p.decay_rate.assign(static_cast<size_t>(n), decay);
+  return p;
+}
+
+std::vector<double> ramp(int n) {
+  std::vector<double> u(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) u[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
+  return u;
+}
+
+void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                   Integrator integrator, double dt, const std::string& label) {
+  OpenCLPheromoneOptions options;
+  options.cg_max_iterations = 64;  // oclgrind interprets every work-item: keep the solve short
+  options.cg_check_interval = 8;
+  OpenCLPheromone field(compute, domain, params, integrator, dt, options);
+  field.set_concentration(ramp(domain.vertex_count));
+  field.add_deposits(std::vector<double>(static_cast<size_t>(domain.vertex_count), 1e-3));
+  for (int s = 0; s < 2; ++s) field.step();
+  const FieldStatistics stats = field.statistics(0.5);
+  const double total = field.total_amount();
+  const std::vector<double> u = field.concentration();
+  bool finite = std::isfinite(stats.mean) && std::isfinite(total);
+  for (double x : u) finite = finite && std::isfinite(x);
+  check(finite, label + ": field and statistics finite (mean " + std::to_string(stats.mean) + ", " +
+                    std::to_string(field.sub_steps()) + " sub-steps, " +
+                    std::to_string(field.last_solve().iterations) + " CG iterations)");
+  const std::vector<std::string> damaged = field.damaged_canaries();
+  std::string names;
+  for (const auto& n : damaged) names += " " + n;
+  check(damaged.empty(), label + ": canaries intact" + names);
+}
+
+void run_philox(const ComputeContext& compute) {
+  const cl::Program p = build_program(compute.context, compute.device, "philox_check.cl", kernel_source("philox_check.cl"));
+  const cl_uint n = 3;
+  std::vector<cl_uint4> counters(n, cl_uint4{{1, 2, 3, 4}});
+  std::vector<cl_uint2> keys(n, cl_uint2{{5, 6}});
+  cl::Buffer bc(compute.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(cl_uint4), counters.data());
+  cl::Buffer bk(compute.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(cl_uint2), keys.data());
+  cl::Buffer br(compute.context, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint4));
+  cl::Kernel k(p, "philox_known_answers");
+  k.setArg(0, bc);
+  k.setArg(1, bk);
+  k.setArg(2, br);
+  k.setArg(3, n);
+  compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
+  std::vector<cl_uint4> results(n);
+  compute.queue.enqueueReadBuffer(br, CL_TRUE, 0, n * sizeof(cl_uint4), results.data());
+  check(results[0].s[0] == results[2].s[0], "philox_check.cl: equal inputs give equal outputs");
+}
+
+// The deliberate fault: work-item i writes x[i + 1], so the last one writes past the buffer.
+void run_fault_demo(const ComputeContext& compute) {
+  const char* source = "__kernel void off_by_one(__global float* x, const uint n) {\n"
+                       "  const uint i = get_global_id(0);\n"
+                       "  if (i >= n) return;\n"
+                       "  x[i + 1] = 1.0f;\n"
+                       "}\n";
+  const cl::Program p = build_program(compute.context, compute.device, "fault_demo.cl", source);
+  const cl_uint n = 16;
+  cl::Buffer x(compute.context, CL_MEM_READ_WRITE, n * sizeof(float));
+  cl::Kernel k(p, "off_by_one");
+  k.setArg(0, x);
+  k.setArg(1, n);
+  compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
+  compute.queue.finish();
+  check(true, "fault demo ran (oclgrind must report an invalid write)");
+}
+
+int run(int argc, char** argv) {
+  const ComputeContext compute = make_compute_context("");
+  std::printf("device: %s\n", compute.device.describe().c_str());
+  if (argc > 1 && std::strcmp(argv[1], "--fault-demo") == 0) {
+    run_fault_demo(compute);
+    return failures == 0 ? 0 : 1;
+  }
+  // 162 vertices: small enough to interpret, not a multiple of any power-of-two group size, so the
+  // padded work-items and their guards are exercised.
+  const SurfaceDomain domain = testing::make_domain(testing::make_icosphere(2));
+  const int n = domain.vertex_count;
+  VertexParameters mixed = rates(n, 0.02, 0.5);
+  for (int i = 0; i < n; ++i) mixed.diffuse_rate[static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
+  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::ForwardEuler, 3.0, "forward Euler, sub-steps");
+  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
+  run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
+  run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
+  run_philox(compute);
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+}  // namespace physarum::opencl
+
+int main(int argc, char** argv) {
+  try {
+    return physarum::opencl::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "physarum_oclgrind_probe: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,285 @@
+// The OpenCL pheromone field against the serial reference: one forward-Euler step (with and without
+// sub-steps) and one backward-Euler solve element by element, mass balance on the device, device
+// statistics against the host's, and canary regions after every buffer a kernel writes.
+//
+// Tolerances: float32 on the device against double on the host. A forward step is a short sum of
+// O(1) terms per vertex, so it agrees to 1e-5 of the field's maximum; conjugate gradients stop at a
+// relative residual of 1e-6 on a system whose condition number here is ~10-100, so 1e-4 of the
+// maximum bounds the solve's error with room for float rounding.
+#include "common/errors.hpp"
+#include "common/intrinsic_triangulation.hpp"
+#include "common/mesh_loading.hpp"
+#include "opencl/pheromone.hpp"
+#include "reference/pheromone.hpp"
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace physarum::opencl {
+namespace {
+
+// The real surface: the built-in sphere, intrinsic Delaunay (non-negative cotan weights).
+const SurfaceDomain& sphere_domain() {
+  static const SurfaceDomain domain = [] {
+    IntrinsicTriangulation triangulation(load_mesh("shape:sphere"));
+    triangulation.flip_to_delaunay();
+    return build_surface_domain(triangulation.snapshot());
+  }();
+  return domain;
+}
+
+const ComputeContext& compute() {
+  static const ComputeContext c = make_compute_context("");
+  return c;
+}
+
+std::vector<double> random_values(int n, unsigned seed, double lo, double hi) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(lo, hi);
+  std::vector<double> v(static_cast<size_t>(n));
+  for (double& x : v) x = uniform(rng);
+  return v;
+}
+
+VertexParameters uniform_rates(int n, double diffuse, double decay) {
+  VertexParameters p;
+  p.diffuse_rate.assign(static_cast<size_t>(n), diffuse);
+  p.decay_rate.assign(static_cast<size_t>(n), decay);
+  return p;
+}
+
+// Rates that differ per vertex, so a kernel that indexes a rate array wrongly (or reads one value
+// for all) disagrees with the reference.
+VertexParameters varying_rates(int n, double diffuse, double decay, unsigned seed) {
+  VertexParameters p;
+  p.diffuse_rate = random_values(n, seed, 0.5 * diffuse, 1.5 * diffuse);
+  p.decay_rate = random_values(n, seed + 1, 0.5 * decay, 1.5 * decay);
+  return p;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// Largest |a_i - b_i|, with the vertex where it happens (for the failure message).
+std::pair<double, size_t> max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double worst = -1;
+  size_t at = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (std::abs(a[i] - b[i]) > worst) worst = std::abs(a[i] - b[i]), at = i;
+  return {worst, at};
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// One step of both backends from the same random positive field; returns (reference, device).
+struct StepPair {
+  std::vector<double> reference, device;
+  int reference_sub_steps = 0, device_sub_steps = 0;
+  ConjugateGradientReport solve;
+  std::vector<std::string> damaged;
+};
+
+StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1) {
+  const SurfaceDomain& d = sphere_domain();
+  // The time step is chosen relative to the stability bound so the sub-step count is known.
+  ReferencePheromone probe(d, params, Integrator::ForwardEuler, 1.0);
+  const double dt = dt_in_stable_steps * probe.stable_time_step();
+  ReferencePheromone reference(d, params, integrator, dt);
+  OpenCLPheromone device(compute(), d, params, integrator, dt);
+  const std::vector<double> u0 = random_values(d.vertex_count, 11, 0.1, 1.0);
+  reference.set_concentration(u0);
+  device.set_concentration(u0);
+  for (int s = 0; s < steps; ++s) {
+    reference.step();
+    device.step();
+  }
+  return {reference.concentration(), device.concentration(), reference.sub_steps(), device.sub_steps(),
+          device.last_solve(), device.damaged_canaries()};
+}
+
+TEST(OpenCLPheromone, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
+  // The canary checks need padding work-items: a vertex count that is not a multiple of the group size.
+  EXPECT_GT(sphere_domain().vertex_count, 500);
+  EXPECT_NE(sphere_domain().vertex_count % 64, 0);
+}
+
+TEST(OpenCLPheromone, ForwardStepEqualsReference) {
+  const int n = sphere_domain().vertex_count;
+  for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 3)}) {
+    const StepPair r = one_step(params, Integrator::ForwardEuler, 0.7);
+    ASSERT_EQ(r.reference_sub_steps, 1);
+    ASSERT_EQ(r.device_sub_steps, 1);
+    const auto [diff, at] = max_difference(r.device, r.reference);
+    EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << "at vertex " << at;
+    // The step did something measurable, far above the tolerance: the comparison is not vacuous.
+    EXPECT_GT(max_difference(r.reference, random_values(n, 11, 0.1, 1.0)).first, 1e-2);
+    EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
+  }
+}
+
+TEST(OpenCLPheromone, ForwardStepWithSubStepsEqualsReference) {
+  const int n = sphere_domain().vertex_count;
+  for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 5)}) {
+    // 4.5 stable steps: 5 sub-steps, an odd count, so the ping-pong ends in the scratch buffer.
+    const StepPair r = one_step(params, Integrator::ForwardEuler, 4.5);
+    EXPECT_EQ(r.reference_sub_steps, 5);
+    EXPECT_EQ(r.device_sub_steps, r.reference_sub_steps);
+    const auto [diff, at] = max_difference(r.device, r.reference);
+    EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << "at vertex " << at;
+    EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
+  }
+  // An even count ends in u without the copy.
+  const StepPair even = one_step(uniform_rates(n, 0.01, 0.5), Integrator::ForwardEuler, 3.5, 3);
+  EXPECT_EQ(even.device_sub_steps, 4);
+  EXPECT_LE(max_difference(even.device, even.reference).first, 1e-5 * max_abs(even.reference));
+}
+
+TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
+  const int n = sphere_domain().vertex_count;
+  VertexParameters mixed = varying_rates(n, 0.01, 0.5, 9);
+  // Some vertices that do not diffuse at all: their rows leave the CG system (see pheromone.cpp).
+  for (int i = 0; i < n; i += 7) mixed.diffuse_rate[static_cast<size_t>(i)] = 0.0;
+  struct Case {
+    const char* name;
+    VertexParameters params;
+  };
+  const Case cases[] = {{"uniform", uniform_rates(n, 0.01, 0.5)},
+                        {"varying (row-scaled)", varying_rates(n, 0.01, 0.5, 7)},
+                        {"some zero diffusion", mixed}};
+  for (const Case& c : cases) {
+    // 50 stable steps: far beyond forward Euler's limit, so the implicit solve does real work.
+    const StepPair r = one_step(c.params, Integrator::BackwardEuler, 50.0);
+    const auto [diff, at] = max_difference(r.device, r.reference);
+    EXPECT_LE(diff, 1e-4 * max_abs(r.reference)) << c.name << ": at vertex " << at;
+    EXPECT_TRUE(r.solve.converged) << c.name << ": " << r.solve.iterations << " iterations, residual "
+                                   << r.solve.relative_residual;
+    EXPECT_GT(r.solve.iterations, 1) << c.name;
+    EXPECT_LE(r.solve.relative_residual, 1e-6) << c.name;
+    EXPECT_TRUE(r.damaged.empty()) << c.name << ": canaries overwritten in: " << joined(r.damaged);
+  }
+}
+
+TEST(OpenCLPheromone, BackwardWithoutDiffusionIsTheExactDecayFactor) {
+  const SurfaceDomain& d = sphere_domain();
+  const VertexParameters params = uniform_rates(d.vertex_count, 0.0, 0.5);
+  OpenCLPheromone device(compute(), d, params, Integrator::BackwardEuler, 0.2);
+  const std::vector<double> u0 = random_values(d.vertex_count, 13, 0.1, 1.0);
+  device.set_concentration(u0);
+  device.step();
+  const std::vector<double> u1 = device.concentration();
+  for (size_t i = 0; i < u0.size(); ++i) ASSERT_NEAR(u1[i], u0[i] / (1.0 + 0.2 * 0.5), 1e-6) << "vertex " << i;
+  EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
+}
+
+TEST(OpenCLPheromone, DiffusionAloneConservesTheTotalAmount) {
+  const SurfaceDomain& d = sphere_domain();
+  // A uniform diffuse rate: 1^T L = 0 makes sum m u invariant (a varying R_dif does not conserve it:
+  // 1^T R_dif L != 0). The sphere's vertex masses differ, so a scheme that forgot M^-1 would drift.
+  const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.0);
+  ReferencePheromone probe(d, params, Integrator::ForwardEuler, 1.0);
+  for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
+    OpenCLPheromone device(compute(), d, params, integrator, 3.0 * probe.stable_time_step());
+    const std::vector<double> u0 = random_values(d.vertex_count, 17, 0.0, 1.0);
+    device.set_concentration(u0);
+    const double before = device.total_amount();
+    double host_before = 0;
+    for (int i = 0; i < d.vertex_count; ++i) host_before += d.vertex_mass[i] * static_cast<float>(u0[i]);
+    EXPECT_NEAR(before / host_before, 1.0, 1e-6) << "device sum of m u";
+    for (int s = 0; s < 20; ++s) device.step();
+    const std::vector<double> u = device.concentration();
+    double after = 0;
+    for (int i = 0; i < d.vertex_count; ++i) after += d.vertex_mass[i] * u[i];
+    EXPECT_NEAR(after / host_before, 1.0, 2e-5);
+    EXPECT_NEAR(device.total_amount() / host_before, 1.0, 2e-5);
+    // ... and it did diffuse: the spread of the random start shrank a lot.
+    const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+    EXPECT_LT(*hi - *lo, 0.6);
+  }
+}
+
+TEST(OpenCLPheromone, DecayAloneScalesByOneMinusRateTimesStep) {
+  const SurfaceDomain& d = sphere_domain();
+  const double rate = 0.5, dt = 0.1;
+  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::ForwardEuler, dt);
+  ASSERT_EQ(device.sub_steps(), 1);
+  const std::vector<double> u0 = random_values(d.vertex_count, 19, 0.1, 1.0);
+  device.set_concentration(u0);
+  const double before = device.total_amount();
+  device.step();
+  const std::vector<double> u1 = device.concentration();
+  for (size_t i = 0; i < u0.size(); ++i)
+    ASSERT_NEAR(u1[i], (1.0 - rate * dt) * u0[i], 2e-7) << "vertex " << i;
+  for (int s = 1; s < 10; ++s) device.step();
+  EXPECT_NEAR(device.total_amount() / before, std::pow(1.0 - rate * dt, 10), 1e-5);
+}
+
+TEST(OpenCLPheromone, DepositsRaiseConcentrationByAmountOverMass) {
+  const SurfaceDomain& d = sphere_domain();
+  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  device.fill(0.25);
+  const std::vector<double> amount = random_values(d.vertex_count, 23, 0.0, 1e-3);
+  device.add_deposits(amount);
+  const std::vector<double> u = device.concentration();
+  for (size_t i = 0; i < u.size(); ++i)
+    ASSERT_NEAR(u[i], 0.25 + amount[i] / d.vertex_mass[i], 1e-5 * (0.25 + amount[i] / d.vertex_mass[i])) << i;
+  EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
+}
+
+TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
+  const SurfaceDomain& d = sphere_domain();
+  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  device.set_concentration(random_values(d.vertex_count, 29, 0.0, 1.0));
+  device.step();  // a field the device made, not just the one uploaded
+  const std::vector<double> u = device.concentration();
+  // U = 0.4 puts the thresholds 0.2, 0.4 and 0.8 inside the field's range: coverages away from 0 and 1.
+  const double U = 0.4;
+  const FieldStatistics host = compute_field_statistics(u, d.vertex_mass, U);
+  const FieldStatistics dev = device.statistics(U);
+  EXPECT_NEAR(dev.mean, host.mean, 1e-5 * host.mean);
+  EXPECT_EQ(dev.U, U);
+  for (size_t k = 0; k < host.coverage.size(); ++k) {
+    EXPECT_GT(host.coverage[k], 0.05);
+    EXPECT_LT(host.coverage[k], 0.95);
+    EXPECT_NEAR(dev.coverage[k], host.coverage[k], 1e-6) << "coverage at " << kCoverageMultiples[k] << " U";
+  }
+  EXPECT_NEAR(device.total_amount(), host.mean * d.total_area, 1e-5 * host.mean * d.total_area);
+  // A constant field above every threshold covers everything, exactly (same sums for both sides of the ratio).
+  device.fill(10.0);
+  const FieldStatistics full = device.statistics(U);
+  for (double c : full.coverage) EXPECT_EQ(c, 1.0);
+  EXPECT_NEAR(full.mean, 10.0, 1e-5);
+  EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
+}
+
+TEST(OpenCLPheromone, RejectsBadInputAndOversizedBuffers) {
+  const SurfaceDomain& d = sphere_domain();
+  EXPECT_THROW(OpenCLPheromone(compute(), d, uniform_rates(d.vertex_count - 1, 0.01, 0.5), Integrator::ForwardEuler, 0.1),
+               InputError);
+  EXPECT_THROW(OpenCLPheromone(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.0),
+               InputError);
+  OpenCLPheromone ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+  EXPECT_THROW(ok.set_concentration(std::vector<double>(3, 1.0)), InputError);
+  // A device whose largest allocation is smaller than the Laplacian: a clear error, not a crash.
+  ComputeContext small = compute();
+  small.device.max_allocation_bytes = 1024;
+  try {
+    OpenCLPheromone tiny(small, d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+    FAIL() << "expected DeviceError";
+  } catch (const DeviceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("Laplacian"), std::string::npos) << m;
+    EXPECT_NE(m.find("1024"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace physarum::opencl

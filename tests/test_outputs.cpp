@@ -1,0 +1,363 @@
+// Result outputs: intrinsic <-> input field transfer, the PLY file (parsed back here byte by byte),
+// the preview PNG (read back through OpenImageIO), the colour maps, and atomic writes that leave no
+// partial file behind.
+#include "common/atomic_write.hpp"
+#include "common/colormap.hpp"
+#include "common/errors.hpp"
+#include "common/field_transfer.hpp"
+#include "common/intrinsic_triangulation.hpp"
+#include "common/ply_writer.hpp"
+#include "common/preview_image.hpp"
+#include "pheromone_test_meshes.hpp"
+#include "test_support.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+namespace physarum {
+namespace {
+
+using testing::TempDir;
+
+std::vector<double> linear_field(const InputMesh& mesh) {
+  std::vector<double> f(mesh.positions.size());
+  for (size_t v = 0; v < f.size(); ++v) f[v] = 1.0 + 2.0 * mesh.positions[v].x() - 0.5 * mesh.positions[v].y() + 3.0 * mesh.positions[v].z();
+  return f;
+}
+
+std::vector<std::string> files_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  return names;
+}
+
+// ---- field transfer ------------------------------------------------------------------------------
+
+// The intrinsic triangulation keeps the input vertices as intrinsic vertices 0..nV-1 (inserted
+// vertices follow); the transfer finds exactly that numbering from the vertex locations.
+TEST(FieldTransfer, RefinedTriangulationKeepsInputVerticesFirst) {
+  const InputMesh mesh = testing::make_icosphere(1);
+  IntrinsicTriangulation triangulation(mesh);
+  triangulation.flip_to_delaunay();
+  RefinementOptions options;
+  options.max_circumradius = 0.15;
+  triangulation.refine(options);
+  const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
+  ASSERT_GT(domain.vertex_count, mesh.vertex_count()) << "test premise: refinement inserted vertices";
+  const std::vector<int> map = input_vertex_to_intrinsic(mesh, domain.vertex_location);
+  for (int v = 0; v < mesh.vertex_count(); ++v) ASSERT_EQ(map[v], v);
+  // Values come back unchanged at the input vertices.
+  std::vector<double> intrinsic(static_cast<size_t>(domain.vertex_count));
+  for (int i = 0; i < domain.vertex_count; ++i) intrinsic[i] = 10.0 * i + 0.5;
+  const std::vector<double> input = intrinsic_to_input(mesh, domain.vertex_location, intrinsic);
+  for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 10.0 * v + 0.5);
+}
+
+// Should a triangulation ever renumber, the transfer still finds each input vertex by location.
+TEST(FieldTransfer, FindsInputVerticesByLocationWhenRenumbered) {
+  const InputMesh mesh = testing::make_square_grid(3);
+  const IntrinsicMesh as_is = intrinsic_mesh_from_input(mesh);
+  // Intrinsic vertices: two inserted ones (face interiors) first, then the input vertices reversed.
+  std::vector<SurfacePoint> locations;
+  locations.push_back({0, Eigen::Vector3d(0.2, 0.3, 0.5)});
+  locations.push_back({4, Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3)});
+  for (int v = mesh.vertex_count() - 1; v >= 0; --v) locations.push_back(as_is.vertex_location[v]);
+  std::vector<double> intrinsic(locations.size());
+  for (size_t i = 0; i < intrinsic.size(); ++i) intrinsic[i] = static_cast<double>(i);
+  const std::vector<double> input = intrinsic_to_input(mesh, locations, intrinsic);
+  for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 2.0 + (mesh.vertex_count() - 1 - v)) << v;
+
+  locations.pop_back();  // input vertex 0 now has no intrinsic vertex on it
+  intrinsic.pop_back();
+  EXPECT_THROW(intrinsic_to_input(mesh, locations, intrinsic), InputError);
+}
+
+// Input -> intrinsic interpolates linearly: a linear function of position is reproduced exactly at
+// every intrinsic vertex, inserted ones included.
+TEST(FieldTransfer, InputToIntrinsicReproducesLinearFields) {
+  const InputMesh mesh = testing::make_square_grid(4);
+  std::vector<SurfacePoint> locations = intrinsic_mesh_from_input(mesh).vertex_location;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int k = 0; k < 20; ++k) {
+    double a = uniform(rng), b = uniform(rng) * (1 - a);
+    locations.push_back({k % mesh.triangle_count(), Eigen::Vector3d(a, b, 1 - a - b)});
+  }
+  const std::vector<double> field = linear_field(mesh);
+  const std::vector<double> sampled = input_to_intrinsic(mesh, locations, field);
+  for (size_t i = 0; i < locations.size(); ++i) {
+    const auto& t = mesh.triangles[locations[i].face];
+    const Eigen::Vector3d p = locations[i].barycentric[0] * mesh.positions[t[0]] +
+                              locations[i].barycentric[1] * mesh.positions[t[1]] +
+                              locations[i].barycentric[2] * mesh.positions[t[2]];
+    EXPECT_NEAR(sampled[i], 1.0 + 2.0 * p.x() - 0.5 * p.y() + 3.0 * p.z(), 1e-12);
+  }
+  EXPECT_THROW(input_to_intrinsic(mesh, locations, {1.0, 2.0}), InputError);
+}
+
+// ---- colour maps ---------------------------------------------------------------------------------
+
+// Perceptual maps: relative luminance rises strictly from 0 to 1, and the ends are the maps' known
+// end colours (viridis dark purple #440154 -> yellow #FDE725, magma black -> pale yellow).
+TEST(Colormap, LuminanceRisesMonotonically) {
+  for (Colormap map : {Colormap::Viridis, Colormap::Magma}) {
+    double previous = -1.0;
+    for (int k = 0; k <= 100; ++k) {
+      const auto c = colormap_color_float(map, k / 100.0);
+      const double luminance = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+      ASSERT_GT(luminance, previous) << "t = " << k / 100.0;
+      previous = luminance;
+    }
+  }
+  EXPECT_EQ(colormap_color(Colormap::Viridis, 0.0), (Rgb8{0x44, 0x01, 0x54}));
+  EXPECT_EQ(colormap_color(Colormap::Viridis, 1.0), (Rgb8{0xFD, 0xE7, 0x25}));
+  EXPECT_EQ(colormap_color(Colormap::Viridis, 7.0), colormap_color(Colormap::Viridis, 1.0));  // clamped
+  EXPECT_EQ(colormap_color(Colormap::Magma, 0.0), (Rgb8{0x00, 0x00, 0x04}));
+}
+
+// ---- PLY -----------------------------------------------------------------------------------------
+
+struct ParsedPly {
+  std::vector<std::string> header;
+  int vertices = -1, faces = -1;
+  std::vector<std::array<float, 4>> vertex;  // x y z value
+  std::vector<Rgb8> color;
+  std::vector<std::array<int, 3>> face;
+};
+
+// An independent reader for exactly the layout write_field_ply documents.
+ParsedPly parse_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ParsedPly ply;
+  const size_t end = bytes.find("end_header\n");
+  EXPECT_NE(end, std::string::npos);
+  std::stringstream header(bytes.substr(0, end));
+  for (std::string line; std::getline(header, line);) {
+    ply.header.push_back(line);
+    std::stringstream words(line);
+    std::string a, b;
+    int n = -1;
+    words >> a >> b >> n;
+    if (a == "element" && b == "vertex") ply.vertices = n;
+    if (a == "element" && b == "face") ply.faces = n;
+  }
+  size_t at = end + std::strlen("end_header\n");
+  auto take = [&](void* out, size_t size) {
+    EXPECT_LE(at + size, bytes.size());
+    std::memcpy(out, bytes.data() + at, size);  // the test machine is little-endian, like the file
+    at += size;
+  };
+  for (int v = 0; v < ply.vertices; ++v) {
+    std::array<float, 4> xyzv;
+    Rgb8 rgb;
+    take(xyzv.data(), 16);
+    take(rgb.data(), 3);
+    ply.vertex.push_back(xyzv);
+    ply.color.push_back(rgb);
+  }
+  for (int f = 0; f < ply.faces; ++f) {
+    unsigned char count = 0;
+    take(&count, 1);
+    EXPECT_EQ(count, 3);
+    std::array<int, 3> t;
+    take(t.data(), 12);
+    ply.face.push_back(t);
+  }
+  EXPECT_EQ(at, bytes.size()) << "trailing bytes after the last face";
+  return ply;
+}
+
+TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
+  const InputMesh mesh = testing::make_icosphere(2);
+  const std::vector<double> values = linear_field(mesh);
+  TempDir dir;
+  const std::string path = (dir.path / "pheromone.ply").string();
+  write_field_ply(path, mesh, values);
+  const ParsedPly ply = parse_ply(path);
+  ASSERT_GE(ply.header.size(), 3u);
+  EXPECT_EQ(ply.header[0], "ply");
+  EXPECT_EQ(ply.header[1], "format binary_little_endian 1.0");
+  EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property float pheromone"), ply.header.end());
+  EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property uchar red"), ply.header.end());
+  ASSERT_EQ(ply.vertices, mesh.vertex_count());
+  ASSERT_EQ(ply.faces, mesh.triangle_count());
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(ply.vertex[v][c], static_cast<float>(mesh.positions[v][c]));
+    ASSERT_EQ(ply.vertex[v][3], static_cast<float>(values[v]));
+  }
+  for (int f = 0; f < mesh.triangle_count(); ++f) ASSERT_EQ(ply.face[f], mesh.triangles[f]);
+  // Colours span the map: the largest value gets the top colour, the smallest one near the bottom.
+  const auto top = std::max_element(values.begin(), values.end()) - values.begin();
+  EXPECT_EQ(ply.color[top], colormap_color(Colormap::Viridis, 1.0));
+  EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"pheromone.ply"}) << "temporary file left behind";
+}
+
+TEST(PlyWriter, SizeMismatchThrowsAndWritesNothing) {
+  const InputMesh mesh = testing::make_square_grid(2);
+  TempDir dir;
+  EXPECT_THROW(write_field_ply((dir.path / "p.ply").string(), mesh, {1.0, 2.0}), InputError);
+  EXPECT_TRUE(files_in(dir.path).empty());
+}
+
+// ---- atomic writes -------------------------------------------------------------------------------
+
+TEST(AtomicWrite, FailingWriteLeavesNoFile) {
+  const InputMesh mesh = testing::make_square_grid(2);
+  const std::vector<double> values(static_cast<size_t>(mesh.vertex_count()), 1.0);
+  TempDir dir;
+  // A folder that does not exist, and a "folder" that is a regular file.
+  const std::string missing = (dir.path / "no-such-dir" / "pheromone.ply").string();
+  std::ofstream(dir.path / "plain-file") << "x";
+  const std::string under_file = (dir.path / "plain-file" / "preview.png").string();
+  EXPECT_THROW(write_field_ply(missing, mesh, values), InputError);
+  EXPECT_THROW(write_preview_png(under_file, mesh, values), InputError);
+  EXPECT_THROW(write_text_file_atomically(missing, "x"), InputError);
+  try {
+    write_field_ply(missing, mesh, values);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"plain-file"});
+
+  // A writer that fails half-way: the temporary file it started is removed and an existing file at
+  // the target keeps its old content.
+  const std::string target = (dir.path / "stats.csv").string();
+  write_text_file_atomically(target, "old\n");
+  std::string temporary_seen;
+  EXPECT_THROW(write_file_atomically(target,
+                                     [&](const std::string& temporary) {
+                                       temporary_seen = temporary;
+                                       std::ofstream(temporary) << "half";
+                                       throw std::runtime_error("disk full");
+                                     }),
+               InputError);
+  EXPECT_FALSE(temporary_seen.empty());
+  EXPECT_NE(temporary_seen, target);
+  EXPECT_FALSE(std::filesystem::exists(temporary_seen));
+  // The same when the writer reports its own InputError (passed through unchanged).
+  temporary_seen.clear();
+  try {
+    write_file_atomically(target, [&](const std::string& temporary) {
+      temporary_seen = temporary;
+      std::ofstream(temporary) << "half";
+      throw InputError("writer: encoder failed");
+    });
+    FAIL() << "the writer's error was swallowed";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "writer: encoder failed");
+  }
+  EXPECT_FALSE(std::filesystem::exists(temporary_seen));
+  EXPECT_EQ(files_in(dir.path).size(), 2u);  // plain-file and stats.csv only
+  std::ifstream in(target);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), "old\n");
+}
+
+// ---- preview -------------------------------------------------------------------------------------
+
+struct ReadImage {
+  int width = 0, height = 0, channels = 0;
+  std::vector<unsigned char> pixels;
+};
+
+ReadImage read_png(const std::string& path) {
+  ReadImage image;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return image;
+  const OIIO::ImageSpec& spec = in->spec();
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(static_cast<size_t>(image.width) * image.height * image.channels);
+  in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.pixels.data());
+  in->close();
+  return image;
+}
+
+TEST(PreviewImage, WritesShadedPngOfRequestedSize) {
+  const InputMesh mesh = testing::make_icosphere(3);
+  TempDir dir;
+  const std::string path = (dir.path / "preview.png").string();
+  // Hot near +z, cold elsewhere.
+  std::vector<double> values(mesh.positions.size());
+  for (size_t v = 0; v < values.size(); ++v) values[v] = std::max(0.0, mesh.positions[v].z());
+  write_preview_png(path, mesh, values);
+  const ReadImage image = read_png(path);
+  ASSERT_EQ(image.width, 800);
+  ASSERT_EQ(image.height, 600);
+  ASSERT_EQ(image.channels, 3);
+  EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"preview.png"}) << "temporary file left behind";
+
+  // Not uniform: background, and both ends of the colour map appear.
+  size_t background = 0, distinct_from_corner = 0;
+  for (size_t p = 0; p < image.pixels.size(); p += 3) {
+    const bool is_background = image.pixels[p] == 255 && image.pixels[p + 1] == 255 && image.pixels[p + 2] == 255;
+    background += is_background;
+    distinct_from_corner += !is_background;
+  }
+  const size_t total = image.pixels.size() / 3;
+  EXPECT_GT(background, total / 10);            // margin around the fitted sphere
+  EXPECT_GT(distinct_from_corner, total / 4);   // the sphere fills a good part of the frame
+  // The sphere is centred: the centre pixel is surface, the corner pixel is background.
+  const size_t centre = (300 * 800 + 400) * 3;
+  EXPECT_FALSE(image.pixels[centre] == 255 && image.pixels[centre + 1] == 255 && image.pixels[centre + 2] == 255);
+  EXPECT_EQ(image.pixels[0], 255);
+
+  // The hot cap (+z faces the camera at azimuth 35 deg) is yellow-green, the cold side purple-blue:
+  // some pixel is much greener than blue and some much bluer than green.
+  bool warm = false, cold = false;
+  for (size_t p = 0; p < image.pixels.size(); p += 3) {
+    const int g = image.pixels[p + 1], b = image.pixels[p + 2];
+    if (image.pixels[p] == 255 && g == 255 && b == 255) continue;
+    warm |= g > b + 60;
+    cold |= b > g + 30;
+  }
+  EXPECT_TRUE(warm);
+  EXPECT_TRUE(cold);
+}
+
+// Hidden surfaces stay hidden: a field hot only on the far side of the sphere must not show any
+// hot colour (without a depth test, far triangles drawn later would paint over near ones).
+TEST(PreviewImage, DepthTestHidesTheFarSide) {
+  const InputMesh mesh = testing::make_icosphere(3);
+  PreviewOptions options;
+  options.width = 200;
+  options.height = 150;
+  const double az = options.azimuth_deg * std::numbers::pi / 180, el = options.elevation_deg * std::numbers::pi / 180;
+  const Eigen::Vector3d toward_camera(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+  std::vector<double> values(mesh.positions.size());
+  for (size_t v = 0; v < values.size(); ++v) values[v] = mesh.positions[v].dot(toward_camera) < -0.3 ? 1.0 : 0.0;
+  ASSERT_GT(*std::max_element(values.begin(), values.end()), 0.0);
+  const RgbImage image = render_preview(mesh, values, options);
+  const Rgb8 hot = colormap_color(Colormap::Viridis, 1.0);
+  for (size_t p = 0; p < image.pixels.size(); p += 3) {
+    const int g = image.pixels[p + 1], b = image.pixels[p + 2];
+    if (image.pixels[p] == 255 && g == 255 && b == 255) continue;
+    ASSERT_LT(g, b + 40) << "a far-side (hot) colour shows through at pixel " << p / 3 << "; hot = " << int(hot[1]);
+  }
+}
+
+TEST(PreviewImage, HonoursSizeOptionAndRejectsBadSize) {
+  const InputMesh mesh = testing::make_square_grid(4);
+  const std::vector<double> values = linear_field(mesh);
+  PreviewOptions options;
+  options.width = 160;
+  options.height = 90;
+  const RgbImage image = render_preview(mesh, values, options);
+  EXPECT_EQ(image.width, 160);
+  EXPECT_EQ(image.height, 90);
+  EXPECT_EQ(image.pixels.size(), 160u * 90u * 3u);
+  options.width = 0;
+  EXPECT_THROW(render_preview(mesh, values, options), InputError);
+  EXPECT_THROW(render_preview(mesh, {1.0}, PreviewOptions{}), InputError);
+}
+
+}  // namespace
+}  // namespace physarum

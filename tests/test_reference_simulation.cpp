@@ -1,0 +1,278 @@
+// The serial reference simulation as a whole: the U metric of Eq. 5, time-step independence,
+// reproducibility, and `physarum run` as a user runs it.
+#include "common/field_statistics.hpp"
+#include "common/intrinsic_triangulation.hpp"
+#include "common/mesh_loading.hpp"
+#include "common/scene.hpp"
+#include "common/surface_domain.hpp"
+#include "common/vertex_parameters.hpp"
+#include "reference/simulation.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace physarum {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+SurfaceDomain delaunay_domain(const std::string& spec) {
+  IntrinsicTriangulation triangulation(load_mesh(spec));
+  triangulation.flip_to_delaunay();
+  return build_surface_domain(triangulation.snapshot());
+}
+
+Scene model_scene(int agents, double time_step, std::optional<double> mean_lifetime, Integrator integrator) {
+  Scene s;
+  s.agents = agents;
+  s.time_step = time_step;
+  s.sensor_distance = 0.05;
+  s.sensor_angle = 22.5 * kDegree;
+  s.move_rate = 0.5;
+  s.turn_rate = 180.0 * kDegree;
+  s.turn_frequency = 20.0;
+  s.deposit_rate = 1.0;
+  s.decay_rate = 2.5;
+  s.diffuse_rate = 0.0002;
+  s.mean_lifetime = mean_lifetime;
+  s.activation_time = 0.1;
+  s.integrator = integrator;
+  s.seed = 11;
+  return s;
+}
+
+// Time average of the area-weighted mean over steps [first, last] of a run whose field starts at U.
+double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
+  ReferenceSimulation sim(domain, scene);
+  const double U = uniform_steady_state(scene, domain.total_area);
+  sim.pheromone().fill(U);
+  double sum = 0.0;
+  for (int s = 1; s <= last; ++s) {
+    sim.step();
+    if (s >= first) sum += area_weighted_mean(sim.concentration(), domain.vertex_mass);
+  }
+  return sum / (last - first + 1) / U;
+}
+
+// Why the mean is exactly U in expectation: every step the agents deposit N r_dep dt times the
+// fraction of them that are active (exp(-t_a / tau) in expectation, thanks to the steady-state
+// initial ages), diffusion conserves the total amount (the Laplacian's columns sum to zero), and the
+// deposits enter each Euler scheme as its source term, so the total amount's fixed point is
+// deposit / (r_dec dt) -- exactly U A (see reference/simulation.hpp). What remains is noise: the
+// number of active agents fluctuates by ~1% (N = 5000, p = 0.67), with a correlation time ~tau =
+// 0.2 s, and averaging over 8 s brings that to ~0.2%. r_dec dt = 2.5% makes a wrongly ordered
+// source term (U (1 -+ r_dec dt)) fail the 1% bound. Without turnover the input is deterministic.
+void expect_mean_is_U(const std::string& spec, Integrator integrator) {
+  const SurfaceDomain domain = delaunay_domain(spec);
+  EXPECT_NEAR(averaged_mean(domain, model_scene(5000, 0.01, 0.2, integrator), 200, 1000), 1.0, 0.01)
+      << spec << " with turnover";
+  // Without turnover agents start newborn and deposit only after t_a, then the field relaxes back
+  // at rate r_dec: after 8 s the deficit is below exp(-2.5 * 7.9) of U.
+  EXPECT_NEAR(averaged_mean(domain, model_scene(500, 0.01, std::nullopt, integrator), 800, 1000), 1.0, 0.01)
+      << spec << " without turnover";
+}
+
+TEST(ReferenceSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::ForwardEuler); }
+TEST(ReferenceSimulation, MeanIsUOnAClosedSurfaceBackwardEuler) { expect_mean_is_U("shape:sphere", Integrator::BackwardEuler); }
+TEST(ReferenceSimulation, MeanIsUWithABoundaryForwardEuler) { expect_mean_is_U("shape:square", Integrator::ForwardEuler); }
+TEST(ReferenceSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::BackwardEuler); }
+
+// Steady-state statistics averaged over the second half of a 4 s run.
+struct SteadyStatistics {
+  double mean = 0.0;
+  double coverage = 0.0;  // area fraction above U
+};
+
+SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std::uint32_t seed, double seconds) {
+  scene.seed = seed;
+  ReferenceSimulation sim(domain, scene);
+  const double U = uniform_steady_state(scene, domain.total_area);
+  const auto steps = std::llround(seconds / scene.time_step);
+  SteadyStatistics r;
+  int samples = 0;
+  for (long long s = 1; s <= steps; ++s) {
+    sim.step();
+    if (2 * s > steps && s % std::llround(0.05 / scene.time_step) == 0) {
+      const FieldStatistics f = compute_field_statistics(sim.concentration(), domain.vertex_mass, U);
+      r.mean += f.mean / U;
+      r.coverage += f.coverage[1];
+      ++samples;
+    }
+  }
+  r.mean /= samples;
+  r.coverage /= samples;
+  return r;
+}
+
+TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+  const SurfaceDomain domain = delaunay_domain("shape:sphere");
+  Scene scene = model_scene(3000, 0.01, 0.5, Integrator::ForwardEuler);
+  scene.decay_rate = 1.0;
+  const int seeds = 4;
+  std::vector<SteadyStatistics> coarse, fine;
+  for (int s = 0; s < seeds; ++s) {
+    coarse.push_back(steady_statistics(domain, scene, 100 + s, 4.0));
+    Scene halved = scene;
+    halved.time_step = scene.time_step / 2;
+    fine.push_back(steady_statistics(domain, halved, 200 + s, 4.0));
+  }
+  auto mean_sd = [](const std::vector<SteadyStatistics>& v, double SteadyStatistics::*field) {
+    double m = 0, q = 0;
+    for (const auto& x : v) m += x.*field;
+    m /= v.size();
+    for (const auto& x : v) q += (x.*field - m) * (x.*field - m);
+    return std::pair{m, std::sqrt(q / (v.size() - 1))};
+  };
+  for (auto field : {&SteadyStatistics::mean, &SteadyStatistics::coverage}) {
+    const auto [m1, s1] = mean_sd(coarse, field);
+    const auto [m2, s2] = mean_sd(fine, field);
+    // Welch-style bound: 4 standard errors of the difference, with a small floor so a near-zero
+    // spread (the mean is almost deterministic) does not demand bit equality.
+    const double bound = 4.0 * std::sqrt((s1 * s1 + s2 * s2) / seeds) + 0.005;
+    EXPECT_NEAR(m1, m2, bound) << (field == &SteadyStatistics::mean ? "mean/U" : "coverage above U") << ": dt "
+                               << scene.time_step << " gives " << m1 << " +- " << s1 << ", dt/2 gives " << m2
+                               << " +- " << s2;
+  }
+}
+
+TEST(ReferenceSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
+  const SurfaceDomain domain = delaunay_domain("shape:sphere");
+  const Scene scene = model_scene(1000, 0.01, 0.5, Integrator::ForwardEuler);
+  ReferenceSimulation a(domain, scene), b(domain, scene);
+  Scene other_seed = scene;
+  other_seed.seed = scene.seed + 1;
+  ReferenceSimulation c(domain, other_seed);
+  a.run(150);
+  b.run(150);
+  c.run(150);
+  EXPECT_EQ(a.concentration(), b.concentration());
+  EXPECT_EQ(a.agents().position, b.agents().position);
+  // A different seed grows a different pattern: the fields differ by a sizeable fraction of their norm.
+  double diff = 0, norm = 0;
+  for (size_t i = 0; i < a.concentration().size(); ++i) {
+    diff += std::pow(a.concentration()[i] - c.concentration()[i], 2);
+    norm += std::pow(a.concentration()[i], 2);
+  }
+  EXPECT_GT(std::sqrt(diff / norm), 0.2);
+}
+
+// ---- the command line ------------------------------------------------------------------------
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A path in single quotes for the shell (built by appending: GCC 12's -Wrestrict misfires on
+// "'" + string at -O3).
+std::string quoted(const std::filesystem::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += "'";
+  return s;
+}
+
+void write_scene(const std::filesystem::path& path, const std::string& extra = "") {
+  std::ofstream(path) << R"({
+  "mesh": "shape:square", "scale_to_area": 2.0, "agents": 400, "time_step": 0.01,
+  "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+  "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+  "mean_lifetime": 1.0, "activation_time": 0.2, "integrator": "forward", "seed": 3)"
+                      << extra << "\n}\n";
+}
+
+TEST(ReferenceRunCommand, WritesTheFourOutputsReproducibly) {
+  testing::TempDir dir;
+  write_scene(dir.path / "scene.json");
+  const std::string scene = quoted(dir.path / "scene.json");
+  const auto out1 = dir.path / "a", out2 = dir.path / "b", out3 = dir.path / "c";
+  const auto r1 = testing::run_physarum("run " + scene + " --steps 200 --out " + quoted(out1));
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  const auto r2 = testing::run_physarum("run " + scene + " --backend reference --steps 200 --out " + quoted(out2));
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  const auto r3 = testing::run_physarum("run " + scene + " --sim-time 2 --seed 4 --out " + quoted(out3));
+  ASSERT_EQ(r3.exit_code, 0) << r3.err;
+  EXPECT_TRUE(r1.err.empty()) << "stderr is not a terminal: no progress bar expected, got " << r1.err;
+
+  // Same seed: byte-identical results (run.json differs only in its timings).
+  for (const char* name : {"pheromone.ply", "stats.csv", "preview.png"}) {
+    ASSERT_TRUE(std::filesystem::exists(out1 / name)) << name;
+    EXPECT_EQ(slurp(out1 / name), slurp(out2 / name)) << name;
+    EXPECT_NE(slurp(out1 / name), slurp(out3 / name)) << name << " (different seed)";
+  }
+  nlohmann::json j1 = nlohmann::json::parse(slurp(out1 / "run.json"));
+  nlohmann::json j2 = nlohmann::json::parse(slurp(out2 / "run.json"));
+  for (const char* key : {"backend", "device", "steps", "sim_time", "seconds", "agent_steps_per_second",
+                          "face_crossings_per_agent_step", "U", "mean", "intrinsic_vertices", "intrinsic_faces"})
+    EXPECT_TRUE(j1.contains(key)) << key;
+  for (const char* timing : {"seconds", "agent_steps_per_second"}) j1.erase(timing), j2.erase(timing);
+  j1.erase("scene_file"), j2.erase("scene_file");
+  EXPECT_EQ(j1, j2);
+  EXPECT_EQ(j1["backend"], "reference");
+  EXPECT_EQ(j1["steps"], 200);
+  EXPECT_NEAR(j1["sim_time"].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(j1["area"].get<double>(), 2.0, 1e-9);  // scale_to_area
+  // U of Eq. 5 for this scene: 400 * 1 / (1 * 2) * exp(-0.2 / 1).
+  EXPECT_NEAR(j1["U"].get<double>(), 200.0 * std::exp(-0.2), 1e-9);
+  EXPECT_GT(j1["face_crossings_per_agent_step"].get<double>(), 0.0);
+  EXPECT_EQ(j1["parameters"]["agents"], 400);
+  EXPECT_EQ(nlohmann::json::parse(slurp(out3 / "run.json"))["steps"], 200);  // --sim-time 2 at dt 0.01
+
+  // stats.csv: the exact header, then about 100 rows of increasing time ending at the run's end.
+  std::istringstream csv(slurp(out1 / "stats.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U");
+  int rows = 0;
+  double last_time = -1;
+  while (std::getline(csv, line)) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    EXPECT_GT(t, last_time);
+    last_time = t;
+    ++rows;
+  }
+  EXPECT_GE(rows, 90);
+  EXPECT_LE(rows, 202);
+  EXPECT_NEAR(last_time, 2.0, 1e-9);
+  // PLY on the INPUT mesh (shape:square: 33 x 33 vertices), in its own coordinates.
+  const std::string ply = slurp(out1 / "pheromone.ply");
+  EXPECT_NE(ply.find("element vertex 1089"), std::string::npos);
+}
+
+TEST(ReferenceRunCommand, BadSceneExitsOneAndWritesNothing) {
+  testing::TempDir dir;
+  write_scene(dir.path / "scene.json", R"(, "sensor_angel": 10)");
+  const auto out = dir.path / "out";
+  const auto r = testing::run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 5 --out " + quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("sensor_angel"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+
+  write_scene(dir.path / "good.json");
+  const auto both = testing::run_physarum("run " + quoted(dir.path / "good.json") + " --steps 5 --sim-time 1 --out " + quoted(out));
+  EXPECT_EQ(both.exit_code, 2) << both.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(ReferenceRunCommand, ShippedScenesLoad) {
+  for (const char* name : {"default.json", "spot.json", "bunny.json"}) {
+    const std::filesystem::path p = std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / name;
+    ASSERT_TRUE(std::filesystem::exists(p)) << p;
+    const Scene s = load_scene(p.string());
+    EXPECT_GT(s.agents, 0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace physarum

@@ -1,0 +1,255 @@
+// Surface domain: face layouts, transitions between face frames, areas, lumped mass and the cotan
+// Laplacian, on small meshes built inline (flat grids, an irregular flat mesh, an icosphere).
+#include "common/errors.hpp"
+#include "common/fe_operators.hpp"
+#include "common/input_mesh.hpp"
+#include "common/intrinsic_mesh.hpp"
+#include "common/surface_domain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <map>
+#include <random>
+
+namespace physarum {
+namespace {
+
+// Unit square [0,1]^2 split into n x n cells, each cut along a diagonal (alternating when `mixed`),
+// interior vertices optionally jittered within the plane (the mesh stays flat and valid).
+InputMesh flat_grid(int n, bool mixed, double jitter = 0.0, unsigned seed = 1) {
+  InputMesh m;
+  m.source = "test:grid";
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      Eigen::Vector3d p(double(i) / n, double(j) / n, 0.0);
+      if (i > 0 && i < n && j > 0 && j < n) p += Eigen::Vector3d(u(rng), u(rng), 0.0) / n;
+      m.positions.push_back(p);
+    }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (!mixed || (i + j) % 2 == 0) {
+        m.triangles.push_back({a, b, c});
+        m.triangles.push_back({a, c, d});
+      } else {
+        m.triangles.push_back({a, b, d});
+        m.triangles.push_back({b, c, d});
+      }
+    }
+  return m;
+}
+
+// Icosahedron subdivided `levels` times, projected onto the unit sphere.
+InputMesh icosphere(int levels) {
+  InputMesh m;
+  m.source = "test:icosphere";
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& p : v) m.positions.push_back(Eigen::Vector3d(p[0], p[1], p[2]).normalized());
+  m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> midpoint;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto it = midpoint.find(key);
+      if (it != midpoint.end()) return it->second;
+      m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+      return midpoint[key] = m.vertex_count() - 1;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& f : m.triangles) {
+      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
+      next.push_back({f[0], ab, ca});
+      next.push_back({f[1], bc, ab});
+      next.push_back({f[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    m.triangles = std::move(next);
+  }
+  return m;
+}
+
+double extrinsic_area(const InputMesh& m) {
+  double a = 0.0;
+  for (const auto& t : m.triangles)
+    a += 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
+  return a;
+}
+
+TEST(SurfaceDomain, LayoutsReproduceEdgeLengthsAndAreCounterClockwise) {
+  const IntrinsicMesh mesh = intrinsic_mesh_from_input(icosphere(2));
+  const SurfaceDomain d = build_surface_domain(mesh);
+  ASSERT_EQ(d.face_count, mesh.face_count());
+  for (int f = 0; f < d.face_count; ++f) {
+    const auto& c = d.face_corners[f];
+    EXPECT_EQ(c[0], Eigen::Vector2d::Zero());
+    EXPECT_EQ(c[1].y(), 0.0);
+    EXPECT_GT(c[1].x(), 0.0);
+    EXPECT_GT(c[2].y(), 0.0);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR((c[(i + 1) % 3] - c[i]).norm(), mesh.edge_lengths[f][i], 1e-14) << "face " << f << " edge " << i;
+    EXPECT_NEAR(d.face_area[f], 0.5 * c[1].x() * c[2].y(), 1e-15);
+  }
+}
+
+TEST(SurfaceDomain, TransitionsCarrySharedEdgesOntoTheNeighbour) {
+  for (const InputMesh& input : {icosphere(2), flat_grid(6, true, 0.3)}) {
+    const IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
+    const SurfaceDomain d = build_surface_domain(mesh);
+    int interior = 0;
+    for (int f = 0; f < d.face_count; ++f)
+      for (int i = 0; i < 3; ++i) {
+        const int g = d.face_neighbour[f][i];
+        const Rigid2& t = d.edge_transition[3 * f + i];
+        if (g < 0) {
+          EXPECT_EQ(mesh.twin[f][i], -1);
+          EXPECT_EQ(t.cos_angle, 1.0);
+          EXPECT_EQ(t.sin_angle, 0.0);
+          continue;
+        }
+        ++interior;
+        const int j = d.neighbour_edge[f][i];
+        EXPECT_EQ(mesh.twin[f][i], 3 * g + j);
+        // a -> a', b -> b' with the edge reversed in the neighbour.
+        EXPECT_LT((t.apply_point(d.face_corners[f][i]) - d.face_corners[g][(j + 1) % 3]).norm(), 1e-12);
+        EXPECT_LT((t.apply_point(d.face_corners[f][(i + 1) % 3]) - d.face_corners[g][j]).norm(), 1e-12);
+        EXPECT_NEAR(t.cos_angle * t.cos_angle + t.sin_angle * t.sin_angle, 1.0, 1e-14);
+        // Composing with the twin's transition is the identity (on points and directions).
+        const Rigid2& back = d.edge_transition[3 * g + j];
+        for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.3, -0.7), Eigen::Vector2d(2.0, 5.0)}) {
+          EXPECT_LT((back.apply_point(t.apply_point(p)) - p).norm(), 1e-12);
+          EXPECT_LT((back.apply_direction(t.apply_direction(p)) - p).norm(), 1e-12);
+        }
+      }
+    EXPECT_GT(interior, 0);
+  }
+}
+
+TEST(SurfaceDomain, AreasAndMassSumToTheSurfaceArea) {
+  for (const InputMesh& input : {icosphere(3), flat_grid(5, false, 0.3)}) {
+    const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
+    double face_sum = 0.0, mass_sum = 0.0;
+    for (double a : d.face_area) face_sum += a;
+    for (double m : d.vertex_mass) mass_sum += m;
+    const double expected = extrinsic_area(input);
+    EXPECT_NEAR(face_sum, expected, 1e-12 * expected);
+    EXPECT_NEAR(d.total_area, expected, 1e-12 * expected);
+    EXPECT_NEAR(mass_sum, expected, 1e-12 * expected);
+  }
+  // The flat unit square has area exactly 1; a corner vertex with one incident face gets 1/3 of it.
+  const SurfaceDomain square = build_surface_domain(intrinsic_mesh_from_input(flat_grid(4, false)));
+  EXPECT_NEAR(square.total_area, 1.0, 1e-14);
+  EXPECT_NEAR(square.vertex_mass[4], (1.0 / 32.0) / 3.0, 1e-16);  // corner (1, 0): one face of area 1/32
+}
+
+TEST(SurfaceDomain, LaplacianIsSymmetricWithZeroRowSumsAndPositiveSemiDefinite) {
+  // The jittered mixed grid has obtuse triangles, hence negative edge weights: PSD must still hold.
+  for (const InputMesh& input : {icosphere(1), flat_grid(6, true, 0.45, 7)}) {
+    const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
+    const Eigen::MatrixXd l = Eigen::MatrixXd(d.laplacian.to_eigen());
+    ASSERT_EQ(l.rows(), d.vertex_count);
+    EXPECT_LT((l - l.transpose()).cwiseAbs().maxCoeff(), 1e-13);
+    std::vector<double> ones(d.vertex_count, 1.0), y;
+    d.laplacian.multiply(ones, y);
+    for (double v : y) EXPECT_NEAR(v, 0.0, 1e-12);
+    const Eigen::VectorXd eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(l).eigenvalues();
+    EXPECT_GE(eig.minCoeff(), -1e-9 * eig.maxCoeff());
+    EXPECT_GT(eig.maxCoeff(), 0.0);
+    // Exactly one zero eigenvalue per connected component (both meshes are connected).
+    EXPECT_GT(eig[1], 1e-6 * eig.maxCoeff());
+  }
+}
+
+TEST(SurfaceDomain, LaplacianHasLinearPrecisionOnFlatMeshes) {
+  // Any planar mesh, however irregular: L applied to a linear function vanishes at interior vertices.
+  for (const InputMesh& input : {flat_grid(8, false), flat_grid(8, true, 0.4, 3)}) {
+    const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
+    std::vector<double> u(d.vertex_count), lu;
+    for (int v = 0; v < d.vertex_count; ++v) u[v] = 2.0 * input.positions[v].x() - 3.0 * input.positions[v].y() + 0.5;
+    d.laplacian.multiply(u, lu);
+    int checked = 0;
+    for (int v = 0; v < d.vertex_count; ++v) {
+      const Eigen::Vector3d& p = input.positions[v];
+      if (p.x() <= 0.0 || p.x() >= 1.0 || p.y() <= 0.0 || p.y() >= 1.0) continue;
+      EXPECT_NEAR(lu[v], 0.0, 1e-12) << "vertex " << v;
+      ++checked;
+    }
+    EXPECT_EQ(checked, 7 * 7);
+  }
+}
+
+TEST(SurfaceDomain, LaplacianMatchesTheKnownStencilOnARegularGrid) {
+  // Right isosceles triangles with all diagonals parallel: the cotan Laplacian is the 5-point
+  // stencil (diagonal edges have weight 0, axis edges weight 1), independent of the cell size.
+  const int n = 4;
+  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(flat_grid(n, false)));
+  const Eigen::MatrixXd l = Eigen::MatrixXd(d.laplacian.to_eigen());
+  const int centre = 2 * (n + 1) + 2;
+  EXPECT_NEAR(l(centre, centre), 4.0, 1e-12);
+  for (int neighbour : {centre - 1, centre + 1, centre - (n + 1), centre + (n + 1)})
+    EXPECT_NEAR(l(centre, neighbour), -1.0, 1e-12);
+  EXPECT_NEAR(l(centre, centre + n + 2), 0.0, 1e-12);  // along the diagonal
+}
+
+TEST(SurfaceDomain, BarycentricCoordinatesOfCornersAndCentroid) {
+  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(icosphere(1)));
+  for (int f = 0; f < d.face_count; f += 7) {
+    const auto& c = d.face_corners[f];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d b = barycentric_in_face(d, f, c[k]);
+      for (int m = 0; m < 3; ++m) EXPECT_NEAR(b[m], k == m ? 1.0 : 0.0, 1e-14);
+    }
+    const Eigen::Vector2d p = 0.2 * c[0] + 0.3 * c[1] + 0.5 * c[2];
+    EXPECT_LT((barycentric_in_face(d, f, p) - Eigen::Vector3d(0.2, 0.3, 0.5)).norm(), 1e-14);
+  }
+}
+
+TEST(SurfaceDomain, FaceSamplerIsProportionalToAreaTimesWeight) {
+  const InputMesh input = flat_grid(2, false, 0.0);
+  const IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
+  std::vector<double> weight(mesh.face_count(), 1.0);
+  weight[0] = 0.0;
+  weight[3] = 3.0;
+  const SurfaceDomain d = build_surface_domain(mesh, weight);
+  std::vector<double> p(d.face_count, 0.0);
+  const int n = d.face_sampler.size();
+  ASSERT_EQ(n, d.face_count);
+  for (int i = 0; i < n; ++i) {
+    p[i] += d.face_sampler.probability[i] / n;
+    p[d.face_sampler.alias[i]] += (1.0 - d.face_sampler.probability[i]) / n;
+  }
+  // All 8 faces have area 1/8; weights sum to 0 + 3 + 6 * 1 = 9.
+  for (int f = 0; f < d.face_count; ++f) EXPECT_NEAR(p[f], weight[f] / 9.0, 1e-12);
+  weight[2] = -1.0;
+  EXPECT_THROW(build_surface_domain(mesh, weight), InputError);
+  EXPECT_THROW(build_surface_domain(mesh, std::vector<double>(3, 1.0)), InputError);
+}
+
+TEST(SurfaceDomain, RejectsImpossibleTrianglesNamingTheFace) {
+  IntrinsicMesh mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  mesh.edge_lengths[5] = {1.0, 1.0, 2.5};  // violates the triangle inequality
+  try {
+    build_surface_domain(mesh);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 5"), std::string::npos) << e.what();
+  }
+  mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  mesh.edge_lengths[3] = {1.0, 0.5, 0.5};  // degenerate: zero area
+  EXPECT_THROW(build_surface_domain(mesh), InputError);
+  mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  mesh.edge_lengths[1][0] = 0.0;
+  EXPECT_THROW(build_surface_domain(mesh), InputError);
+}
+
+}  // namespace
+}  // namespace physarum

@@ -1,0 +1,233 @@
+// `physarum run SCENE.json [--backend reference] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
+// grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
+// DIR/stats.csv, DIR/preview.png and DIR/run.json (DESIGN.md, "The command line").
+//
+// Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
+// so a bad scene exits 1 with its message and writes nothing; every file is written under a
+// temporary name and renamed, so a reader never sees a half-written one.
+#include "common/atomic_write.hpp"
+#include "common/errors.hpp"
+#include "common/field_statistics.hpp"
+#include "common/field_transfer.hpp"
+#include "common/input_mesh.hpp"
+#include "common/intrinsic_triangulation.hpp"
+#include "common/mesh_loading.hpp"
+#include "common/ply_writer.hpp"
+#include "common/preview_image.hpp"
+#include "common/scene.hpp"
+#include "common/surface_domain.hpp"
+#include "reference/simulation.hpp"
+#include "tools/commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <unistd.h>
+
+namespace physarum::cli {
+namespace {
+
+struct RunOptions {
+  std::string scene;
+  std::string backend = "reference";
+  std::optional<long long> steps;
+  std::optional<double> sim_time;
+  std::optional<std::uint32_t> seed;
+  std::string out = "out";
+};
+
+// About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
+constexpr long long kStatsRows = 100;
+
+long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
+  auto steps_for = [&](double seconds) {
+    // Nearest whole step: T / dt often lands a rounding error away from an integer.
+    return std::max<long long>(1, std::llround(seconds / scene.time_step));
+  };
+  if (o.steps) return *o.steps;
+  if (o.sim_time) return steps_for(*o.sim_time);
+  if (scene.steps) return *scene.steps;
+  if (scene.sim_time) return steps_for(*scene.sim_time);
+  throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
+}
+
+// The input mesh in simulation units: scaled about the origin so its area is scale_to_area.
+InputMesh scaled_to_area(const InputMesh& input, const Scene& scene, double input_area) {
+  InputMesh scaled = input;
+  if (!scene.scale_to_area) return scaled;
+  if (!(input_area > 0.0)) throw InputError(input.source + ": surface area " + std::to_string(input_area) + " cannot be scaled");
+  const double factor = std::sqrt(*scene.scale_to_area / input_area);
+  for (Eigen::Vector3d& p : scaled.positions) p *= factor;
+  return scaled;
+}
+
+nlohmann::ordered_json scene_json(const Scene& s) {
+  constexpr double kDegree = 180.0 / 3.14159265358979323846;
+  nlohmann::ordered_json j;
+  j["mesh"] = s.mesh;
+  j["scale_to_area"] = s.scale_to_area ? nlohmann::ordered_json(*s.scale_to_area) : nlohmann::ordered_json();
+  j["max_circumradius"] = s.max_circumradius ? nlohmann::ordered_json(*s.max_circumradius) : nlohmann::ordered_json();
+  j["min_angle"] = s.min_angle_deg;
+  j["agents"] = s.agents;
+  j["time_step"] = s.time_step;
+  j["sensor_distance"] = s.sensor_distance;
+  j["sensor_angle"] = s.sensor_angle * kDegree;
+  j["move_rate"] = s.move_rate;
+  j["turn_rate"] = s.turn_rate * kDegree;
+  j["turn_frequency"] = s.turn_frequency;
+  j["deposit_rate"] = s.deposit_rate;
+  j["decay_rate"] = s.decay_rate;
+  j["diffuse_rate"] = s.diffuse_rate;
+  j["mean_lifetime"] = s.mean_lifetime ? nlohmann::ordered_json(*s.mean_lifetime) : nlohmann::ordered_json();
+  j["activation_time"] = s.activation_time;
+  j["integrator"] = s.integrator == Integrator::ForwardEuler ? "forward" : "backward";
+  j["seed"] = s.seed;
+  return j;
+}
+
+// A one-line progress bar with ETA on stderr, drawn only when stderr is a terminal.
+class ProgressBar {
+ public:
+  explicit ProgressBar(long long total) : total_(total), enabled_(::isatty(STDERR_FILENO) == 1) {}
+  void update(long long done) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(200)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
+    const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    constexpr int kWidth = 40;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::fprintf(stderr, "\r[%s%s] %5.1f%%  step %lld/%lld  ETA %.0f s ", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction, done, total_, eta);
+    if (done >= total_) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  long long total_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+int run_run(const RunOptions& o) {
+  if (o.backend != "reference")
+    throw UsageError("--backend " + o.backend + ": only 'reference' is available in this build");
+  if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
+  if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
+
+  // ---- everything that can reject the input, before any output exists ----
+  Scene scene = load_scene(o.scene);
+  if (o.seed) scene.seed = *o.seed;
+  const long long steps = run_length_in_steps(o, scene);
+
+  const InputMesh input = load_mesh(scene.mesh);
+  for (const std::string& w : input.warnings) std::cerr << "physarum: warning: " << input.source << ": " << w << "\n";
+  const InputMesh simulated = scaled_to_area(input, scene, compute_statistics(input).area);
+  IntrinsicTriangulation triangulation(simulated);
+  triangulation.flip_to_delaunay();
+  if (scene.max_circumradius || scene.min_angle_deg > 0.0) {
+    RefinementOptions refinement;
+    if (scene.max_circumradius) refinement.max_circumradius = *scene.max_circumradius;
+    refinement.min_angle_deg = scene.min_angle_deg;
+    triangulation.refine(refinement);
+  }
+  const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
+  // The intrinsic vertices sit on the SCALED input, whose connectivity is the input's, so the same
+  // map carries the field back onto the input in its own coordinates.
+  const std::vector<int> input_to_intrinsic = input_vertex_to_intrinsic(simulated, domain.vertex_location);
+  ReferenceSimulation simulation(domain, scene);
+  const double U = uniform_steady_state(scene, domain.total_area);
+
+  // ---- simulate ----
+  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
+  std::string stats = stats_csv_header() + "\n";
+  stats += stats_csv_row(simulation.time(), compute_field_statistics(simulation.concentration(), domain.vertex_mass, U)) + "\n";
+  ProgressBar progress(steps);
+  const auto t0 = std::chrono::steady_clock::now();
+  double stats_seconds = 0.0;
+  for (long long s = 1; s <= steps; ++s) {
+    simulation.step();
+    if (s % stats_every == 0 || s == steps) {
+      const auto ts = std::chrono::steady_clock::now();
+      stats += stats_csv_row(simulation.time(), compute_field_statistics(simulation.concentration(), domain.vertex_mass, U)) + "\n";
+      stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
+    }
+    progress.update(s);
+  }
+  // Throughput counts the simulation alone, not the statistics rows.
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - stats_seconds;
+  const FieldStatistics final_stats = compute_field_statistics(simulation.concentration(), domain.vertex_mass, U);
+
+  // ---- outputs ----
+  const std::filesystem::path out(o.out);
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec || !std::filesystem::is_directory(out))
+    throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
+
+  const std::vector<double> on_input = intrinsic_to_input(input_to_intrinsic, simulation.concentration());
+  // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
+  // of one scene are comparable (the value itself is in the PLY property).
+  FieldColoring coloring;
+  coloring.high = 2.0 * U;
+  write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
+  PreviewOptions preview;
+  preview.coloring = coloring;
+  write_preview_png((out / "preview.png").string(), input, on_input, preview);
+  write_text_file_atomically((out / "stats.csv").string(), stats);
+
+  const SimulationCounters& c = simulation.counters();
+  nlohmann::ordered_json j;
+  j["backend"] = "reference";
+  j["device"] = "CPU (serial reference, 1 thread)";
+  j["steps"] = steps;
+  j["sim_time"] = simulation.time();
+  j["seconds"] = seconds;
+  j["agent_steps_per_second"] = seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0;
+  j["face_crossings_per_agent_step"] =
+      c.agent_steps > 0 ? static_cast<double>(c.face_crossings) / static_cast<double>(c.agent_steps) : 0.0;
+  j["U"] = U;
+  j["mean"] = final_stats.mean;
+  j["coverage_0.5U"] = final_stats.coverage[0];
+  j["coverage_1U"] = final_stats.coverage[1];
+  j["coverage_2U"] = final_stats.coverage[2];
+  j["intrinsic_vertices"] = domain.vertex_count;
+  j["intrinsic_faces"] = domain.face_count;
+  j["area"] = domain.total_area;
+  j["respawns"] = c.respawns;
+  j["scene_file"] = o.scene;
+  j["parameters"] = scene_json(scene);
+  write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
+
+  std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
+            << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
+            << ", U " << U << "; wrote " << out.string() << "/{pheromone.ply, stats.csv, preview.png, run.json}\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& parent) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* app = parent.add_subcommand("run", "Grow a slime-mold pattern on a surface and write its outputs");
+  app->add_option("scene", options->scene, "Scene file (JSON; see DESIGN.md, 'Scene files')")->required();
+  app->add_option("--backend", options->backend, "Simulation backend")->check(CLI::IsMember({"reference", "opencl"}));
+  auto* steps = app->add_option("--steps", options->steps, "Number of time steps (overrides the scene)");
+  auto* sim_time = app->add_option("--sim-time", options->sim_time, "Simulated seconds (overrides the scene)");
+  steps->excludes(sim_time);
+  app->add_option("--seed", options->seed, "Random seed (overrides the scene)");
+  app->add_option("--out", options->out, "Output folder (created if needed)")->capture_default_str();
+  return Command{app, [options] { return run_run(*options); }};
+}
+
+}  // namespace physarum::cli
