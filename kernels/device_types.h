@@ -40,4 +40,66 @@ typedef struct {
   dev_int iterations;    /* completed iterations */
 } PhysarumCgState;
 
+
+/* ---- the surface, as the agent kernels read it (opencl/face_records.cpp builds it) ----
+ * One 64-byte record per intrinsic face, so a trace step touches one cache line. The face frame is
+ * the SurfaceDomain's: corner 0 at the origin, corner 1 at (x1, 0), corner 2 at (x2, y2).
+ * Edge i runs from corner i to corner (i+1)%3; across it lies face neighbour[i] (-1 on a boundary),
+ * where the same edge has index (neighbour_edges >> 2i) & 3. Crossing edge i rotates a direction by
+ * (transition_cos[i], transition_sin[i]); points are rebuilt from the neighbour's own corners, so no
+ * translation is needed. */
+typedef struct {
+  dev_float x1, x2, y2;        /* the layout */
+  dev_uint neighbour_edges;    /* 2 bits per edge */
+  dev_int neighbour[3];
+  dev_int vertex[3];
+  dev_float transition_cos[3];
+  dev_float transition_sin[3];
+} PhysarumFaceRecord;
+
+/* ---- agent parameters (Table 1), per vertex or uniform (vertex_parameters.hpp) ----
+ * Eight floats, so one record is a float8-sized read. */
+typedef struct {
+  dev_float sensor_distance; /* m */
+  dev_float sensor_angle;    /* rad */
+  dev_float move_rate;       /* m/s */
+  dev_float turn_rate;       /* rad/s */
+  dev_float turn_frequency;  /* 1/s */
+  dev_float deposit_rate;    /* amount/s per agent */
+  dev_float hazard_rate;     /* 1/mean lifetime, 1/s; 0 = no turnover */
+  dev_float activation_time; /* s */
+} PhysarumAgentParameters;
+
+/* ---- one agent step: everything that is the same for every agent ---- */
+typedef struct {
+  dev_float dt;               /* s */
+  dev_float deposit_scale;    /* fixed-point units per amount (a power of two) */
+  dev_uint seed;
+  dev_uint step;              /* index n of the step being taken */
+  dev_int agent_count;
+  dev_int face_count;
+  dev_int uniform_parameters; /* 1: every vertex has `uniform`, the per-vertex array is not read */
+  dev_int pad;
+  PhysarumAgentParameters uniform;
+} PhysarumStepConstants;
+
+/* Per-agent counters the host sums on demand (run.json): crossings by movement and by sensors,
+ * boundary reflections, respawns. */
+#define PHYSARUM_COUNTER_MOVE_CROSSINGS 0
+#define PHYSARUM_COUNTER_SENSOR_CROSSINGS 1
+#define PHYSARUM_COUNTER_BOUNDARY_HITS 2
+#define PHYSARUM_COUNTER_RESPAWNS 3
+#define PHYSARUM_COUNTERS 4
+
+/* Purposes of the Philox counter: the values of common/random_streams.hpp (never renumber). */
+#define PHYSARUM_PURPOSE_INITIAL_PLACEMENT 1u
+#define PHYSARUM_PURPOSE_INITIAL_STATE 2u
+#define PHYSARUM_PURPOSE_TURN_DIRECTION 3u
+#define PHYSARUM_PURPOSE_RESPAWN_PLACEMENT 4u
+#define PHYSARUM_PURPOSE_RESPAWN_STATE 5u
+
+/* Bounds shared with the reference (common/trace.hpp, reference/sensing_steering.hpp). */
+#define PHYSARUM_MAX_TRACE_STEPS 65536
+#define PHYSARUM_MAX_TURN_DECISIONS_PER_STEP 4
+
 #endif /* PHYSARUM_DEVICE_TYPES_H */

@@ -16,8 +16,10 @@ namespace physarum {
 // (face, position) along `direction`, interpolated barycentrically from the vertex concentrations.
 // Sensors stop at boundaries (BoundaryRule::Stop), and a sensor whose trace meets the boundary
 // reads nothing: 0, so agents are not drawn towards the rim.
+// `crossings`, when given, is increased by the faces the trace crossed.
 double read_sensor(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
-                   const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance);
+                   const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance,
+                   long long* crossings = nullptr);
 
 struct SensorReadings {
   double left = 0.0;    // at +angle (counter-clockwise of the heading)
@@ -29,7 +31,7 @@ struct SensorReadings {
 // attraction into chemo-repulsion (Fig. 9c).
 SensorReadings read_sensors(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
                             const Eigen::Vector2d& position, const Eigen::Vector2d& heading, double sensor_angle,
-                            double sensor_distance);
+                            double sensor_distance, long long* crossings = nullptr);
 
 enum class TurnChoice { Straight, Left, Right, RandomSide };
 
@@ -48,8 +50,10 @@ constexpr int kMaxTurnDecisionsPerStep = 4;
 // side choice: RandomPurpose::TurnDirection). Each agent's clock and accumulated turn advance by dt
 // and omega(x) dt; whenever the clock reaches the decision period 1/f(x) the agent senses and turns by
 // the turn accumulated over exactly that period, and the remainder carries to the next period.
-// Parameters are interpolated at the agent's position.
+// Parameters are interpolated at the agent's position. `sensor_crossings`, when given, is increased
+// by the faces the sensor traces crossed.
 void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const std::vector<double>& concentration,
-                     double dt, std::uint32_t seed, std::uint32_t step, Agents& agents);
+                     double dt, std::uint32_t seed, std::uint32_t step, Agents& agents,
+                     long long* sensor_crossings = nullptr);
 
 }  // namespace physarum

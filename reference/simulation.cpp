@@ -33,15 +33,6 @@ const VertexParameters& checked(const SurfaceDomain& domain, const VertexParamet
   return params;
 }
 
-SimulationSettings settings_of(const Scene& scene) {
-  SimulationSettings s;
-  s.agents = scene.agents;
-  s.time_step = scene.time_step;
-  s.seed = scene.seed;
-  s.integrator = scene.integrator;
-  return s;
-}
-
 }  // namespace
 
 ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params,
@@ -57,7 +48,7 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexPara
 }
 
 ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene)
-    : ReferenceSimulation(domain, VertexParameters::constant(scene, domain.vertex_count), settings_of(scene)) {}
+    : ReferenceSimulation(domain, VertexParameters::constant(scene, domain.vertex_count), simulation_settings(scene)) {}
 
 void ReferenceSimulation::move_and_deposit() {
   const double dt = settings_.time_step;
@@ -81,7 +72,8 @@ void ReferenceSimulation::step() {
   const double dt = settings_.time_step;
   const auto step_index = static_cast<std::uint32_t>(steps_taken_);
 
-  sense_and_steer(domain_, params_, pheromone_.concentration(), dt, settings_.seed, step_index, agents_);
+  sense_and_steer(domain_, params_, pheromone_.concentration(), dt, settings_.seed, step_index, agents_,
+                  &counters_.sensor_face_crossings);
   std::fill(deposit_amount_.begin(), deposit_amount_.end(), 0.0);
   move_and_deposit();
   counters_.respawns += advance_turnover(domain_, hazard_rate_, dt, settings_.seed, step_index, agents_);
@@ -99,6 +91,10 @@ void ReferenceSimulation::step() {
   ++steps_taken_;
   // Time as steps * dt rather than a running sum, so long runs do not drift.
   time_ = static_cast<double>(steps_taken_) * dt;
+}
+
+FieldStatistics ReferenceSimulation::field_statistics(double U) const {
+  return compute_field_statistics(pheromone_.concentration(), domain_.vertex_mass, U);
 }
 
 }  // namespace physarum

@@ -20,6 +20,7 @@
 // (common/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
 // recomputes no geometry: every buffer is sized once here.
 #include "common/scene.hpp"
+#include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
 #include "common/vertex_parameters.hpp"
@@ -31,22 +32,7 @@
 
 namespace physarum {
 
-struct SimulationSettings {
-  int agents = 0;
-  double time_step = 0.0;
-  std::uint32_t seed = 1;
-  Integrator integrator = Integrator::ForwardEuler;
-};
-
-// Running totals for throughput figures (run.json).
-struct SimulationCounters {
-  long long agent_steps = 0;
-  long long face_crossings = 0;  // by movement traces (not sensors)
-  long long boundary_hits = 0;   // movement steps that reflected off a boundary
-  long long respawns = 0;
-};
-
-class ReferenceSimulation {
+class ReferenceSimulation final : public SimulationBackend {
  public:
   // The domain must outlive the simulation (it is read, never copied). Throws InputError when the
   // parameter arrays do not match the domain or a setting is out of range.
@@ -54,13 +40,10 @@ class ReferenceSimulation {
   // Convenience: constant parameters from a scene (agents, time_step, seed, integrator from it too).
   ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene);
 
-  void step();
-  void run(long long steps) {
-    for (long long i = 0; i < steps; ++i) step();
-  }
+  void step() override;
 
-  double time() const { return time_; }
-  long long steps_taken() const { return steps_taken_; }
+  double time() const override { return time_; }
+  long long steps_taken() const override { return steps_taken_; }
   double time_step() const { return settings_.time_step; }
   std::uint32_t seed() const { return settings_.seed; }
 
@@ -71,7 +54,14 @@ class ReferenceSimulation {
   const std::vector<double>& concentration() const { return pheromone_.concentration(); }
   ReferencePheromone& pheromone() { return pheromone_; }
   const ReferencePheromone& pheromone() const { return pheromone_; }
-  const SimulationCounters& counters() const { return counters_; }
+  SimulationCounters counters() const override { return counters_; }
+
+  // ---- SimulationBackend ----
+  std::vector<double> concentration_values() const override { return pheromone_.concentration(); }
+  FieldStatistics field_statistics(double U) const override;
+  std::vector<int> agent_faces() const override { return agents_.face; }
+  std::string backend_name() const override { return "reference"; }
+  std::string device_name() const override { return "CPU (serial reference, 1 thread)"; }
   // Hazard rate 1/tau per vertex (turnover.hpp).
   const std::vector<double>& hazard_rate() const { return hazard_rate_; }
 

@@ -16,6 +16,8 @@
 #include "common/preview_image.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 #include "tools/commands.hpp"
 
@@ -27,6 +29,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unistd.h>
@@ -37,6 +40,7 @@ namespace {
 struct RunOptions {
   std::string scene;
   std::string backend = "reference";
+  std::string device;  // --device SPEC (opencl only); "" = $PHYSARUM_DEVICE or the default choice
   std::optional<long long> steps;
   std::optional<double> sim_time;
   std::optional<std::uint32_t> seed;
@@ -120,8 +124,7 @@ class ProgressBar {
 };
 
 int run_run(const RunOptions& o) {
-  if (o.backend != "reference")
-    throw UsageError("--backend " + o.backend + ": only 'reference' is available in this build");
+  if (!o.device.empty() && o.backend != "opencl") throw UsageError("--device applies to --backend opencl only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
 
@@ -145,28 +148,37 @@ int run_run(const RunOptions& o) {
   // The intrinsic vertices sit on the SCALED input, whose connectivity is the input's, so the same
   // map carries the field back onto the input in its own coordinates.
   const std::vector<int> input_to_intrinsic = input_vertex_to_intrinsic(simulated, domain.vertex_location);
-  ReferenceSimulation simulation(domain, scene);
+  std::unique_ptr<SimulationBackend> backend;
+  if (o.backend == "opencl") {
+    const opencl::ComputeContext compute = opencl::make_compute_context(o.device);
+    backend = std::make_unique<opencl::OpenCLSimulation>(compute, domain, scene);
+  } else {
+    backend = std::make_unique<ReferenceSimulation>(domain, scene);
+  }
+  SimulationBackend& simulation = *backend;
   const double U = uniform_steady_state(scene, domain.total_area);
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
   std::string stats = stats_csv_header() + "\n";
-  stats += stats_csv_row(simulation.time(), compute_field_statistics(simulation.concentration(), domain.vertex_mass, U)) + "\n";
+  stats += stats_csv_row(simulation.time(), simulation.field_statistics(U)) + "\n";
   ProgressBar progress(steps);
   const auto t0 = std::chrono::steady_clock::now();
   double stats_seconds = 0.0;
   for (long long s = 1; s <= steps; ++s) {
     simulation.step();
     if (s % stats_every == 0 || s == steps) {
+      simulation.finish();
       const auto ts = std::chrono::steady_clock::now();
-      stats += stats_csv_row(simulation.time(), compute_field_statistics(simulation.concentration(), domain.vertex_mass, U)) + "\n";
+      stats += stats_csv_row(simulation.time(), simulation.field_statistics(U)) + "\n";
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
     }
     progress.update(s);
   }
+  simulation.finish();
   // Throughput counts the simulation alone, not the statistics rows.
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - stats_seconds;
-  const FieldStatistics final_stats = compute_field_statistics(simulation.concentration(), domain.vertex_mass, U);
+  const FieldStatistics final_stats = simulation.field_statistics(U);
 
   // ---- outputs ----
   const std::filesystem::path out(o.out);
@@ -175,7 +187,7 @@ int run_run(const RunOptions& o) {
   if (ec || !std::filesystem::is_directory(out))
     throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
 
-  const std::vector<double> on_input = intrinsic_to_input(input_to_intrinsic, simulation.concentration());
+  const std::vector<double> on_input = intrinsic_to_input(input_to_intrinsic, simulation.concentration_values());
   // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
   // of one scene are comparable (the value itself is in the PLY property).
   FieldColoring coloring;
@@ -186,15 +198,18 @@ int run_run(const RunOptions& o) {
   write_preview_png((out / "preview.png").string(), input, on_input, preview);
   write_text_file_atomically((out / "stats.csv").string(), stats);
 
-  const SimulationCounters& c = simulation.counters();
+  const SimulationCounters c = simulation.counters();
   nlohmann::ordered_json j;
-  j["backend"] = "reference";
-  j["device"] = "CPU (serial reference, 1 thread)";
+  j["backend"] = simulation.backend_name();
+  j["device"] = simulation.device_name();
   j["steps"] = steps;
   j["sim_time"] = simulation.time();
   j["seconds"] = seconds;
   j["agent_steps_per_second"] = seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0;
-  j["face_crossings_per_agent_step"] =
+  j["face_crossings_per_agent_step"] = c.crossings_per_agent_step();
+  j["face_crossings_per_second"] =
+      seconds > 0 ? static_cast<double>(c.face_crossings + c.sensor_face_crossings) / seconds : 0.0;
+  j["move_crossings_per_agent_step"] =
       c.agent_steps > 0 ? static_cast<double>(c.face_crossings) / static_cast<double>(c.agent_steps) : 0.0;
   j["U"] = U;
   j["mean"] = final_stats.mean;
@@ -221,7 +236,12 @@ Command add_run_command(CLI::App& parent) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* app = parent.add_subcommand("run", "Grow a slime-mold pattern on a surface and write its outputs");
   app->add_option("scene", options->scene, "Scene file (JSON; see DESIGN.md, 'Scene files')")->required();
-  app->add_option("--backend", options->backend, "Simulation backend")->check(CLI::IsMember({"reference", "opencl"}));
+  app->add_option("--backend", options->backend, "Simulation backend")
+      ->check(CLI::IsMember({"reference", "opencl"}))
+      ->capture_default_str();
+  app->add_option("--device", options->device,
+                  "OpenCL device: an index from `physarum devices` or a name substring (default: $PHYSARUM_DEVICE, "
+                  "then the first GPU, then the first device)");
   auto* steps = app->add_option("--steps", options->steps, "Number of time steps (overrides the scene)");
   auto* sim_time = app->add_option("--sim-time", options->sim_time, "Simulated seconds (overrides the scene)");
   steps->excludes(sim_time);

@@ -1,0 +1,65 @@
+#pragma once
+// What every simulation backend offers (DESIGN.md, "Data flow": reference | opencl, same interface,
+// same Scene, same seed). `physarum run`, the differential harness and the benchmarks drive a
+// backend only through this interface, so a new backend plugs into all of them at once.
+#include "common/field_statistics.hpp"
+#include "common/scene.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace physarum {
+
+struct SimulationSettings {
+  int agents = 0;
+  double time_step = 0.0;
+  std::uint32_t seed = 1;
+  Integrator integrator = Integrator::ForwardEuler;
+};
+
+SimulationSettings simulation_settings(const Scene& scene);
+
+// Running totals for throughput figures (run.json). Face crossings are the unit of work of an
+// agent step: each costs one dependent read of a face record.
+struct SimulationCounters {
+  long long agent_steps = 0;
+  long long face_crossings = 0;         // by movement traces
+  long long sensor_face_crossings = 0;  // by sensor traces (three per turn decision)
+  long long boundary_hits = 0;          // movement steps that reflected off a boundary
+  long long respawns = 0;
+
+  double crossings_per_agent_step() const {
+    return agent_steps > 0 ? static_cast<double>(face_crossings + sensor_face_crossings) / static_cast<double>(agent_steps)
+                           : 0.0;
+  }
+};
+
+class SimulationBackend {
+ public:
+  virtual ~SimulationBackend() = default;
+
+  virtual void step() = 0;
+  // `steps` steps; a backend may enqueue them without waiting in between.
+  virtual void run(long long steps) {
+    for (long long i = 0; i < steps; ++i) step();
+  }
+  // Blocks until every enqueued step has finished (a no-op for a synchronous backend); timings
+  // call it before reading the clock.
+  virtual void finish() {}
+
+  virtual double time() const = 0;
+  virtual long long steps_taken() const = 0;
+  // The pheromone concentration per intrinsic vertex (a copy; may read back from a device).
+  virtual std::vector<double> concentration_values() const = 0;
+  // Mean and coverage of the field (on the device where there is one).
+  virtual FieldStatistics field_statistics(double U) const = 0;
+  // The intrinsic face every agent is on, in agent-id order.
+  virtual std::vector<int> agent_faces() const = 0;
+  virtual SimulationCounters counters() const = 0;
+
+  virtual std::string backend_name() const = 0;  // "reference", "opencl"
+  virtual std::string device_name() const = 0;   // a human-readable description
+};
+
+}  // namespace physarum

@@ -1,0 +1,59 @@
+/* Deposition along the path (paper Eq. 4; mirrors reference/deposition.cpp). Each per-face piece of
+ * a step deposits its share of r_dep dt at its midpoint, split over the face's corners by the
+ * midpoint's barycentric weights, into an AMOUNT per vertex; deposits_to_concentration then divides
+ * by the vertex mass and adds it to the field.
+ *
+ * Order independence: amounts accumulate as 64-bit fixed point (round(amount * scale), scale a power
+ * of two chosen by the host so the largest possible per-vertex sum of one step cannot overflow), and
+ * integer addition is associative, so the sum does not depend on which work-item adds first: a run is
+ * deterministic on a given device. Devices without cl_khr_int64_base_atomics are built with
+ * PHYSARUM_FLOAT_DEPOSITS and add floats by compare-and-swap instead (correct, not bit-reproducible). */
+#ifndef PHYSARUM_DEPOSITION_CL
+#define PHYSARUM_DEPOSITION_CL
+#include "device_types.h"
+
+#ifdef PHYSARUM_FLOAT_DEPOSITS
+typedef float PhysarumDepositCell;
+#else
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+typedef long PhysarumDepositCell;
+#endif
+
+/* Bounded retries of the float compare-and-swap: contention on one vertex cannot reach this many
+ * collisions in practice; giving up after it loses one deposit rather than hanging the device. */
+#define PHYSARUM_MAX_CAS_ATTEMPTS 4096
+
+void deposit_amount(__global PhysarumDepositCell* cell, const float amount, const float scale) {
+#ifdef PHYSARUM_FLOAT_DEPOSITS
+  (void)scale;
+  volatile __global uint* word = (volatile __global uint*)cell;
+  for (int attempt = 0; attempt < PHYSARUM_MAX_CAS_ATTEMPTS; ++attempt) {
+    const uint expected = *word;
+    const uint desired = as_uint(as_float(expected) + amount);
+    if (atomic_cmpxchg(word, expected, desired) == expected) return;
+  }
+#else
+  const long units = convert_long_rte(amount * scale);
+  if (units != 0) atom_add((volatile __global long*)cell, units);
+#endif
+}
+
+/* The fraction of the step [age, age + dt] during which the agent is active (age >= t_a). */
+float active_fraction(const float age, const float dt, const float activation_time) {
+  if (dt <= 0.0f) return age >= activation_time ? 1.0f : 0.0f;
+  return clamp((age + dt - activation_time) / dt, 0.0f, 1.0f);
+}
+
+/* Splits `amount` over the corners of `face` by the barycentric weights of `point`. */
+void deposit_at_point(__global const PhysarumFaceRecord* faces, const int face, const float2 point, const float amount,
+                      __global PhysarumDepositCell* deposits, const float scale) {
+  const float x1 = faces[face].x1, x2 = faces[face].x2, y2 = faces[face].y2;
+  const float b2 = point.y / y2;
+  const float b1 = (point.x - b2 * x2) / x1;
+  const float b0 = 1.0f - b1 - b2;
+  deposit_amount(&deposits[faces[face].vertex[0]], amount * b0, scale);
+  deposit_amount(&deposits[faces[face].vertex[1]], amount * b1, scale);
+  deposit_amount(&deposits[faces[face].vertex[2]], amount * b2, scale);
+}
+
+#endif /* PHYSARUM_DEPOSITION_CL */

@@ -1,0 +1,254 @@
+#include "opencl/simulation.hpp"
+
+#include "common/errors.hpp"
+#include "opencl/face_records.hpp"
+#include "opencl/kernel_sources.hpp"
+#include "opencl/opencl_error.hpp"
+#include "opencl/program_cache.hpp"
+#include "opencl/work_group_size.hpp"
+#include "reference/turnover.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
+namespace physarum::opencl {
+
+struct OpenCLSimulation::Kernels {
+  cl::Kernel initialise, agent_step, collect_deposits;
+};
+
+namespace {
+
+static_assert(sizeof(PhysarumAgentParameters) == 32, "PhysarumAgentParameters: eight floats");
+static_assert(sizeof(PhysarumStepConstants) == 64, "PhysarumStepConstants: sixteen 4-byte fields");
+
+PhysarumAgentParameters parameters_of_vertex(const VertexParameters& p, const std::vector<double>& hazard, size_t i) {
+  PhysarumAgentParameters r;
+  r.sensor_distance = static_cast<float>(p.sensor_distance[i]);
+  r.sensor_angle = static_cast<float>(p.sensor_angle[i]);
+  r.move_rate = static_cast<float>(p.move_rate[i]);
+  r.turn_rate = static_cast<float>(p.turn_rate[i]);
+  r.turn_frequency = static_cast<float>(p.turn_frequency[i]);
+  r.deposit_rate = static_cast<float>(p.deposit_rate[i]);
+  r.hazard_rate = static_cast<float>(hazard[i]);
+  r.activation_time = static_cast<float>(p.activation_time[i]);
+  return r;
+}
+
+void check_parameters(const SurfaceDomain& domain, const VertexParameters& p, const SimulationSettings& s) {
+  const size_t n = static_cast<size_t>(domain.vertex_count);
+  for (const std::vector<double>* field : {&p.sensor_distance, &p.sensor_angle, &p.move_rate, &p.turn_rate,
+                                           &p.turn_frequency, &p.deposit_rate, &p.mean_lifetime, &p.activation_time})
+    if (field->size() != n)
+      throw InputError("opencl simulation: an agent parameter map has " + std::to_string(field->size()) +
+                       " values for " + std::to_string(n) + " vertices");
+  if (s.agents < 0) throw InputError("opencl simulation: agents " + std::to_string(s.agents) + " must be >= 0");
+  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
+    throw InputError("opencl simulation: time_step " + std::to_string(s.time_step) + " must be > 0");
+  for (size_t i = 0; i < n; ++i)
+    if (!(p.turn_frequency[i] > 0.0))
+      throw InputError("opencl simulation: turn_frequency at vertex " + std::to_string(i) + " is " +
+                       std::to_string(p.turn_frequency[i]) + " (must be > 0)");
+}
+
+}  // namespace
+
+OpenCLSimulation::~OpenCLSimulation() = default;
+
+OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
+                                   const OpenCLSimulationOptions& options)
+    : OpenCLSimulation(compute, domain, VertexParameters::constant(scene, domain.vertex_count),
+                       simulation_settings(scene), options) {}
+
+OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
+                                   const VertexParameters& params, const SimulationSettings& settings,
+                                   const OpenCLSimulationOptions& options)
+    : compute_(compute), domain_(domain), settings_(settings) {
+  check_parameters(domain, params, settings);
+  const size_t nv = static_cast<size_t>(domain.vertex_count);
+  const int agent_count = settings.agents;
+
+  // ---- parameters per vertex, and whether they are all one value ----
+  const std::vector<double> hazard = hazard_rate_per_vertex(params.mean_lifetime);
+  std::vector<PhysarumAgentParameters> vertex_parameters(nv);
+  for (size_t i = 0; i < nv; ++i) vertex_parameters[i] = parameters_of_vertex(params, hazard, i);
+  bool uniform = true;
+  for (const std::vector<double>* field : {&params.sensor_distance, &params.sensor_angle, &params.move_rate,
+                                           &params.turn_rate, &params.turn_frequency, &params.deposit_rate,
+                                           &params.mean_lifetime, &params.activation_time})
+    uniform = uniform && is_uniform(*field);
+
+  // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
+  fixed_point_ = compute.device.int64_atomics;
+  if (fixed_point_) {
+    double max_rate = 0.0, min_positive_rate = INFINITY;
+    for (double r : params.deposit_rate) {
+      max_rate = std::max(max_rate, r);
+      if (r > 0.0) min_positive_rate = std::min(min_positive_rate, r);
+    }
+    const double worst_step_total = std::max(1, agent_count) * max_rate * settings.time_step;
+    const int exponent = worst_step_total > 0.0 ? std::min(60, static_cast<int>(std::floor(62.0 - std::log2(worst_step_total))))
+                                                : 40;
+    deposit_scale_ = std::ldexp(1.0, exponent);
+    if (std::isfinite(min_positive_rate) && min_positive_rate * settings.time_step * deposit_scale_ < 0x1p20)
+      throw InputError("opencl simulation: " + std::to_string(agent_count) + " agents depositing up to " +
+                       std::to_string(max_rate) + " per second leave too little fixed-point resolution for the "
+                       "smallest deposit rate " + std::to_string(min_positive_rate) +
+                       " (64-bit deposits would round at more than 1e-6); reduce the spread of deposit rates");
+  }
+
+  constants_.dt = static_cast<float>(settings.time_step);
+  constants_.deposit_scale = static_cast<float>(deposit_scale_);
+  constants_.seed = settings.seed;
+  constants_.step = 0;
+  constants_.agent_count = agent_count;
+  constants_.face_count = domain.face_count;
+  constants_.uniform_parameters = uniform ? 1 : 0;
+  constants_.pad = 0;
+  constants_.uniform = nv > 0 ? vertex_parameters[0] : PhysarumAgentParameters{};
+
+  // ---- kernels ----
+  kernels_ = std::make_unique<Kernels>();
+  std::string build = options.build_options;
+  if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
+  try {
+    const cl::Program program =
+        build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
+    kernels_->initialise = cl::Kernel(program, "initialise_agents");
+    kernels_->agent_step = cl::Kernel(program, "agent_step");
+    kernels_->collect_deposits = cl::Kernel(program, "deposits_to_concentration");
+    agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
+    agent_group_ = std::max<std::size_t>(agent_group_, 1);
+    vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
+  } catch (const cl::Error& e) {
+    throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
+  }
+  agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
+
+  // ---- buffers ----
+  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+  faces_ = upload_buffer(compute, "face records", build_face_records(domain), kRead, false);
+  vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
+  const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
+  alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
+  alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
+  std::vector<float> inverse_mass(nv);
+  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / domain.vertex_mass[i]);
+  inverse_mass_ = upload_buffer(compute, "inverse vertex mass", inverse_mass, kRead, false);
+  deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
+                              CL_MEM_READ_WRITE, true);
+  group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
+                                    CL_MEM_READ_WRITE, true);
+  agents_ = DeviceAgents::allocate(compute, agent_count);
+  pheromone_ = std::make_unique<OpenCLPheromone>(compute, domain, params, settings.integrator, settings.time_step,
+                                                 options.pheromone);
+
+  try {
+    compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
+    compute.queue.enqueueFillBuffer(group_counters_.buffer, cl_uint{0}, 0, group_counters_.payload_bytes);
+    if (agent_count > 0) {
+      cl::Kernel& k = kernels_->initialise;
+      int arg = 0;
+      k.setArg(arg++, constants_);
+      for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
+               &faces_.buffer, &vertex_parameters_.buffer, &alias_probability_.buffer, &alias_index_.buffer})
+        k.setArg(arg++, *b);
+      for (const DeviceBuffer* b : agents_.buffers()) k.setArg(arg++, b->buffer);
+      compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
+                                         cl::NDRange(agent_group_));
+    }
+    compute.queue.finish();
+  } catch (const cl::Error& e) {
+    throw device_error("placing " + std::to_string(agent_count) + " agents on " + compute.device.device_name, e.err());
+  }
+}
+
+void OpenCLSimulation::enqueue_agent_step() {
+  if (settings_.agents == 0) return;
+  cl::Kernel& k = kernels_->agent_step;
+  constants_.step = static_cast<dev_uint>(steps_taken_);
+  int arg = 0;
+  k.setArg(arg++, constants_);
+  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
+           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &alias_probability_.buffer,
+           &alias_index_.buffer, &deposits_.buffer})
+    k.setArg(arg++, *b);
+  for (const DeviceBuffer* b : {&agents_.face, &agents_.position, &agents_.heading, &agents_.age, &agents_.exposure,
+                                &agents_.exposure_threshold, &agents_.time_since_decision, &agents_.accumulated_turn,
+                                &agents_.id})
+    k.setArg(arg++, b->buffer);
+  k.setArg(arg++, group_counters_.buffer);
+  k.setArg(arg++, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
+  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
+                                      cl::NDRange(agent_group_));
+}
+
+void OpenCLSimulation::enqueue_collect_deposits() {
+  cl::Kernel& k = kernels_->collect_deposits;
+  k.setArg(0, static_cast<cl_int>(domain_.vertex_count));
+  k.setArg(1, deposits_.buffer);
+  k.setArg(2, inverse_mass_.buffer);
+  k.setArg(3, static_cast<cl_float>(1.0 / deposit_scale_));
+  k.setArg(4, pheromone_->concentration_buffer());
+  compute_.queue.enqueueNDRangeKernel(
+      k, cl::NullRange, cl::NDRange(padded_global_size(static_cast<size_t>(domain_.vertex_count), vertex_group_)),
+      cl::NDRange(vertex_group_));
+}
+
+void OpenCLSimulation::step() {
+  try {
+    enqueue_agent_step();
+    // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
+    if (settings_.integrator == Integrator::ForwardEuler) {
+      pheromone_->step();
+      enqueue_collect_deposits();
+    } else {
+      enqueue_collect_deposits();
+      pheromone_->step();
+    }
+  } catch (const cl::Error& e) {
+    throw device_error("simulation step " + std::to_string(steps_taken_) + " on " + compute_.device.device_name,
+                       e.err());
+  }
+  ++steps_taken_;
+}
+
+void OpenCLSimulation::finish() { compute_.queue.finish(); }
+
+std::vector<int> OpenCLSimulation::agent_faces() const { return agents_.download_faces(compute_); }
+
+Agents OpenCLSimulation::read_agents() const { return agents_.download(compute_); }
+
+void OpenCLSimulation::write_agents(const Agents& agents) { agents_.upload(compute_, agents); }
+
+SimulationCounters OpenCLSimulation::counters() const {
+  std::vector<cl_ulong> partial(agent_groups_ * PHYSARUM_COUNTERS);
+  compute_.queue.enqueueReadBuffer(group_counters_.buffer, CL_TRUE, 0, partial.size() * sizeof(cl_ulong), partial.data());
+  SimulationCounters c;
+  for (size_t g = 0; g < agent_groups_; ++g) {
+    c.face_crossings += static_cast<long long>(partial[g * PHYSARUM_COUNTERS + PHYSARUM_COUNTER_MOVE_CROSSINGS]);
+    c.sensor_face_crossings += static_cast<long long>(partial[g * PHYSARUM_COUNTERS + PHYSARUM_COUNTER_SENSOR_CROSSINGS]);
+    c.boundary_hits += static_cast<long long>(partial[g * PHYSARUM_COUNTERS + PHYSARUM_COUNTER_BOUNDARY_HITS]);
+    c.respawns += static_cast<long long>(partial[g * PHYSARUM_COUNTERS + PHYSARUM_COUNTER_RESPAWNS]);
+  }
+  c.agent_steps = steps_taken_ * settings_.agents;
+  return c;
+}
+
+std::string OpenCLSimulation::device_name() const {
+  return compute_.device.platform_name + " / " + compute_.device.device_name + " (" + compute_.device.type + ", " +
+         compute_.device.driver_version + ")";
+}
+
+std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
+  std::vector<std::string> damaged = pheromone_->damaged_canaries();
+  std::vector<const DeviceBuffer*> guarded = agents_.buffers();
+  guarded.push_back(&deposits_);
+  guarded.push_back(&group_counters_);
+  for (const DeviceBuffer* b : guarded)
+    if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
+  return damaged;
+}
+
+}  // namespace physarum::opencl

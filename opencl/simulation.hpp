@@ -1,0 +1,96 @@
+#pragma once
+// The OpenCL simulation of the extended slime-mold model (mirrors reference/simulation.hpp): the
+// same step, in the same order, on any OpenCL device.
+//
+//   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer, move + deposit, turnover
+//   4.   pheromone (opencl/pheromone.hpp) with this step's deposits: forward Euler steps the field
+//        and then adds them, backward Euler adds them and then solves, exactly as the reference
+//   5.   time += dt
+//
+// step() only enqueues: forward Euler runs with no host round trip at all; backward Euler reads the
+// 32-byte solver state every few CG iterations. Everything stays on the device until a read is
+// asked for (concentration, statistics, agents, counters).
+//
+// Deposits accumulate as 64-bit fixed point, scale 2^k (deposit_scale()): k is the largest that
+// keeps the worst case of one step (every agent's whole deposit into one vertex) below 2^62, and the
+// constructor refuses a scene where even that leaves fewer than 2^20 units for one agent's deposit
+// of one step (rounding would then matter at the 1e-6 level).
+#include "common/scene.hpp"
+#include "common/simulation_backend.hpp"
+#include "common/surface_domain.hpp"
+#include "common/vertex_parameters.hpp"
+#include "kernels/device_types.h"
+#include "opencl/agents.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/device_buffer.hpp"
+#include "opencl/pheromone.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace physarum::opencl {
+
+struct OpenCLSimulationOptions {
+  OpenCLPheromoneOptions pheromone;
+  // Extra OpenCL build options for the agent program (the fault-injection harness adds -D flags).
+  std::string build_options;
+};
+
+class OpenCLSimulation final : public SimulationBackend {
+ public:
+  // Uploads the domain (face records, alias table), the parameters and builds the kernels; places
+  // the agents on the device with the reference's initial-state rule. Throws InputError on bad
+  // parameters and DeviceError when a buffer exceeds the device or a kernel fails to build.
+  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                   const SimulationSettings& settings, const OpenCLSimulationOptions& options = {});
+  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
+                   const OpenCLSimulationOptions& options = {});
+  ~OpenCLSimulation() override;
+  OpenCLSimulation(const OpenCLSimulation&) = delete;
+  OpenCLSimulation& operator=(const OpenCLSimulation&) = delete;
+
+  // Enqueues one step (see the header comment).
+  void step() override;
+  void finish() override;
+
+  double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
+  long long steps_taken() const override { return steps_taken_; }
+  std::vector<double> concentration_values() const override { return pheromone_->concentration(); }
+  FieldStatistics field_statistics(double U) const override { return pheromone_->statistics(U); }
+  std::vector<int> agent_faces() const override;
+  SimulationCounters counters() const override;
+  std::string backend_name() const override { return "opencl"; }
+  std::string device_name() const override;
+
+  // ---- for tests: identical states in, identical states out ----
+  Agents read_agents() const;
+  void write_agents(const Agents& agents);
+  OpenCLPheromone& pheromone() { return *pheromone_; }
+  const OpenCLPheromone& pheromone() const { return *pheromone_; }
+  double deposit_scale() const { return deposit_scale_; }
+  bool fixed_point_deposits() const { return fixed_point_; }
+  // Names of device buffers a kernel wrote past (empty when every canary is intact).
+  std::vector<std::string> damaged_canaries() const;
+
+ private:
+  struct Kernels;
+  void enqueue_agent_step();
+  void enqueue_collect_deposits();
+
+  ComputeContext compute_;
+  const SurfaceDomain& domain_;
+  SimulationSettings settings_;
+  std::unique_ptr<Kernels> kernels_;
+  PhysarumStepConstants constants_{};
+  std::unique_ptr<OpenCLPheromone> pheromone_;
+  DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, inverse_mass_;
+  DeviceBuffer deposits_, group_counters_;
+  DeviceAgents agents_;
+  std::size_t agent_group_ = 1, agent_groups_ = 1, vertex_group_ = 1;
+  bool fixed_point_ = true;
+  double deposit_scale_ = 1.0;
+  long long steps_taken_ = 0;
+};
+
+}  // namespace physarum::opencl
