@@ -69,6 +69,9 @@ PhysarumAgentParameters parameters_at(const PhysarumStepConstants* k, __global c
 int sample_face(__global const float* alias_probability, __global const int* alias_index, const int face_count,
                 const uint4 w) {
   const int bucket = (int)mul_hi(w.x, (uint)face_count);
+#ifdef PHYSARUM_FAULT_UNIFORM_FACE
+  return bucket; /* planted fault: every face equally likely, whatever its area */
+#endif
   return second_uniform(w) < alias_probability[bucket] ? bucket : alias_index[bucket];
 }
 

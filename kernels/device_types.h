@@ -101,5 +101,6 @@ typedef struct {
 /* Bounds shared with the reference (common/trace.hpp, reference/sensing_steering.hpp). */
 #define PHYSARUM_MAX_TRACE_STEPS 65536
 #define PHYSARUM_MAX_TURN_DECISIONS_PER_STEP 4
+#define PHYSARUM_TURN_DECISION_TOLERANCE 1e-4f
 
 #endif /* PHYSARUM_DEVICE_TYPES_H */

@@ -15,16 +15,23 @@ float csr_row_times(const uint i, __global const int* row_start, __global const 
 }
 
 /* One forward Euler sub-step of Eq. 6 divided by M:
- *   u_out = u_in - h (r_dif,i / m_i (L u_in)_i + r_dec,i u_in,i). */
+ *   u_out = u_in - h (r_dif,i / m_i (L u_in)_i + r_dec,i u_in,i).
+ * sub_step numbers the sub-steps of one time step; only the planted fault no-decay-substep reads it. */
 __kernel void pheromone_forward_substep(const uint n, __global const int* row_start, __global const int* column,
                                         __global const float* laplacian, __global const float* diffuse_over_mass,
                                         __global const float* decay_rate, const float h,
-                                        __global const float* u_in, __global float* u_out) {
+                                        __global const float* u_in, __global float* u_out, const uint sub_step) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float lu = csr_row_times(i, row_start, column, laplacian, u_in);
   const float u = u_in[i];
-  u_out[i] = u - h * (diffuse_over_mass[i] * lu + decay_rate[i] * u);
+#ifdef PHYSARUM_FAULT_NO_DECAY_SUBSTEP
+  const float decay = sub_step == 0 ? 0.0f : decay_rate[i]; /* planted fault: the first sub-step skips decay */
+#else
+  const float decay = decay_rate[i];
+  (void)sub_step;
+#endif
+  u_out[i] = u - h * (diffuse_over_mass[i] * lu + decay * u);
 }
 
 /* Deposits: an amount at a vertex raises its concentration by amount / m_i. */

@@ -39,16 +39,25 @@ int jones_turn_choice(const float left, const float centre, const float right) {
 
 /* Steers one agent for one step of length dt. The clock is a float sum of dt, so a decision due
  * at a whole number of steps may arrive a few float ulps short of its period; the tolerance
- * (1e-3 dt, far above float rounding and far below any meaningful time) keeps it on time. The
- * reference allows 1e-9 dt for the same reason in double. */
+ * (PHYSARUM_TURN_DECISION_TOLERANCE dt, far above float rounding and far below any meaningful time)
+ * keeps it on time. The reference uses the same tolerance, so both decide alike from one state. */
 void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const float* concentration,
                      const PhysarumAgentParameters* p, const float dt, const uint seed, const uint step,
                      const uint agent, const int face, const float2 position, float2* heading,
                      float* time_since_decision, float* accumulated_turn, int* sensor_crossings) {
+#ifdef PHYSARUM_FAULT_TURN_EVERY_STEP
+  const float period = dt; /* planted fault: decisions ignore the decision frequency */
+#else
   const float period = 1.0f / p->turn_frequency;
+#endif
+#ifdef PHYSARUM_FAULT_SENSOR_ANGLE
+  const float sensor_angle = 1.15f * p->sensor_angle; /* planted fault: the sensor angle 15 % too wide */
+#else
+  const float sensor_angle = p->sensor_angle;
+#endif
   *time_since_decision += dt;
   *accumulated_turn += p->turn_rate * dt;
-  const float tolerance = 1e-3f * dt;
+  const float tolerance = PHYSARUM_TURN_DECISION_TOLERANCE * dt;
   if (*time_since_decision + tolerance < period) return;
 
   uint4 side_bits = (uint4)(0u);
@@ -60,11 +69,11 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
     *time_since_decision = overshoot;
     *accumulated_turn = carried_turn;
 
-    const float left = read_sensor(faces, concentration, face, position, rotate(*heading, p->sensor_angle),
+    const float left = read_sensor(faces, concentration, face, position, rotate(*heading, sensor_angle),
                                    p->sensor_distance, sensor_crossings);
     const float centre =
         read_sensor(faces, concentration, face, position, *heading, p->sensor_distance, sensor_crossings);
-    const float right = read_sensor(faces, concentration, face, position, rotate(*heading, -p->sensor_angle),
+    const float right = read_sensor(faces, concentration, face, position, rotate(*heading, -sensor_angle),
                                     p->sensor_distance, sensor_crossings);
     int choice = jones_turn_choice(left, centre, right);
     if (choice == PHYSARUM_TURN_RANDOM_SIDE) {

@@ -121,7 +121,12 @@ TraceEnd trace_walk(__global const PhysarumFaceRecord* faces, int f, float2 p, f
     const int g = faces[f].neighbour[e];
     if (g < 0) {
       result.hit_boundary = 1;
+#ifdef PHYSARUM_FAULT_NO_REFLECT
+      /* planted fault: agents stop at the boundary instead of reflecting */
+      if (1) {
+#else
       if (!reflect) {
+#endif
         result.face = f;
         result.position = exit_point;
         result.heading = d;

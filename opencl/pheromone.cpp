@@ -100,7 +100,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   kernels_ = std::make_unique<Kernels>();
   try {
     const cl::Program program =
-        build_program(compute.context, compute.device, "pheromone.cl", kernel_source("pheromone.cl"));
+        build_program(compute.context, compute.device, "pheromone.cl", kernel_source("pheromone.cl"),
+                      options.build_options);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.add_amounts = cl::Kernel(program, "pheromone_add_amounts");
@@ -280,6 +281,7 @@ void OpenCLPheromone::forward_step() {
   for (int s = 0; s < sub_steps_; ++s) {
     k.setArg(7, *from);
     k.setArg(8, *to);
+    k.setArg(9, static_cast<cl_uint>(s));
     compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, global, local);
     std::swap(from, to);
   }

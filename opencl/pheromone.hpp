@@ -25,6 +25,8 @@ struct OpenCLPheromoneOptions {
   // Iterations enqueued between two reads of the solver state (a 32-byte read): fewer reads, but up
   // to this many no-op launches after convergence.
   int cg_check_interval = 16;
+  // Extra OpenCL build options (the differential harness plants faults with -D flags).
+  std::string build_options;
 };
 
 // What the last backward-Euler solve did.

@@ -6,6 +6,9 @@
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl/work_group_size.hpp"
+#include "common/random_streams.hpp"
+#include "common/trace.hpp"
+#include "reference/sensing_steering.hpp"
 #include "reference/turnover.hpp"
 
 #include <algorithm>
@@ -22,6 +25,15 @@ namespace {
 
 static_assert(sizeof(PhysarumAgentParameters) == 32, "PhysarumAgentParameters: eight floats");
 static_assert(sizeof(PhysarumStepConstants) == 64, "PhysarumStepConstants: sixteen 4-byte fields");
+// The bounds the kernels share with the reference must be the reference's.
+static_assert(PHYSARUM_MAX_TRACE_STEPS == kMaxTraceSteps);
+static_assert(PHYSARUM_MAX_TURN_DECISIONS_PER_STEP == kMaxTurnDecisionsPerStep);
+static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(RandomPurpose::InitialPlacement) &&
+              PHYSARUM_PURPOSE_INITIAL_STATE == static_cast<unsigned>(RandomPurpose::InitialState) &&
+              PHYSARUM_PURPOSE_TURN_DIRECTION == static_cast<unsigned>(RandomPurpose::TurnDirection) &&
+              PHYSARUM_PURPOSE_RESPAWN_PLACEMENT == static_cast<unsigned>(RandomPurpose::RespawnPlacement) &&
+              PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState));
+static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
 PhysarumAgentParameters parameters_of_vertex(const VertexParameters& p, const std::vector<double>& hazard, size_t i) {
   PhysarumAgentParameters r;
@@ -141,8 +153,10 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
                                     CL_MEM_READ_WRITE, true);
   agents_ = DeviceAgents::allocate(compute, agent_count);
+  OpenCLPheromoneOptions pheromone_options = options.pheromone;
+  pheromone_options.build_options += " " + options.build_options;
   pheromone_ = std::make_unique<OpenCLPheromone>(compute, domain, params, settings.integrator, settings.time_step,
-                                                 options.pheromone);
+                                                 pheromone_options);
 
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);

@@ -33,7 +33,8 @@ namespace physarum::opencl {
 
 struct OpenCLSimulationOptions {
   OpenCLPheromoneOptions pheromone;
-  // Extra OpenCL build options for the agent program (the fault-injection harness adds -D flags).
+  // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
+  // faults with -D flags, opencl/planted_faults.hpp).
   std::string build_options;
 };
 

@@ -50,8 +50,10 @@ void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params
     agents.accumulated_turn[a] += turn_rate * dt;
     // A decision is due once a full period has elapsed. The clock is a sum of many dt, so allow a
     // rounding-sized shortfall: otherwise a period of exactly 5 dt could be missed by 1e-17 s and
-    // the decision slip a whole step late.
-    const double tolerance = 1e-9 * dt;
+    // the decision slip a whole step late. 1e-4 dt covers float32 rounding too, so the OpenCL
+    // backend (kernels/sensing_steering.cl) uses the same tolerance and both decide alike from the
+    // same state; a decision at most 1e-4 dt early changes nothing measurable.
+    const double tolerance = kTurnDecisionTolerance * dt;
     if (agents.time_since_decision[a] + tolerance < period) continue;
 
     const double sensor_angle = interpolate_vertex_field(domain, params.sensor_angle, face, position);

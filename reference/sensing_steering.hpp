@@ -46,6 +46,10 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle);
 // that long is far beyond the decision period the paper considers meaningful (Sec. 4, Fig. 10d).
 constexpr int kMaxTurnDecisionsPerStep = 4;
 
+// A decision is due when the clock is within this fraction of dt of the period (rounding slack;
+// see sense_and_steer). The same value is PHYSARUM_TURN_DECISION_TOLERANCE in the kernels.
+constexpr double kTurnDecisionTolerance = 1e-4;
+
 // Sensing and steering of every agent for one step of length dt (step index `step`, for the random
 // side choice: RandomPurpose::TurnDirection). Each agent's clock and accumulated turn advance by dt
 // and omega(x) dt; whenever the clock reaches the decision period 1/f(x) the agent senses and turns by

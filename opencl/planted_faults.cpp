@@ -1,0 +1,29 @@
+#include "opencl/planted_faults.hpp"
+
+#include "common/errors.hpp"
+
+namespace physarum::opencl {
+
+const std::vector<PlantedFault>& planted_faults() {
+  static const std::vector<PlantedFault> faults = {
+      {"sensor-angle", "PHYSARUM_FAULT_SENSOR_ANGLE", "sensor angle 15 % too wide"},
+      {"deposit-endpoint", "PHYSARUM_FAULT_DEPOSIT_ENDPOINT", "deposit at the end of the step, not along the path"},
+      {"no-decay-substep", "PHYSARUM_FAULT_NO_DECAY_SUBSTEP", "the first forward-Euler sub-step skips decay"},
+      {"no-reflect", "PHYSARUM_FAULT_NO_REFLECT", "agents stop at boundaries instead of reflecting"},
+      {"uniform-face", "PHYSARUM_FAULT_UNIFORM_FACE", "respawn face not weighted by area"},
+      {"turn-every-step", "PHYSARUM_FAULT_TURN_EVERY_STEP", "turn decisions ignore the decision frequency"},
+  };
+  return faults;
+}
+
+std::string fault_build_option(const std::string& name) {
+  if (name.empty()) return "";
+  std::string known;
+  for (const PlantedFault& f : planted_faults()) {
+    if (name == f.name) return std::string("-D") + f.define;
+    known += std::string(known.empty() ? "" : ", ") + f.name;
+  }
+  throw UsageError("--fault " + name + ": unknown fault (known: " + known + ")");
+}
+
+}  // namespace physarum::opencl
