@@ -1,5 +1,5 @@
-// Runs every kernel of the pheromone and statistics programs (and philox_check.cl) once on a small
-// problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
+// Runs every kernel of the agent, pheromone and statistics programs (and philox_check.cl) once on
+// a small problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
 // API checks. Exit 0 when every run finished and every canary is intact.
 //
 //   physarum_oclgrind_probe               the clean run
@@ -9,6 +9,7 @@
 #include "opencl/compute_context.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/pheromone.hpp"
+#include "opencl/simulation.hpp"
 #include "opencl/program_cache.hpp"
 #include "pheromone_test_meshes.hpp"
 
@@ -58,6 +59,42 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
                     std::to_string(field.sub_steps()) + " sub-steps, " +
                     std::to_string(field.last_solve().iterations) + " CG iterations)");
   const std::vector<std::string> damaged = field.damaged_canaries();
+  std::string names;
+  for (const auto& n : damaged) names += " " + n;
+  check(damaged.empty(), label + ": canaries intact" + names);
+}
+
+// A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
+// reflecting, depositing, respawning) and deposits_to_concentration, on a closed surface and on one
+// with a boundary. Turn decisions every step and a short lifetime make every branch run.
+void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
+                const std::string& label) {
+  Scene scene;
+  scene.agents = 300;  // not a multiple of the work-group size: padded work-items run too
+  scene.time_step = 0.02;
+  scene.sensor_distance = 0.3;
+  scene.sensor_angle = 0.4;
+  scene.move_rate = 10.0;  // several faces per step, and boundary hits on the square
+  scene.turn_rate = 3.0;
+  scene.turn_frequency = 50.0;
+  scene.deposit_rate = 1.0;
+  scene.decay_rate = 0.5;
+  scene.diffuse_rate = 0.01;
+  scene.mean_lifetime = 0.05;
+  scene.activation_time = 0.01;
+  scene.integrator = integrator;
+  OpenCLSimulationOptions options;
+  options.pheromone.cg_max_iterations = 64;
+  options.pheromone.cg_check_interval = 8;
+  OpenCLSimulation sim(compute, domain, scene, options);
+  sim.run(3);
+  const SimulationCounters c = sim.counters();
+  const FieldStatistics stats = sim.field_statistics(1.0);
+  check(std::isfinite(stats.mean) && stats.mean > 0.0 && c.respawns > 0 && c.face_crossings > 0,
+        label + ": agents moved (" + std::to_string(c.face_crossings) + " crossings, " +
+            std::to_string(c.boundary_hits) + " boundary hits, " + std::to_string(c.respawns) + " respawns), mean " +
+            std::to_string(stats.mean));
+  const std::vector<std::string> damaged = sim.damaged_canaries();
   std::string names;
   for (const auto& n : damaged) names += " " + n;
   check(damaged.empty(), label + ": canaries intact" + names);
@@ -117,6 +154,9 @@ int run(int argc, char** argv) {
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
   run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
   run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
+  run_agents(compute, domain, Integrator::ForwardEuler, "agents on a sphere, forward Euler");
+  run_agents(compute, testing::make_domain(testing::make_square_grid(8)), Integrator::BackwardEuler,
+             "agents on a square, backward Euler");
   run_philox(compute);
   return failures == 0 ? 0 : 1;
 }
