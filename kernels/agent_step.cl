@@ -12,11 +12,13 @@
 #include "movement.cl"
 #include "sensing_steering.cl"
 #include "turnover.cl"
+#include "agent_order.cl"
 
 __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters,
                          __global const float* concentration, __global const float* alias_probability,
-                         __global const int* alias_index, __global PhysarumDepositCell* deposits,
+                         __global const int* alias_index, __global const int* device_face,
+                         __global PhysarumDepositCell* deposits,
                          __global int* face, __global float2* position, __global float2* heading,
                          __global float* age, __global float* exposure, __global float* exposure_threshold,
                          __global float* time_since_decision, __global float* accumulated_turn,
@@ -54,8 +56,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     const float hazard = k.uniform_parameters
                              ? k.uniform.hazard_rate
                              : parameters_at(&k, faces, vertex_parameters, s.face, s.position).hazard_rate;
-    const int respawned = advance_turnover(faces, alias_probability, alias_index, k.face_count, hazard, k.dt, k.seed,
-                                           k.step, agent, &s);
+    const int respawned = advance_turnover(faces, alias_probability, alias_index, device_face, k.face_count, hazard,
+                                           k.dt, k.seed, k.step, agent, &s);
 
     face[a] = s.face;
     position[a] = s.position;

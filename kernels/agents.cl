@@ -81,11 +81,13 @@ typedef struct {
 } FacePoint;
 
 /* A uniform point of the surface: face by the alias table, point by the square-root trick. */
+/* The alias table is the domain's (indices in domain order, so draws match the reference's);
+ * device_face maps its answer to the face's place in the device's locality order. */
 FacePoint sample_surface_point(__global const PhysarumFaceRecord* faces, __global const float* alias_probability,
-                               __global const int* alias_index, const int face_count, const uint4 face_choice,
-                               const uint4 in_face) {
+                               __global const int* alias_index, __global const int* device_face, const int face_count,
+                               const uint4 face_choice, const uint4 in_face) {
   FacePoint p;
-  p.face = sample_face(alias_probability, alias_index, face_count, face_choice);
+  p.face = device_face[sample_face(alias_probability, alias_index, face_count, face_choice)];
   const float s = sqrt(first_uniform(in_face));
   const float r2 = second_uniform(in_face);
   p.position = s * (1.0f - r2) * (float2)(faces[p.face].x1, 0.0f) + s * r2 * (float2)(faces[p.face].x2, faces[p.face].y2);
@@ -104,7 +106,7 @@ float exponential_exposure(const float u) { return -log(u); }
 __kernel void initialise_agents(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                                 __global const PhysarumAgentParameters* vertex_parameters,
                                 __global const float* alias_probability, __global const int* alias_index,
-                                __global int* face, __global float2* position, __global float2* heading,
+                                __global const int* device_face, __global int* face, __global float2* position, __global float2* heading,
                                 __global float* age, __global float* exposure, __global float* exposure_threshold,
                                 __global float* time_since_decision, __global float* accumulated_turn,
                                 __global uint* id) {
@@ -112,7 +114,7 @@ __kernel void initialise_agents(const PhysarumStepConstants k, __global const Ph
   if (a >= k.agent_count) return;
   const uint agent = (uint)a;
   const FacePoint p = sample_surface_point(
-      faces, alias_probability, alias_index, k.face_count,
+      faces, alias_probability, alias_index, device_face, k.face_count,
       agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_PLACEMENT, 0u),
       agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_PLACEMENT, 1u));
   const uint4 state = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 0u);

@@ -13,9 +13,9 @@ typedef struct {
 } AgentState;
 
 void respawn_agent(__global const PhysarumFaceRecord* faces, __global const float* alias_probability,
-                   __global const int* alias_index, const int face_count, const uint seed, const uint step,
+                   __global const int* alias_index, __global const int* device_face, const int face_count, const uint seed, const uint step,
                    const uint agent, AgentState* s) {
-  const FacePoint p = sample_surface_point(faces, alias_probability, alias_index, face_count,
+  const FacePoint p = sample_surface_point(faces, alias_probability, alias_index, device_face, face_count,
                                            agent_random_words(seed, agent, step, PHYSARUM_PURPOSE_RESPAWN_PLACEMENT, 0u),
                                            agent_random_words(seed, agent, step, PHYSARUM_PURPOSE_RESPAWN_PLACEMENT, 1u));
   const uint4 state = agent_random_words(seed, agent, step, PHYSARUM_PURPOSE_RESPAWN_STATE, 0u);
@@ -31,13 +31,13 @@ void respawn_agent(__global const PhysarumFaceRecord* faces, __global const floa
 
 /* Ages the agent by dt and respawns it when its exposure reaches the threshold; returns 1 then. */
 int advance_turnover(__global const PhysarumFaceRecord* faces, __global const float* alias_probability,
-                     __global const int* alias_index, const int face_count, const float hazard, const float dt,
+                     __global const int* alias_index, __global const int* device_face, const int face_count, const float hazard, const float dt,
                      const uint seed, const uint step, const uint agent, AgentState* s) {
   s->age += dt;
   if (hazard == 0.0f) return 0;
   s->exposure += dt * hazard;
   if (s->exposure < s->exposure_threshold) return 0;
-  respawn_agent(faces, alias_probability, alias_index, face_count, seed, step, agent, s);
+  respawn_agent(faces, alias_probability, alias_index, device_face, face_count, seed, step, agent, s);
   return 1;
 }
 

@@ -6,29 +6,50 @@
 
 namespace physarum::opencl {
 
-std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain) {
+FaceOrder locality_face_order(const SurfaceDomain& domain) {
+  const size_t n = static_cast<size_t>(domain.face_count);
+  FaceOrder order;
+  order.device_of_domain.assign(n, -1);
+  order.domain_of_device.reserve(n);
+  size_t next_seed = 0;
+  for (size_t head = 0; order.domain_of_device.size() < n;) {
+    if (head == order.domain_of_device.size()) {  // the queue ran dry: start the next component
+      while (order.device_of_domain[next_seed] >= 0) ++next_seed;
+      order.device_of_domain[next_seed] = static_cast<int>(order.domain_of_device.size());
+      order.domain_of_device.push_back(static_cast<int>(next_seed));
+    }
+    const int f = order.domain_of_device[head++];
+    for (int g : domain.face_neighbour[static_cast<size_t>(f)]) {
+      if (g < 0 || order.device_of_domain[static_cast<size_t>(g)] >= 0) continue;
+      order.device_of_domain[static_cast<size_t>(g)] = static_cast<int>(order.domain_of_device.size());
+      order.domain_of_device.push_back(g);
+    }
+  }
+  return order;
+}
+
+std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, const FaceOrder& order) {
   std::vector<PhysarumFaceRecord> records(static_cast<size_t>(domain.face_count));
   for (int f = 0; f < domain.face_count; ++f) {
-    PhysarumFaceRecord& r = records[static_cast<size_t>(f)];
-    const auto& c = domain.face_corners[static_cast<size_t>(f)];
+    const size_t uf = static_cast<size_t>(f);
+    PhysarumFaceRecord& r = records[static_cast<size_t>(order.device_of_domain[uf])];
+    const auto& c = domain.face_corners[uf];
     r.x1 = static_cast<float>(c[1].x());
     r.x2 = static_cast<float>(c[2].x());
     r.y2 = static_cast<float>(c[2].y());
     if (!(r.x1 > 0.0f) || !(r.y2 > 0.0f))
-      throw InputError("opencl: intrinsic face " + std::to_string(f) +
-                       " is degenerate in float32 (layout x1 = " + std::to_string(c[1].x()) +
-                       ", y2 = " + std::to_string(c[2].y()) + "); refine the surface or scale it up");
+      throw InputError("opencl: intrinsic face " + std::to_string(f) + " is degenerate in float32 (layout x1 = " +
+                       std::to_string(c[1].x()) + ", y2 = " + std::to_string(c[2].y()) +
+                       "); refine the surface or scale it up");
     r.neighbour_edges = 0;
-    for (int i = 0; i < 3; ++i) {
-      const int g = domain.face_neighbour[static_cast<size_t>(f)][static_cast<size_t>(i)];
-      r.neighbour[i] = g;
-      r.vertex[i] = domain.face_vertices[static_cast<size_t>(f)][static_cast<size_t>(i)];
-      const Rigid2& t = domain.edge_transition[static_cast<size_t>(3 * f + i)];
+    for (size_t i = 0; i < 3; ++i) {
+      const int g = domain.face_neighbour[uf][i];
+      r.neighbour[i] = g < 0 ? -1 : order.device_of_domain[static_cast<size_t>(g)];
+      r.vertex[i] = domain.face_vertices[uf][i];
+      const Rigid2& t = domain.edge_transition[3 * uf + i];
       r.transition_cos[i] = static_cast<float>(t.cos_angle);
       r.transition_sin[i] = static_cast<float>(t.sin_angle);
-      if (g >= 0)
-        r.neighbour_edges |= static_cast<dev_uint>(domain.neighbour_edge[static_cast<size_t>(f)][static_cast<size_t>(i)] & 3)
-                             << (2 * i);
+      if (g >= 0) r.neighbour_edges |= static_cast<dev_uint>(domain.neighbour_edge[uf][i] & 3) << (2 * i);
     }
   }
   return records;

@@ -3,6 +3,12 @@
 // (kernels/device_types.h), built from the SurfaceDomain's arrays alone. A trace step reads one
 // record, i.e. one cache line, instead of gathering corners, neighbours and transitions from five
 // arrays.
+//
+// Records are stored in a locality order, not the domain's: faces that refinement appended at the
+// end of the domain's list sit far from their neighbours there, so a walk would touch a new cache
+// line (or page) at every crossing. A breadth-first order over face adjacency keeps neighbours a
+// ring apart (~sqrt(F) records, like Cuthill-McKee), and agents sorted by device face then walk
+// through memory that their neighbours in the agent arrays have just brought into cache.
 #include "common/surface_domain.hpp"
 #include "kernels/device_types.h"
 
@@ -12,8 +18,17 @@ namespace physarum::opencl {
 
 static_assert(sizeof(PhysarumFaceRecord) == 64, "PhysarumFaceRecord: sixteen 4-byte fields, one cache line");
 
-// One record per face, in the domain's face order. Throws InputError when a face is degenerate in
-// float32 (its layout must have x1 > 0 and y2 > 0 after rounding).
-std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain);
+struct FaceOrder {
+  std::vector<int> device_of_domain;  // device face index of each domain face
+  std::vector<int> domain_of_device;  // and back
+};
+
+// Breadth-first order over face adjacency, restarted at the lowest unvisited face for every
+// connected component; a permutation of 0..F-1.
+FaceOrder locality_face_order(const SurfaceDomain& domain);
+
+// One record per face, in device order (neighbour indices are device indices too). Throws
+// InputError when a face is degenerate in float32 (its layout must have x1 > 0 and y2 > 0).
+std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, const FaceOrder& order);
 
 }  // namespace physarum::opencl

@@ -18,7 +18,7 @@
 namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
-  cl::Kernel initialise, agent_step, collect_deposits;
+  cl::Kernel initialise, agent_step, collect_deposits, bin_counts, bin_offsets, scatter;
 };
 
 namespace {
@@ -76,7 +76,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationSettings& settings,
                                    const OpenCLSimulationOptions& options)
-    : compute_(compute), domain_(domain), settings_(settings) {
+    : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
   check_parameters(domain, params, settings);
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
@@ -130,6 +130,10 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
     kernels_->collect_deposits = cl::Kernel(program, "deposits_to_concentration");
+    kernels_->bin_counts = cl::Kernel(program, "agent_bin_counts");
+    kernels_->bin_offsets = cl::Kernel(program, "agent_bin_offsets");
+    kernels_->scatter = cl::Kernel(program, "agent_scatter");
+    scan_group_ = work_group_size(kernels_->bin_offsets, compute.device, 256, sizeof(cl_uint));
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
     agent_group_ = std::max<std::size_t>(agent_group_, 1);
     vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
@@ -138,9 +142,16 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   }
   agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
 
+  // ---- sorting bins: one per device face, or per 2^shift faces, at most kMaxBins ----
+  constexpr cl_uint kMaxBins = 65536;
+  while ((static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_ > kMaxBins) ++bin_shift_;
+  bins_ = std::max<cl_uint>(1, (static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_);
+
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  faces_ = upload_buffer(compute, "face records", build_face_records(domain), kRead, false);
+  face_order_ = locality_face_order(domain);
+  faces_ = upload_buffer(compute, "face records", build_face_records(domain, face_order_), kRead, false);
+  device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
   vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
@@ -153,6 +164,10 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
                                     CL_MEM_READ_WRITE, true);
   agents_ = DeviceAgents::allocate(compute, agent_count);
+  if (sort_interval_ > 0) {
+    sorted_agents_ = DeviceAgents::allocate(compute, agent_count);
+    bin_cursor_ = allocate_buffer(compute, "agent sort bins", bins_ * sizeof(cl_uint), CL_MEM_READ_WRITE, true);
+  }
   OpenCLPheromoneOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
   pheromone_ = std::make_unique<OpenCLPheromone>(compute, domain, params, settings.integrator, settings.time_step,
@@ -166,7 +181,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
       int arg = 0;
       k.setArg(arg++, constants_);
       for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-               &faces_.buffer, &vertex_parameters_.buffer, &alias_probability_.buffer, &alias_index_.buffer})
+               &faces_.buffer, &vertex_parameters_.buffer, &alias_probability_.buffer, &alias_index_.buffer,
+               &device_face_.buffer})
         k.setArg(arg++, *b);
       for (const DeviceBuffer* b : agents_.buffers()) k.setArg(arg++, b->buffer);
       compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
@@ -186,7 +202,7 @@ void OpenCLSimulation::enqueue_agent_step() {
   k.setArg(arg++, constants_);
   for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
            &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &alias_probability_.buffer,
-           &alias_index_.buffer, &deposits_.buffer})
+           &alias_index_.buffer, &device_face_.buffer, &deposits_.buffer})
     k.setArg(arg++, *b);
   for (const DeviceBuffer* b : {&agents_.face, &agents_.position, &agents_.heading, &agents_.age, &agents_.exposure,
                                 &agents_.exposure_threshold, &agents_.time_since_decision, &agents_.accumulated_turn,
@@ -210,8 +226,33 @@ void OpenCLSimulation::enqueue_collect_deposits() {
       cl::NDRange(vertex_group_));
 }
 
+void OpenCLSimulation::enqueue_sort_by_face() {
+  if (settings_.agents == 0) return;
+  const cl::NDRange agents_global(agent_groups_ * agent_group_), agents_local(agent_group_);
+  Kernels& k = *kernels_;
+  compute_.queue.enqueueFillBuffer(bin_cursor_.buffer, cl_uint{0}, 0, bin_cursor_.payload_bytes);
+  k.bin_counts.setArg(0, static_cast<cl_int>(settings_.agents));
+  k.bin_counts.setArg(1, bin_shift_);
+  k.bin_counts.setArg(2, agents_.face.buffer);
+  k.bin_counts.setArg(3, bin_cursor_.buffer);
+  compute_.queue.enqueueNDRangeKernel(k.bin_counts, cl::NullRange, agents_global, agents_local);
+  k.bin_offsets.setArg(0, bins_);
+  k.bin_offsets.setArg(1, bin_cursor_.buffer);
+  k.bin_offsets.setArg(2, cl::Local(scan_group_ * sizeof(cl_uint)));
+  compute_.queue.enqueueNDRangeKernel(k.bin_offsets, cl::NullRange, cl::NDRange(scan_group_), cl::NDRange(scan_group_));
+  int arg = 0;
+  k.scatter.setArg(arg++, static_cast<cl_int>(settings_.agents));
+  k.scatter.setArg(arg++, bin_shift_);
+  k.scatter.setArg(arg++, bin_cursor_.buffer);
+  for (const DeviceBuffer* b : agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
+  for (const DeviceBuffer* b : sorted_agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
+  compute_.queue.enqueueNDRangeKernel(k.scatter, cl::NullRange, agents_global, agents_local);
+  std::swap(agents_, sorted_agents_);
+}
+
 void OpenCLSimulation::step() {
   try {
+    if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) enqueue_sort_by_face();
     enqueue_agent_step();
     // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
     if (settings_.integrator == Integrator::ForwardEuler) {
@@ -230,11 +271,29 @@ void OpenCLSimulation::step() {
 
 void OpenCLSimulation::finish() { compute_.queue.finish(); }
 
-std::vector<int> OpenCLSimulation::agent_faces() const { return agents_.download_faces(compute_); }
+// The device keeps faces in its locality order (face_records.hpp); the host sees domain faces.
+std::vector<int> OpenCLSimulation::agent_faces() const {
+  std::vector<int> faces = agents_.download_faces(compute_);
+  for (int& f : faces) f = face_order_.domain_of_device[static_cast<size_t>(f)];
+  return faces;
+}
 
-Agents OpenCLSimulation::read_agents() const { return agents_.download(compute_); }
+Agents OpenCLSimulation::read_agents() const {
+  Agents agents = agents_.download(compute_);
+  for (int& f : agents.face) f = face_order_.domain_of_device[static_cast<size_t>(f)];
+  return agents;
+}
 
-void OpenCLSimulation::write_agents(const Agents& agents) { agents_.upload(compute_, agents); }
+void OpenCLSimulation::write_agents(const Agents& agents) {
+  Agents on_device = agents;
+  for (int& f : on_device.face) {
+    if (f < 0 || f >= domain_.face_count)
+      throw InputError("opencl simulation: an agent stands on face " + std::to_string(f) + " of " +
+                       std::to_string(domain_.face_count));
+    f = face_order_.device_of_domain[static_cast<size_t>(f)];
+  }
+  agents_.upload(compute_, on_device);
+}
 
 SimulationCounters OpenCLSimulation::counters() const {
   std::vector<cl_ulong> partial(agent_groups_ * PHYSARUM_COUNTERS);
@@ -260,6 +319,10 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   std::vector<const DeviceBuffer*> guarded = agents_.buffers();
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);
+  if (sort_interval_ > 0) {
+    for (const DeviceBuffer* b : sorted_agents_.buffers()) guarded.push_back(b);
+    guarded.push_back(&bin_cursor_);
+  }
   for (const DeviceBuffer* b : guarded)
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
   return damaged;

@@ -23,6 +23,7 @@
 #include "opencl/agents.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
+#include "opencl/face_records.hpp"
 #include "opencl/pheromone.hpp"
 
 #include <memory>
@@ -33,6 +34,9 @@ namespace physarum::opencl {
 
 struct OpenCLSimulationOptions {
   OpenCLPheromoneOptions pheromone;
+  // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
+  // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
+  int sort_interval = 8;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
   // faults with -D flags, opencl/planted_faults.hpp).
   std::string build_options;
@@ -78,17 +82,21 @@ class OpenCLSimulation final : public SimulationBackend {
   struct Kernels;
   void enqueue_agent_step();
   void enqueue_collect_deposits();
+  void enqueue_sort_by_face();
 
   ComputeContext compute_;
   const SurfaceDomain& domain_;
   SimulationSettings settings_;
+  int sort_interval_ = 0;
+  FaceOrder face_order_;
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
   std::unique_ptr<OpenCLPheromone> pheromone_;
-  DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, inverse_mass_;
-  DeviceBuffer deposits_, group_counters_;
-  DeviceAgents agents_;
-  std::size_t agent_group_ = 1, agent_groups_ = 1, vertex_group_ = 1;
+  DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_, inverse_mass_;
+  DeviceBuffer deposits_, group_counters_, bin_cursor_;
+  DeviceAgents agents_, sorted_agents_;  // the sort scatters from the first into the second, then swaps
+  std::size_t agent_group_ = 1, agent_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
+  cl_uint bin_shift_ = 0, bins_ = 1;
   bool fixed_point_ = true;
   double deposit_scale_ = 1.0;
   long long steps_taken_ = 0;

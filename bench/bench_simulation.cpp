@@ -1,0 +1,62 @@
+// Throughput of the full simulation step (agents + pheromone) on both backends, side by side in one
+// run so their ratio is meaningful on a shared machine: spot.obj scaled to 4 m^2 at two intrinsic
+// resolutions (max circumradius 40 mm and 15 mm), 1e4 .. 1e6 agents. The domain is built once and
+// not timed; each benchmark first takes a few steps so there is pheromone to sense. Counters: agent
+// steps per second, face crossings (movement + sensors) per agent step and per second.
+#include "bench/bench_support.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/simulation.hpp"
+#include "reference/simulation.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+namespace physarum::bench {
+namespace {
+
+const opencl::ComputeContext& compute() {
+  static const opencl::ComputeContext c = opencl::make_compute_context("");
+  return c;
+}
+
+enum Backend { kReference = 0, kOpenCL = 1 };
+
+void BM_SimulationStep(benchmark::State& state) {
+  const auto backend = static_cast<Backend>(state.range(0));
+  const double max_circumradius = static_cast<double>(state.range(1)) / 1000.0;
+  const int agents = static_cast<int>(state.range(2));
+  const SurfaceDomain* domain = scaled_domain("spot.obj", max_circumradius);
+  if (!domain) {
+    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
+    return;
+  }
+  std::unique_ptr<SimulationBackend> sim;
+  if (backend == kOpenCL) sim = std::make_unique<opencl::OpenCLSimulation>(compute(), *domain, bench_scene(agents));
+  else sim = std::make_unique<ReferenceSimulation>(*domain, bench_scene(agents));
+  sim->run(5);
+  sim->finish();
+  const SimulationCounters before = sim->counters();
+  for (auto _ : state) {
+    sim->step();
+    sim->finish();
+  }
+  const SimulationCounters after = sim->counters();
+  const double agent_steps = static_cast<double>(state.iterations()) * agents;
+  const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
+                                               before.face_crossings - before.sensor_face_crossings);
+  state.SetLabel(backend == kOpenCL ? "opencl" : "reference");
+  state.counters["agent_steps_per_s"] = benchmark::Counter(agent_steps, benchmark::Counter::kIsRate);
+  state.counters["crossings_per_s"] = benchmark::Counter(crossings, benchmark::Counter::kIsRate);
+  state.counters["crossings_per_agent_step"] = crossings / agent_steps;
+  state.counters["faces"] = domain->face_count;
+}
+
+// Args: {backend, max circumradius in mm, agents}.
+BENCHMARK(BM_SimulationStep)
+    ->ArgsProduct({{kReference, kOpenCL}, {40, 15}, {10'000, 100'000, 1'000'000}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace physarum::bench
