@@ -44,16 +44,12 @@ float active_fraction(const float age, const float dt, const float activation_ti
   return clamp((age + dt - activation_time) / dt, 0.0f, 1.0f);
 }
 
-/* Splits `amount` over the corners of `face` by the barycentric weights of `point`. */
-void deposit_at_point(__global const PhysarumFaceRecord* faces, const int face, const float2 point, const float amount,
-                      __global PhysarumDepositCell* deposits, const float scale) {
-  const float x1 = faces[face].x1, x2 = faces[face].x2, y2 = faces[face].y2;
-  const float b2 = point.y / y2;
-  const float b1 = (point.x - b2 * x2) / x1;
-  const float b0 = 1.0f - b1 - b2;
-  deposit_amount(&deposits[faces[face].vertex[0]], amount * b0, scale);
-  deposit_amount(&deposits[faces[face].vertex[1]], amount * b1, scale);
-  deposit_amount(&deposits[faces[face].vertex[2]], amount * b2, scale);
+/* Splits `amount` over the corners of `face` by the barycentric weights b of the deposit point. */
+void deposit_at_barycentric(__global const PhysarumFaceRecord* faces, const int face, const float3 b,
+                            const float amount, __global PhysarumDepositCell* deposits, const float scale) {
+  deposit_amount(&deposits[faces[face].vertex[0]], amount * b.x, scale);
+  deposit_amount(&deposits[faces[face].vertex[1]], amount * b.y, scale);
+  deposit_amount(&deposits[faces[face].vertex[2]], amount * b.z, scale);
 }
 
 #endif /* PHYSARUM_DEPOSITION_CL */

@@ -13,7 +13,9 @@ float read_sensor(__global const PhysarumFaceRecord* faces, __global const float
   const TraceEnd end = trace_walk(faces, face, position, direction, distance, 0, 0.0f, 0, 0.0f);
   *crossings += end.face_crossings;
   if (end.hit_boundary) return 0.0f;
-  return interpolate_vertex_field(faces, concentration, end.face, end.position);
+  const float3 b = end.barycentric;
+  return b.x * concentration[faces[end.face].vertex[0]] + b.y * concentration[faces[end.face].vertex[1]] +
+         b.z * concentration[faces[end.face].vertex[2]];
 }
 
 float2 rotate(const float2 v, const float angle) {
