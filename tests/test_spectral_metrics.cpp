@@ -217,6 +217,54 @@ TEST(SpectralMetrics, RasterisationInterpolatesLinearFieldsExactly) {
   EXPECT_NEAR(covered / 4096.0, kPi / 4, 0.01);
 }
 
+TEST(SpectralMetrics, GridIsASquareCentredOnTheBoundingBox) {
+  // The unit square stretched to 2 x 1: the grid is 2 x 2 centred on it, so its origin is (0, -0.5),
+  // and the rows below y = 0 and above y = 1 (half of them) are off the mesh.
+  const SquareFixture& s = square();
+  std::vector<Eigen::Vector2d> xy = s.xy;
+  for (Eigen::Vector2d& p : xy) p.x() *= 2.0;
+  auto linear = [](const Eigen::Vector2d& p) { return 1.0 - p.x() + 4.0 * p.y(); };
+  const GridSamples g = rasterize_planar_field(xy, s.domain.face_vertices, sample_xy(xy, linear), 32);
+  EXPECT_NEAR(g.cell, 2.0 / 32, 1e-15);
+  EXPECT_NEAR(g.origin.x(), 0.0, 1e-14);
+  EXPECT_NEAR(g.origin.y(), -0.5, 1e-14);
+  int covered = 0;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) {
+      const Eigen::Vector2d centre(2.0 * (i + 0.5) / 32, -0.5 + 2.0 * (j + 0.5) / 32);
+      const bool inside = centre.y() > 0.0 && centre.y() < 1.0;
+      EXPECT_EQ(static_cast<bool>(g.covered[j * 32 + i]), inside) << i << ", " << j;
+      if (inside) {
+        EXPECT_NEAR(g.value[j * 32 + i], linear(centre), 1e-12);
+      }
+      covered += g.covered[j * 32 + i];
+    }
+  EXPECT_EQ(covered, 32 * 16);
+}
+
+TEST(SpectralMetrics, OnTheDiskTheMeanAndParsevalUseTheCoveredCellsOnly) {
+  // u = 2 + x on the unit disk: the covered cells are symmetric about x = 0, so their mean is 2
+  // (over all cells of the grid it would be 2 pi/4). Uncovered cells count as the mean, so the
+  // spectrum's total is sum over covered cells of (g - 2)^2 / (cells * 4).
+  const InputMesh disk = load_mesh("shape:disk");
+  std::vector<Eigen::Vector2d> xy;
+  for (const auto& p : disk.positions) xy.emplace_back(p.x(), p.y());
+  std::vector<double> u(xy.size());
+  for (size_t v = 0; v < xy.size(); ++v) u[v] = 2.0 + xy[v].x();
+  const GridSamples g = rasterize_planar_field(xy, disk.triangles, u, 32);
+  const RadialSpectrum r = radial_power_spectrum(g);
+  EXPECT_NEAR(r.mean, 2.0, 1e-12);
+  EXPECT_NEAR(r.side, 2.0, 1e-12);
+  double squares = 0;
+  for (int c = 0; c < 32 * 32; ++c)
+    if (g.covered[c]) squares += (g.value[c] - 2.0) * (g.value[c] - 2.0);
+  double total = 0;
+  for (size_t q = 0; q < r.power.size(); ++q) total += r.power[q] * r.count[q];
+  EXPECT_NEAR(total, squares / (32 * 32 * 4.0), 1e-12);
+  // The linear ramp is a long wave: its power is concentrated at the lowest radii.
+  EXPECT_GT(r.power[1] * r.count[1], 0.5 * total);
+}
+
 TEST(SpectralMetrics, PlaneWavePeaksAtItsWavenumber) {
   const SquareFixture& s = square();
   for (int k : {2, 3, 5}) {
