@@ -21,7 +21,7 @@ namespace physarum {
 enum class RandomPurpose : std::uint32_t {
   // Initial state, counter step 0.
   InitialPlacement = 1,  // blocks 0, 1: face choice (2 doubles), position in the face (2 doubles)
-  InitialState = 2,      // block 0: heading, elapsed exposure; block 1: remaining exposure
+  InitialState = 2,      // block 0: heading, elapsed exposure; block 1: remaining exposure, decision phase
   // Per step, counter step n.
   TurnDirection = 3,     // block 0: bit 31 of word k picks left (0) or right (1) for the k-th
                          //          decision due in this step (k < 4)

@@ -121,12 +121,13 @@ __kernel void initialise_agents(const PhysarumStepConstants k, __global const Ph
   face[a] = p.face;
   position[a] = p.position;
   heading[a] = heading_from_uniform(first_uniform(state));
-  time_since_decision[a] = 0.0f;
-  accumulated_turn[a] = 0.0f;
   id[a] = agent;
-  const float hazard = parameters_at(&k, faces, vertex_parameters, p.face, p.position).hazard_rate;
+  const PhysarumAgentParameters here = parameters_at(&k, faces, vertex_parameters, p.face, p.position);
+  const uint4 remaining = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 1u);
+  time_since_decision[a] = second_uniform(remaining) / here.turn_frequency;
+  accumulated_turn[a] = here.turn_rate * time_since_decision[a];
+  const float hazard = here.hazard_rate;
   if (hazard > 0.0f) {
-    const uint4 remaining = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 1u);
     const float elapsed = exponential_exposure(second_uniform(state));
     exposure[a] = elapsed;
     exposure_threshold[a] = elapsed + exponential_exposure(first_uniform(remaining));

@@ -44,7 +44,8 @@ double interpolate_vertex_field(const SurfaceDomain& domain, const std::vector<d
   return b[0] * vertex_values[v[0]] + b[1] * vertex_values[v[1]] + b[2] * vertex_values[v[2]];
 }
 
-Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>& hazard_rate, int count,
+Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>& hazard_rate,
+                         const std::vector<double>& turn_frequency, const std::vector<double>& turn_rate, int count,
                          std::uint32_t seed) {
   Agents agents;
   agents.resize(count);
@@ -57,13 +58,18 @@ Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>&
     agents.face[a] = p.face;
     agents.position[a] = p.position;
     agents.heading[a] = heading_from_uniform(first_uniform(state));
-    agents.time_since_decision[a] = 0.0;
-    agents.accumulated_turn[a] = 0.0;
+    // A running population's decision clocks are out of phase: start each at a uniform point of its
+    // period (with the turn accumulated so far), or every agent would decide in the same steps
+    // forever when there is no turnover to scatter them.
+    const PhiloxWords remaining = agent_random_words(seed, id, 0, RandomPurpose::InitialState, 1);
+    const double period = 1.0 / interpolate_vertex_field(domain, turn_frequency, p.face, p.position);
+    agents.time_since_decision[a] = second_uniform(remaining) * period;
+    agents.accumulated_turn[a] =
+        interpolate_vertex_field(domain, turn_rate, p.face, p.position) * agents.time_since_decision[a];
     const double hazard = interpolate_vertex_field(domain, hazard_rate, p.face, p.position);
     if (hazard > 0.0) {
       // Steady state without the inspection-paradox bias (see the header): elapsed and remaining
       // exposure are independent Exp(1); the threshold is their sum.
-      const PhiloxWords remaining = agent_random_words(seed, id, 0, RandomPurpose::InitialState, 1);
       const double elapsed = exponential_exposure(second_uniform(state));
       agents.exposure[a] = elapsed;
       agents.exposure_threshold[a] = elapsed + exponential_exposure(first_uniform(remaining));

@@ -70,7 +70,11 @@ double interpolate_vertex_field(const SurfaceDomain& domain, const std::vector<d
 //
 // Where the hazard is 0 (no turnover: tau infinite) lifetimes are infinite and there is no
 // steady-state age: the agent starts newborn (age 0, exposure 0) and its threshold is +infinity.
-Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>& hazard_rate, int count,
+//
+// Decision clocks start at a uniform phase of the local decision period 1/f(x) (with the turn
+// omega(x) accumulated over that time), as in a population that has been running for a while.
+Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>& hazard_rate,
+                         const std::vector<double>& turn_frequency, const std::vector<double>& turn_rate, int count,
                          std::uint32_t seed);
 
 }  // namespace physarum

@@ -41,7 +41,8 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexPara
       params_(checked(domain, params, settings)),
       settings_(settings),
       hazard_rate_(hazard_rate_per_vertex(params_.mean_lifetime)),
-      agents_(initialise_agents(domain_, hazard_rate_, settings.agents, settings.seed)),
+      agents_(initialise_agents(domain_, hazard_rate_, params_.turn_frequency, params_.turn_rate, settings.agents,
+                                settings.seed)),
       pheromone_(domain_, params_, settings.integrator, settings.time_step),
       deposit_amount_(static_cast<size_t>(domain.vertex_count), 0.0) {
   segments_.reserve(64);

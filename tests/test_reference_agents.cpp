@@ -235,8 +235,10 @@ TEST(ReferenceAgents, InitialAgesAreTheSteadyStateWithoutInspectionBias) {
   const double tau = 0.5, t_a = 0.2;
   const int n = 40000;
   const std::vector<double> hazard(static_cast<size_t>(domain.vertex_count), 1.0 / tau);
-  const Agents agents = initialise_agents(domain, hazard, n, 3);
-  double exposure = 0, remaining = 0, product = 0;
+  const double frequency = 20.0, omega = 3.0;
+  const std::vector<double> turn_frequency(hazard.size(), frequency), turn_rate(hazard.size(), omega);
+  const Agents agents = initialise_agents(domain, hazard, turn_frequency, turn_rate, n, 3);
+  double exposure = 0, remaining = 0, product = 0, phase = 0, phase_squared = 0;
   int active = 0;
   for (int a = 0; a < n; ++a) {
     const double r = agents.exposure_threshold[a] - agents.exposure[a];
@@ -246,7 +248,17 @@ TEST(ReferenceAgents, InitialAgesAreTheSteadyStateWithoutInspectionBias) {
     product += agents.exposure[a] * r;
     active += agents.age[a] >= t_a;
     EXPECT_NEAR(agents.age[a], agents.exposure[a] * tau, 1e-12 * (1 + agents.age[a]));
+    // Decision clocks: a uniform phase of the period, with the turn accumulated over it.
+    const double u = agents.time_since_decision[a] * frequency;
+    ASSERT_GT(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    ASSERT_NEAR(agents.accumulated_turn[a], omega * agents.time_since_decision[a], 1e-12);
+    phase += u;
+    phase_squared += u * u;
   }
+  // Uniform(0, 1): mean 1/2 (sd 1/sqrt(12 n)), second moment 1/3 (sd sqrt(4/45 n)).
+  EXPECT_NEAR(phase / n, 0.5, 4 / std::sqrt(12.0 * n));
+  EXPECT_NEAR(phase_squared / n, 1.0 / 3.0, 4 * std::sqrt(4.0 / 45.0 / n));
   const double se = 1.0 / std::sqrt(double(n));  // Exp(1) has unit variance
   EXPECT_NEAR(exposure / n, 1.0, 4 * se);
   EXPECT_NEAR(remaining / n, 1.0, 4 * se);
@@ -255,7 +267,8 @@ TEST(ReferenceAgents, InitialAgesAreTheSteadyStateWithoutInspectionBias) {
   EXPECT_NEAR(active / double(n), p, 4 * std::sqrt(p * (1 - p) / n));
 
   // No turnover: newborn with an infinite threshold.
-  const Agents immortal = initialise_agents(domain, std::vector<double>(hazard.size(), 0.0), 10, 3);
+  const Agents immortal =
+      initialise_agents(domain, std::vector<double>(hazard.size(), 0.0), turn_frequency, turn_rate, 10, 3);
   for (int a = 0; a < 10; ++a) {
     EXPECT_EQ(immortal.age[a], 0.0);
     EXPECT_TRUE(std::isinf(immortal.exposure_threshold[a]));
