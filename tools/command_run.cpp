@@ -10,11 +10,10 @@
 #include "common/field_statistics.hpp"
 #include "common/field_transfer.hpp"
 #include "common/input_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "common/scene.hpp"
+#include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/simulation.hpp"
@@ -60,16 +59,6 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
   if (scene.steps) return *scene.steps;
   if (scene.sim_time) return steps_for(*scene.sim_time);
   throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
-}
-
-// The input mesh in simulation units: scaled about the origin so its area is scale_to_area.
-InputMesh scaled_to_area(const InputMesh& input, const Scene& scene, double input_area) {
-  InputMesh scaled = input;
-  if (!scene.scale_to_area) return scaled;
-  if (!(input_area > 0.0)) throw InputError(input.source + ": surface area " + std::to_string(input_area) + " cannot be scaled");
-  const double factor = std::sqrt(*scene.scale_to_area / input_area);
-  for (Eigen::Vector3d& p : scaled.positions) p *= factor;
-  return scaled;
 }
 
 nlohmann::ordered_json scene_json(const Scene& s) {
@@ -133,21 +122,10 @@ int run_run(const RunOptions& o) {
   if (o.seed) scene.seed = *o.seed;
   const long long steps = run_length_in_steps(o, scene);
 
-  const InputMesh input = load_mesh(scene.mesh);
-  for (const std::string& w : input.warnings) std::cerr << "physarum: warning: " << input.source << ": " << w << "\n";
-  const InputMesh simulated = scaled_to_area(input, scene, compute_statistics(input).area);
-  IntrinsicTriangulation triangulation(simulated);
-  triangulation.flip_to_delaunay();
-  if (scene.max_circumradius || scene.min_angle_deg > 0.0) {
-    RefinementOptions refinement;
-    if (scene.max_circumradius) refinement.max_circumradius = *scene.max_circumradius;
-    refinement.min_angle_deg = scene.min_angle_deg;
-    triangulation.refine(refinement);
-  }
-  const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
-  // The intrinsic vertices sit on the SCALED input, whose connectivity is the input's, so the same
-  // map carries the field back onto the input in its own coordinates.
-  const std::vector<int> input_to_intrinsic = input_vertex_to_intrinsic(simulated, domain.vertex_location);
+  const SceneSurface surface = prepare_scene_surface(scene);
+  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  const SurfaceDomain& domain = surface.domain;
+  const InputMesh& input = surface.input;
   std::unique_ptr<SimulationBackend> backend;
   if (o.backend == "opencl") {
     const opencl::ComputeContext compute = opencl::make_compute_context(o.device);
@@ -187,7 +165,7 @@ int run_run(const RunOptions& o) {
   if (ec || !std::filesystem::is_directory(out))
     throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
 
-  const std::vector<double> on_input = intrinsic_to_input(input_to_intrinsic, simulation.concentration_values());
+  const std::vector<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, simulation.concentration_values());
   // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
   // of one scene are comparable (the value itself is in the PLY property).
   FieldColoring coloring;
