@@ -91,6 +91,17 @@ const std::vector<KeySpec>& key_specs() {
       {"seed", Kind::Integer, false, Range{0.0, false, 4294967295.0, false}},
       {"steps", Kind::Integer, false, Range{1.0, false, 1.0e15, false}},
       {"sim_time", Kind::Number, false, positive},
+      // ---- the differential harness (ComparisonSettings) ----
+      {"compare_burn_in", Kind::Number, false, non_negative},
+      {"compare_duration", Kind::Number, false, positive},
+      {"compare_sample_interval", Kind::Number, false, positive},
+      {"compare_seeds", Kind::Integer, false, Range{2.0, false, 10000.0, false}},
+      {"compare_margin_mean", Kind::Number, false, positive},
+      {"compare_margin_coverage", Kind::Number, false, positive},
+      {"compare_margin_spectrum", Kind::Number, false, positive},
+      {"compare_margin_density", Kind::Number, false, positive},
+      {"compare_bands", Kind::Integer, false, Range{1.0, false, 64.0, false}},
+      {"compare_eigenpairs", Kind::Integer, false, Range{4.0, false, 2000.0, false}},
   };
   return specs;
 }
@@ -304,6 +315,21 @@ Scene load_scene(const std::string& path) {
   if (auto seed = read.integer("seed")) scene.seed = static_cast<std::uint32_t>(*seed);
   scene.steps = read.integer("steps");
   scene.sim_time = read.number("sim_time");
+
+  ComparisonSettings& c = scene.comparison;
+  c.burn_in = read.number("compare_burn_in").value_or(c.burn_in);
+  c.duration = read.number("compare_duration").value_or(c.duration);
+  c.sample_interval = read.number("compare_sample_interval").value_or(c.sample_interval);
+  c.seeds = static_cast<int>(read.integer("compare_seeds").value_or(c.seeds));
+  c.margin_mean = read.number("compare_margin_mean").value_or(c.margin_mean);
+  c.margin_coverage = read.number("compare_margin_coverage").value_or(c.margin_coverage);
+  c.margin_spectrum = read.number("compare_margin_spectrum").value_or(c.margin_spectrum);
+  c.margin_density = read.number("compare_margin_density").value_or(c.margin_density);
+  c.spectrum_bands = static_cast<int>(read.integer("compare_bands").value_or(c.spectrum_bands));
+  c.eigenpairs = static_cast<int>(read.integer("compare_eigenpairs").value_or(c.eigenpairs));
+  if (c.sample_interval > c.duration)
+    throw InputError(path + ": key 'compare_sample_interval' = " + std::to_string(c.sample_interval) +
+                     " is longer than 'compare_duration' = " + std::to_string(c.duration) + " (no sample would be taken)");
 
   validate_scene(scene);
   return scene;

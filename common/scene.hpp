@@ -11,6 +11,24 @@ namespace physarum {
 
 enum class Integrator { ForwardEuler, BackwardEuler };
 
+// How the differential harness (`physarum compare`) runs and judges this scene: the run length of
+// each seed, the sampling, the metrics' resolution and the equivalence margins. Every key is
+// optional in the file (prefix "compare_"); the defaults are the documented ones below. Margins are
+// on dimensionless metrics: mean/U, coverage fractions, and band powers and the agent-density
+// dispersion relative to the reference arm's mean.
+struct ComparisonSettings {
+  double burn_in = 2.0;           // s simulated and discarded at the start of every seed
+  double duration = 3.0;          // s simulated and averaged after the burn-in
+  double sample_interval = 0.1;   // s between two samples of the metrics
+  int seeds = 0;                  // seeds per arm; 0 = from the power calculation
+  double margin_mean = 0.03;      // on mean / U
+  double margin_coverage = 0.03;  // on each coverage fraction
+  double margin_spectrum = 0.15;  // relative, on each spectral band power
+  double margin_density = 0.15;   // relative, on the agent-density dispersion
+  int spectrum_bands = 6;         // manifold-harmonic bands (and radial bands on flat domains)
+  int eigenpairs = 48;            // manifold harmonics computed for the bands
+};
+
 struct Scene {
   std::string source;  // the scene file, for messages ("" when built in code)
 
@@ -41,6 +59,8 @@ struct Scene {
   std::uint32_t seed = 1;
   std::optional<long long> steps;   // run length, if the file gives one
   std::optional<double> sim_time;   // s, alternative to steps
+
+  ComparisonSettings comparison;
 };
 
 // Parses and validates a scene file. A relative "mesh" path is resolved against the scene file's folder.

@@ -48,6 +48,10 @@ class SimulationBackend {
   // call it before reading the clock.
   virtual void finish() {}
 
+  // Sets the pheromone concentration to `value` everywhere (e.g. U, so a run starts at its steady
+  // mean instead of spending several decay times on the way up).
+  virtual void fill_concentration(double value) = 0;
+
   virtual double time() const = 0;
   virtual long long steps_taken() const = 0;
   // The pheromone concentration per intrinsic vertex (a copy; may read back from a device).

@@ -62,6 +62,7 @@ class OpenCLSimulation final : public SimulationBackend {
   double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
   long long steps_taken() const override { return steps_taken_; }
   std::vector<double> concentration_values() const override { return pheromone_->concentration(); }
+  void fill_concentration(double value) override { pheromone_->fill(value); }
   FieldStatistics field_statistics(double U) const override { return pheromone_->statistics(U); }
   std::vector<int> agent_faces() const override;
   SimulationCounters counters() const override;

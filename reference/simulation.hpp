@@ -58,6 +58,7 @@ class ReferenceSimulation final : public SimulationBackend {
 
   // ---- SimulationBackend ----
   std::vector<double> concentration_values() const override { return pheromone_.concentration(); }
+  void fill_concentration(double value) override { pheromone_.fill(value); }
   FieldStatistics field_statistics(double U) const override;
   std::vector<int> agent_faces() const override { return agents_.face; }
   std::string backend_name() const override { return "reference"; }

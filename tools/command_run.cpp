@@ -13,6 +13,7 @@
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "common/scene.hpp"
+#include "common/scene_json.hpp"
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
 #include "opencl/compute_context.hpp"
@@ -59,30 +60,6 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
   if (scene.steps) return *scene.steps;
   if (scene.sim_time) return steps_for(*scene.sim_time);
   throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
-}
-
-nlohmann::ordered_json scene_json(const Scene& s) {
-  constexpr double kDegree = 180.0 / 3.14159265358979323846;
-  nlohmann::ordered_json j;
-  j["mesh"] = s.mesh;
-  j["scale_to_area"] = s.scale_to_area ? nlohmann::ordered_json(*s.scale_to_area) : nlohmann::ordered_json();
-  j["max_circumradius"] = s.max_circumradius ? nlohmann::ordered_json(*s.max_circumradius) : nlohmann::ordered_json();
-  j["min_angle"] = s.min_angle_deg;
-  j["agents"] = s.agents;
-  j["time_step"] = s.time_step;
-  j["sensor_distance"] = s.sensor_distance;
-  j["sensor_angle"] = s.sensor_angle * kDegree;
-  j["move_rate"] = s.move_rate;
-  j["turn_rate"] = s.turn_rate * kDegree;
-  j["turn_frequency"] = s.turn_frequency;
-  j["deposit_rate"] = s.deposit_rate;
-  j["decay_rate"] = s.decay_rate;
-  j["diffuse_rate"] = s.diffuse_rate;
-  j["mean_lifetime"] = s.mean_lifetime ? nlohmann::ordered_json(*s.mean_lifetime) : nlohmann::ordered_json();
-  j["activation_time"] = s.activation_time;
-  j["integrator"] = s.integrator == Integrator::ForwardEuler ? "forward" : "backward";
-  j["seed"] = s.seed;
-  return j;
 }
 
 // A one-line progress bar with ETA on stderr, drawn only when stderr is a terminal.
@@ -199,7 +176,7 @@ int run_run(const RunOptions& o) {
   j["area"] = domain.total_area;
   j["respawns"] = c.respawns;
   j["scene_file"] = o.scene;
-  j["parameters"] = scene_json(scene);
+  j["parameters"] = scene_parameters_json(scene);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds

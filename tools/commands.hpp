@@ -16,5 +16,6 @@ struct Command {
 Command add_mesh_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
 Command add_run_command(CLI::App& parent);
+Command add_compare_command(CLI::App& parent);
 
 }  // namespace physarum::cli

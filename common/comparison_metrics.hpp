@@ -1,0 +1,63 @@
+#pragma once
+// The per-seed metrics of the differential harness (../shared/DESIGN.md, "How equivalence is
+// proven", item 4): for one run of one backend, every metric sampled at a fixed interval after the
+// burn-in and time-averaged, so a seed contributes ONE number per metric (the seed, not the vertex,
+// is the unit of replication). All metrics are dimensionless:
+//
+//   mean_over_U          area-weighted mean concentration / U of Eq. 5
+//   coverage_{0.5,1,2}U  area fraction above 0.5 U, U, 2 U
+//   harmonic_band_k      manifold-harmonic band powers (spectral_metrics.hpp), k = 1..bands
+//   radial_band_k        radially averaged FFT power in bands of radius (flat domains only)
+//   agent_density        dispersion of the agent density over faces
+//
+// Each metric has a margin kind: absolute (the mean and coverage, already fractions) or relative to
+// the reference arm's mean (spectral powers and the dispersion, whose scale depends on the scene).
+#include "common/eigenvalues.hpp"
+#include "common/scene.hpp"
+#include "common/scene_surface.hpp"
+#include "common/simulation_backend.hpp"
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace physarum {
+
+enum class MarginKind { Absolute, Relative };
+
+struct MetricInfo {
+  std::string name;
+  MarginKind kind = MarginKind::Absolute;
+  double margin = 0.0;  // absolute, or the fraction of the reference mean
+};
+
+class ComparisonMetrics {
+ public:
+  // Computes the eigenpairs for the band powers (scene.comparison.eigenpairs) and, when the surface
+  // is flat, the vertices' plane coordinates for the radial spectrum.
+  ComparisonMetrics(const SceneSurface& surface, const Scene& scene);
+
+  const std::vector<MetricInfo>& metrics() const { return metrics_; }
+  bool flat() const { return flat_; }
+
+  // Runs one seed of `sim` (a fresh simulation: the field is first set to U) for burn_in + duration
+  // and returns its time-averaged metrics, in the order of metrics().
+  std::vector<double> measure_seed(SimulationBackend& sim) const;
+
+  // The metrics of one snapshot of the simulation's current state.
+  std::vector<double> snapshot(const SimulationBackend& sim) const;
+
+ private:
+  const SurfaceDomain& domain_;
+  ComparisonSettings settings_;
+  double time_step_ = 0.0;
+  double U_ = 0.0;
+  Eigenpairs eigenpairs_;
+  std::vector<int> harmonic_bands_;  // the bands that hold at least one eigenpair (others are not metrics)
+  bool flat_ = false;
+  std::vector<Eigen::Vector2d> plane_xy_;
+  int grid_size_ = 64;
+  std::vector<MetricInfo> metrics_;
+};
+
+}  // namespace physarum
