@@ -6,8 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace physarum {
+namespace {
+
+// Scales of the detail metrics, in sensor distances.
+constexpr double kDetailScales[] = {0.5, 1.0, 2.0};
+
+}  // namespace
 
 ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& scene)
     : domain_(surface.domain), settings_(scene.comparison), time_step_(scene.time_step) {
@@ -23,16 +30,38 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   const ComparisonSettings& c = settings_;
   metrics_.push_back({"mean_over_U", MarginKind::Absolute, c.margin_mean});
   for (const char* name : {"coverage_0.5U", "coverage_1U", "coverage_2U"})
-    metrics_.push_back({name, MarginKind::Absolute, c.margin_coverage});
-  // Bands equal in sqrt(lambda) from 0 may hold no eigenpair (the lowest, on a sphere, holds only
-  // the constant mode); such a band has no power to compare and is not a metric.
-  const ManifoldHarmonicBands layout = manifold_harmonic_band_powers(
-      domain_, eigenpairs_, std::vector<double>(static_cast<size_t>(domain_.vertex_count), 1.0), c.spectrum_bands);
-  for (int b = 0; b < c.spectrum_bands; ++b)
-    if (layout.modes[static_cast<size_t>(b)] > 0) {
-      harmonic_bands_.push_back(b);
-      metrics_.push_back({"harmonic_band_" + std::to_string(b + 1), MarginKind::Relative, c.margin_spectrum});
-    }
+    metrics_.push_back({name, MarginKind::Relative, c.margin_coverage});
+  // Harmonic bands hold equal NUMBERS of consecutive non-constant eigenpairs (not equal widths of
+  // sqrt(lambda)): on a surface the mode count grows like sqrt(lambda)^2, so equal-width bands put
+  // a handful of modes in the lowest band, whose power then swings by half its value from seed to
+  // seed, and a comparison would need hundreds of seeds to say anything about it.
+  const double lambda_max = eigenpairs_.values.size() > 0 ? eigenpairs_.values.maxCoeff() : 0.0;
+  std::vector<int> modes;
+  for (int k = 0; k < static_cast<int>(eigenpairs_.values.size()); ++k)
+    if (eigenpairs_.values[k] > 1e-8 * lambda_max) modes.push_back(k);
+  const int bands = std::min<int>(c.spectrum_bands, static_cast<int>(modes.size()));
+  if (bands < 1) throw InputError("compare: the surface has no non-constant manifold harmonic among the " +
+                                  std::to_string(eigenpairs_.values.size()) + " computed");
+  harmonic_band_of_mode_.assign(eigenpairs_.values.size(), -1);
+  for (size_t i = 0; i < modes.size(); ++i)
+    harmonic_band_of_mode_[static_cast<size_t>(modes[i])] = static_cast<int>(i * static_cast<size_t>(bands) / modes.size());
+  for (int b = 1; b <= bands; ++b)
+    metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+  harmonic_bands_ = bands;
+  // Detail energies at 0.5, 1 and 2 sensor distances (scene value; maps would use their mean).
+  const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
+  for (double multiple : kDetailScales) {
+    const double scale = multiple * scene.sensor_distance;
+    const double t = (scale / (2.0 * 3.14159265358979323846)) * (scale / (2.0 * 3.14159265358979323846));
+    Eigen::SparseMatrix<double> S = t * L;
+    for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
+    auto solver = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(S);
+    if (solver->info() != Eigen::Success) throw InputError("compare: cannot factorise the diffusion smoother");
+    smoothers_.push_back(solver);
+    char name[32];
+    std::snprintf(name, sizeof name, "detail_%gd", multiple);
+    metrics_.push_back({name, MarginKind::Relative, c.margin_detail});
+  }
   if (flat_)
     for (int b = 1; b <= c.spectrum_bands; ++b)
       metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
@@ -47,9 +76,29 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) co
   for (double coverage : stats.coverage) m.push_back(coverage);
 
   const std::vector<double> field = sim.concentration_values();
-  const ManifoldHarmonicBands bands =
-      manifold_harmonic_band_powers(domain_, eigenpairs_, field, settings_.spectrum_bands);
-  for (int b : harmonic_bands_) m.push_back(bands.power[static_cast<size_t>(b)]);
+  // Band power: sum of c_k^2 over the band's modes / (area * mean^2), dimensionless (as in
+  // spectral_metrics.hpp).
+  const Eigen::VectorXd c = manifold_harmonic_coefficients(eigenpairs_, domain_.vertex_mass, field);
+  const double mean = stats.mean;
+  std::vector<double> power(static_cast<size_t>(harmonic_bands_), 0.0);
+  for (int k = 0; k < c.size(); ++k)
+    if (harmonic_band_of_mode_[static_cast<size_t>(k)] >= 0)
+      power[static_cast<size_t>(harmonic_band_of_mode_[static_cast<size_t>(k)])] += c[k] * c[k];
+  for (double p : power) m.push_back(mean > 0.0 ? p / (domain_.total_area * mean * mean) : 0.0);
+
+  {
+    Eigen::VectorXd u(domain_.vertex_count), mu(domain_.vertex_count);
+    for (int i = 0; i < domain_.vertex_count; ++i) {
+      u[i] = field[static_cast<size_t>(i)];
+      mu[i] = domain_.vertex_mass[static_cast<size_t>(i)] * u[i];
+    }
+    for (const auto& smoother : smoothers_) {
+      const Eigen::VectorXd detail = u - smoother->solve(mu);
+      double energy = 0.0;
+      for (int i = 0; i < domain_.vertex_count; ++i) energy += domain_.vertex_mass[static_cast<size_t>(i)] * detail[i] * detail[i];
+      m.push_back(mean > 0.0 ? energy / (domain_.total_area * mean * mean) : 0.0);
+    }
+  }
 
   if (flat_) {
     // Radii 1 .. grid/2 (whole annuli) in equal bands; radius 0 is the mean, left out.

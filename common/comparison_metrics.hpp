@@ -6,18 +6,28 @@
 //
 //   mean_over_U          area-weighted mean concentration / U of Eq. 5
 //   coverage_{0.5,1,2}U  area fraction above 0.5 U, U, 2 U
-//   harmonic_band_k      manifold-harmonic band powers (spectral_metrics.hpp), k = 1..bands
+//   harmonic_band_k      manifold-harmonic band powers, k = 1..bands (bands of equal mode count)
 //   radial_band_k        radially averaged FFT power in bands of radius (flat domains only)
+//   detail_{0.5,1,2}d    high-pass energy at the scale of half, one and two sensor distances d:
+//                        the energy of u - G u, G the diffusion smoother (M + t L)^-1 M with
+//                        t = (scale / 2 pi)^2, over area * mean^2. Unlike the harmonic bands,
+//                        which only reach the low frequencies a few hundred eigenpairs cover,
+//                        these see the pattern's own scale (set by the sensor distance) on any
+//                        surface, and average over many pattern cells, so they vary little from
+//                        seed to seed.
 //   agent_density        dispersion of the agent density over faces
 //
-// Each metric has a margin kind: absolute (the mean and coverage, already fractions) or relative to
-// the reference arm's mean (spectral powers and the dispersion, whose scale depends on the scene).
+// Each metric has a margin kind: absolute (mean / U, whose value is 1 whatever the scene) or relative
+// to the reference arm's mean (coverage, spectral powers and the dispersion, whose scale depends on
+// the scene: 0.03 of a coverage of 0.1 is not 0.03 of a coverage of 0.7).
 #include "common/eigenvalues.hpp"
 #include "common/scene.hpp"
 #include "common/scene_surface.hpp"
 #include "common/simulation_backend.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,7 +63,10 @@ class ComparisonMetrics {
   double time_step_ = 0.0;
   double U_ = 0.0;
   Eigenpairs eigenpairs_;
-  std::vector<int> harmonic_bands_;  // the bands that hold at least one eigenpair (others are not metrics)
+  int harmonic_bands_ = 0;
+  // The diffusion smoothers of the detail metrics: (M + t L) factorised once per scale.
+  std::vector<std::shared_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> smoothers_;
+  std::vector<int> harmonic_band_of_mode_;  // band of each eigenpair, -1 for the constant modes
   bool flat_ = false;
   std::vector<Eigen::Vector2d> plane_xy_;
   int grid_size_ = 64;

@@ -100,6 +100,7 @@ const std::vector<KeySpec>& key_specs() {
       {"compare_margin_coverage", Kind::Number, false, positive},
       {"compare_margin_spectrum", Kind::Number, false, positive},
       {"compare_margin_density", Kind::Number, false, positive},
+      {"compare_margin_detail", Kind::Number, false, positive},
       {"compare_bands", Kind::Integer, false, Range{1.0, false, 64.0, false}},
       {"compare_eigenpairs", Kind::Integer, false, Range{4.0, false, 2000.0, false}},
   };
@@ -325,6 +326,7 @@ Scene load_scene(const std::string& path) {
   c.margin_coverage = read.number("compare_margin_coverage").value_or(c.margin_coverage);
   c.margin_spectrum = read.number("compare_margin_spectrum").value_or(c.margin_spectrum);
   c.margin_density = read.number("compare_margin_density").value_or(c.margin_density);
+  c.margin_detail = read.number("compare_margin_detail").value_or(c.margin_detail);
   c.spectrum_bands = static_cast<int>(read.integer("compare_bands").value_or(c.spectrum_bands));
   c.eigenpairs = static_cast<int>(read.integer("compare_eigenpairs").value_or(c.eigenpairs));
   if (c.sample_interval > c.duration)

@@ -22,9 +22,10 @@ struct ComparisonSettings {
   double sample_interval = 0.1;   // s between two samples of the metrics
   int seeds = 0;                  // seeds per arm; 0 = from the power calculation
   double margin_mean = 0.03;      // on mean / U
-  double margin_coverage = 0.03;  // on each coverage fraction
-  double margin_spectrum = 0.15;  // relative, on each spectral band power
-  double margin_density = 0.15;   // relative, on the agent-density dispersion
+  double margin_coverage = 0.05;  // relative, on each coverage fraction
+  double margin_spectrum = 0.3;   // relative, on each spectral band power (harmonic and radial)
+  double margin_detail = 0.1;     // relative, on each detail energy
+  double margin_density = 0.1;    // relative, on the agent-density dispersion
   int spectrum_bands = 6;         // manifold-harmonic bands (and radial bands on flat domains)
   int eigenpairs = 48;            // manifold harmonics computed for the bands
 };

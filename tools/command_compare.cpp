@@ -234,7 +234,8 @@ int run_compare(const CompareOptions& o) {
   // ---- run ----
   Matrix fresh_reference;
   if (stored) {
-    fresh_reference = run_reference_seeds(h, 0, o.reference_seeds);
+    // Seeds the stored file does not hold (it used indices 0 .. stored - 1).
+    fresh_reference = run_reference_seeds(h, static_cast<int>(reference.size()), o.reference_seeds);
   } else if (static_cast<int>(reference.size()) < seeds) {
     Matrix more = run_reference_seeds(h, static_cast<int>(reference.size()), seeds - static_cast<int>(reference.size()));
     reference.insert(reference.end(), more.begin(), more.end());
