@@ -114,9 +114,9 @@ SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std
   return r;
 }
 
-TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+void expect_time_step_independence(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
-  Scene scene = model_scene(3000, 0.01, 0.5, Integrator::ForwardEuler);
+  Scene scene = model_scene(3000, 0.01, 0.5, integrator);
   scene.decay_rate = 1.0;
   const int seeds = 4;
   std::vector<SteadyStatistics> coarse, fine;
@@ -143,6 +143,13 @@ TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread
                                << scene.time_step << " gives " << m1 << " +- " << s1 << ", dt/2 gives " << m2
                                << " +- " << s2;
   }
+}
+
+TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+  expect_time_step_independence(Integrator::ForwardEuler);
+}
+TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpreadBackwardEuler) {
+  expect_time_step_independence(Integrator::BackwardEuler);
 }
 
 TEST(ReferenceSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
