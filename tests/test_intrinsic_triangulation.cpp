@@ -540,6 +540,8 @@ struct KnownAnswer {
   double expected_vertices;
 };
 
+void PrintTo(const KnownAnswer& k, std::ostream* os) { *os << k.mesh << ", min angle " << k.min_angle; }
+
 class RefinementKnownAnswer : public ::testing::TestWithParam<KnownAnswer> {};
 
 TEST_P(RefinementKnownAnswer, VertexCountMatchesReference) {

@@ -84,6 +84,9 @@ std::vector<BadFile> bad_files() {
   };
 }
 
+// gtest prints a failing case's parameter: its file name, not its bytes.
+void PrintTo(const BadFile& bad, std::ostream* os) { *os << bad.name; }
+
 std::string test_name(const ::testing::TestParamInfo<BadFile>& info) {
   std::string name = info.param.name;
   for (char& c : name)
