@@ -34,7 +34,7 @@ struct FieldStatistics {
 
 FieldStatistics compute_field_statistics(const std::vector<double>& values, const std::vector<double>& mass, double U);
 
-// stats.csv, DESIGN.md: "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U" (no trailing newline).
+// stats.csv, ../shared/DESIGN.md: "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U" (no trailing newline).
 std::string stats_csv_header();
 // One row matching the header, full precision (no trailing newline).
 std::string stats_csv_row(double time, const FieldStatistics& stats);

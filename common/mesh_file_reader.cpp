@@ -283,6 +283,9 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such file");
   if (!std::ifstream(path).good()) throw InputError(path + ": cannot open the file for reading");
+  // Said plainly: each reader would otherwise report an empty file its own way ("no faces", "could
+  // not parse"), which hides the likelier cause (an interrupted download or copy).
+  if (std::filesystem::file_size(path, ec) == 0 && !ec) throw InputError(path + ": the file is empty (0 bytes)");
 
   SoupImporter importer;
   OpenMesh::IO::Options options;

@@ -1,6 +1,6 @@
 #pragma once
 // A simulation scene: the surface and every model parameter of Table 1 of the paper, in SI units
-// (angles in degrees in the file, radians here). Read from one flat JSON object (DESIGN.md, "Scene
+// (angles in degrees in the file, radians here). Read from one flat JSON object (../shared/DESIGN.md, "Scene
 // files"); every bad value is an InputError naming the key, the value and the allowed range, and an
 // unknown key is an error too.
 #include <cstdint>

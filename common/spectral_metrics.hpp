@@ -1,5 +1,5 @@
 #pragma once
-// Per-snapshot pattern metrics for the long-horizon differential harness (DESIGN.md, "How
+// Per-snapshot pattern metrics for the long-horizon differential harness (../shared/DESIGN.md, "How
 // equivalence is proven", item 4). Mean and coverage (common/field_statistics.hpp) only see the
 // distribution of values; these see the spatial STRUCTURE of the pattern, which is what a wrong
 // sensor angle or a missing boundary reflection changes first:

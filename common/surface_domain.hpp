@@ -1,5 +1,5 @@
 #pragma once
-// The surface domain: the flat arrays both simulation backends consume (DESIGN.md, "Data flow").
+// The surface domain: the flat arrays both simulation backends consume (../shared/DESIGN.md, "Data flow").
 // Built once from an intrinsic triangulation; nothing in a backend recomputes geometry.
 //
 // Frames: every intrinsic face has its own 2D coordinate frame, laid out from its edge lengths with

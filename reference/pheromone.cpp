@@ -96,6 +96,7 @@ ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const Vertex
     if (lu_->info() != Eigen::Success)
       throw InputError("pheromone: the backward-Euler system could not be factorised (LU): " + lu_->lastErrorMessage());
   }
+  if (symmetric_) ldlt_diagonal_ = ldlt_->vectorD();
   rhs_.resize(n);
   solution_.resize(n);
 }
@@ -140,8 +141,19 @@ void ReferencePheromone::forward_sub_step(double h) {
 void ReferencePheromone::backward_step() {
   const int n = static_cast<int>(u_.size());
   for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u_[i];
-  if (symmetric_) solution_ = ldlt_->solve(rhs_);
-  else solution_ = lu_->solve(rhs_);
+  if (symmetric_) {
+    // P A P^-1 = L D L^T, solved step by step into the buffers sized in the constructor: Eigen's own
+    // solve() permutes the result in place, which allocates a mask on every call.
+    const Eigen::VectorXi& p = ldlt_->permutationP().indices();  // empty: no permutation
+    const bool permuted = p.size() == n;
+    for (int i = 0; i < n; ++i) solution_[permuted ? p[i] : i] = rhs_[i];  // solution = P rhs
+    ldlt_->matrixL().solveInPlace(solution_);
+    solution_.array() /= ldlt_diagonal_.array();
+    ldlt_->matrixU().solveInPlace(solution_);
+    for (int i = 0; i < n; ++i) u_[i] = solution_[permuted ? p[i] : i];  // u = P^-1 solution
+    return;
+  }
+  solution_ = lu_->solve(rhs_);
   for (int i = 0; i < n; ++i) u_[i] = solution_[i];
 }
 

@@ -65,6 +65,7 @@ class ReferencePheromone {
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
   Eigen::VectorXd rhs_, solution_;
+  Eigen::VectorXd ldlt_diagonal_;  // D of the LDL^T factors (Eigen's vectorD() returns a copy)
 };
 
 }  // namespace physarum

@@ -18,7 +18,9 @@
 //
 // All randomness comes from Philox streams keyed (seed, agent), counter (step, purpose)
 // (common/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
-// recomputes no geometry: every buffer is sized once here.
+// recomputes no geometry: every buffer is sized once here (counted in
+// tests/test_reference_allocations.cpp; with a spatially varying diffuse rate the backward-Euler
+// solve goes through Eigen's SparseLU, whose solve() allocates).
 #include "common/scene.hpp"
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"

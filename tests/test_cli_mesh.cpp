@@ -1,4 +1,4 @@
-// `physarum mesh` as a user runs it: the JSON contract of DESIGN.md, the exit codes, and that the
+// `physarum mesh` as a user runs it: the JSON contract of ../shared/DESIGN.md, the exit codes, and that the
 // refinement flags do what they say.
 #include "test_support.hpp"
 
@@ -74,8 +74,23 @@ TEST(CliMesh, BadInputExitsWithOneAndSaysWhat) {
 TEST(CliMesh, HelpListsTheSubcommands) {
   const auto r = run_physarum("--help");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_NE(r.out.find("mesh"), std::string::npos);
-  EXPECT_NE(r.out.find("devices"), std::string::npos);
+  // CLI11 lists each subcommand on its own line, indented, followed by its description.
+  for (const char* sub : {"mesh", "run", "devices"})
+    EXPECT_NE(r.out.find("\n  " + std::string(sub) + " "), std::string::npos) << "subcommand " << sub << " in:\n" << r.out;
+}
+
+// `physarum run --help` must be usable without any file outside this repository: it names the four
+// outputs, the stats.csv columns, the default scene and the run-length rule, and points nowhere else.
+TEST(CliMesh, RunHelpIsSelfContained) {
+  const auto r = run_physarum("run --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* text : {"pheromone.ply", "stats.csv", "preview.png", "run.json",
+                           "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U", "tools/scenes/default.json",
+                           "--steps", "--sim-time", "sim_time", "--backend", "--device", "--seed", "--out"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << "'" << text << "' missing from:\n" << r.out;
+  EXPECT_EQ(r.out.find("DESIGN.md"), std::string::npos) << "DESIGN.md is not part of this repository:\n" << r.out;
+  for (const char* command : {"mesh --help", "devices --help", "--help"})
+    EXPECT_EQ(run_physarum(command).out.find("DESIGN.md"), std::string::npos) << command;
 }
 
 }  // namespace

@@ -1,16 +1,21 @@
 // Bad mesh input: for every class of problem, a tiny file in a temporary folder must give an
-// InputError whose message names the file and the offending element — through load_mesh and
-// through `physarum mesh FILE --json` (exit 1, message on stderr, nothing on stdout).
+// InputError whose message names the file and the offending element — through load_mesh, through
+// `physarum mesh FILE --json` (exit 1, message on stderr, nothing on stdout, no file written) and
+// through `physarum run` of a scene whose mesh is that file (exit 1, no output folder). Each bad
+// file is its own parameterized test case, named after the file.
 #include "common/errors.hpp"
 #include "common/mesh_loading.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 
 namespace physarum {
 namespace {
@@ -19,6 +24,7 @@ struct BadFile {
   std::string name;                   // file name inside the temporary folder
   std::string content;                // bytes written
   std::vector<std::string> expected;  // substrings the message must contain (besides the path)
+  bool create = true;                 // false: the file does not exist at all
 };
 
 // One triangle with a NaN in a binary PLY: the number arrives as a float, not as text, so only
@@ -71,28 +77,87 @@ std::vector<BadFile> bad_files() {
       {"collinear.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 2 3 4\nf 1 3 2\n", {"zero-area face 2"}},
       {"garbage.ply", "this is not a ply file\n", {"could not parse"}},
       {"unknown.xyz", "v 0 0 0\n", {"unsupported mesh file extension '.xyz'"}},
+      // 0 bytes (an interrupted copy): said plainly, whatever the format.
+      {"zero-bytes.obj", "", {"the file is empty (0 bytes)"}},
+      {"zero-bytes.ply", "", {"the file is empty (0 bytes)"}},
+      {"no-such-file.obj", "", {"no such file"}, false},
   };
 }
+
+// gtest prints a failing case's parameter: its file name, not its bytes.
+void PrintTo(const BadFile& bad, std::ostream* os) { *os << bad.name; }
+
+std::string test_name(const ::testing::TestParamInfo<BadFile>& info) {
+  std::string name = info.param.name;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+// The entries of a folder, by name.
+std::set<std::string> folder_entries(const std::filesystem::path& folder) {
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(folder)) names.insert(e.path().filename().string());
+  return names;
+}
+
+class BadMeshFile : public ::testing::TestWithParam<BadFile> {
+ protected:
+  // Writes the bad file (unless it is the missing-file case) and returns its path.
+  std::string write_bad_file() {
+    const BadFile& bad = GetParam();
+    const std::string path = (dir_.path / bad.name).string();
+    if (bad.create) std::ofstream(path, std::ios::binary) << bad.content;
+    return path;
+  }
+  testing::TempDir dir_;
+};
 
 void expect_message(const std::string& message, const std::string& path, const std::vector<std::string>& expected) {
   EXPECT_NE(message.find(path), std::string::npos) << "message does not name the file: " << message;
   for (const auto& e : expected) EXPECT_NE(message.find(e), std::string::npos) << "missing '" << e << "' in: " << message;
 }
 
-TEST(MeshErrors, EachBadFileGivesAnInputErrorNamingFileAndElement) {
-  testing::TempDir dir;
-  for (const BadFile& bad : bad_files()) {
-    SCOPED_TRACE(bad.name);
-    const std::string path = (dir.path / bad.name).string();
-    std::ofstream(path, std::ios::binary) << bad.content;
-    try {
-      load_mesh(path);
-      ADD_FAILURE() << "no InputError for " << bad.name;
-    } catch (const InputError& e) {
-      expect_message(e.what(), path, bad.expected);
-    }
+TEST_P(BadMeshFile, LoadMeshThrowsAnInputErrorNamingFileAndElement) {
+  const std::string path = write_bad_file();
+  try {
+    load_mesh(path);
+    ADD_FAILURE() << "no InputError for " << GetParam().name;
+  } catch (const InputError& e) {
+    expect_message(e.what(), path, GetParam().expected);
   }
 }
+
+TEST_P(BadMeshFile, MeshCommandExitsOneWithTheMessageOnStderrOnly) {
+  const std::string path = write_bad_file();
+  const std::set<std::string> before = folder_entries(dir_.path);
+  const auto r = testing::run_physarum("mesh '" + path + "' --json");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "stdout must stay empty (no partial JSON): " << r.out;
+  expect_message(r.err, path, GetParam().expected);
+  EXPECT_EQ(folder_entries(dir_.path), before) << "nothing may be written beside the input";
+}
+
+// The same file as the mesh of a scene: `physarum run` refuses it before creating the output folder.
+// (A missing file is caught by the scene reader, which names the key and the path it looked for.)
+TEST_P(BadMeshFile, RunCommandExitsOneAndWritesNothing) {
+  const std::string path = write_bad_file();
+  const auto scene = dir_.path / "scene.json";
+  std::ofstream(scene) << R"({"mesh": ")" << GetParam().name << R"(", "agents": 10, "time_step": 0.01,
+    "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+    "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+    "mean_lifetime": null, "steps": 5})";
+  const std::set<std::string> before = folder_entries(dir_.path);
+  const auto out = dir_.path / "out";
+  const auto r = testing::run_physarum("run '" + scene.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  expect_message(r.err, path,
+                 GetParam().create ? GetParam().expected : std::vector<std::string>{"key 'mesh'", "file not found"});
+  EXPECT_FALSE(std::filesystem::exists(out)) << "the output folder was created for a refused input";
+  EXPECT_EQ(folder_entries(dir_.path), before) << "nothing may be written";
+}
+
+INSTANTIATE_TEST_SUITE_P(MeshErrors, BadMeshFile, ::testing::ValuesIn(bad_files()), test_name);
 
 TEST(MeshErrors, MissingFileIsNamed) {
   const std::string path = "/nonexistent-folder/no-such-mesh.obj";
@@ -134,19 +199,7 @@ TEST(MeshErrors, InconsistentButOrientableFileIsRepairedNotRejected) {
     EXPECT_GT((m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).z(), 0);
 }
 
-TEST(MeshErrors, CommandLineExitsOneWithTheMessageOnStderrOnly) {
-  testing::TempDir dir;
-  std::vector<BadFile> files = bad_files();
-  files.push_back({"no-such-file.obj", "", {"no such file"}});
-  for (const BadFile& bad : files) {
-    SCOPED_TRACE(bad.name);
-    const std::string path = (dir.path / bad.name).string();
-    if (!bad.content.empty()) std::ofstream(path, std::ios::binary) << bad.content;
-    const auto r = testing::run_physarum("mesh '" + path + "' --json");
-    EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_TRUE(r.out.empty()) << "stdout must stay empty: " << r.out;
-    expect_message(r.err, path, bad.expected);
-  }
+TEST(MeshErrors, UnknownShapeListsTheValidOnes) {
   const auto shape = testing::run_physarum("mesh shape:nope --json");
   EXPECT_EQ(shape.exit_code, 1);
   EXPECT_TRUE(shape.out.empty());

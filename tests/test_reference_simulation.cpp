@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -113,9 +114,9 @@ SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std
   return r;
 }
 
-TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+void expect_time_step_independence(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
-  Scene scene = model_scene(3000, 0.01, 0.5, Integrator::ForwardEuler);
+  Scene scene = model_scene(3000, 0.01, 0.5, integrator);
   scene.decay_rate = 1.0;
   const int seeds = 4;
   std::vector<SteadyStatistics> coarse, fine;
@@ -142,6 +143,13 @@ TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread
                                << scene.time_step << " gives " << m1 << " +- " << s1 << ", dt/2 gives " << m2
                                << " +- " << s2;
   }
+}
+
+TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+  expect_time_step_independence(Integrator::ForwardEuler);
+}
+TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpreadBackwardEuler) {
+  expect_time_step_independence(Integrator::BackwardEuler);
 }
 
 TEST(ReferenceSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
@@ -266,13 +274,152 @@ TEST(ReferenceRunCommand, BadSceneExitsOneAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-TEST(ReferenceRunCommand, ShippedScenesLoad) {
-  for (const char* name : {"default.json", "spot.json", "bunny.json"}) {
-    const std::filesystem::path p = std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / name;
-    ASSERT_TRUE(std::filesystem::exists(p)) << p;
-    const Scene s = load_scene(p.string());
-    EXPECT_GT(s.agents, 0) << name;
+// The shipped example scenes load; a scene whose mesh lives in ../shared/meshes is skipped (not
+// failed) when that file is absent. Each shipped scene carries its own run length, so it runs as is.
+class ShippedScenesLoad : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ShippedScenesLoad, WithARunLength) {
+  const std::filesystem::path p = std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / GetParam();
+  ASSERT_TRUE(std::filesystem::exists(p)) << p;
+  const std::string mesh = nlohmann::json::parse(slurp(p)).at("mesh").get<std::string>();
+  if (mesh.rfind("shape:", 0) != 0) {
+    const std::filesystem::path mesh_path = (p.parent_path() / mesh).lexically_normal();
+    if (!std::filesystem::exists(mesh_path)) GTEST_SKIP() << "mesh " << mesh_path << " of " << p << " is absent";
   }
+  const Scene s = load_scene(p.string());
+  EXPECT_GT(s.agents, 0);
+  EXPECT_TRUE(s.steps || s.sim_time) << "a shipped scene must run without --steps / --sim-time";
+}
+
+INSTANTIATE_TEST_SUITE_P(ReferenceRunCommand, ShippedScenesLoad,
+                         ::testing::Values("default.json", "prism.json", "spot.json", "bunny.json"),
+                         [](const ::testing::TestParamInfo<const char*>& param_info) {
+                           const std::string name = param_info.param;
+                           return name.substr(0, name.find('.'));
+                         });
+
+// The prism scene is the setup of the paper's Fig. 10(a) as far as the paper states it (Sec. 5,
+// resolution study): the octagonal prism, a maximum circumradius at or below 0.03 m (no visible
+// change below it), 1000 to 2000 agents (1000 suffice, 2000 is the largest count shown) and a time
+// step at or below 0.001 s (the three smallest of 0.02 ... 0.0001 s converge).
+TEST(ReferenceRunCommand, PrismSceneFollowsFigure10a) {
+  const Scene s = load_scene((std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / "prism.json").string());
+  EXPECT_EQ(s.mesh, "shape:octagonal-prism");
+  EXPECT_FALSE(s.scale_to_area) << "the prism is used at its own size, in metres";
+  ASSERT_TRUE(s.max_circumradius);
+  EXPECT_LE(*s.max_circumradius, 0.03);
+  EXPECT_GE(s.agents, 1000);
+  EXPECT_LE(s.agents, 2000);
+  EXPECT_LE(s.time_step, 0.001);
+}
+
+// What a user runs first: the built-in default scene, shortened to 20 steps, writes the four outputs.
+TEST(ReferenceRunCommand, DefaultSceneRunsEndToEnd) {
+  testing::TempDir dir;
+  const auto scene = std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / "default.json";
+  const auto out = dir.path / "out";
+  const auto r = testing::run_physarum("run " + quoted(scene) + " --steps 20 --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"pheromone.ply", "stats.csv", "preview.png", "run.json"}) {
+    ASSERT_TRUE(std::filesystem::is_regular_file(out / name)) << name;
+    EXPECT_GT(std::filesystem::file_size(out / name), 0u) << name;
+  }
+  const nlohmann::json j = nlohmann::json::parse(slurp(out / "run.json"));
+  EXPECT_EQ(j["steps"], 20);
+  EXPECT_EQ(j["parameters"]["mesh"], "shape:sphere");
+  EXPECT_EQ(slurp(out / "stats.csv").substr(0, 50), "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U\n");
+}
+
+// A scene naming a mesh file that does not exist: exit 1, the message names the key and the file,
+// and the output folder is never created.
+TEST(ReferenceRunCommand, MissingMeshFileInASceneExitsOneAndWritesNothing) {
+  testing::TempDir dir;
+  std::string scene_text = slurp(std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / "default.json");
+  const std::string shape = "\"shape:sphere\"";
+  ASSERT_NE(scene_text.find(shape), std::string::npos);
+  scene_text.replace(scene_text.find(shape), shape.size(), "\"meshes/no-such-bunny.obj\"");
+  std::ofstream(dir.path / "scene.json") << scene_text;
+  const auto out = dir.path / "out";
+  const auto r = testing::run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 5 --out " + quoted(out));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("no-such-bunny.obj"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'mesh'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((dir.path / "meshes" / "no-such-bunny.obj").string()), std::string::npos)
+      << "the message says where it looked (relative to the scene file): " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Vertex positions of a binary little-endian PLY as write_field_ply lays it out (x y z value as
+// floats, then r g b bytes: 19 bytes a vertex).
+std::vector<Eigen::Vector3d> ply_vertex_positions(const std::string& bytes) {
+  const size_t end = bytes.find("end_header\n");
+  EXPECT_NE(end, std::string::npos);
+  std::istringstream header(bytes.substr(0, end));
+  int count = -1;
+  for (std::string line; std::getline(header, line);)
+    if (line.rfind("element vertex ", 0) == 0) count = std::stoi(line.substr(15));
+  std::vector<Eigen::Vector3d> positions;
+  size_t at = end + std::string("end_header\n").size();
+  for (int v = 0; v < count && at + 19 <= bytes.size(); ++v, at += 19) {
+    float xyz[3];
+    std::memcpy(xyz, bytes.data() + at, sizeof xyz);
+    positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+  }
+  return positions;
+}
+
+// The PLY carries the field on the INPUT mesh: with refinement (vertices inserted) and scale_to_area
+// (the simulation runs on a copy scaled by sqrt(2)), it still has the input's vertices, in the
+// input's own coordinates.
+TEST(ReferenceRunCommand, PlyIsTheUnscaledInputMeshAfterRefinementAndScaling) {
+  testing::TempDir dir;
+  // shape:square is the unit square (area 1) with 33 x 33 vertices; at area 2 its cells are 0.044 m,
+  // whose triangles have a circumradius of 0.031 m > 0.02 m, so refinement must insert vertices.
+  write_scene(dir.path / "scene.json", R"(, "max_circumradius": 0.02)");
+  const auto out = dir.path / "out";
+  const auto r = testing::run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 10 --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(out / "run.json"));
+  const InputMesh input = load_mesh("shape:square");
+  ASSERT_EQ(input.vertex_count(), 1089);
+  ASSERT_GT(j["intrinsic_vertices"].get<int>(), input.vertex_count()) << "the scene must insert vertices";
+  EXPECT_NEAR(j["area"].get<double>(), 2.0, 1e-9);
+
+  const std::vector<Eigen::Vector3d> ply = ply_vertex_positions(slurp(out / "pheromone.ply"));
+  ASSERT_EQ(ply.size(), static_cast<size_t>(input.vertex_count()));
+  double worst = 0.0;
+  for (int v = 0; v < input.vertex_count(); ++v) worst = std::max(worst, (ply[v] - input.positions[v]).norm());
+  EXPECT_LT(worst, 1e-6) << "PLY positions differ from the input's (float precision allows ~6e-8)";
+}
+
+// Without turnover (mean_lifetime null) agents start newborn and never respawn, so nothing is
+// deposited while every agent is younger than activation_time: the field is exactly 0 up to then.
+// In step k an agent of age (k - 1) dt deposits the fraction of the step past t_a (active_fraction),
+// which is 0 for k <= 19 at t_a = 0.2, dt = 0.01 (step 20 may see a rounding-sized sliver) and 1
+// from step 21 on.
+void expect_newborn_start_without_turnover(Integrator integrator) {
+  const SurfaceDomain domain = delaunay_domain("shape:sphere");
+  Scene scene = model_scene(1000, 0.01, std::nullopt, integrator);
+  scene.activation_time = 0.2;
+  ReferenceSimulation sim(domain, scene);
+  for (double age : sim.agents().age) ASSERT_EQ(age, 0.0) << "agents start newborn without turnover";
+  for (int k = 1; k <= 19; ++k) {
+    sim.step();
+    for (double u : sim.concentration()) ASSERT_EQ(u, 0.0) << "step " << k << " (t = " << sim.time() << " s)";
+  }
+  sim.run(2);  // steps 20, 21
+  EXPECT_GT(area_weighted_mean(sim.concentration(), domain.vertex_mass), 0.0) << "agents older than t_a deposit";
+  sim.run(279);  // to 3 s: with a 1 s lifetime this would be ~3000 respawns
+  EXPECT_EQ(sim.counters().respawns, 0);
+  for (double age : sim.agents().age) EXPECT_NEAR(age, 3.0, 1e-9);
+}
+
+TEST(ReferenceSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationForwardEuler) {
+  expect_newborn_start_without_turnover(Integrator::ForwardEuler);
+}
+TEST(ReferenceSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationBackwardEuler) {
+  expect_newborn_start_without_turnover(Integrator::BackwardEuler);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include "common/fe_operators.hpp"
 #include "common/input_mesh.hpp"
 #include "common/intrinsic_mesh.hpp"
+#include "common/intrinsic_triangulation.hpp"
+#include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <random>
 
@@ -166,6 +169,111 @@ TEST(SurfaceDomain, LaplacianIsSymmetricWithZeroRowSumsAndPositiveSemiDefinite) 
     EXPECT_GT(eig.maxCoeff(), 0.0);
     // Exactly one zero eigenvalue per connected component (both meshes are connected).
     EXPECT_GT(eig[1], 1e-6 * eig.maxCoeff());
+  }
+}
+
+// Edges of an intrinsic mesh that a simple-graph view gets wrong: self-loops (both ends the same
+// vertex) and parallel edges (two different edges between the same two vertices).
+struct MultigraphEdges {
+  int self_loops = 0;
+  int parallel = 0;
+};
+MultigraphEdges multigraph_edges(const IntrinsicMesh& mesh) {
+  MultigraphEdges r;
+  std::map<std::pair<int, int>, int> edges_between;  // vertex pair -> number of distinct edges
+  for (int f = 0; f < mesh.face_count(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const int h = 3 * f + i, twin = mesh.twin[f][i];
+      if (twin >= 0 && twin < h) continue;  // count each edge once
+      const int a = mesh.faces[f][i], b = mesh.faces[f][(i + 1) % 3];
+      if (a == b) ++r.self_loops;
+      if (++edges_between[std::minmax(a, b)] == 2) ++r.parallel;
+    }
+  return r;
+}
+
+// Dirichlet energy of the piecewise-linear function u, the integral of |grad u|^2: sum over faces of
+// area_f |grad_f u|^2, with each gradient from the face's own 2D layout. With the weights
+// w = (cot a + cot b) / 2 of surface_domain.hpp, u^T L u = sum over edges w (u_i - u_j)^2 equals it
+// exactly, whatever the vertex ids (a self-loop contributes 0, parallel edges each their own term).
+double face_gradient_energy(const SurfaceDomain& d, const std::vector<double>& u) {
+  double energy = 0.0;
+  for (int f = 0; f < d.face_count; ++f) {
+    const auto& c = d.face_corners[f];
+    Eigen::Matrix2d edges;
+    edges << (c[1] - c[0]).transpose(), (c[2] - c[0]).transpose();
+    const auto& v = d.face_vertices[f];
+    const Eigen::Vector2d differences(u[v[1]] - u[v[0]], u[v[2]] - u[v[0]]);
+    const Eigen::Vector2d gradient = edges.inverse() * differences;
+    energy += d.face_area[f] * gradient.squaredNorm();
+  }
+  return energy;
+}
+
+// A closed cone: apex above an n-gon rim, closed by a fan around the base centre.
+InputMesh closed_cone(int n, double height, double radius) {
+  InputMesh m;
+  m.source = "test:cone";
+  m.positions.emplace_back(0.0, 0.0, height);
+  m.positions.emplace_back(0.0, 0.0, 0.0);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * M_PI * k / n;
+    m.positions.emplace_back(radius * std::cos(a), radius * std::sin(a), 0.0);
+  }
+  for (int k = 0; k < n; ++k) {
+    const int r0 = 2 + k, r1 = 2 + (k + 1) % n;
+    m.triangles.push_back({0, r0, r1});
+    m.triangles.push_back({1, r1, r0});
+  }
+  return m;
+}
+
+// The invariants of the Laplacian test above, on REFINED intrinsic triangulations (flips plus
+// circumcenter insertion): a closed 8-sided cone, whose sharp apex (angle sum ~1.5 rad) makes the
+// Delaunay triangulation wrap edges around it -- a self-loop and parallel edges, counted below --
+// and the shipped octagonal prism.
+TEST(SurfaceDomain, LaplacianInvariantsHoldOnRefinedIntrinsicTriangulations) {
+  for (const auto& [input, radius] : {std::pair{closed_cone(8, 2.0, 0.5), 0.1},
+                                      std::pair{load_mesh("shape:octagonal-prism"), 0.1}}) {
+    const std::string& shape = input.source;
+    SCOPED_TRACE(shape);
+    IntrinsicTriangulation tri(input);
+    tri.flip_to_delaunay();
+    RefinementOptions options;
+    options.max_circumradius = radius;
+    const RefinementResult refined = tri.refine(options);
+    const IntrinsicMesh mesh = tri.snapshot();
+    const MultigraphEdges here = multigraph_edges(mesh);
+    std::cout << shape << ": " << mesh.vertex_count << " vertices, " << refined.insertions() << " insertions, "
+              << here.self_loops << " self-loops, " << here.parallel << " parallel edges\n";
+    if (shape == "test:cone") {
+      EXPECT_GT(here.self_loops, 0);
+      EXPECT_GT(here.parallel, 0);
+    }
+    EXPECT_GT(refined.insertions(), 0u);
+    ASSERT_LT(mesh.vertex_count, 3000) << "keep the dense eigen-solve small";
+
+    const SurfaceDomain d = build_surface_domain(mesh);
+    const Eigen::MatrixXd l = Eigen::MatrixXd(d.laplacian.to_eigen());
+    EXPECT_LT((l - l.transpose()).cwiseAbs().maxCoeff(), 1e-12 * l.cwiseAbs().maxCoeff());
+    std::vector<double> ones(d.vertex_count, 1.0), y;
+    d.laplacian.multiply(ones, y);
+    for (double v : y) EXPECT_NEAR(v, 0.0, 1e-12 * l.cwiseAbs().maxCoeff());
+    const Eigen::VectorXd eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(l).eigenvalues();
+    EXPECT_GE(eig.minCoeff(), -1e-9 * eig.maxCoeff());
+    EXPECT_GT(eig[1], 1e-6 * eig.maxCoeff()) << "one zero eigenvalue: the surface is connected";
+    // The quadratic form is the Dirichlet energy: every edge, parallel or not, counted once.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (int trial = 0; trial < 3; ++trial) {
+      std::vector<double> u(d.vertex_count), lu;
+      for (double& x : u) x = uniform(rng);
+      d.laplacian.multiply(u, lu);
+      double form = 0.0;
+      for (int i = 0; i < d.vertex_count; ++i) form += u[i] * lu[i];
+      const double energy = face_gradient_energy(d, u);
+      EXPECT_NEAR(form, energy, 1e-9 * energy);
+    }
   }
 }
 

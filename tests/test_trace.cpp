@@ -3,6 +3,7 @@
 // starts and headings, and robustness on a closed curved surface.
 #include "common/input_mesh.hpp"
 #include "common/intrinsic_mesh.hpp"
+#include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
@@ -294,6 +295,168 @@ TEST(Trace, ClosedLoopAroundAPrismReturnsToItsStart) {
   if (z > height) z = 2.0 * height - z;
   EXPECT_LT((w.end - band_point(0.3 + length * std::cos(slope), z)).norm(), 1e-9);
   EXPECT_TRUE(w.result.hit_boundary);
+}
+
+// ---- traces on intrinsic triangulations (flipped and refined) ----------------------------------
+
+// The 3D point of an intrinsic vertex: barycentric interpolation on the input face it sits on.
+Vector3d located(const InputMesh& input, const SurfacePoint& p) {
+  const auto& t = input.triangles[p.face];
+  return p.barycentric[0] * input.positions[t[0]] + p.barycentric[1] * input.positions[t[1]] +
+         p.barycentric[2] * input.positions[t[2]];
+}
+
+// The affine map from intrinsic face f's 2D frame to 3D through its corners' input locations. Exact
+// wherever the face lies in one plane of the input (flat regions), which is where the tests use it.
+struct IntrinsicFaceMap {
+  std::array<Vector3d, 3> corner;
+  const SurfaceDomain* d;
+  int f;
+  IntrinsicFaceMap(const InputMesh& input, const SurfaceDomain& domain, int face) : d(&domain), f(face) {
+    for (int k = 0; k < 3; ++k) corner[k] = located(input, domain.vertex_location[domain.face_vertices[face][k]]);
+  }
+  Vector3d point(const Vector2d& p) const {
+    const Eigen::Vector3d b = barycentric_in_face(*d, f, p);
+    return b[0] * corner[0] + b[1] * corner[1] + b[2] * corner[2];
+  }
+  Vector3d direction(const Vector2d& h) const { return point(h) - point(Vector2d::Zero()); }
+  // The 2D direction whose image is the 3D direction h (h in the face's plane).
+  Vector2d local_direction(const Vector3d& h) const {
+    Eigen::Matrix<double, 3, 2> jacobian;
+    jacobian << direction(Vector2d(1.0, 0.0)), direction(Vector2d(0.0, 1.0));
+    return (jacobian.transpose() * jacobian).inverse() * (jacobian.transpose() * h);
+  }
+};
+
+TEST(Trace, StraightWalksOnARefinedIntrinsicSquareAreEuclideanSegments) {
+  // shape:square is the unit square; flipped to Delaunay and refined (circumcenters inside, midpoints
+  // of boundary edges), its intrinsic faces are still flat triangles of the plane, but with vertices
+  // that exist only through their input locations. A trace mapped back through those locations must
+  // be the Euclidean segment, folded at the walls like a billiard.
+  const InputMesh input = load_mesh("shape:square");
+  IntrinsicTriangulation triangulation(input);
+  triangulation.flip_to_delaunay();
+  RefinementOptions options;
+  options.max_circumradius = 0.012;  // the grid's triangles have 0.022
+  const RefinementResult refined = triangulation.refine(options);
+  ASSERT_GT(refined.circumcenter_insertions, 100u);
+  ASSERT_GT(refined.boundary_splits, 0u);
+  const SurfaceDomain d = build_surface_domain(triangulation.snapshot());
+  ASSERT_EQ(d.vertex_count, input.vertex_count() + static_cast<int>(refined.insertions()));
+  for (int v = 0; v < input.vertex_count(); ++v)
+    ASSERT_LT((located(input, d.vertex_location[v]) - input.positions[v]).norm(), 1e-15) << "input vertex " << v;
+
+  auto fold = [](double x, double* sign) {
+    x = std::fmod(x, 2.0);
+    if (x < 0) x += 2.0;
+    *sign = x <= 1.0 ? 1.0 : -1.0;
+    return x <= 1.0 ? x : 2.0 - x;
+  };
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<TraceSegment> segments;
+  int crossings = 0, reflected = 0;
+  for (int i = 0; i < 200; ++i) {
+    const int f = std::min(static_cast<int>(u(rng) * d.face_count), d.face_count - 1);
+    double b1 = u(rng), b2 = u(rng);
+    if (b1 + b2 > 1.0) b1 = 1.0 - b1, b2 = 1.0 - b2;
+    const auto& c = d.face_corners[f];
+    const Vector2d start = (1.0 - b1 - b2) * c[0] + b1 * c[1] + b2 * c[2];
+    const double angle = 2.0 * std::numbers::pi * u(rng);
+    const double length = i < 100 ? 0.3 * u(rng) : 2.5 * u(rng);  // short walks, then long bouncing ones
+    const IntrinsicFaceMap start_map(input, d, f);
+    const Vector3d start_3d = start_map.point(start);
+    const Vector3d heading_3d(std::cos(angle), std::sin(angle), 0.0);
+    const TraceResult r =
+        trace(d, f, start, start_map.local_direction(heading_3d), length, BoundaryRule::Reflect, &segments);
+    ASSERT_TRUE(inside_face(d, r.face, r.position)) << "trace " << i;
+    crossings += r.face_crossings;
+    reflected += r.hit_boundary ? 1 : 0;
+
+    const Vector3d unfolded = start_3d + length * heading_3d;
+    double sx = 1.0, sy = 1.0;
+    const Vector3d expected(fold(unfolded.x(), &sx), fold(unfolded.y(), &sy), 0.0);
+    const IntrinsicFaceMap end_map(input, d, r.face);
+    // Rounding builds up over the frame changes (~10 a unit of length here, 1e-12 .. 1e-13 each).
+    EXPECT_LT((end_map.point(r.position) - expected).norm(), 1e-8) << "trace " << i << ", length " << length;
+    EXPECT_LT((end_map.direction(r.heading) - Vector3d(sx * heading_3d.x(), sy * heading_3d.y(), 0.0)).norm(), 1e-8)
+        << "trace " << i;
+    EXPECT_NEAR(r.length, length, 1e-12 * std::max(1.0, length));
+  }
+  EXPECT_GT(crossings, 2000) << "the walks must cross many intrinsic faces";
+  EXPECT_GT(reflected, 20) << "and reflect at refined boundary edges";
+}
+
+// A point of the side of the shipped octagonal prism (radius 0.5: corners at angles 2 pi k / 8) at
+// arc length s around it from corner 0 and height z, and the horizontal tangent there.
+constexpr double kPrismRadius = 0.5;
+Vector3d prism_side_point(double s, double z) {
+  const Vector3d p = kPrismRadius * band_point(s / kPrismRadius, 0.0);
+  return {p.x(), p.y(), z};
+}
+Vector3d prism_side_tangent(double s) {
+  return (prism_side_point(s + 1e-4, 0.0) - prism_side_point(s - 1e-4, 0.0)).normalized();
+}
+
+// Unrolled, the prism's side is a flat periodic strip: the horizontal geodesic closes after one
+// perimeter, 8 * 2 r sin(pi / 8), arriving where it started with the heading it started with. Checked
+// on the shipped shape as loaded, and on its flipped and refined intrinsic triangulation, where the
+// loop crosses faces that exist only intrinsically (those straddling the side's folds included).
+TEST(Trace, HorizontalLoopAroundTheShippedPrismReturnsToItsStartWithItsHeading) {
+  const InputMesh input = load_mesh("shape:octagonal-prism");
+  const double perimeter = kSides * 2.0 * kPrismRadius * std::sin(std::numbers::pi / kSides);
+  IntrinsicTriangulation triangulation(input);
+  triangulation.flip_to_delaunay();
+  RefinementOptions options;
+  options.max_circumradius = 0.08;
+  ASSERT_GT(triangulation.refine(options).insertions(), 0u);
+  const SurfaceDomain as_loaded = build_surface_domain(intrinsic_mesh_from_input(input));
+  const SurfaceDomain refined = build_surface_domain(triangulation.snapshot());
+
+  for (const SurfaceDomain* d : {&as_loaded, &refined}) {
+    SCOPED_TRACE(d == &as_loaded ? "as loaded" : "refined");
+    // Edge lengths from the input's coordinates are exact to ~1e-16; those of the refined faces come
+    // out of chains of circumcenter insertions and carry ~1e-9 relative rounding (a loop then closes
+    // to ~3e-9 m and ~2e-9 rad), far below any real error (a wrong transition is off by O(1)).
+    const double tolerance = d == &as_loaded ? 1e-9 : 1e-8;
+    int loops = 0;
+    // Starts in the middle of three side panels, well away from the folds (panel edges at multiples
+    // of 0.383, caps at z = +-0.75) and from the rows and columns of the input grid.
+    for (double s0 : {0.18, 1.35, 2.47}) {
+      for (double z : {-0.33, 0.1, 0.41}) {
+        const Vector3d start_3d = prism_side_point(s0, z);
+        // The intrinsic face containing the start whose corners all lie in the start's side panel
+        // (one flat rectangle of the side), so the affine map to 3D is exact there.
+        const int panel = std::min(static_cast<int>(s0 / (perimeter / kSides)), kSides - 1);
+        const Vector3d normal = (octagon_corner(panel, 0.0) + octagon_corner(panel + 1, 0.0)).normalized();
+        const double offset = kPrismRadius * octagon_corner(panel, 0.0).dot(normal);
+        int face = -1;
+        Vector2d start;
+        for (int f = 0; f < d->face_count && face < 0; ++f) {
+          const IntrinsicFaceMap map(input, *d, f);
+          bool in_panel = true;
+          for (const Vector3d& c : map.corner) in_panel = in_panel && std::abs(c.dot(normal) - offset) < 1e-12;
+          if (!in_panel) continue;
+          // The 2D point whose image is the start (least squares; exact when the start is in the plane).
+          Eigen::Matrix<double, 3, 2> jacobian;
+          jacobian << map.direction(Vector2d(1.0, 0.0)), map.direction(Vector2d(0.0, 1.0));
+          const Vector2d p =
+              (jacobian.transpose() * jacobian).inverse() * (jacobian.transpose() * (start_3d - map.corner[0]));
+          if (inside_face(*d, f, p, -1e-9) && (map.point(p) - start_3d).norm() < 1e-12) face = f, start = p;
+        }
+        ASSERT_GE(face, 0) << "no face of the panel strictly contains the start at s " << s0 << ", z " << z;
+        const Vector2d heading = IntrinsicFaceMap(input, *d, face).local_direction(prism_side_tangent(s0));
+        const TraceResult r = trace(*d, face, start, heading, perimeter, BoundaryRule::Reflect);
+        EXPECT_EQ(r.face, face) << "s " << s0 << ", z " << z;
+        EXPECT_LT((r.position - start).norm(), tolerance) << "s " << s0 << ", z " << z;
+        EXPECT_LT((r.heading - heading).norm(), tolerance) << "s " << s0 << ", z " << z;
+        EXPECT_GE(r.face_crossings, 2 * kSides - 1);
+        EXPECT_FALSE(r.hit_boundary);
+        ++loops;
+      }
+    }
+    EXPECT_EQ(loops, 9);
+  }
 }
 
 TEST(Trace, RandomWalksOnASphereStayValid) {

@@ -99,7 +99,9 @@ int run_mesh(const MeshOptions& o) {
 Command add_mesh_command(CLI::App& parent) {
   auto options = std::make_shared<MeshOptions>();
   CLI::App* app = parent.add_subcommand("mesh", "Input and intrinsic-triangulation statistics of a surface");
-  app->add_option("MESH", options->mesh, "Mesh file (OBJ, OFF, PLY, STL) or shape:NAME")->required();
+  app->add_option("MESH", options->mesh,
+                  "Mesh file (OBJ, OFF, PLY, STL) or a built-in surface shape:NAME (square, disk, sphere, "
+                  "skinny-sphere, torus, octagonal-prism)")->required();
   auto* abs = app->add_option("--max-circumradius", options->max_circumradius,
                               "Refine until no intrinsic face has a larger circumradius (input units)")
                   ->check(CLI::PositiveNumber);

@@ -1,6 +1,6 @@
 // `physarum run SCENE.json [--backend reference] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
 // grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
-// DIR/stats.csv, DIR/preview.png and DIR/run.json (DESIGN.md, "The command line").
+// DIR/stats.csv, DIR/preview.png and DIR/run.json (../shared/DESIGN.md, "The command line").
 //
 // Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
 // so a bad scene exits 1 with its message and writes nothing; every file is written under a
@@ -189,16 +189,27 @@ int run_run(const RunOptions& o) {
 
 Command add_run_command(CLI::App& parent) {
   auto options = std::make_shared<RunOptions>();
-  CLI::App* app = parent.add_subcommand("run", "Grow a slime-mold pattern on a surface and write its outputs");
-  app->add_option("scene", options->scene, "Scene file (JSON; see DESIGN.md, 'Scene files')")->required();
+  CLI::App* app = parent.add_subcommand(
+      "run",
+      "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
+      "pheromone), DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and "
+      "DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
+  app->footer(
+      "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
+      "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "
+      "'mesh' is a file path relative to the scene file or shape:NAME (tools/scenes/ has examples; README.md "
+      "lists every key). Exit codes: 0 success, 1 bad input (nothing is written), 2 usage error.");
+  app->add_option("scene", options->scene,
+                  "Scene file (JSON), e.g. tools/scenes/default.json, the built-in default scene (a sphere)")
+      ->required();
   app->add_option("--backend", options->backend, "Simulation backend")
       ->check(CLI::IsMember({"reference", "opencl"}))
       ->capture_default_str();
   app->add_option("--device", options->device,
                   "OpenCL device: an index from `physarum devices` or a name substring (default: $PHYSARUM_DEVICE, "
                   "then the first GPU, then the first device)");
-  auto* steps = app->add_option("--steps", options->steps, "Number of time steps (overrides the scene)");
-  auto* sim_time = app->add_option("--sim-time", options->sim_time, "Simulated seconds (overrides the scene)");
+  auto* steps = app->add_option("--steps", options->steps, "Number of time steps (overrides the scene's run length)");
+  auto* sim_time = app->add_option("--sim-time", options->sim_time, "Simulated seconds, rounded to whole time steps (overrides the scene's run length)");
   steps->excludes(sim_time);
   app->add_option("--seed", options->seed, "Random seed (overrides the scene)");
   app->add_option("--out", options->out, "Output folder (created if needed)")->capture_default_str();
