@@ -30,21 +30,35 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   const ComparisonSettings& c = settings_;
   metrics_.push_back({"mean_over_U", MarginKind::Absolute, c.margin_mean});
   for (const char* name : {"coverage_0.5U", "coverage_1U", "coverage_2U"})
-    metrics_.push_back({name, MarginKind::Relative, c.margin_coverage});
+    metrics_.push_back({name, MarginKind::Absolute, c.margin_coverage});
   // Harmonic bands hold equal NUMBERS of consecutive non-constant eigenpairs (not equal widths of
   // sqrt(lambda)): on a surface the mode count grows like sqrt(lambda)^2, so equal-width bands put
   // a handful of modes in the lowest band, whose power then swings by half its value from seed to
   // seed, and a comparison would need hundreds of seeds to say anything about it.
-  const double lambda_max = eigenpairs_.values.size() > 0 ? eigenpairs_.values.maxCoeff() : 0.0;
-  std::vector<int> modes;
-  for (int k = 0; k < static_cast<int>(eigenpairs_.values.size()); ++k)
-    if (eigenpairs_.values[k] > 1e-8 * lambda_max) modes.push_back(k);
-  const int bands = std::min<int>(c.spectrum_bands, static_cast<int>(modes.size()));
+  //
+  // A band must hold whole eigenspaces: within a repeated eigenvalue (symmetric shapes have many)
+  // the solver may return any orthonormal basis, and only the projection onto the WHOLE eigenspace
+  // is the same from one run to the next. So band edges move up to the next gap in the spectrum,
+  // and the top cluster is dropped when it reaches the last computed eigenvalue (the solver may
+  // have returned only part of it).
+  const Eigen::VectorXd& lambda = eigenpairs_.values;
+  const int computed = static_cast<int>(lambda.size());
+  const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
+  const double tie = 1e-6 * lambda_max;
+  int first = 0, end = computed;
+  while (first < computed && lambda[first] <= 1e-8 * lambda_max) ++first;  // constant modes
+  while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
+  const int usable = end - first;
+  const int bands = std::min<int>(c.spectrum_bands, usable);
   if (bands < 1) throw InputError("compare: the surface has no non-constant manifold harmonic among the " +
-                                  std::to_string(eigenpairs_.values.size()) + " computed");
-  harmonic_band_of_mode_.assign(eigenpairs_.values.size(), -1);
-  for (size_t i = 0; i < modes.size(); ++i)
-    harmonic_band_of_mode_[static_cast<size_t>(modes[i])] = static_cast<int>(i * static_cast<size_t>(bands) / modes.size());
+                                  std::to_string(computed) + " computed");
+  harmonic_band_of_mode_.assign(static_cast<size_t>(computed), -1);
+  int band = 0;
+  for (int k = first; k < end; ++k) {
+    const bool cluster_starts = k == first || lambda[k] - lambda[k - 1] > tie;
+    while (cluster_starts && band + 1 < bands && (k - first) >= (band + 1) * usable / bands) ++band;
+    harmonic_band_of_mode_[static_cast<size_t>(k)] = band;
+  }
   for (int b = 1; b <= bands; ++b)
     metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
   harmonic_bands_ = bands;

@@ -17,9 +17,10 @@
 //                        seed to seed.
 //   agent_density        dispersion of the agent density over faces
 //
-// Each metric has a margin kind: absolute (mean / U, whose value is 1 whatever the scene) or relative
-// to the reference arm's mean (coverage, spectral powers and the dispersion, whose scale depends on
-// the scene: 0.03 of a coverage of 0.1 is not 0.03 of a coverage of 0.7).
+// Each metric has a margin kind: absolute (mean / U, whose value is 1 whatever the scene, and the
+// coverage fractions, whose margin is a share of the surface's area: a relative margin would make
+// the rare coverage above 2 U, a few percent of the area, the noisiest metric of all) or relative to
+// the reference arm's mean (spectral powers and the dispersion, whose scale depends on the scene).
 #include "common/eigenvalues.hpp"
 #include "common/scene.hpp"
 #include "common/scene_surface.hpp"

@@ -22,7 +22,7 @@ struct ComparisonSettings {
   double sample_interval = 0.1;   // s between two samples of the metrics
   int seeds = 0;                  // seeds per arm; 0 = from the power calculation
   double margin_mean = 0.03;      // on mean / U
-  double margin_coverage = 0.05;  // relative, on each coverage fraction
+  double margin_coverage = 0.02;  // on each coverage fraction (a fraction of the surface's area)
   double margin_spectrum = 0.3;   // relative, on each spectral band power (harmonic and radial)
   double margin_detail = 0.1;     // relative, on each detail energy
   double margin_density = 0.1;    // relative, on the agent-density dispersion
