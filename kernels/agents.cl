@@ -26,9 +26,18 @@ float second_uniform(const uint4 w) { return uniform01(w.z); }
 /* ---- fields at a point ---- */
 
 float3 barycentric_in_face(__global const PhysarumFaceRecord* faces, const int face, const float2 p) {
-  const float b2 = p.y / faces[face].y2;
-  const float b1 = (p.x - b2 * faces[face].x2) / faces[face].x1;
+  const float b2 = p.y * faces[face].inv_y2;
+  const float b1 = p.x * faces[face].inv_x1 - p.y * faces[face].shear;
   return (float3)(1.0f - b1 - b2, b1, b2);
+}
+
+/* The corners of a face's layout: corner 1 at (x1, 0), corner 2 at (x2, y2). */
+float2 face_corner1(__global const PhysarumFaceRecord* faces, const int face) {
+  return (float2)(1.0f / faces[face].inv_x1, 0.0f);
+}
+float2 face_corner2(__global const PhysarumFaceRecord* faces, const int face) {
+  const float x1 = 1.0f / faces[face].inv_x1, y2 = 1.0f / faces[face].inv_y2;
+  return (float2)(faces[face].shear * x1 * y2, y2);
 }
 
 float interpolate_vertex_field(__global const PhysarumFaceRecord* faces, __global const float* values, const int face,
@@ -90,7 +99,7 @@ FacePoint sample_surface_point(__global const PhysarumFaceRecord* faces, __globa
   p.face = device_face[sample_face(alias_probability, alias_index, face_count, face_choice)];
   const float s = sqrt(first_uniform(in_face));
   const float r2 = second_uniform(in_face);
-  p.position = s * (1.0f - r2) * (float2)(faces[p.face].x1, 0.0f) + s * r2 * (float2)(faces[p.face].x2, faces[p.face].y2);
+  p.position = s * (1.0f - r2) * face_corner1(faces, p.face) + s * r2 * face_corner2(faces, p.face);
   return p;
 }
 

@@ -43,13 +43,17 @@ typedef struct {
 
 /* ---- the surface, as the agent kernels read it (opencl/face_records.cpp builds it) ----
  * One 64-byte record per intrinsic face, so a trace step touches one cache line. The face frame is
- * the SurfaceDomain's: corner 0 at the origin, corner 1 at (x1, 0), corner 2 at (x2, y2).
+ * the SurfaceDomain's: corner 0 at the origin, corner 1 at (x1, 0), corner 2 at (x2, y2). The
+ * record holds the layout in the form a trace step needs, free of divisions: barycentric
+ * coordinates of a point p are b2 = p.y inv_y2, b1 = p.x inv_x1 - p.y shear, b0 = 1 - b1 - b2,
+ * with inv_x1 = 1/x1, inv_y2 = 1/y2, shear = x2 / (x1 y2); the corners themselves (needed only
+ * at a walk's end and at reflections) follow as x1 = 1/inv_x1, y2 = 1/inv_y2, x2 = shear x1 y2.
  * Edge i runs from corner i to corner (i+1)%3; across it lies face neighbour[i] (-1 on a boundary),
  * where the same edge has index (neighbour_edges >> 2i) & 3. Crossing edge i rotates a direction by
  * (transition_cos[i], transition_sin[i]); points are rebuilt from the neighbour's own corners, so no
  * translation is needed. */
 typedef struct {
-  dev_float x1, x2, y2;        /* the layout */
+  dev_float inv_x1, shear, inv_y2; /* the layout, see above */
   dev_uint neighbour_edges;    /* 2 bits per edge */
   dev_int neighbour[3];
   dev_int vertex[3];

@@ -8,14 +8,14 @@
 #include "agents.cl"
 #include "trace.cl"
 
-float read_sensor(__global const PhysarumFaceRecord* faces, __global const float* concentration, const int face,
-                  const float2 position, const float2 direction, const float distance, int* crossings) {
-  const TraceEnd end = trace_walk(faces, face, position, direction, distance, 0, 0.0f, 0, 0.0f);
-  *crossings += end.face_crossings;
-  if (end.hit_boundary) return 0.0f;
-  const float3 b = end.barycentric;
-  return b.x * concentration[faces[end.face].vertex[0]] + b.y * concentration[faces[end.face].vertex[1]] +
-         b.z * concentration[faces[end.face].vertex[2]];
+/* What a sensor reads: the pheromone at its trace's end, interpolated barycentrically; 0 when the
+ * trace met the boundary (a sensor past the boundary reads nothing). */
+float sensor_reading(__global const PhysarumFaceRecord* faces, __global const float* concentration,
+                     const TraceEnd* end) {
+  if (end->hit_boundary) return 0.0f;
+  const float3 b = end->barycentric;
+  return b.x * concentration[faces[end->face].vertex[0]] + b.y * concentration[faces[end->face].vertex[1]] +
+         b.z * concentration[faces[end->face].vertex[2]];
 }
 
 float2 rotate(const float2 v, const float angle) {
@@ -71,12 +71,13 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
     *time_since_decision = overshoot;
     *accumulated_turn = carried_turn;
 
-    const float left = read_sensor(faces, concentration, face, position, rotate(*heading, sensor_angle),
-                                   p->sensor_distance, sensor_crossings);
-    const float centre =
-        read_sensor(faces, concentration, face, position, *heading, p->sensor_distance, sensor_crossings);
-    const float right = read_sensor(faces, concentration, face, position, rotate(*heading, -sensor_angle),
-                                    p->sensor_distance, sensor_crossings);
+    TraceEnd left_end, centre_end, right_end;
+    trace_three_sensors(faces, face, position, rotate(*heading, sensor_angle), *heading,
+                        rotate(*heading, -sensor_angle), p->sensor_distance, &left_end, &centre_end, &right_end);
+    *sensor_crossings += left_end.face_crossings + centre_end.face_crossings + right_end.face_crossings;
+    const float left = sensor_reading(faces, concentration, &left_end);
+    const float centre = sensor_reading(faces, concentration, &centre_end);
+    const float right = sensor_reading(faces, concentration, &right_end);
     int choice = jones_turn_choice(left, centre, right);
     if (choice == PHYSARUM_TURN_RANDOM_SIDE) {
       if (!side_bits_drawn) {

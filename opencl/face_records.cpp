@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 
+#include <cmath>
 #include <string>
 
 namespace physarum::opencl {
@@ -34,10 +35,12 @@ std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, 
     const size_t uf = static_cast<size_t>(f);
     PhysarumFaceRecord& r = records[static_cast<size_t>(order.device_of_domain[uf])];
     const auto& c = domain.face_corners[uf];
-    r.x1 = static_cast<float>(c[1].x());
-    r.x2 = static_cast<float>(c[2].x());
-    r.y2 = static_cast<float>(c[2].y());
-    if (!(r.x1 > 0.0f) || !(r.y2 > 0.0f))
+    const double x1 = c[1].x(), x2 = c[2].x(), y2 = c[2].y();
+    r.inv_x1 = static_cast<float>(1.0 / x1);
+    r.inv_y2 = static_cast<float>(1.0 / y2);
+    r.shear = static_cast<float>(x2 / (x1 * y2));
+    if (!(static_cast<float>(x1) > 0.0f) || !(static_cast<float>(y2) > 0.0f) || !std::isfinite(r.inv_x1) ||
+        !std::isfinite(r.inv_y2) || !std::isfinite(r.shear))
       throw InputError("opencl: intrinsic face " + std::to_string(f) + " is degenerate in float32 (layout x1 = " +
                        std::to_string(c[1].x()) + ", y2 = " + std::to_string(c[2].y()) +
                        "); refine the surface or scale it up");
