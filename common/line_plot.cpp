@@ -15,7 +15,7 @@ namespace physarum {
 namespace {
 
 constexpr const char* kFont = "DejaVuSans";
-constexpr int kLeft = 90, kRight = 200, kTop = 50, kBottom = 70;  // margins around the plot area (legend right)
+constexpr int kLeft = 90, kRight = 30, kTop = 50, kBottom = 70;  // margins around the plot area
 
 // One axis: data range, log or linear, mapped onto a pixel interval.
 struct Axis {
@@ -119,7 +119,7 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
   // Series: error bars, then lines (solid or dashed), then markers.
   for (const PlotSeries& s : series) {
     const OIIO::cspan<float> c(s.color.data(), 3);
-    int previous_x = 0, previous_y = 0, segment = 0;
+    int previous_x = 0, previous_y = 0;
     bool have_previous = false;
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
       if (!ax.drawable(s.x[i]) || !ay.drawable(s.y[i])) {
@@ -135,23 +135,40 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
         OIIO::ImageBufAlgo::render_line(image, px - 4, lo, px + 4, lo, c);
         OIIO::ImageBufAlgo::render_line(image, px - 4, hi, px + 4, hi, c);
       }
-      if (have_previous && (!s.dashed || segment % 2 == 0)) {
-        OIIO::ImageBufAlgo::render_line(image, previous_x, previous_y, px, py, c);
-        OIIO::ImageBufAlgo::render_line(image, previous_x, previous_y + 1, px, py + 1, c);
+      if (have_previous) {
+        // Dashed: 10-pixel dashes with 6-pixel gaps along the segment.
+        const double length = std::hypot(px - previous_x, py - previous_y);
+        const double dash = s.dashed ? 10.0 : length, period = s.dashed ? 16.0 : length + 1.0;
+        for (double from = 0.0; from < length; from += period) {
+          const double to = std::min(length, from + dash);
+          const auto at = [&](double u, int a, int b) { return static_cast<int>(std::lround(a + (b - a) * u / length)); };
+          const int x0 = at(from, previous_x, px), y0 = at(from, previous_y, py);
+          const int x1 = at(to, previous_x, px), y1 = at(to, previous_y, py);
+          OIIO::ImageBufAlgo::render_line(image, x0, y0, x1, y1, c);
+          OIIO::ImageBufAlgo::render_line(image, x0, y0 + 1, x1, y1 + 1, c);
+        }
       }
-      ++segment;
       OIIO::ImageBufAlgo::render_box(image, px - 3, py - 3, px + 3, py + 3, c, true);
       previous_x = px, previous_y = py, have_previous = true;
     }
   }
 
-  // Legend, labels, title.
-  int legend_y = kTop + 10;
+  // Legend (top left, inside the plot area, on white), labels, title.
+  int legend_width = 0;
   for (const PlotSeries& s : series) {
-    OIIO::ImageBufAlgo::render_box(image, w - kRight + 15, legend_y - 8, w - kRight + 35, legend_y + 2,
-                                   OIIO::cspan<float>(s.color.data(), 3),
-                                   true);
-    text(image, w - kRight + 42, legend_y + 2, s.label, 14, AX::Left, AY::Baseline);
+    const OIIO::ROI size = OIIO::ImageBufAlgo::text_size(s.label, 14, kFont);
+    legend_width = std::max(legend_width, size.defined() ? size.width() : 8 * static_cast<int>(s.label.size()));
+  }
+  const int legend_height = 22 * static_cast<int>(series.size()) + 8;
+  OIIO::ImageBufAlgo::render_box(image, kLeft + 8, kTop + 8, kLeft + 52 + legend_width, kTop + 8 + legend_height, white,
+                                 true);
+  OIIO::ImageBufAlgo::render_box(image, kLeft + 8, kTop + 8, kLeft + 52 + legend_width, kTop + 8 + legend_height, grid);
+  int legend_y = kTop + 26;
+  for (const PlotSeries& s : series) {
+    const OIIO::cspan<float> c(s.color.data(), 3);
+    OIIO::ImageBufAlgo::render_line(image, kLeft + 16, legend_y - 4, kLeft + 40, legend_y - 4, c);
+    OIIO::ImageBufAlgo::render_box(image, kLeft + 25, legend_y - 7, kLeft + 31, legend_y - 1, c, true);
+    text(image, kLeft + 46, legend_y + 1, s.label, 14, AX::Left, AY::Baseline);
     legend_y += 22;
   }
   text(image, (kLeft + w - kRight) / 2, h - 18, options.x_label, 16, AX::Center, AY::Baseline);

@@ -1,0 +1,397 @@
+// `physarum bench [--device SPEC] [--quick] [--out DIR] [--meshes DIR]`: how the cost of a simulation
+// step grows with the number of agents and with the surface's resolution, on both backends, in one
+// run (so ratios are meaningful on a shared machine). Writes DIR/bench.json, DIR/bench.csv and
+// log-log plots DIR/agents.png and DIR/faces.png with fitted slopes, and prints a table, the
+// paper-size case and a roofline estimate.
+//
+// What is timed: full steps (agents + pheromone) after three warm-up steps, until at least
+// kMinSeconds have passed (and at least kMinSteps steps); the pheromone step alone (forward and
+// backward Euler) on each resolution. The domain's preprocessing is not timed (bench_refinement
+// covers it).
+#include "bench/bench_support.hpp"
+#include "common/atomic_write.hpp"
+#include "common/errors.hpp"
+#include "common/line_plot.hpp"
+#include "common/vertex_parameters.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/pheromone.hpp"
+#include "opencl/simulation.hpp"
+#include "reference/pheromone.hpp"
+#include "reference/simulation.hpp"
+#include "tools/commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace physarum::cli {
+namespace {
+
+using bench::bench_scene;
+using bench::scaled_domain;
+
+struct BenchOptions {
+  std::string device;
+  bool quick = false;
+  std::string out = "bench_out";
+  std::string meshes = PHYSARUM_SHARED_MESHES;
+};
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct StepTiming {
+  double seconds_per_step = 0.0;
+  double crossings_per_agent_step = 0.0;
+  long long steps = 0;
+};
+
+// Times steps of `sim` after a warm-up, for at least min_seconds and min_steps.
+StepTiming time_steps(SimulationBackend& sim, double min_seconds, long long min_steps, long long max_steps) {
+  sim.run(3);
+  sim.finish();
+  const SimulationCounters before = sim.counters();
+  const Clock::time_point start = Clock::now();
+  long long steps = 0;
+  while (steps < max_steps && (steps < min_steps || seconds_since(start) < min_seconds)) {
+    sim.step();
+    sim.finish();
+    ++steps;
+  }
+  StepTiming t;
+  t.steps = steps;
+  t.seconds_per_step = seconds_since(start) / static_cast<double>(steps);
+  const SimulationCounters after = sim.counters();
+  const double agent_steps = static_cast<double>(after.agent_steps - before.agent_steps);
+  t.crossings_per_agent_step =
+      agent_steps > 0 ? static_cast<double>(after.face_crossings + after.sensor_face_crossings - before.face_crossings -
+                                            before.sensor_face_crossings) /
+                            agent_steps
+                      : 0.0;
+  return t;
+}
+
+// Least-squares slope of log(y) against log(x) over the points with lo <= x <= hi.
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y, double lo, double hi) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (x[i] < lo || x[i] > hi || !(y[i] > 0)) continue;
+    const double a = std::log(x[i]), b = std::log(y[i]);
+    n += 1, sx += a, sy += b, sxx += a * a, sxy += a * b;
+  }
+  if (n < 2) return std::nan("");
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// Host memory bandwidth: a STREAM-style triad a = b + s c over 3 x 64 MB, one thread per core,
+// best of five. Bytes counted: 2 reads + 1 write per element.
+double measure_bandwidth() {
+  const size_t n = 8u << 20;  // doubles per array (64 MB)
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  double best = 0.0;
+  for (int repeat = 0; repeat < 5; ++repeat) {
+    const Clock::time_point start = Clock::now();
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+      pool.emplace_back([&, t] {
+        const size_t lo = n * t / threads, hi = n * (t + 1) / threads;
+        for (size_t i = lo; i < hi; ++i) a[i] = b[i] + 3.0 * c[i];
+      });
+    for (std::thread& th : pool) th.join();
+    best = std::max(best, 3.0 * static_cast<double>(n) * sizeof(double) / seconds_since(start));
+  }
+  return best;
+}
+
+struct Row {
+  std::string sweep, surface, backend;
+  int agents = 0, faces = 0, vertices = 0;
+  double seconds_per_step = 0, agent_steps_per_second = 0, crossings_per_agent_step = 0, crossings_per_second = 0;
+};
+
+nlohmann::ordered_json to_json(const Row& r) {
+  return {{"sweep", r.sweep}, {"surface", r.surface}, {"backend", r.backend}, {"agents", r.agents},
+          {"faces", r.faces}, {"vertices", r.vertices}, {"seconds_per_step", r.seconds_per_step},
+          {"agent_steps_per_second", r.agent_steps_per_second},
+          {"crossings_per_agent_step", r.crossings_per_agent_step}, {"crossings_per_second", r.crossings_per_second}};
+}
+
+class Bench {
+ public:
+  Bench(const BenchOptions& o) : options_(o), compute_(opencl::make_compute_context(o.device)) {}
+
+  std::string surface_spec(const std::string& name) const {
+    if (name.rfind("shape:", 0) == 0) return name;
+    const std::filesystem::path p = std::filesystem::path(options_.meshes) / name;
+    return std::filesystem::exists(p) ? p.string() : "";
+  }
+
+  const SurfaceDomain* domain(const std::string& surface, double max_circumradius) {
+    const std::string spec = surface_spec(surface);
+    if (spec.empty()) return nullptr;
+    return scaled_domain(spec, max_circumradius);
+  }
+
+  Row run(const std::string& sweep, const std::string& surface, const SurfaceDomain& d, const std::string& backend,
+          int agents) {
+    const double min_seconds = options_.quick ? 0.15 : 0.6;
+    const Scene scene = bench_scene(agents);
+    std::unique_ptr<SimulationBackend> sim;
+    if (backend == "opencl") sim = std::make_unique<opencl::OpenCLSimulation>(compute_, d, scene);
+    else sim = std::make_unique<ReferenceSimulation>(d, scene);
+    const StepTiming t = time_steps(*sim, min_seconds, 3, 1000);
+    Row r{sweep, surface, backend, agents, d.face_count, d.vertex_count, t.seconds_per_step,
+          agents / t.seconds_per_step, t.crossings_per_agent_step, 0.0};
+    r.crossings_per_second = r.agent_steps_per_second * r.crossings_per_agent_step;
+    std::printf("%-10s %-18s %-9s %9d agents %8d faces  %9.3f ms/step  %8.3g agent-steps/s  %5.1f crossings/step  "
+                "%8.3g crossings/s\n",
+                sweep.c_str(), surface.c_str(), backend.c_str(), agents, d.face_count, 1e3 * t.seconds_per_step,
+                r.agent_steps_per_second, r.crossings_per_agent_step, r.crossings_per_second);
+    std::fflush(stdout);
+    rows_.push_back(r);
+    return r;
+  }
+
+  // The pheromone step alone; returns seconds per step.
+  double pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator) {
+    const Scene scene = bench_scene(0);
+    const VertexParameters params = VertexParameters::constant(scene, d.vertex_count);
+    auto time = [&](auto& field, auto finish) {
+      field.fill(1.0);
+      field.step();
+      finish();
+      const Clock::time_point start = Clock::now();
+      int steps = 0;
+      while (steps < 5 || seconds_since(start) < 0.2) {
+        field.step();
+        ++steps;
+      }
+      finish();
+      return seconds_since(start) / steps;
+    };
+    if (backend == "opencl") {
+      opencl::OpenCLPheromone field(compute_, d, params, integrator, scene.time_step);
+      return time(field, [&] { compute_.queue.finish(); });
+    }
+    ReferencePheromone field(d, params, integrator, scene.time_step);
+    return time(field, [] {});
+  }
+
+  const std::vector<Row>& rows() const { return rows_; }
+  const opencl::ComputeContext& compute() const { return compute_; }
+  const BenchOptions& options() const { return options_; }
+
+ private:
+  BenchOptions options_;
+  opencl::ComputeContext compute_;
+  std::vector<Row> rows_;
+};
+
+// Draws one sweep (a line per surface and backend) and returns the fitted slopes.
+nlohmann::ordered_json plot(const std::string& path, const std::vector<Row>& rows, const std::string& sweep,
+                            bool by_agents, const std::string& title) {
+  nlohmann::ordered_json slopes = nlohmann::ordered_json::array();
+  std::vector<PlotSeries> series;
+  const std::array<std::array<float, 3>, 6> colors = {{{0.12f, 0.35f, 0.75f},
+                                                        {0.85f, 0.35f, 0.1f},
+                                                        {0.2f, 0.6f, 0.2f},
+                                                        {0.6f, 0.2f, 0.6f},
+                                                        {0.5f, 0.5f, 0.1f},
+                                                        {0.1f, 0.6f, 0.6f}}};
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const Row& r : rows)
+    if (r.sweep == sweep && std::find(keys.begin(), keys.end(), std::make_pair(r.surface, r.backend)) == keys.end())
+      keys.emplace_back(r.surface, r.backend);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    PlotSeries s;
+    s.color = colors[k % colors.size()];
+    s.dashed = keys[k].second == "reference";
+    std::vector<double> x, y;
+    for (const Row& r : rows)
+      if (r.sweep == sweep && r.surface == keys[k].first && r.backend == keys[k].second) {
+        x.push_back(by_agents ? r.agents : r.faces);
+        y.push_back(r.seconds_per_step);
+      }
+    // The ranges (1e5..1e7 agents, 1e4..1e6 faces); a quick run fits whatever it has.
+    double slope = by_agents ? log_log_slope(x, y, 1e5, 1e7) : log_log_slope(x, y, 1e4, 1e6);
+    if (std::isnan(slope)) slope = log_log_slope(x, y, 0.0, 1e300);
+    char label[96];
+    std::snprintf(label, sizeof label, "%s %s, slope %.2f", keys[k].first.c_str(), keys[k].second.c_str(), slope);
+    s.label = label;
+    slopes.push_back({{"surface", keys[k].first}, {"backend", keys[k].second}, {"slope", slope}});
+    s.x = x;
+    s.y = y;
+    series.push_back(std::move(s));
+  }
+  if (series.empty()) return slopes;
+  PlotOptions o;
+  o.log_x = o.log_y = true;
+  o.width = 1000;
+  o.title = title;
+  o.x_label = by_agents ? "agents" : "intrinsic faces";
+  o.y_label = "seconds per step";
+  write_line_plot_png(path, series, o);
+  return slopes;
+}
+
+int run_bench(const BenchOptions& o) {
+  Bench bench(o);
+  std::printf("physarum bench on %s%s\n", bench.compute().device.describe().c_str(), o.quick ? " (quick)" : "");
+  const std::vector<std::string> backends = {"reference", "opencl"};
+  nlohmann::ordered_json report;
+  report["device"] = bench.compute().device.describe();
+  report["quick"] = o.quick;
+
+  // ---- agent scaling at a fixed resolution ----
+  const std::string agent_surface = bench.surface_spec("spot.obj").empty() ? "shape:sphere" : "spot.obj";
+  const SurfaceDomain* fixed = bench.domain(agent_surface, 0.015);
+  const std::vector<int> agent_counts =
+      o.quick ? std::vector<int>{1000, 10000, 100000} : std::vector<int>{1000, 10000, 100000, 1000000, 10000000};
+  for (int n : agent_counts)
+    for (const std::string& b : backends) {
+      if (b == "reference" && n > 1000000) continue;  // ~5 s a step: the slope is clear without it
+      bench.run("agents", agent_surface, *fixed, b, n);
+    }
+
+  // ---- resolution scaling at a fixed agent count ----
+  const std::vector<double> radii = o.quick ? std::vector<double>{0.08, 0.04, 0.02, 0.01}
+                                            : std::vector<double>{0.08, 0.04, 0.02, 0.01, 0.005, 0.0025};
+  const std::vector<std::string> surfaces =
+      o.quick ? std::vector<std::string>{"shape:sphere"}
+              : std::vector<std::string>{"spot.obj", "stanford-bunny.obj", "shape:sphere"};
+  const int resolution_agents = o.quick ? 10000 : 100000;
+  nlohmann::ordered_json pheromone = nlohmann::ordered_json::array();
+  for (const std::string& surface : surfaces) {
+    if (bench.surface_spec(surface).empty()) {
+      std::printf("(skipping %s: not found under %s)\n", surface.c_str(), o.meshes.c_str());
+      continue;
+    }
+    for (double radius : radii) {
+      const SurfaceDomain* d = bench.domain(surface, radius);
+      for (const std::string& b : backends) bench.run("faces", surface, *d, b, resolution_agents);
+      nlohmann::ordered_json p = {{"surface", surface}, {"faces", d->face_count}, {"vertices", d->vertex_count}};
+      for (const std::string& b : backends) {
+        p[b + "_forward_seconds"] = bench.pheromone_step(*d, b, Integrator::ForwardEuler);
+        p[b + "_backward_seconds"] = bench.pheromone_step(*d, b, Integrator::BackwardEuler);
+      }
+      pheromone.push_back(p);
+    }
+  }
+  report["pheromone_steps"] = pheromone;
+
+  // ---- the paper-size case: 350,000 agents for 102 steps on a genus-1 mesh of ~46,000 faces ----
+  {
+    double radius = 0.012;
+    const SurfaceDomain* torus = bench.domain("shape:torus", radius);
+    for (int i = 0; i < 6 && std::abs(torus->face_count - 46000) > 2000; ++i) {
+      radius *= std::sqrt(static_cast<double>(torus->face_count) / 46000.0);
+      torus = bench.domain("shape:torus", radius);
+    }
+    const Scene scene = bench_scene(350000);
+    opencl::OpenCLSimulation sim(bench.compute(), *torus, scene);
+    sim.finish();
+    const Clock::time_point start = Clock::now();
+    sim.run(102);
+    sim.finish();
+    const double seconds = seconds_since(start);
+    std::printf("paper case: 350000 agents x 102 steps on a torus of %d faces: %.2f s (the paper: 17.6 s on 30 "
+                "threads)\n",
+                torus->face_count, seconds);
+    report["paper_case"] = {{"agents", 350000}, {"steps", 102}, {"faces", torus->face_count}, {"seconds", seconds},
+                            {"paper_seconds_30_threads", 17.6}};
+  }
+
+  // ---- roofline estimate ----
+  const double bandwidth = measure_bandwidth();
+  {
+    // Agent step: state read and written (face 4, position 8, heading 8, five floats 20, id 4 = 44 B
+    // each way), one 64-byte face record per face visited, three concentration reads per sensor
+    // and three 8-byte deposit atomics per movement piece. In cache the records cost no DRAM
+    // traffic; this is the DRAM bound when nothing is reused.
+    const Row* last = nullptr;
+    for (const Row& r : bench.rows())
+      if (r.sweep == "faces" && r.backend == "opencl") last = &r;
+    nlohmann::ordered_json roofline = {{"memory_bandwidth_bytes_per_second", bandwidth}};
+    if (last) {
+      const double visits = last->crossings_per_agent_step + 1.6;  // + one start face per walk (1 move + 3/5 sensing)
+      const double bytes = 88.0 + 64.0 * visits + 4.0 * 9.0 * 0.6 + 24.0;
+      const double bound = bytes * last->agents / bandwidth;
+      roofline["agent_step"] = {{"faces", last->faces},
+                                {"bytes_per_agent_step", bytes},
+                                {"random_accesses_per_agent_step", visits + 3 + 3},
+                                {"bound_seconds_per_step", bound},
+                                {"measured_seconds_per_step", last->seconds_per_step},
+                                {"fraction_of_bound", bound / last->seconds_per_step}};
+    }
+    if (!pheromone.empty()) {
+      const auto& p = pheromone.back();
+      const int n = p["vertices"].get<int>();
+      // Forward Euler: per vertex a CSR row (~7 entries of 4 B column + 4 B value + 4 B gathered u),
+      // its start, two rates, u in and u out: ~104 B.
+      const double bytes = 104.0 * n;
+      const double measured = p["opencl_forward_seconds"].get<double>();
+      roofline["pheromone_forward_step"] = {{"vertices", n},
+                                            {"bytes_per_step", bytes},
+                                            {"bound_seconds_per_step", bytes / bandwidth},
+                                            {"measured_seconds_per_step", measured},
+                                            {"fraction_of_bound", bytes / bandwidth / measured}};
+    }
+    report["roofline"] = roofline;
+    std::printf("roofline: memory bandwidth %.3g GB/s; %s\n", bandwidth / 1e9, roofline.dump().c_str());
+  }
+
+  // ---- slopes and outputs ----
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const Row& r : bench.rows()) rows.push_back(to_json(r));
+  report["rows"] = rows;
+  const std::filesystem::path out(o.out);
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec || !std::filesystem::is_directory(out))
+    throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
+  std::ostringstream csv;
+  csv << "sweep,surface,backend,agents,faces,vertices,seconds_per_step,agent_steps_per_second,"
+         "crossings_per_agent_step,crossings_per_second\n";
+  csv.precision(9);
+  for (const Row& r : bench.rows())
+    csv << r.sweep << "," << r.surface << "," << r.backend << "," << r.agents << "," << r.faces << "," << r.vertices
+        << "," << r.seconds_per_step << "," << r.agent_steps_per_second << "," << r.crossings_per_agent_step << ","
+        << r.crossings_per_second << "\n";
+  write_text_file_atomically((out / "bench.csv").string(), csv.str());
+  report["slopes"] = {
+      {"agents", plot((out / "agents.png").string(), bench.rows(), "agents", true,
+                      "Time per step against agents (" + agent_surface + ")")},
+      {"faces", plot((out / "faces.png").string(), bench.rows(), "faces", false,
+                     "Time per step against intrinsic faces (" + std::to_string(resolution_agents) + " agents)")}};
+  std::printf("fitted log-log slopes of time per step: %s\n", report["slopes"].dump().c_str());
+  write_text_file_atomically((out / "bench.json").string(), report.dump(2) + "\n");
+  std::printf("wrote %s/{bench.json, bench.csv, agents.png, faces.png}\n", out.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command add_bench_command(CLI::App& parent) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "bench", "Scaling benchmarks: time per step against agents and against faces, both backends, with plots");
+  app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
+  app->add_flag("--quick", options->quick, "Small sweeps (about two minutes), for frequent runs");
+  app->add_option("--out", options->out, "Folder for bench.json, bench.csv, agents.png and faces.png")
+      ->capture_default_str();
+  app->add_option("--meshes", options->meshes, "Folder of spot.obj and stanford-bunny.obj")->capture_default_str();
+  return Command{app, [options] { return run_bench(*options); }};
+}
+
+}  // namespace physarum::cli
