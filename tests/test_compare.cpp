@@ -108,7 +108,7 @@ TEST_P(PlantedFault, IsRejected) {
 
 INSTANTIATE_TEST_SUITE_P(CompareHarness, PlantedFault,
                          ::testing::Values(FaultCase{"sensor-angle", "square"}, FaultCase{"sensor-angle", "disk"},
-                                           FaultCase{"sensor-angle", "torus"},
+                                           FaultCase{"sensor-angle", "torus"}, FaultCase{"sensor-angle", "spot"},
                                            FaultCase{"deposit-endpoint", "disk"},
                                            FaultCase{"no-decay-substep", "square"},
                                            FaultCase{"no-decay-substep", "spot"},
