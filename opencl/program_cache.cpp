@@ -31,11 +31,18 @@ std::string read_file(const std::filesystem::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+// The folder holding Random123/: where the build found it, or $PHYSARUM_RANDOM123_INCLUDE (for a
+// binary moved to a machine without the headers in the same place).
+std::string random123_include_dir() {
+  if (const char* d = std::getenv("PHYSARUM_RANDOM123_INCLUDE"); d && *d) return d;
+  return PHYSARUM_RANDOM123_INCLUDE_DIR;
+}
+
 // The Random123 headers that kernels include: part of the source for caching purposes.
 const std::string& random123_text() {
   static const std::string text = [] {
     std::string t;
-    const std::filesystem::path dir = std::filesystem::path(PHYSARUM_RANDOM123_INCLUDE_DIR) / "Random123";
+    const std::filesystem::path dir = std::filesystem::path(random123_include_dir()) / "Random123";
     for (const char* f : {"philox.h", "array.h", "features/compilerfeatures.h", "features/openclfeatures.h"})
       t += read_file(dir / f);
     return t;
@@ -61,7 +68,7 @@ std::string program_cache_dir() {
 }
 
 std::string base_build_options() {
-  return std::string("-cl-std=CL1.2 -I ") + PHYSARUM_RANDOM123_INCLUDE_DIR;
+  return "-cl-std=CL1.2 -I " + random123_include_dir();
 }
 
 cl::Program build_program(const cl::Context& context, const DeviceInfo& device, const std::string& label,
