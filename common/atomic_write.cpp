@@ -54,4 +54,12 @@ void write_text_file_atomically(const std::string& path, const std::string& byte
   });
 }
 
+void create_output_folder(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec || !std::filesystem::is_directory(path))
+    throw InputError("--out " + path + ": cannot create the output folder (" +
+                     (ec ? ec.message() : std::string("a file of that name exists")) + ")");
+}
+
 }  // namespace physarum

@@ -15,4 +15,8 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 // Convenience: writes `bytes` to `path` atomically (for stats.csv, run.json and the like).
 void write_text_file_atomically(const std::string& path, const std::string& bytes);
 
+// Creates the output folder `path` (and its parents) if needed. Throws InputError naming the folder
+// (as the --out option that gave it) and the cause when it cannot.
+void create_output_folder(const std::string& path);
+
 }  // namespace physarum

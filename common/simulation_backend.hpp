@@ -20,6 +20,14 @@ struct SimulationSettings {
 
 SimulationSettings simulation_settings(const Scene& scene);
 
+struct SurfaceDomain;
+struct VertexParameters;
+// The checks every backend makes on its inputs: every agent parameter map has one value per vertex,
+// agents >= 0, time_step > 0 and finite, turn_frequency > 0 everywhere. Throws InputError whose
+// message starts with `who` ("simulation", "opencl simulation").
+void check_simulation_inputs(const SurfaceDomain& domain, const VertexParameters& params,
+                             const SimulationSettings& settings, const std::string& who);
+
 // Running totals for throughput figures (run.json). Face crossings are the unit of work of an
 // agent step: each costs one dependent read of a face record.
 struct SimulationCounters {

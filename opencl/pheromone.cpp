@@ -1,6 +1,7 @@
 #include "opencl/pheromone.hpp"
 
 #include "common/errors.hpp"
+#include "common/forward_euler_limit.hpp"
 #include "kernels/device_types.h"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
@@ -74,25 +75,11 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     diffuse_over_mass[i] = params.diffuse_rate[i] / m;
   }
 
-  // ---- forward Euler step limit: the reference's bound, computed the same way in double so both
-  // backends take the same number of sub-steps (see reference/pheromone.cpp for the derivation:
-  // non-negativity h a_i <= 1 and Gershgorin stability h g <= 2, with a 0.9 safety factor) ----
-  double max_a = 0.0, max_g = 0.0;
-  for (int i = 0; i < n; ++i) {
-    double diagonal = 0.0, absolute_row = 0.0;
-    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-      if (L.column[k] == i) diagonal += L.value[k];
-      absolute_row += std::abs(L.value[k]);
-    }
-    max_a = std::max(max_a, diffuse_over_mass[i] * diagonal + params.decay_rate[i]);
-    max_g = std::max(max_g, diffuse_over_mass[i] * absolute_row + params.decay_rate[i]);
-  }
-  constexpr double kSafety = 0.9;
-  const double bound = std::min(max_a > 0 ? 1.0 / max_a : std::numeric_limits<double>::infinity(),
-                                max_g > 0 ? 2.0 / max_g : std::numeric_limits<double>::infinity());
-  stable_time_step_ = kSafety * bound;
+  // ---- forward Euler step limit: the reference's bound (common/forward_euler_limit.hpp), in double,
+  // so both backends take the same number of sub-steps ----
+  stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params.decay_rate);
   if (integrator == Integrator::ForwardEuler) {
-    sub_steps_ = time_step <= stable_time_step_ ? 1 : static_cast<int>(std::ceil(time_step / stable_time_step_));
+    sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
     sub_step_ = time_step / sub_steps_;
   }
 

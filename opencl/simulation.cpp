@@ -48,22 +48,6 @@ PhysarumAgentParameters parameters_of_vertex(const VertexParameters& p, const st
   return r;
 }
 
-void check_parameters(const SurfaceDomain& domain, const VertexParameters& p, const SimulationSettings& s) {
-  const size_t n = static_cast<size_t>(domain.vertex_count);
-  for (const std::vector<double>* field : {&p.sensor_distance, &p.sensor_angle, &p.move_rate, &p.turn_rate,
-                                           &p.turn_frequency, &p.deposit_rate, &p.mean_lifetime, &p.activation_time})
-    if (field->size() != n)
-      throw InputError("opencl simulation: an agent parameter map has " + std::to_string(field->size()) +
-                       " values for " + std::to_string(n) + " vertices");
-  if (s.agents < 0) throw InputError("opencl simulation: agents " + std::to_string(s.agents) + " must be >= 0");
-  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
-    throw InputError("opencl simulation: time_step " + std::to_string(s.time_step) + " must be > 0");
-  for (size_t i = 0; i < n; ++i)
-    if (!(p.turn_frequency[i] > 0.0))
-      throw InputError("opencl simulation: turn_frequency at vertex " + std::to_string(i) + " is " +
-                       std::to_string(p.turn_frequency[i]) + " (must be > 0)");
-}
-
 }  // namespace
 
 OpenCLSimulation::~OpenCLSimulation() = default;
@@ -77,7 +61,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
                                    const VertexParameters& params, const SimulationSettings& settings,
                                    const OpenCLSimulationOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
-  check_parameters(domain, params, settings);
+  check_simulation_inputs(domain, params, settings, "opencl simulation");
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
 

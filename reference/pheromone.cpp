@@ -1,5 +1,7 @@
 #include "reference/pheromone.hpp"
 
+#include "common/forward_euler_limit.hpp"
+
 #include "common/errors.hpp"
 
 #include <algorithm>
@@ -38,34 +40,12 @@ ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const Vertex
     diffuse_over_mass_[i] = params.diffuse_rate[i] / m;
   }
 
-  // Forward Euler step limit. One sub-step is u' = u - h (M^-1 R_dif L u + R_dec u), i.e. row i:
-  //   u'_i = (1 - h a_i) u_i + h (r_dif,i / m_i) sum_j w_ij u_j,   a_i = r_dif,i L_ii / m_i + r_dec,i.
-  // (1) Non-negativity: with non-negative cotan weights w_ij (intrinsic Delaunay), every coefficient
-  //     is >= 0, so u stays >= 0, iff h a_i <= 1 for all i.
-  // (2) Stability: the eigenvalues of M^-1 R_dif L + R_dec are real and >= 0 (the matrix is similar
-  //     to a symmetric PSD one plus a non-negative diagonal); Gershgorin bounds the largest by
-  //     g = max_i (r_dif,i sum_j |L_ij| / m_i + r_dec,i), and the step is stable when h g <= 2.
-  //     (1) implies (2) when all weights are >= 0; (2) still holds the field bounded when a
-  //     triangulation has negative weights (non-Delaunay input), where (1) alone is not enough.
-  // A safety factor of 0.9 keeps rounding away from the edge of both bounds.
+  // Forward Euler step limit (common/forward_euler_limit.hpp has the derivation).
   const CsrMatrix& L = domain.laplacian;
-  double max_a = 0.0, max_g = 0.0;
-  for (int i = 0; i < n; ++i) {
-    double diagonal = 0.0, absolute_row = 0.0;
-    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-      if (L.column[k] == i) diagonal += L.value[k];
-      absolute_row += std::abs(L.value[k]);
-    }
-    max_a = std::max(max_a, diffuse_over_mass_[i] * diagonal + decay_rate_[i]);
-    max_g = std::max(max_g, diffuse_over_mass_[i] * absolute_row + decay_rate_[i]);
-  }
-  constexpr double kSafety = 0.9;
-  const double bound = std::min(max_a > 0 ? 1.0 / max_a : std::numeric_limits<double>::infinity(),
-                                max_g > 0 ? 2.0 / max_g : std::numeric_limits<double>::infinity());
-  stable_time_step_ = kSafety * bound;
+  stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass_, decay_rate_);
 
   if (integrator == Integrator::ForwardEuler) {
-    sub_steps_ = time_step <= stable_time_step_ ? 1 : static_cast<int>(std::ceil(time_step / stable_time_step_));
+    sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
     sub_step_ = time_step / sub_steps_;
     return;
   }

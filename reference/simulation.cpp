@@ -16,20 +16,7 @@ namespace {
 
 const VertexParameters& checked(const SurfaceDomain& domain, const VertexParameters& params,
                                 const SimulationSettings& settings) {
-  const size_t n = static_cast<size_t>(domain.vertex_count);
-  for (const std::vector<double>* field :
-       {&params.sensor_distance, &params.sensor_angle, &params.move_rate, &params.turn_rate, &params.turn_frequency,
-        &params.deposit_rate, &params.mean_lifetime, &params.activation_time})
-    if (field->size() != n)
-      throw InputError("simulation: an agent parameter map has " + std::to_string(field->size()) + " values for " +
-                       std::to_string(n) + " vertices");
-  if (settings.agents < 0) throw InputError("simulation: agents " + std::to_string(settings.agents) + " must be >= 0");
-  if (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step))
-    throw InputError("simulation: time_step " + std::to_string(settings.time_step) + " must be > 0");
-  for (size_t i = 0; i < n; ++i)
-    if (!(params.turn_frequency[i] > 0.0))
-      throw InputError("simulation: turn_frequency at vertex " + std::to_string(i) + " is " +
-                       std::to_string(params.turn_frequency[i]) + " (must be > 0)");
+  check_simulation_inputs(domain, params, settings, "simulation");
   return params;
 }
 

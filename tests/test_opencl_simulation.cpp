@@ -15,6 +15,7 @@
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
+#include "model_scene.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -27,7 +28,10 @@
 namespace physarum::opencl {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
+// The shared test model at the default time step.
+Scene model_scene(int agents, std::optional<double> mean_lifetime, Integrator integrator) {
+  return testing::model_scene(agents, 0.01, mean_lifetime, integrator);
+}
 
 const ComputeContext& compute() {
   static const ComputeContext c = make_compute_context("");
@@ -40,24 +44,6 @@ SurfaceDomain delaunay_domain(const std::string& spec) {
   return build_surface_domain(triangulation.snapshot());
 }
 
-Scene model_scene(int agents, std::optional<double> mean_lifetime, Integrator integrator) {
-  Scene s;
-  s.agents = agents;
-  s.time_step = 0.01;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * kDegree;
-  s.move_rate = 0.5;
-  s.turn_rate = 180.0 * kDegree;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 2.5;
-  s.diffuse_rate = 0.0002;
-  s.mean_lifetime = mean_lifetime;
-  s.activation_time = 0.1;
-  s.integrator = integrator;
-  s.seed = 11;
-  return s;
-}
 
 struct StepComparison {
   int agents = 0;

@@ -7,6 +7,7 @@
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 #include "reference/simulation.hpp"
+#include "model_scene.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -24,6 +25,8 @@
 namespace physarum {
 namespace {
 
+using testing::model_scene;
+
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 SurfaceDomain delaunay_domain(const std::string& spec) {
@@ -32,24 +35,6 @@ SurfaceDomain delaunay_domain(const std::string& spec) {
   return build_surface_domain(triangulation.snapshot());
 }
 
-Scene model_scene(int agents, double time_step, std::optional<double> mean_lifetime, Integrator integrator) {
-  Scene s;
-  s.agents = agents;
-  s.time_step = time_step;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * kDegree;
-  s.move_rate = 0.5;
-  s.turn_rate = 180.0 * kDegree;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 2.5;
-  s.diffuse_rate = 0.0002;
-  s.mean_lifetime = mean_lifetime;
-  s.activation_time = 0.1;
-  s.integrator = integrator;
-  s.seed = 11;
-  return s;
-}
 
 // Time average of the area-weighted mean over steps [first, last] of a run whose field starts at U.
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {

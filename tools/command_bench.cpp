@@ -355,11 +355,8 @@ int run_bench(const BenchOptions& o) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const Row& r : bench.rows()) rows.push_back(to_json(r));
   report["rows"] = rows;
+  create_output_folder(o.out);
   const std::filesystem::path out(o.out);
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec || !std::filesystem::is_directory(out))
-    throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
   std::ostringstream csv;
   csv << "sweep,surface,backend,agents,faces,vertices,seconds_per_step,agent_steps_per_second,"
          "crossings_per_agent_step,crossings_per_second\n";

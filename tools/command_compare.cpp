@@ -310,11 +310,8 @@ int run_compare(const CompareOptions& o) {
   std::cout << text;
 
   if (!o.out.empty()) {
+    create_output_folder(o.out);
     const std::filesystem::path out(o.out);
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec || !std::filesystem::is_directory(out))
-      throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
     write_text_file_atomically((out / "verdict.json").string(), text);
     std::ostringstream csv;
     csv << "backend,seed_index";

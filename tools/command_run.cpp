@@ -136,11 +136,8 @@ int run_run(const RunOptions& o) {
   const FieldStatistics final_stats = simulation.field_statistics(U);
 
   // ---- outputs ----
+  create_output_folder(o.out);
   const std::filesystem::path out(o.out);
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec || !std::filesystem::is_directory(out))
-    throw InputError("--out " + o.out + ": cannot create the output folder (" + ec.message() + ")");
 
   const std::vector<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, simulation.concentration_values());
   // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs

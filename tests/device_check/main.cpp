@@ -7,6 +7,7 @@
 #include "common/field_statistics.hpp"
 #include "common/intrinsic_triangulation.hpp"
 #include "opencl/simulation.hpp"
+#include "model_scene.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "reference/simulation.hpp"
 
@@ -26,6 +27,8 @@ void check(bool ok, const std::string& what) {
   if (!ok) ++failures;
 }
 
+Scene scene(int agents, Integrator integrator) { return testing::model_scene(agents, 0.01, 0.5, integrator); }
+
 SurfaceDomain refined(const InputMesh& mesh, double max_circumradius) {
   IntrinsicTriangulation t(mesh);
   t.flip_to_delaunay();
@@ -35,24 +38,6 @@ SurfaceDomain refined(const InputMesh& mesh, double max_circumradius) {
   return build_surface_domain(t.snapshot());
 }
 
-Scene scene(int agents, Integrator integrator) {
-  Scene s;
-  s.agents = agents;
-  s.time_step = 0.01;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * 3.14159265358979 / 180.0;
-  s.move_rate = 0.5;
-  s.turn_rate = 3.14159265358979;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 2.5;
-  s.diffuse_rate = 0.0002;
-  s.mean_lifetime = 0.5;
-  s.activation_time = 0.1;
-  s.integrator = integrator;
-  s.seed = 11;
-  return s;
-}
 
 void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
   const Scene sc = scene(20000, integrator);
