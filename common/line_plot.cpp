@@ -153,22 +153,36 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
     }
   }
 
-  // Legend (top left, inside the plot area, on white), labels, title.
+  // Legend (inside the plot area, on white, in whichever top or bottom corner covers the fewest
+  // points), labels, title.
   int legend_width = 0;
   for (const PlotSeries& s : series) {
     const OIIO::ROI size = OIIO::ImageBufAlgo::text_size(s.label, 14, kFont);
     legend_width = std::max(legend_width, size.defined() ? size.width() : 8 * static_cast<int>(s.label.size()));
   }
   const int legend_height = 22 * static_cast<int>(series.size()) + 8;
-  OIIO::ImageBufAlgo::render_box(image, kLeft + 8, kTop + 8, kLeft + 52 + legend_width, kTop + 8 + legend_height, white,
-                                 true);
-  OIIO::ImageBufAlgo::render_box(image, kLeft + 8, kTop + 8, kLeft + 52 + legend_width, kTop + 8 + legend_height, grid);
-  int legend_y = kTop + 26;
+  const int box_w = 44 + legend_width;
+  int lx = kLeft + 8, ly = kTop + 8, fewest = -1;
+  for (int corner = 0; corner < 4; ++corner) {
+    const int x0 = corner % 2 == 0 ? kLeft + 8 : std::max(kLeft + 8, w - kRight - 8 - box_w);
+    const int y0 = corner < 2 ? kTop + 8 : h - kBottom - 8 - legend_height;
+    int covered = 0;
+    for (const PlotSeries& s : series)
+      for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+        if (!ax.drawable(s.x[i]) || !ay.drawable(s.y[i])) continue;
+        const double px = ax.pixel(s.x[i]), py = ay.pixel(s.y[i]);
+        covered += px >= x0 - 10 && px <= x0 + box_w + 10 && py >= y0 - 10 && py <= y0 + legend_height + 10;
+      }
+    if (fewest < 0 || covered < fewest) fewest = covered, lx = x0, ly = y0;
+  }
+  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, white, true);
+  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, grid);
+  int legend_y = ly + 18;
   for (const PlotSeries& s : series) {
     const OIIO::cspan<float> c(s.color.data(), 3);
-    OIIO::ImageBufAlgo::render_line(image, kLeft + 16, legend_y - 4, kLeft + 40, legend_y - 4, c);
-    OIIO::ImageBufAlgo::render_box(image, kLeft + 25, legend_y - 7, kLeft + 31, legend_y - 1, c, true);
-    text(image, kLeft + 46, legend_y + 1, s.label, 14, AX::Left, AY::Baseline);
+    OIIO::ImageBufAlgo::render_line(image, lx + 8, legend_y - 4, lx + 32, legend_y - 4, c);
+    OIIO::ImageBufAlgo::render_box(image, lx + 17, legend_y - 7, lx + 23, legend_y - 1, c, true);
+    text(image, lx + 38, legend_y + 1, s.label, 14, AX::Left, AY::Baseline);
     legend_y += 22;
   }
   text(image, (kLeft + w - kRight) / 2, h - 18, options.x_label, 16, AX::Center, AY::Baseline);

@@ -93,6 +93,9 @@ struct FaultCase {
   std::string fault, scene;
 };
 
+// Readable test names in ctest's listing instead of the struct's bytes.
+void PrintTo(const FaultCase& c, std::ostream* os) { *os << c.fault << " on " << c.scene; }
+
 class PlantedFault : public ::testing::TestWithParam<FaultCase> {};
 
 TEST_P(PlantedFault, IsRejected) {

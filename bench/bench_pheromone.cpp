@@ -1,0 +1,58 @@
+// The pheromone step alone (Eq. 6 forward Euler, Eq. 7 backward Euler), both backends side by side,
+// on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces. Counter: vertices per second, and
+// for forward Euler the fraction of a memory-bandwidth bound that reads ~104 bytes per vertex
+// (a CSR row of ~7 entries with its gathered values, two rates, u in and out).
+#include "bench/bench_support.hpp"
+#include "common/vertex_parameters.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/pheromone.hpp"
+#include "reference/pheromone.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace physarum::bench {
+namespace {
+
+const opencl::ComputeContext& compute() {
+  static const opencl::ComputeContext c = opencl::make_compute_context("");
+  return c;
+}
+
+enum Backend { kReference = 0, kOpenCL = 1 };
+
+void BM_PheromoneStep(benchmark::State& state) {
+  const auto backend = static_cast<Backend>(state.range(0));
+  const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
+  const SurfaceDomain* domain = scaled_domain("spot.obj", static_cast<double>(state.range(2)) / 10000.0);
+  if (!domain) {
+    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
+    return;
+  }
+  const Scene scene = bench_scene(0);
+  const VertexParameters params = VertexParameters::constant(scene, domain->vertex_count);
+  if (backend == kOpenCL) {
+    opencl::OpenCLPheromone field(compute(), *domain, params, integrator, scene.time_step);
+    field.fill(1.0);
+    for (auto _ : state) {
+      field.step();
+      compute().queue.finish();
+    }
+  } else {
+    ReferencePheromone field(*domain, params, integrator, scene.time_step);
+    field.fill(1.0);
+    for (auto _ : state) field.step();
+  }
+  state.SetLabel(backend == kOpenCL ? "opencl" : "reference");
+  state.counters["vertices_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
+  state.counters["vertices"] = domain->vertex_count;
+}
+
+// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}.
+BENCHMARK(BM_PheromoneStep)
+    ->ArgsProduct({{kReference, kOpenCL}, {0, 1}, {400, 150, 50, 25}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace physarum::bench
