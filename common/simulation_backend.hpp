@@ -1,7 +1,7 @@
 #pragma once
-// What every simulation backend offers (DESIGN.md, "Data flow": reference | opencl, same interface,
-// same Scene, same seed). `physarum run`, the differential harness and the benchmarks drive a
-// backend only through this interface, so a new backend plugs into all of them at once.
+// What every simulation backend offers (../shared/DESIGN.md, "Data flow": reference | opencl, same
+// interface, same Scene, same seed). `physarum run`, the differential harness and the benchmarks
+// drive a backend only through this interface, so a new backend plugs into all of them at once.
 #include "common/field_statistics.hpp"
 #include "common/scene.hpp"
 

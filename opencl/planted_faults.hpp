@@ -1,7 +1,7 @@
 #pragma once
 // Deliberate bugs the differential harness plants into the OpenCL kernels to prove it can reject a
-// wrong simulation (DESIGN.md, "Power"). Each is a -D flag that exists only in the build options of
-// a harness run: a normal build's kernels never see one.
+// wrong simulation (../shared/DESIGN.md, "Power"). Each is a -D flag that exists only in the build
+// options of a harness run: a normal build's kernels never see one.
 #include <string>
 #include <vector>
 
