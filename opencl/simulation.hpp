@@ -2,6 +2,8 @@
 // The OpenCL simulation of the extended slime-mold model (mirrors reference/simulation.hpp): the
 // same step, in the same order, on any OpenCL device.
 //
+//   0.   every sort_interval steps, agents are counting-sorted by face (kernels/agent_order.cl), a
+//        memory order only: results do not change
 //   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer, move + deposit, turnover
 //   4.   pheromone (opencl/pheromone.hpp) with this step's deposits: forward Euler steps the field
 //        and then adds them, backward Euler adds them and then solves, exactly as the reference
