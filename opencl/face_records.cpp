@@ -2,7 +2,9 @@
 
 #include "common/errors.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <string>
 
 namespace physarum::opencl {
@@ -27,6 +29,67 @@ FaceOrder locality_face_order(const SurfaceDomain& domain) {
     }
   }
   return order;
+}
+
+VertexOrder locality_vertex_order(const SurfaceDomain& domain, const FaceOrder& faces) {
+  const size_t n = static_cast<size_t>(domain.vertex_count);
+  VertexOrder order;
+  order.device_of_domain.assign(n, -1);
+  order.domain_of_device.reserve(n);
+  for (int f : faces.domain_of_device)
+    for (int v : domain.face_vertices[static_cast<size_t>(f)])
+      if (order.device_of_domain[static_cast<size_t>(v)] < 0) {
+        order.device_of_domain[static_cast<size_t>(v)] = static_cast<int>(order.domain_of_device.size());
+        order.domain_of_device.push_back(v);
+      }
+  for (size_t v = 0; v < n; ++v)  // vertices on no face (none in a valid domain), kept at the end
+    if (order.device_of_domain[v] < 0) {
+      order.device_of_domain[v] = static_cast<int>(order.domain_of_device.size());
+      order.domain_of_device.push_back(static_cast<int>(v));
+    }
+  return order;
+}
+
+SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& order) {
+  SurfaceDomain d = domain;
+  for (auto& corners : d.face_vertices)
+    for (int& v : corners) v = order.device_of_domain[static_cast<size_t>(v)];
+  for (size_t i = 0; i < order.domain_of_device.size(); ++i) {
+    const size_t from = static_cast<size_t>(order.domain_of_device[i]);
+    d.vertex_mass[i] = domain.vertex_mass[from];
+    d.vertex_location[i] = domain.vertex_location[from];
+  }
+  // L' = P L P^T: row i' = row of domain vertex domain_of_device[i'], columns renamed.
+  const CsrMatrix& L = domain.laplacian;
+  CsrMatrix& R = d.laplacian;
+  R.row_start.assign(1, 0);
+  R.column.clear();
+  R.value.clear();
+  for (int from : order.domain_of_device) {
+    std::vector<std::pair<int, double>> row;
+    for (int k = L.row_start[static_cast<size_t>(from)]; k < L.row_start[static_cast<size_t>(from) + 1]; ++k)
+      row.emplace_back(order.device_of_domain[static_cast<size_t>(L.column[static_cast<size_t>(k)])],
+                       L.value[static_cast<size_t>(k)]);
+    std::sort(row.begin(), row.end());
+    for (const auto& [column, value] : row) {
+      R.column.push_back(column);
+      R.value.push_back(value);
+    }
+    R.row_start.push_back(static_cast<int>(R.column.size()));
+  }
+  return d;
+}
+
+std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order) {
+  std::vector<double> out(domain_values.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = domain_values[static_cast<size_t>(order.domain_of_device[i])];
+  return out;
+}
+
+std::vector<double> to_domain_order(const std::vector<double>& device_values, const VertexOrder& order) {
+  std::vector<double> out(device_values.size());
+  for (size_t i = 0; i < out.size(); ++i) out[static_cast<size_t>(order.domain_of_device[i])] = device_values[i];
+  return out;
 }
 
 std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, const FaceOrder& order) {

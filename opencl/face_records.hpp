@@ -27,6 +27,23 @@ struct FaceOrder {
 // connected component; a permutation of 0..F-1.
 FaceOrder locality_face_order(const SurfaceDomain& domain);
 
+// Vertices in the order the faces (in `faces` order) first touch them: the concentration a sensor
+// reads and the deposits an agent makes then land near the face records it just read, instead of
+// wherever the input file or the refinement happened to number the vertex.
+struct VertexOrder {
+  std::vector<int> device_of_domain;
+  std::vector<int> domain_of_device;
+};
+VertexOrder locality_vertex_order(const SurfaceDomain& domain, const FaceOrder& faces);
+
+// The domain with its vertices renumbered (face vertices, masses, locations, Laplacian rows and
+// columns); faces keep their domain order. What the device's pheromone field is built from.
+SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& order);
+
+// Per-vertex values between the two numberings.
+std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order);
+std::vector<double> to_domain_order(const std::vector<double>& device_values, const VertexOrder& order);
+
 // One record per face, in device order (neighbour indices are device indices too). Throws
 // InputError when a face is degenerate in float32 (its layout must have x1 > 0 and y2 > 0).
 std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, const FaceOrder& order);

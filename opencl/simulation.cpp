@@ -65,10 +65,22 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
 
+  // ---- the device's locality order of faces and vertices (face_records.hpp) ----
+  face_order_ = locality_face_order(domain);
+  vertex_order_ = locality_vertex_order(domain, face_order_);
+  device_domain_ = renumber_vertices(domain, vertex_order_);
+  VertexParameters device_params = params;
+  for (std::vector<double>* field :
+       {&device_params.diffuse_rate, &device_params.decay_rate, &device_params.sensor_distance,
+        &device_params.sensor_angle, &device_params.move_rate, &device_params.turn_rate,
+        &device_params.turn_frequency, &device_params.deposit_rate, &device_params.mean_lifetime,
+        &device_params.activation_time})
+    *field = to_device_order(*field, vertex_order_);
+
   // ---- parameters per vertex, and whether they are all one value ----
-  const std::vector<double> hazard = hazard_rate_per_vertex(params.mean_lifetime);
+  const std::vector<double> hazard = hazard_rate_per_vertex(device_params.mean_lifetime);
   std::vector<PhysarumAgentParameters> vertex_parameters(nv);
-  for (size_t i = 0; i < nv; ++i) vertex_parameters[i] = parameters_of_vertex(params, hazard, i);
+  for (size_t i = 0; i < nv; ++i) vertex_parameters[i] = parameters_of_vertex(device_params, hazard, i);
   bool uniform = true;
   for (const std::vector<double>* field : {&params.sensor_distance, &params.sensor_angle, &params.move_rate,
                                            &params.turn_rate, &params.turn_frequency, &params.deposit_rate,
@@ -133,15 +145,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  face_order_ = locality_face_order(domain);
-  faces_ = upload_buffer(compute, "face records", build_face_records(domain, face_order_), kRead, false);
+  faces_ = upload_buffer(compute, "face records", build_face_records(device_domain_, face_order_), kRead, false);
   device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
   vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
   std::vector<float> inverse_mass(nv);
-  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / domain.vertex_mass[i]);
+  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / device_domain_.vertex_mass[i]);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", inverse_mass, kRead, false);
   deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
                               CL_MEM_READ_WRITE, true);
@@ -154,8 +165,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   }
   OpenCLPheromoneOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
-  pheromone_ = std::make_unique<OpenCLPheromone>(compute, domain, params, settings.integrator, settings.time_step,
-                                                 pheromone_options);
+  pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain_, device_params, settings.integrator,
+                                                 settings.time_step, pheromone_options);
 
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
@@ -254,6 +265,17 @@ void OpenCLSimulation::step() {
 }
 
 void OpenCLSimulation::finish() { compute_.queue.finish(); }
+
+std::vector<double> OpenCLSimulation::concentration_values() const {
+  return to_domain_order(pheromone_->concentration(), vertex_order_);
+}
+
+void OpenCLSimulation::set_concentration(const std::vector<double>& domain_values) {
+  if (domain_values.size() != static_cast<size_t>(domain_.vertex_count))
+    throw InputError("opencl simulation: set_concentration got " + std::to_string(domain_values.size()) +
+                     " values for " + std::to_string(domain_.vertex_count) + " vertices");
+  pheromone_->set_concentration(to_device_order(domain_values, vertex_order_));
+}
 
 // The device keeps faces in its locality order (face_records.hpp); the host sees domain faces.
 std::vector<int> OpenCLSimulation::agent_faces() const {

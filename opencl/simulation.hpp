@@ -63,7 +63,9 @@ class OpenCLSimulation final : public SimulationBackend {
 
   double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
   long long steps_taken() const override { return steps_taken_; }
-  std::vector<double> concentration_values() const override { return pheromone_->concentration(); }
+  // The field in the domain's vertex order (the device keeps its own locality order).
+  std::vector<double> concentration_values() const override;
+  void set_concentration(const std::vector<double>& domain_values);
   void fill_concentration(double value) override { pheromone_->fill(value); }
   FieldStatistics field_statistics(double U) const override { return pheromone_->statistics(U); }
   std::vector<int> agent_faces() const override;
@@ -74,6 +76,8 @@ class OpenCLSimulation final : public SimulationBackend {
   // ---- for tests: identical states in, identical states out ----
   Agents read_agents() const;
   void write_agents(const Agents& agents);
+  // The device field itself, in the device's vertex order (face_records.hpp): for order-free uses
+  // (fill, total_amount); per-vertex values go through concentration_values / set_concentration.
   OpenCLPheromone& pheromone() { return *pheromone_; }
   const OpenCLPheromone& pheromone() const { return *pheromone_; }
   double deposit_scale() const { return deposit_scale_; }
@@ -92,6 +96,8 @@ class OpenCLSimulation final : public SimulationBackend {
   SimulationSettings settings_;
   int sort_interval_ = 0;
   FaceOrder face_order_;
+  VertexOrder vertex_order_;
+  SurfaceDomain device_domain_;  // the domain with vertices in vertex_order_
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
   std::unique_ptr<OpenCLPheromone> pheromone_;

@@ -65,9 +65,9 @@ StepComparison compare_one_step(const SurfaceDomain& domain, const Scene& scene,
   options.build_options = fault_build_option(fault);
   OpenCLSimulation device(compute(), domain, scene, options);
   device.write_agents(developed.agents());
-  device.pheromone().set_concentration(developed.concentration());
+  device.set_concentration(developed.concentration());
   const Agents start = device.read_agents();  // float-rounded: the common starting point
-  const std::vector<double> field = device.pheromone().concentration();
+  const std::vector<double> field = device.concentration_values();
 
   ReferenceSimulation reference(domain, scene);
   reference.agents() = start;
@@ -98,7 +98,7 @@ StepComparison compare_one_step(const SurfaceDomain& domain, const Scene& scene,
       c.worst_position = std::max(c.worst_position, dp);
     }
   }
-  const std::vector<double> ur = reference.concentration(), uo = device.pheromone().concentration();
+  const std::vector<double> ur = reference.concentration(), uo = device.concentration_values();
   double scale = 0.0, err = 0.0;
   for (size_t i = 0; i < ur.size(); ++i) {
     scale = std::max(scale, std::abs(ur[i]));

@@ -45,11 +45,11 @@ void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const 
   developed.run(60);
   OpenCLSimulation device(compute, domain, sc);
   device.write_agents(developed.agents());
-  device.pheromone().set_concentration(developed.concentration());
+  device.set_concentration(developed.concentration());
   const Agents start = device.read_agents();
   ReferenceSimulation reference(domain, sc);
   reference.agents() = start;
-  reference.pheromone().set_concentration(device.pheromone().concentration());
+  reference.pheromone().set_concentration(device.concentration_values());
   reference.step();
   device.step();
   const Agents a = reference.agents(), b = device.read_agents();
