@@ -2,7 +2,7 @@
 // on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces. Counter: vertices per second, and
 // for forward Euler the fraction of a memory-bandwidth bound that reads ~104 bytes per vertex
 // (a CSR row of ~7 entries with its gathered values, two rates, u in and out).
-#include "bench/bench_support.hpp"
+#include "bench/bench_backends.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/pheromone.hpp"
@@ -13,21 +13,11 @@
 namespace physarum::bench {
 namespace {
 
-const opencl::ComputeContext& compute() {
-  static const opencl::ComputeContext c = opencl::make_compute_context("");
-  return c;
-}
-
-enum Backend { kReference = 0, kOpenCL = 1 };
-
 void BM_PheromoneStep(benchmark::State& state) {
   const auto backend = static_cast<Backend>(state.range(0));
   const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
-  const SurfaceDomain* domain = scaled_domain("spot.obj", static_cast<double>(state.range(2)) / 10000.0);
-  if (!domain) {
-    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
-    return;
-  }
+  const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
+  if (!domain) return;
   const Scene scene = bench_scene(0);
   const VertexParameters params = VertexParameters::constant(scene, domain->vertex_count);
   if (backend == kOpenCL) {

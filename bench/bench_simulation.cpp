@@ -3,7 +3,7 @@
 // resolutions from 6k to 800k faces, 1e4 .. 1e6 agents. The domain is built once and
 // not timed; each benchmark first takes a few steps so there is pheromone to sense. Counters: agent
 // steps per second, face crossings (movement + sensors) per agent step and per second.
-#include "bench/bench_support.hpp"
+#include "bench/bench_backends.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
@@ -15,22 +15,11 @@
 namespace physarum::bench {
 namespace {
 
-const opencl::ComputeContext& compute() {
-  static const opencl::ComputeContext c = opencl::make_compute_context("");
-  return c;
-}
-
-enum Backend { kReference = 0, kOpenCL = 1 };
-
 void BM_SimulationStep(benchmark::State& state) {
   const auto backend = static_cast<Backend>(state.range(0));
-  const double max_circumradius = static_cast<double>(state.range(1)) / 10000.0;
   const int agents = static_cast<int>(state.range(2));
-  const SurfaceDomain* domain = scaled_domain("spot.obj", max_circumradius);
-  if (!domain) {
-    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
-    return;
-  }
+  const SurfaceDomain* domain = spot_or_skip(state, state.range(1));
+  if (!domain) return;
   std::unique_ptr<SimulationBackend> sim;
   if (backend == kOpenCL) sim = std::make_unique<opencl::OpenCLSimulation>(compute(), *domain, bench_scene(agents));
   else sim = std::make_unique<ReferenceSimulation>(*domain, bench_scene(agents));

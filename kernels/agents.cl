@@ -40,13 +40,6 @@ float2 face_corner2(__global const PhysarumFaceRecord* faces, const int face) {
   return (float2)(faces[face].shear * x1 * y2, y2);
 }
 
-float interpolate_vertex_field(__global const PhysarumFaceRecord* faces, __global const float* values, const int face,
-                               const float2 p) {
-  const float3 b = barycentric_in_face(faces, face, p);
-  return b.x * values[faces[face].vertex[0]] + b.y * values[faces[face].vertex[1]] +
-         b.z * values[faces[face].vertex[2]];
-}
-
 PhysarumAgentParameters blend_parameters(const PhysarumAgentParameters a, const PhysarumAgentParameters b,
                                          const PhysarumAgentParameters c, const float3 w) {
   PhysarumAgentParameters r;

@@ -10,11 +10,11 @@ TraceEnd move_agent(__global const PhysarumFaceRecord* faces, const int face, co
                     __global PhysarumDepositCell* deposits, const float deposit_scale) {
 #ifdef PHYSARUM_FAULT_DEPOSIT_ENDPOINT
   /* planted fault: the whole deposit at the end of the step instead of along the path */
-  const TraceEnd end = trace_walk(faces, face, position, heading, distance, 1, 0.0f, 0, deposit_scale);
+  const TraceEnd end = trace_walk(faces, face, position, heading, distance, 0.0f, 0, deposit_scale);
   if (deposit_amount != 0.0f) deposit_at_barycentric(faces, end.face, end.barycentric, deposit_amount, deposits, deposit_scale);
   return end;
 #else
-  return trace_walk(faces, face, position, heading, distance, 1, deposit_amount, deposits, deposit_scale);
+  return trace_walk(faces, face, position, heading, distance, deposit_amount, deposits, deposit_scale);
 #endif
 }
 

@@ -191,15 +191,15 @@ TraceEnd walk_end(__global const PhysarumFaceRecord* faces, const Walker* w) {
  * != 0 each piece deposits deposit_amount * (piece length / length) at its midpoint (the whole
  * amount at the end point when length is 0). */
 TraceEnd trace_walk(__global const PhysarumFaceRecord* faces, const int face, const float2 p, const float2 d,
-                    const float length, const int reflect, const float deposit_amount,
-                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
+                    const float length, const float deposit_amount, __global PhysarumDepositCell* deposits,
+                    const float deposit_scale) {
   Walker w = walk_start(faces, face, p, d, length);
   const float per_length = w.remaining > 0.0f ? deposit_amount / w.remaining : 0.0f;
   for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && w.state == WALKING; ++step) {
     int piece_face;
     float3 from, to;
     float piece_length;
-    walk_step(faces, &w, reflect, &piece_face, &from, &to, &piece_length);
+    walk_step(faces, &w, 1, &piece_face, &from, &to, &piece_length);
     if (deposit_amount == 0.0f) continue;
     if (!(length > 0.0f)) deposit_at_barycentric(faces, piece_face, to, deposit_amount, deposits, deposit_scale);
     else if (piece_length > 0.0f)

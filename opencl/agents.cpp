@@ -100,7 +100,10 @@ std::vector<int> DeviceAgents::download_faces(const ComputeContext& compute) con
   const std::vector<cl_uint> ids = read_all<cl_uint>(compute, id, count);
   const std::vector<cl_int> f = read_all<cl_int>(compute, face, count);
   std::vector<int> out(static_cast<size_t>(count));
-  for (size_t i = 0; i < f.size(); ++i) out[ids[i]] = f[i];
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (ids[i] >= static_cast<cl_uint>(count)) throw DeviceError("opencl agents: the device returned agent id " + std::to_string(ids[i]));
+    out[ids[i]] = f[i];
+  }
   return out;
 }
 

@@ -68,7 +68,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   // ---- the device's locality order of faces and vertices (face_records.hpp) ----
   face_order_ = locality_face_order(domain);
   vertex_order_ = locality_vertex_order(domain, face_order_);
-  device_domain_ = renumber_vertices(domain, vertex_order_);
+  // The domain with vertices in device order: what the face records and the field are built from
+  // (needed only here; the buffers keep what the kernels read).
+  const SurfaceDomain device_domain = renumber_vertices(domain, vertex_order_);
   VertexParameters device_params = params;
   for (std::vector<double>* field :
        {&device_params.diffuse_rate, &device_params.decay_rate, &device_params.sensor_distance,
@@ -131,7 +133,6 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     kernels_->scatter = cl::Kernel(program, "agent_scatter");
     scan_group_ = work_group_size(kernels_->bin_offsets, compute.device, 256, sizeof(cl_uint));
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
-    agent_group_ = std::max<std::size_t>(agent_group_, 1);
     vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
   } catch (const cl::Error& e) {
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
@@ -145,14 +146,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  faces_ = upload_buffer(compute, "face records", build_face_records(device_domain_, face_order_), kRead, false);
+  faces_ = upload_buffer(compute, "face records", build_face_records(device_domain, face_order_), kRead, false);
   device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
   vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
   std::vector<float> inverse_mass(nv);
-  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / device_domain_.vertex_mass[i]);
+  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / device_domain.vertex_mass[i]);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", inverse_mass, kRead, false);
   deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
                               CL_MEM_READ_WRITE, true);
@@ -165,7 +166,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   }
   OpenCLPheromoneOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
-  pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain_, device_params, settings.integrator,
+  pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain, device_params, settings.integrator,
                                                  settings.time_step, pheromone_options);
 
   try {

@@ -97,7 +97,6 @@ class OpenCLSimulation final : public SimulationBackend {
   int sort_interval_ = 0;
   FaceOrder face_order_;
   VertexOrder vertex_order_;
-  SurfaceDomain device_domain_;  // the domain with vertices in vertex_order_
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
   std::unique_ptr<OpenCLPheromone> pheromone_;

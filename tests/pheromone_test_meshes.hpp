@@ -1,6 +1,6 @@
 #pragma once
-// Small meshes built inline for the pheromone / statistics / output tests, so those tests depend
-// only on the finite-element assembly and not on mesh loading or intrinsic refinement.
+// Small meshes built inline for the tests, so they depend only on the code under test and not on
+// mesh loading or intrinsic refinement.
 #include "common/fe_operators.hpp"
 #include "common/input_mesh.hpp"
 #include "common/intrinsic_mesh.hpp"
@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <map>
+#include <random>
 #include <utility>
 
 namespace physarum::testing {
@@ -56,17 +57,32 @@ inline InputMesh make_icosphere(int levels) {
   return mesh;
 }
 
-// Flat unit square [0,1]^2 in z = 0 with n x n cells, each cut into two triangles (CCW seen from +z).
-inline InputMesh make_square_grid(int n) {
+// Flat unit square [0,1]^2 in z = 0 with n x n cells, each cut into two triangles (CCW seen from
+// +z): all along the same diagonal, or along alternating diagonals when `alternating`. Interior
+// vertices are optionally jittered in the plane by up to jitter / n in x and y (uniform, from
+// `seed`), which keeps the mesh flat and valid for jitter < 0.5.
+inline InputMesh make_square_grid(int n, bool alternating = false, double jitter = 0.0, unsigned seed = 1) {
   InputMesh mesh;
   mesh.source = "inline square";
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) mesh.positions.emplace_back(double(i) / n, double(j) / n, 0.0);
+    for (int i = 0; i <= n; ++i) {
+      Eigen::Vector3d p(double(i) / n, double(j) / n, 0.0);
+      if (jitter > 0.0 && i > 0 && i < n && j > 0 && j < n) p += Eigen::Vector3d(u(rng), u(rng), 0.0) / n;
+      mesh.positions.push_back(p);
+    }
   auto id = [n](int i, int j) { return j * (n + 1) + i; };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (!alternating || (i + j) % 2 == 0) {
+        mesh.triangles.push_back({a, b, c});
+        mesh.triangles.push_back({a, c, d});
+      } else {
+        mesh.triangles.push_back({a, b, d});
+        mesh.triangles.push_back({b, c, d});
+      }
     }
   for (int v = 0; v < mesh.vertex_count(); ++v) mesh.file_vertex.push_back(v);
   return mesh;

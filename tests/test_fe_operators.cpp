@@ -8,6 +8,7 @@
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
+#include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,26 +19,6 @@
 
 namespace physarum {
 namespace {
-
-InputMesh jittered_flat_grid(int n, double jitter, unsigned seed) {
-  InputMesh m;
-  m.source = "test:grid";
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      Eigen::Vector3d p(double(i) / n, double(j) / n, 0.0);
-      if (i > 0 && i < n && j > 0 && j < n) p += Eigen::Vector3d(u(rng), u(rng), 0.0) / n;
-      m.positions.push_back(p);
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-      m.triangles.push_back({a, b, c});
-      m.triangles.push_back({a, c, d});
-    }
-  return m;
-}
 
 // sum over faces of area * |grad u|^2, the Dirichlet energy (times two) computed from face layouts.
 double dirichlet_energy(const SurfaceDomain& d, const std::vector<double>& u) {
@@ -56,7 +37,7 @@ double quadratic_form(const SurfaceDomain& d, const std::vector<double>& u) {
 }
 
 TEST(FeOperators, GradientOfALinearFunctionIsExact) {
-  const InputMesh input = jittered_flat_grid(5, 0.4, 11);
+  const InputMesh input = testing::make_square_grid(5, false, 0.4, 11);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
   std::vector<double> u(d.vertex_count);
   for (int v = 0; v < d.vertex_count; ++v) u[v] = 2.0 * input.positions[v].x() - 3.0 * input.positions[v].y() + 1.0;
@@ -76,7 +57,7 @@ TEST(FeOperators, GradientOfALinearFunctionIsExact) {
 TEST(FeOperators, LaplacianQuadraticFormIsTheDirichletEnergy) {
   std::mt19937 rng(5);
   std::normal_distribution<double> normal;
-  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(jittered_flat_grid(6, 0.45, 2)));
+  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(testing::make_square_grid(6, false, 0.45, 2)));
   for (int trial = 0; trial < 3; ++trial) {
     std::vector<double> u(d.vertex_count);
     for (double& x : u) x = normal(rng);

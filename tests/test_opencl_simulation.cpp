@@ -16,6 +16,7 @@
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 #include "model_scene.hpp"
+#include "one_step_comparison.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -44,68 +45,14 @@ SurfaceDomain delaunay_domain(const std::string& spec) {
   return build_surface_domain(triangulation.snapshot());
 }
 
+using testing::StepComparison;
 
-struct StepComparison {
-  int agents = 0;
-  int mismatched = 0;
-  double worst_position = 0.0;
-  double field_error = 0.0;  // max |u_ocl - u_ref| / max |u_ref|
-  std::string first_mismatch;
-};
-
-// Develops a pattern with the reference for `warmup` steps (so clocks, ages and the field are those
-// of a running simulation), hands the device's float copy of that state to BOTH backends and takes
-// one step on each.
 StepComparison compare_one_step(const SurfaceDomain& domain, const Scene& scene, int warmup,
                                 const std::string& fault = "") {
-  ReferenceSimulation developed(domain, scene);
-  developed.run(warmup);
-
   OpenCLSimulationOptions options;
   options.build_options = fault_build_option(fault);
-  OpenCLSimulation device(compute(), domain, scene, options);
-  device.write_agents(developed.agents());
-  device.set_concentration(developed.concentration());
-  const Agents start = device.read_agents();  // float-rounded: the common starting point
-  const std::vector<double> field = device.concentration_values();
-
-  ReferenceSimulation reference(domain, scene);
-  reference.agents() = start;
-  reference.pheromone().set_concentration(field);
-
-  reference.step();
-  device.step();
-  const Agents a = reference.agents();
-  const Agents b = device.read_agents();
-
-  StepComparison c;
-  c.agents = a.count();
-  for (int i = 0; i < a.count(); ++i) {
-    const double dp = (a.position[i] - b.position[i]).norm();
-    const double dh = (a.heading[i] - b.heading[i]).norm();
-    const double dclock = std::abs(a.time_since_decision[i] - b.time_since_decision[i]) +
-                          std::abs(a.accumulated_turn[i] - b.accumulated_turn[i]);
-    const double dage = std::abs(a.age[i] - b.age[i]) + std::abs(a.exposure[i] - b.exposure[i]) +
-                        std::abs(a.exposure_threshold[i] - b.exposure_threshold[i]);
-    const bool same = a.face[i] == b.face[i] && dp <= 1e-5 && dh <= 1e-5 && dclock <= 1e-5 && dage <= 1e-5;
-    if (!same) {
-      ++c.mismatched;
-      if (c.first_mismatch.empty())
-        c.first_mismatch = "agent " + std::to_string(i) + ": face " + std::to_string(a.face[i]) + " vs " +
-                           std::to_string(b.face[i]) + ", |dp| " + std::to_string(dp) + ", |dh| " +
-                           std::to_string(dh) + ", clock " + std::to_string(dclock) + ", age " + std::to_string(dage);
-    } else {
-      c.worst_position = std::max(c.worst_position, dp);
-    }
-  }
-  const std::vector<double> ur = reference.concentration(), uo = device.concentration_values();
-  double scale = 0.0, err = 0.0;
-  for (size_t i = 0; i < ur.size(); ++i) {
-    scale = std::max(scale, std::abs(ur[i]));
-    err = std::max(err, std::abs(ur[i] - uo[i]));
-  }
-  c.field_error = err / scale;
-  EXPECT_TRUE(device.damaged_canaries().empty());
+  const StepComparison c = testing::compare_one_step(compute(), domain, scene, warmup, options);
+  EXPECT_FALSE(c.canaries_damaged);
   return c;
 }
 

@@ -7,6 +7,7 @@
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
+#include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,66 +21,8 @@
 namespace physarum {
 namespace {
 
-// Unit square [0,1]^2 split into n x n cells, each cut along a diagonal (alternating when `mixed`),
-// interior vertices optionally jittered within the plane (the mesh stays flat and valid).
-InputMesh flat_grid(int n, bool mixed, double jitter = 0.0, unsigned seed = 1) {
-  InputMesh m;
-  m.source = "test:grid";
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      Eigen::Vector3d p(double(i) / n, double(j) / n, 0.0);
-      if (i > 0 && i < n && j > 0 && j < n) p += Eigen::Vector3d(u(rng), u(rng), 0.0) / n;
-      m.positions.push_back(p);
-    }
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if (!mixed || (i + j) % 2 == 0) {
-        m.triangles.push_back({a, b, c});
-        m.triangles.push_back({a, c, d});
-      } else {
-        m.triangles.push_back({a, b, d});
-        m.triangles.push_back({b, c, d});
-      }
-    }
-  return m;
-}
-
-// Icosahedron subdivided `levels` times, projected onto the unit sphere.
-InputMesh icosphere(int levels) {
-  InputMesh m;
-  m.source = "test:icosphere";
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  for (auto& p : v) m.positions.push_back(Eigen::Vector3d(p[0], p[1], p[2]).normalized());
-  m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<int, int>, int> midpoint;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      auto it = midpoint.find(key);
-      if (it != midpoint.end()) return it->second;
-      m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-      return midpoint[key] = m.vertex_count() - 1;
-    };
-    std::vector<std::array<int, 3>> next;
-    for (const auto& f : m.triangles) {
-      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
-      next.push_back({f[0], ab, ca});
-      next.push_back({f[1], bc, ab});
-      next.push_back({f[2], ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    m.triangles = std::move(next);
-  }
-  return m;
-}
+using testing::make_icosphere;
+using testing::make_square_grid;
 
 double extrinsic_area(const InputMesh& m) {
   double a = 0.0;
@@ -89,7 +32,7 @@ double extrinsic_area(const InputMesh& m) {
 }
 
 TEST(SurfaceDomain, LayoutsReproduceEdgeLengthsAndAreCounterClockwise) {
-  const IntrinsicMesh mesh = intrinsic_mesh_from_input(icosphere(2));
+  const IntrinsicMesh mesh = intrinsic_mesh_from_input(make_icosphere(2));
   const SurfaceDomain d = build_surface_domain(mesh);
   ASSERT_EQ(d.face_count, mesh.face_count());
   for (int f = 0; f < d.face_count; ++f) {
@@ -105,7 +48,7 @@ TEST(SurfaceDomain, LayoutsReproduceEdgeLengthsAndAreCounterClockwise) {
 }
 
 TEST(SurfaceDomain, TransitionsCarrySharedEdgesOntoTheNeighbour) {
-  for (const InputMesh& input : {icosphere(2), flat_grid(6, true, 0.3)}) {
+  for (const InputMesh& input : {make_icosphere(2), make_square_grid(6, true, 0.3)}) {
     const IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
     const SurfaceDomain d = build_surface_domain(mesh);
     int interior = 0;
@@ -138,7 +81,7 @@ TEST(SurfaceDomain, TransitionsCarrySharedEdgesOntoTheNeighbour) {
 }
 
 TEST(SurfaceDomain, AreasAndMassSumToTheSurfaceArea) {
-  for (const InputMesh& input : {icosphere(3), flat_grid(5, false, 0.3)}) {
+  for (const InputMesh& input : {make_icosphere(3), make_square_grid(5, false, 0.3)}) {
     const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
     double face_sum = 0.0, mass_sum = 0.0;
     for (double a : d.face_area) face_sum += a;
@@ -149,14 +92,14 @@ TEST(SurfaceDomain, AreasAndMassSumToTheSurfaceArea) {
     EXPECT_NEAR(mass_sum, expected, 1e-12 * expected);
   }
   // The flat unit square has area exactly 1; a corner vertex with one incident face gets 1/3 of it.
-  const SurfaceDomain square = build_surface_domain(intrinsic_mesh_from_input(flat_grid(4, false)));
+  const SurfaceDomain square = build_surface_domain(intrinsic_mesh_from_input(make_square_grid(4, false)));
   EXPECT_NEAR(square.total_area, 1.0, 1e-14);
   EXPECT_NEAR(square.vertex_mass[4], (1.0 / 32.0) / 3.0, 1e-16);  // corner (1, 0): one face of area 1/32
 }
 
 TEST(SurfaceDomain, LaplacianIsSymmetricWithZeroRowSumsAndPositiveSemiDefinite) {
   // The jittered mixed grid has obtuse triangles, hence negative edge weights: PSD must still hold.
-  for (const InputMesh& input : {icosphere(1), flat_grid(6, true, 0.45, 7)}) {
+  for (const InputMesh& input : {make_icosphere(1), make_square_grid(6, true, 0.45, 7)}) {
     const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
     const Eigen::MatrixXd l = Eigen::MatrixXd(d.laplacian.to_eigen());
     ASSERT_EQ(l.rows(), d.vertex_count);
@@ -279,7 +222,7 @@ TEST(SurfaceDomain, LaplacianInvariantsHoldOnRefinedIntrinsicTriangulations) {
 
 TEST(SurfaceDomain, LaplacianHasLinearPrecisionOnFlatMeshes) {
   // Any planar mesh, however irregular: L applied to a linear function vanishes at interior vertices.
-  for (const InputMesh& input : {flat_grid(8, false), flat_grid(8, true, 0.4, 3)}) {
+  for (const InputMesh& input : {make_square_grid(8, false), make_square_grid(8, true, 0.4, 3)}) {
     const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(input));
     std::vector<double> u(d.vertex_count), lu;
     for (int v = 0; v < d.vertex_count; ++v) u[v] = 2.0 * input.positions[v].x() - 3.0 * input.positions[v].y() + 0.5;
@@ -299,7 +242,7 @@ TEST(SurfaceDomain, LaplacianMatchesTheKnownStencilOnARegularGrid) {
   // Right isosceles triangles with all diagonals parallel: the cotan Laplacian is the 5-point
   // stencil (diagonal edges have weight 0, axis edges weight 1), independent of the cell size.
   const int n = 4;
-  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(flat_grid(n, false)));
+  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(make_square_grid(n, false)));
   const Eigen::MatrixXd l = Eigen::MatrixXd(d.laplacian.to_eigen());
   const int centre = 2 * (n + 1) + 2;
   EXPECT_NEAR(l(centre, centre), 4.0, 1e-12);
@@ -309,7 +252,7 @@ TEST(SurfaceDomain, LaplacianMatchesTheKnownStencilOnARegularGrid) {
 }
 
 TEST(SurfaceDomain, BarycentricCoordinatesOfCornersAndCentroid) {
-  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(icosphere(1)));
+  const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(make_icosphere(1)));
   for (int f = 0; f < d.face_count; f += 7) {
     const auto& c = d.face_corners[f];
     for (int k = 0; k < 3; ++k) {
@@ -322,7 +265,7 @@ TEST(SurfaceDomain, BarycentricCoordinatesOfCornersAndCentroid) {
 }
 
 TEST(SurfaceDomain, FaceSamplerIsProportionalToAreaTimesWeight) {
-  const InputMesh input = flat_grid(2, false, 0.0);
+  const InputMesh input = make_square_grid(2, false, 0.0);
   const IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
   std::vector<double> weight(mesh.face_count(), 1.0);
   weight[0] = 0.0;
@@ -343,7 +286,7 @@ TEST(SurfaceDomain, FaceSamplerIsProportionalToAreaTimesWeight) {
 }
 
 TEST(SurfaceDomain, RejectsImpossibleTrianglesNamingTheFace) {
-  IntrinsicMesh mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  IntrinsicMesh mesh = intrinsic_mesh_from_input(make_square_grid(2, false));
   mesh.edge_lengths[5] = {1.0, 1.0, 2.5};  // violates the triangle inequality
   try {
     build_surface_domain(mesh);
@@ -351,10 +294,10 @@ TEST(SurfaceDomain, RejectsImpossibleTrianglesNamingTheFace) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("face 5"), std::string::npos) << e.what();
   }
-  mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  mesh = intrinsic_mesh_from_input(make_square_grid(2, false));
   mesh.edge_lengths[3] = {1.0, 0.5, 0.5};  // degenerate: zero area
   EXPECT_THROW(build_surface_domain(mesh), InputError);
-  mesh = intrinsic_mesh_from_input(flat_grid(2, false));
+  mesh = intrinsic_mesh_from_input(make_square_grid(2, false));
   mesh.edge_lengths[1][0] = 0.0;
   EXPECT_THROW(build_surface_domain(mesh), InputError);
 }

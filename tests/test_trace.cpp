@@ -7,6 +7,7 @@
 #include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
+#include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,26 +21,6 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-// Unit square [0,1]^2 in the z = 0 plane, n x n cells cut along alternating diagonals.
-InputMesh unit_square(int n) {
-  InputMesh m;
-  m.source = "test:square";
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) m.positions.emplace_back(double(i) / n, double(j) / n, 0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-      if ((i + j) % 2 == 0) {
-        m.triangles.push_back({a, b, c});
-        m.triangles.push_back({a, c, d});
-      } else {
-        m.triangles.push_back({a, b, d});
-        m.triangles.push_back({b, c, d});
-      }
-    }
-  return m;
-}
 
 // The side of a regular octagonal prism (circumradius 1, height h): an open band, flat when unrolled.
 constexpr int kSides = 8;
@@ -143,7 +124,7 @@ Walk walk(const InputMesh& m, const SurfaceDomain& d, const Vector3d& start, con
 Vector3d planar(double angle) { return {std::cos(angle), std::sin(angle), 0.0}; }
 
 TEST(Trace, StraightWalkOnAFlatSquareIsTheEuclideanSegment) {
-  const InputMesh m = unit_square(4);
+  const InputMesh m = testing::make_square_grid(4, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   const Vector3d start(0.3, 0.2, 0.0);
   for (double angle : {0.0, 0.7, 1.9, 3.0, 4.4, 5.9}) {
@@ -161,7 +142,7 @@ TEST(Trace, StraightWalkOnAFlatSquareIsTheEuclideanSegment) {
 }
 
 TEST(Trace, ReflectionEndsAtTheMirrorImage) {
-  const InputMesh m = unit_square(4);
+  const InputMesh m = testing::make_square_grid(4, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   const Vector3d start(0.5, 0.5, 0.0);
   const double theta = 0.3, length = 1.0;
@@ -188,7 +169,7 @@ TEST(Trace, ReflectionEndsAtTheMirrorImage) {
 }
 
 TEST(Trace, ReflectionIntoACornerReversesTheHeading) {
-  const InputMesh m = unit_square(4);
+  const InputMesh m = testing::make_square_grid(4, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   // Along the diagonal edges into the corner (1, 1): both walls reflect, the walk comes straight back.
   const double to_corner = std::sqrt(0.5);
@@ -200,7 +181,7 @@ TEST(Trace, ReflectionIntoACornerReversesTheHeading) {
 }
 
 TEST(Trace, StopEndsOnTheBoundaryAfterTheDistanceToIt) {
-  const InputMesh m = unit_square(4);
+  const InputMesh m = testing::make_square_grid(4, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   const double theta = 0.3;
   const Walk w = walk(m, d, Vector3d(0.5, 0.5, 0.0), planar(theta), 1.0, BoundaryRule::Stop);
@@ -223,7 +204,7 @@ TEST(Trace, StopEndsOnTheBoundaryAfterTheDistanceToIt) {
 }
 
 TEST(Trace, StartsOnVerticesAndEdgesAndHeadingsAlongEdges) {
-  const InputMesh m = unit_square(4);
+  const InputMesh m = testing::make_square_grid(4, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   // From an interior grid vertex (a corner of six faces) in 24 directions, some exactly along edges.
   const Vector3d vertex(0.5, 0.5, 0.0);
@@ -248,7 +229,7 @@ TEST(Trace, StartsOnVerticesAndEdgesAndHeadingsAlongEdges) {
 }
 
 TEST(Trace, ZeroAndInvalidLengthsReturnTheStart) {
-  const InputMesh m = unit_square(2);
+  const InputMesh m = testing::make_square_grid(2, true);
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
   const Vector2d p(0.1, 0.05);
   ASSERT_TRUE(inside_face(d, 0, p));
@@ -500,7 +481,7 @@ TEST(Trace, RandomWalksWithBoundariesStayInside) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<TraceSegment> segments;
-  for (const InputMesh& m : {unit_square(3), needle}) {
+  for (const InputMesh& m : {testing::make_square_grid(3, true), needle}) {
     const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(m));
     for (int i = 0; i < 2000; ++i) {
       const int f = std::min(static_cast<int>(u(rng) * d.face_count), d.face_count - 1);

@@ -8,6 +8,7 @@
 #include "common/intrinsic_triangulation.hpp"
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
+#include "one_step_comparison.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "reference/simulation.hpp"
 
@@ -38,30 +39,11 @@ SurfaceDomain refined(const InputMesh& mesh, double max_circumradius) {
   return build_surface_domain(t.snapshot());
 }
 
-
 void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
-  const Scene sc = scene(20000, integrator);
-  ReferenceSimulation developed(domain, sc);
-  developed.run(60);
-  OpenCLSimulation device(compute, domain, sc);
-  device.write_agents(developed.agents());
-  device.set_concentration(developed.concentration());
-  const Agents start = device.read_agents();
-  ReferenceSimulation reference(domain, sc);
-  reference.agents() = start;
-  reference.pheromone().set_concentration(device.concentration_values());
-  reference.step();
-  device.step();
-  const Agents a = reference.agents(), b = device.read_agents();
-  int mismatched = 0;
-  for (int i = 0; i < a.count(); ++i) {
-    const bool same = a.face[i] == b.face[i] && (a.position[i] - b.position[i]).norm() <= 1e-5 &&
-                      (a.heading[i] - b.heading[i]).norm() <= 1e-5 && std::abs(a.age[i] - b.age[i]) <= 1e-5;
-    mismatched += same ? 0 : 1;
-  }
-  check(mismatched <= a.count() / 1000, label + ": one step from identical states, " + std::to_string(mismatched) +
-                                            " of " + std::to_string(a.count()) + " agents disagree");
-  check(device.damaged_canaries().empty(), label + ": canaries intact");
+  const testing::StepComparison c = testing::compare_one_step(compute, domain, scene(20000, integrator), 60);
+  check(c.mismatched <= c.agents / 1000, label + ": one step from identical states, " + std::to_string(c.mismatched) +
+                                             " of " + std::to_string(c.agents) + " agents disagree");
+  check(!c.canaries_damaged, label + ": canaries intact");
 }
 
 void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
