@@ -3,8 +3,8 @@
  *   1. senses and steers (sensing_steering.cl) on the field of the previous step,
  *   2. moves, reflecting at boundaries, depositing along its path (movement.cl, deposition.cl),
  *   3. ages and turns over (turnover.cl).
- * One work-item per agent. Rates are read where the step starts, the hazard where it ends, as in
- * the reference. Counters (crossings, reflections, respawns) are summed per work-group in local
+ * A few agents per work-item (PHYSARUM_AGENTS_PER_WORK_ITEM, below). Rates are read where the
+ * step starts, the hazard where it ends, as in the reference. Counters (crossings, reflections, respawns) are summed per work-group in local
  * memory and added to that group's own slot, so no global atomics are spent on them. */
 #include "device_types.h"
 #include "agents.cl"
@@ -13,6 +13,17 @@
 #include "sensing_steering.cl"
 #include "turnover.cl"
 #include "agent_order.cl"
+
+/* Agents per work-item (1..4, a build option the host sets): on a CPU several agents in one
+ * work-item move in lockstep, one vector lane each, which overlaps their chains of face reads; a
+ * GPU overlaps them across its threads instead and takes 1. Results do not depend on it. */
+#ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
+#define PHYSARUM_AGENTS_PER_WORK_ITEM 1
+#endif
+#if PHYSARUM_AGENTS_PER_WORK_ITEM < 1 || PHYSARUM_AGENTS_PER_WORK_ITEM > 4
+#error "PHYSARUM_AGENTS_PER_WORK_ITEM must be 1, 2, 3 or 4 (lanes of a float4)"
+#endif
+#define AGENTS PHYSARUM_AGENTS_PER_WORK_ITEM
 
 __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters,
@@ -23,56 +34,79 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
                          __global float* age, __global float* exposure, __global float* exposure_threshold,
                          __global float* time_since_decision, __global float* accumulated_turn,
                          __global const uint* id, __global ulong* group_counters, __local uint* local_counters) {
-  const int a = get_global_id(0);
+  const int first = get_global_id(0) * AGENTS;
   const int lid = get_local_id(0);
   if (lid < PHYSARUM_COUNTERS) local_counters[lid] = 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
 
   /* No early return: every work-item must reach the barriers below. */
-  if (a < k.agent_count) {
-    const uint agent = id[a];
-    AgentState s;
-    s.face = face[a];
-    s.position = position[a];
-    s.heading = heading[a];
-    s.age = age[a];
-    s.exposure = exposure[a];
-    s.exposure_threshold = exposure_threshold[a];
-    s.time_since_decision = time_since_decision[a];
-    s.accumulated_turn = accumulated_turn[a];
+  AgentState s[AGENTS];
+  int4 active = (int4)(0), start_face = (int4)(0);
+  float4 px = (float4)(0.0f), py = (float4)(0.0f), dx = (float4)(0.0f), dy = (float4)(0.0f);
+  float4 distance = (float4)(0.0f), deposit = (float4)(0.0f);
+  uint sensor_crossings = 0u;
+  for (int i = 0; i < AGENTS; ++i) {
+    const int a = first + i;
+    if (a >= k.agent_count) continue;
+    s[i].face = face[a];
+    s[i].position = position[a];
+    s[i].heading = heading[a];
+    s[i].age = age[a];
+    s[i].exposure = exposure[a];
+    s[i].exposure_threshold = exposure_threshold[a];
+    s[i].time_since_decision = time_since_decision[a];
+    s[i].accumulated_turn = accumulated_turn[a];
 
-    const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, s.face, s.position);
-    int sensor_crossings = 0;
-    sense_and_steer(faces, concentration, &p, k.dt, k.seed, k.step, agent, s.face, s.position, &s.heading,
-                    &s.time_since_decision, &s.accumulated_turn, &sensor_crossings);
+    const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position);
+    int crossings = 0;
+    sense_and_steer(faces, concentration, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position, &s[i].heading,
+                    &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
+    sensor_crossings += (uint)crossings;
 
-    const float deposit = p.deposit_rate * k.dt * active_fraction(s.age, k.dt, p.activation_time);
-    const TraceEnd moved =
-        move_agent(faces, s.face, s.position, s.heading, p.move_rate * k.dt, deposit, deposits, k.deposit_scale);
-    s.face = moved.face;
-    s.position = moved.position;
-    s.heading = moved.heading;
+    active = with_lane_int(active, i, -1);
+    start_face = with_lane_int(start_face, i, s[i].face);
+    px = with_lane(px, i, s[i].position.x);
+    py = with_lane(py, i, s[i].position.y);
+    dx = with_lane(dx, i, s[i].heading.x);
+    dy = with_lane(dy, i, s[i].heading.y);
+    distance = with_lane(distance, i, p.move_rate * k.dt);
+    deposit = with_lane(deposit, i, p.deposit_rate * k.dt * active_fraction(s[i].age, k.dt, p.activation_time));
+  }
+
+  TraceEnd moved[AGENTS];
+  if (any(active))
+    move_agents(faces, AGENTS, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
+
+  uint move_crossings = 0u, boundary_hits = 0u, respawns = 0u;
+  for (int i = 0; i < AGENTS; ++i) {
+    const int a = first + i;
+    if (a >= k.agent_count) continue;
+    s[i].face = moved[i].face;
+    s[i].position = moved[i].position;
+    s[i].heading = moved[i].heading;
 
     const float hazard = k.uniform_parameters
                              ? k.uniform.hazard_rate
-                             : parameters_at(&k, faces, vertex_parameters, s.face, s.position).hazard_rate;
-    const int respawned = advance_turnover(faces, alias_probability, alias_index, device_face, k.face_count, hazard,
-                                           k.dt, k.seed, k.step, agent, &s);
+                             : parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position).hazard_rate;
+    respawns += (uint)advance_turnover(faces, alias_probability, alias_index, device_face, k.face_count, hazard, k.dt,
+                                       k.seed, k.step, id[a], &s[i]);
 
-    face[a] = s.face;
-    position[a] = s.position;
-    heading[a] = s.heading;
-    age[a] = s.age;
-    exposure[a] = s.exposure;
-    exposure_threshold[a] = s.exposure_threshold;
-    time_since_decision[a] = s.time_since_decision;
-    accumulated_turn[a] = s.accumulated_turn;
-
-    if (moved.face_crossings) atomic_add(&local_counters[PHYSARUM_COUNTER_MOVE_CROSSINGS], (uint)moved.face_crossings);
-    if (sensor_crossings) atomic_add(&local_counters[PHYSARUM_COUNTER_SENSOR_CROSSINGS], (uint)sensor_crossings);
-    if (moved.hit_boundary) atomic_inc(&local_counters[PHYSARUM_COUNTER_BOUNDARY_HITS]);
-    if (respawned) atomic_inc(&local_counters[PHYSARUM_COUNTER_RESPAWNS]);
+    face[a] = s[i].face;
+    position[a] = s[i].position;
+    heading[a] = s[i].heading;
+    age[a] = s[i].age;
+    exposure[a] = s[i].exposure;
+    exposure_threshold[a] = s[i].exposure_threshold;
+    time_since_decision[a] = s[i].time_since_decision;
+    accumulated_turn[a] = s[i].accumulated_turn;
+    move_crossings += (uint)moved[i].face_crossings;
+    boundary_hits += (uint)moved[i].hit_boundary;
   }
+
+  if (move_crossings) atomic_add(&local_counters[PHYSARUM_COUNTER_MOVE_CROSSINGS], move_crossings);
+  if (sensor_crossings) atomic_add(&local_counters[PHYSARUM_COUNTER_SENSOR_CROSSINGS], sensor_crossings);
+  if (boundary_hits) atomic_add(&local_counters[PHYSARUM_COUNTER_BOUNDARY_HITS], boundary_hits);
+  if (respawns) atomic_add(&local_counters[PHYSARUM_COUNTER_RESPAWNS], respawns);
 
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid < PHYSARUM_COUNTERS) group_counters[get_group_id(0) * PHYSARUM_COUNTERS + lid] += local_counters[lid];

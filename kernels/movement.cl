@@ -1,20 +1,25 @@
 /* Movement (paper Sec. 3.2; mirrors reference/movement.cpp): each step an agent walks the geodesic
  * of length v dt along its heading, REFLECTING at boundaries, and deposits along the way (Eq. 4,
- * deposition.cl) when deposit_amount is not 0. */
+ * deposition.cl) when its deposit amount is not 0. The agents of one work-item move together, one
+ * lane each (trace.cl), so their chains of face reads overlap. */
 #ifndef PHYSARUM_MOVEMENT_CL
 #define PHYSARUM_MOVEMENT_CL
 #include "trace.cl"
 
-TraceEnd move_agent(__global const PhysarumFaceRecord* faces, const int face, const float2 position,
-                    const float2 heading, const float distance, const float deposit_amount,
-                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
+void move_agents(__global const PhysarumFaceRecord* faces, const int lanes, const int4 face, const float4 px,
+                 const float4 py, const float4 dx, const float4 dy, const float4 distance,
+                 const float4 deposit_amount, const int4 active, __global PhysarumDepositCell* deposits,
+                 const float deposit_scale, TraceEnd* ends) {
 #ifdef PHYSARUM_FAULT_DEPOSIT_ENDPOINT
   /* planted fault: the whole deposit at the end of the step instead of along the path */
-  const TraceEnd end = trace_walk(faces, face, position, heading, distance, 0.0f, 0, deposit_scale);
-  if (deposit_amount != 0.0f) deposit_at_barycentric(faces, end.face, end.barycentric, deposit_amount, deposits, deposit_scale);
-  return end;
+  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, (float4)(0.0f), active, deposits, deposit_scale, ends);
+  for (int lane = 0; lane < lanes; ++lane) {
+    const float amount = lane_float(deposit_amount, lane);
+    if (lane_int(active, lane) && amount != 0.0f)
+      deposit_at_barycentric(faces, ends[lane].face, ends[lane].barycentric, amount, deposits, deposit_scale);
+  }
 #else
-  return trace_walk(faces, face, position, heading, distance, deposit_amount, deposits, deposit_scale);
+  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, deposit_amount, active, deposits, deposit_scale, ends);
 #endif
 }
 

@@ -62,6 +62,11 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
                                    const OpenCLSimulationOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
   check_simulation_inputs(domain, params, settings, "opencl simulation");
+  if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
+    throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
+                     std::to_string(options.agents_per_work_item));
+  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item
+                                                           : (compute.device.type == "CPU" ? 4 : 1);
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
 
@@ -122,6 +127,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   kernels_ = std::make_unique<Kernels>();
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
+  build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_);
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
@@ -138,6 +144,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
   }
   agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
+  const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + agents_per_work_item_ - 1) /
+                            static_cast<size_t>(agents_per_work_item_);
+  step_groups_ = padded_global_size(step_items, agent_group_) / agent_group_;
 
   // ---- sorting bins: one per device face, or per 2^shift faces, at most kMaxBins ----
   constexpr cl_uint kMaxBins = 65536;
@@ -206,7 +215,7 @@ void OpenCLSimulation::enqueue_agent_step() {
     k.setArg(arg++, b->buffer);
   k.setArg(arg++, group_counters_.buffer);
   k.setArg(arg++, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
-  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
+  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(step_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
 }
 

@@ -39,6 +39,9 @@ struct OpenCLSimulationOptions {
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
+  // Agents per agent_step work-item, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where
+  // agents moving in vector lanes overlap their face reads, and 1 elsewhere. Changes no result.
+  int agents_per_work_item = 0;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
   // faults with -D flags, opencl/planted_faults.hpp).
   std::string build_options;
@@ -103,7 +106,10 @@ class OpenCLSimulation final : public SimulationBackend {
   DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_, inverse_mass_;
   DeviceBuffer deposits_, group_counters_, bin_cursor_;
   DeviceAgents agents_, sorted_agents_;  // the sort scatters from the first into the second, then swaps
-  std::size_t agent_group_ = 1, agent_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
+  // agent_groups_ work-groups cover one agent per work-item (initialise, sort); step_groups_ cover
+  // agents_per_work_item_ per work-item (agent_step).
+  std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
+  int agents_per_work_item_ = 1;
   cl_uint bin_shift_ = 0, bins_ = 1;
   bool fixed_point_ = true;
   double deposit_scale_ = 1.0;

@@ -148,6 +148,38 @@ TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
   EXPECT_TRUE(a.damaged_canaries().empty());
 }
 
+// Agents moving together in the vector lanes of one work-item (kernels/agent_step.cl) walk exactly
+// as they do alone: every grouping gives the very same bits. On the disk (reflections in the lane
+// walk) with an agent count that leaves the last work-item part-filled.
+TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
+  const SurfaceDomain domain = delaunay_domain("shape:disk");
+  const Scene scene = model_scene(4001, 0.3, Integrator::ForwardEuler);
+  OpenCLSimulationOptions alone;
+  alone.agents_per_work_item = 1;
+  OpenCLSimulation a(compute(), domain, scene, alone);
+  a.run(20);
+  if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
+  const Agents x = a.read_agents();
+  ASSERT_GT(a.counters().boundary_hits, 0) << "the scene must exercise reflections";
+  for (int lanes : {3, 4}) {
+    OpenCLSimulationOptions grouped;
+    grouped.agents_per_work_item = lanes;
+    OpenCLSimulation b(compute(), domain, scene, grouped);
+    b.run(20);
+    EXPECT_EQ(a.concentration_values(), b.concentration_values()) << lanes << " agents per work-item";
+    const Agents y = b.read_agents();
+    EXPECT_EQ(x.face, y.face) << lanes;
+    EXPECT_EQ(x.position, y.position) << lanes;
+    EXPECT_EQ(x.heading, y.heading) << lanes;
+    EXPECT_EQ(a.counters().face_crossings, b.counters().face_crossings) << lanes;
+    EXPECT_EQ(a.counters().boundary_hits, b.counters().boundary_hits) << lanes;
+    EXPECT_TRUE(b.damaged_canaries().empty());
+  }
+  OpenCLSimulationOptions bad;
+  bad.agents_per_work_item = 5;
+  EXPECT_THROW(OpenCLSimulation(compute(), domain, scene, bad), InputError);
+}
+
 // Same check as the reference's: the time-averaged mean equals U within 1 % (see
 // test_reference_simulation.cpp for why the bound is that tight).
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
