@@ -15,13 +15,16 @@
 #include "agent_order.cl"
 
 /* Agents per work-item (1..4, a build option the host sets): on a CPU several agents in one
- * work-item move in lockstep, one vector lane each, which overlaps their chains of face reads; a
- * GPU overlaps them across its threads instead and takes 1. Results do not depend on it. */
+ * work-item move in lockstep, one vector lane each (trace.cl), which overlaps their chains of face
+ * reads; a GPU overlaps them across its threads instead and takes 1. Results do not depend on it. */
 #ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
 #define PHYSARUM_AGENTS_PER_WORK_ITEM 1
 #endif
 #if PHYSARUM_AGENTS_PER_WORK_ITEM < 1 || PHYSARUM_AGENTS_PER_WORK_ITEM > 4
-#error "PHYSARUM_AGENTS_PER_WORK_ITEM must be 1, 2, 3 or 4 (lanes of a float4)"
+#error "PHYSARUM_AGENTS_PER_WORK_ITEM must be 1, 2, 3 or 4"
+#endif
+#if PHYSARUM_AGENTS_PER_WORK_ITEM > PHYSARUM_WALK_LANES
+#error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (trace.cl)"
 #endif
 #define AGENTS PHYSARUM_AGENTS_PER_WORK_ITEM
 
@@ -41,9 +44,9 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
 
   /* No early return: every work-item must reach the barriers below. */
   AgentState s[AGENTS];
-  int4 active = (int4)(0), start_face = (int4)(0);
-  float4 px = (float4)(0.0f), py = (float4)(0.0f), dx = (float4)(0.0f), dy = (float4)(0.0f);
-  float4 distance = (float4)(0.0f), deposit = (float4)(0.0f);
+  lane_int active = (lane_int)(0), start_face = (lane_int)(0);
+  lane_float px = (lane_float)(0.0f), py = (lane_float)(0.0f), dx = (lane_float)(0.0f), dy = (lane_float)(0.0f);
+  lane_float distance = (lane_float)(0.0f), deposit = (lane_float)(0.0f);
   uint sensor_crossings = 0u;
   for (int i = 0; i < AGENTS; ++i) {
     const int a = first + i;
@@ -74,7 +77,7 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
   }
 
   TraceEnd moved[AGENTS];
-  if (any(active))
+  if (LANE_ANY(active))
     move_agents(faces, AGENTS, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
 
   uint move_crossings = 0u, boundary_hits = 0u, respawns = 0u;

@@ -127,7 +127,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   kernels_ = std::make_unique<Kernels>();
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
-  build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_);
+  build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
+           " -DPHYSARUM_WALK_LANES=" + (agents_per_work_item_ > 1 ? "4" : "1");
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);

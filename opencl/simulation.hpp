@@ -40,7 +40,8 @@ struct OpenCLSimulationOptions {
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
   // Agents per agent_step work-item, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where
-  // agents moving in vector lanes overlap their face reads, and 1 elsewhere. Changes no result.
+  // agents moving in vector lanes overlap their face reads, and 1 elsewhere. More than 1 also makes
+  // the walks vector lanes (kernels/trace.cl), 1 scalars. Changes no result.
   int agents_per_work_item = 0;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
   // faults with -D flags, opencl/planted_faults.hpp).

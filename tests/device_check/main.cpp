@@ -60,25 +60,34 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
   check(std::abs(sum / n - 1.0) < 0.01, label + ": time-averaged mean / U = " + std::to_string(sum / n));
 }
 
+// One throughput line; agents_per_work_item 0 is the device's automatic choice.
+void throughput_line(const ComputeContext& compute, const SurfaceDomain& domain, int agents, int agents_per_work_item) {
+  OpenCLSimulationOptions options;
+  options.agents_per_work_item = agents_per_work_item;
+  OpenCLSimulation sim(compute, domain, scene(agents, Integrator::ForwardEuler), options);
+  sim.run(5);
+  sim.finish();
+  const SimulationCounters before = sim.counters();
+  const auto t0 = std::chrono::steady_clock::now();
+  const int steps = 20;
+  sim.run(steps);
+  sim.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const SimulationCounters after = sim.counters();
+  const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
+                                               before.face_crossings - before.sensor_face_crossings);
+  std::printf("throughput: %d faces, %d agents, %s agents per work-item: %.3f ms/step, %.3g agent-steps/s, %.1f "
+              "crossings/agent-step, %.3g crossings/s\n",
+              domain.face_count, agents,
+              agents_per_work_item == 0 ? "automatic" : std::to_string(agents_per_work_item).c_str(),
+              1e3 * seconds / steps, agents * steps / seconds, crossings / (static_cast<double>(agents) * steps),
+              crossings / seconds);
+}
+
+// Agent scaling with the automatic grouping, then 1e6 agents with each explicit grouping.
 void throughput(const ComputeContext& compute, const SurfaceDomain& domain) {
-  for (int agents : {100000, 1000000, 10000000}) {
-    OpenCLSimulation sim(compute, domain, scene(agents, Integrator::ForwardEuler));
-    sim.run(5);
-    sim.finish();
-    const SimulationCounters before = sim.counters();
-    const auto t0 = std::chrono::steady_clock::now();
-    const int steps = 20;
-    sim.run(steps);
-    sim.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const SimulationCounters after = sim.counters();
-    const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
-                                                 before.face_crossings - before.sensor_face_crossings);
-    std::printf("throughput: %d faces, %d agents: %.3f ms/step, %.3g agent-steps/s, %.1f crossings/agent-step, %.3g "
-                "crossings/s\n",
-                domain.face_count, agents, 1e3 * seconds / steps, agents * steps / seconds,
-                crossings / (static_cast<double>(agents) * steps), crossings / seconds);
-  }
+  for (int agents : {100000, 1000000, 10000000}) throughput_line(compute, domain, agents, 0);
+  for (int grouping : {1, 4}) throughput_line(compute, domain, 1000000, grouping);
 }
 
 int run(const std::string& device) {
