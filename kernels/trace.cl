@@ -135,7 +135,7 @@ typedef struct {
 } WalkPieces;
 
 /* Lanes where `active` is set (`lanes` of them, the first ones) start walking `length` from p (in `face`) along unit d. */
-inline __attribute__((always_inline)) WalkLanes walk_lanes_start(
+WalkLanes walk_lanes_start(
     __global const PhysarumFaceRecord* faces, const int lanes, const lane_int face, const lane_float px, const lane_float py,
     const lane_float dx, const lane_float dy, const lane_float length, const lane_int active) {
   WalkLanes w;

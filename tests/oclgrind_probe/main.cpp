@@ -66,11 +66,12 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
 
 // A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
 // reflecting, depositing, respawning) and deposits_to_concentration, on a closed surface and on one
-// with a boundary. Turn decisions every step and a short lifetime make every branch run.
+// with a boundary, with scalar walks (one agent per work-item, as on GPUs) and with vector-lane walks
+// (four, as on CPUs). Turn decisions every step and a short lifetime make every branch run.
 void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
-                const std::string& label) {
+                int agents_per_work_item, const std::string& label) {
   Scene scene;
-  scene.agents = 300;  // not a multiple of the work-group size: padded work-items run too
+  scene.agents = 301;  // not a multiple of the work-group size or of 4: padded and part-filled work-items run too
   scene.time_step = 0.02;
   scene.sensor_distance = 0.3;
   scene.sensor_angle = 0.4;
@@ -84,6 +85,7 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   scene.activation_time = 0.01;
   scene.integrator = integrator;
   OpenCLSimulationOptions options;
+  options.agents_per_work_item = agents_per_work_item;
   options.pheromone.cg_max_iterations = 64;
   options.pheromone.cg_check_interval = 8;
   OpenCLSimulation sim(compute, domain, scene, options);
@@ -154,9 +156,12 @@ int run(int argc, char** argv) {
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
   run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
   run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
-  run_agents(compute, domain, Integrator::ForwardEuler, "agents on a sphere, forward Euler");
-  run_agents(compute, testing::make_domain(testing::make_square_grid(8)), Integrator::BackwardEuler,
-             "agents on a square, backward Euler");
+  const SurfaceDomain square = testing::make_domain(testing::make_square_grid(8));
+  for (int grouping : {1, 4}) {
+    const std::string lanes = ", " + std::to_string(grouping) + " agent(s) per work-item";
+    run_agents(compute, domain, Integrator::ForwardEuler, grouping, "agents on a sphere, forward Euler" + lanes);
+    run_agents(compute, square, Integrator::BackwardEuler, grouping, "agents on a square, backward Euler" + lanes);
+  }
   run_philox(compute);
   return failures == 0 ? 0 : 1;
 }
