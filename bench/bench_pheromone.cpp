@@ -1,7 +1,8 @@
 // The pheromone step alone (Eq. 6 forward Euler, Eq. 7 backward Euler), both backends side by side,
-// on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces. Counter: vertices per second, and
-// for forward Euler the fraction of a memory-bandwidth bound that reads ~104 bytes per vertex
-// (a CSR row of ~7 entries with its gathered values, two rates, u in and out).
+// on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces. Counters: vertices per second, the
+// forward-Euler sub-steps per step (finer meshes need more for stability), and for forward Euler the
+// bytes per second at ~104 bytes per vertex and sub-step (a CSR row of ~7 entries with its gathered
+// values, two rates, u in and out), to set against the machine's bandwidth (`physarum bench`).
 #include "bench/bench_backends.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
@@ -20,6 +21,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   if (!domain) return;
   const Scene scene = bench_scene(0);
   const VertexParameters params = VertexParameters::constant(scene, domain->vertex_count);
+  int sub_steps = 1;
   if (backend == kOpenCL) {
     opencl::OpenCLPheromone field(compute(), *domain, params, integrator, scene.time_step);
     field.fill(1.0);
@@ -27,15 +29,22 @@ void BM_PheromoneStep(benchmark::State& state) {
       field.step();
       compute().queue.finish();
     }
+    sub_steps = field.sub_steps();
   } else {
     ReferencePheromone field(*domain, params, integrator, scene.time_step);
     field.fill(1.0);
     for (auto _ : state) field.step();
+    sub_steps = field.sub_steps();
   }
   state.SetLabel(backend == kOpenCL ? "opencl" : "reference");
   state.counters["vertices_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
   state.counters["vertices"] = domain->vertex_count;
+  if (integrator == Integrator::ForwardEuler) {
+    state.counters["sub_steps"] = sub_steps;
+    state.counters["bytes_per_s"] = benchmark::Counter(
+        104.0 * sub_steps * static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
+  }
 }
 
 // Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}.

@@ -163,8 +163,12 @@ class Bench {
     return r;
   }
 
-  // The pheromone step alone; returns seconds per step.
-  double pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator) {
+  // The pheromone step alone: seconds per step and the forward-Euler sub-steps each step takes.
+  struct PheromoneTiming {
+    double seconds = 0.0;
+    int sub_steps = 1;
+  };
+  PheromoneTiming pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator) {
     const Scene scene = bench_scene(0);
     const VertexParameters params = VertexParameters::constant(scene, d.vertex_count);
     auto time = [&](auto& field, auto finish) {
@@ -182,10 +186,10 @@ class Bench {
     };
     if (backend == "opencl") {
       opencl::OpenCLPheromone field(compute_, d, params, integrator, scene.time_step);
-      return time(field, [&] { compute_.queue.finish(); });
+      return {time(field, [&] { compute_.queue.finish(); }), field.sub_steps()};
     }
     ReferencePheromone field(d, params, integrator, scene.time_step);
-    return time(field, [] {});
+    return {time(field, [] {}), field.sub_steps()};
   }
 
   const std::vector<Row>& rows() const { return rows_; }
@@ -282,8 +286,10 @@ int run_bench(const BenchOptions& o) {
       for (const std::string& b : backends) bench.run("faces", surface, *d, b, resolution_agents);
       nlohmann::ordered_json p = {{"surface", surface}, {"faces", d->face_count}, {"vertices", d->vertex_count}};
       for (const std::string& b : backends) {
-        p[b + "_forward_seconds"] = bench.pheromone_step(*d, b, Integrator::ForwardEuler);
-        p[b + "_backward_seconds"] = bench.pheromone_step(*d, b, Integrator::BackwardEuler);
+        const auto forward = bench.pheromone_step(*d, b, Integrator::ForwardEuler);
+        p[b + "_forward_seconds"] = forward.seconds;
+        p["forward_sub_steps"] = forward.sub_steps;
+        p[b + "_backward_seconds"] = bench.pheromone_step(*d, b, Integrator::BackwardEuler).seconds;
       }
       pheromone.push_back(p);
     }
@@ -337,11 +343,13 @@ int run_bench(const BenchOptions& o) {
     if (!pheromone.empty()) {
       const auto& p = pheromone.back();
       const int n = p["vertices"].get<int>();
-      // Forward Euler: per vertex a CSR row (~7 entries of 4 B column + 4 B value + 4 B gathered u),
-      // its start, two rates, u in and u out: ~104 B.
-      const double bytes = 104.0 * n;
+      // Forward Euler: per vertex and sub-step a CSR row (~7 entries of 4 B column + 4 B value + 4 B
+      // gathered u), its start, two rates, u in and u out: ~104 B.
+      const int sub_steps = p["forward_sub_steps"].get<int>();
+      const double bytes = 104.0 * n * sub_steps;
       const double measured = p["opencl_forward_seconds"].get<double>();
       roofline["pheromone_forward_step"] = {{"vertices", n},
+                                            {"sub_steps", sub_steps},
                                             {"bytes_per_step", bytes},
                                             {"bound_seconds_per_step", bytes / bandwidth},
                                             {"measured_seconds_per_step", measured},
