@@ -4,8 +4,9 @@
  *   2. moves, reflecting at boundaries, depositing along its path (movement.cl, deposition.cl),
  *   3. ages and turns over (turnover.cl).
  * A few agents per work-item (PHYSARUM_AGENTS_PER_WORK_ITEM, below). Rates are read where the
- * step starts, the hazard where it ends, as in the reference. Counters (crossings, reflections, respawns) are summed per work-group in local
- * memory and added to that group's own slot, so no global atomics are spent on them. */
+ * step starts, the hazard where it ends, as in the reference. Counters (crossings, reflections,
+ * respawns) are summed per work-group in local memory and added to that group's own slot, so no
+ * global atomics are spent on them. */
 #include "device_types.h"
 #include "agents.cl"
 #include "deposition.cl"

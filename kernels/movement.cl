@@ -6,20 +6,22 @@
 #define PHYSARUM_MOVEMENT_CL
 #include "trace.cl"
 
-void move_agents(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face, const lane_float px,
-                 const lane_float py, const lane_float dx, const lane_float dy, const lane_float distance,
-                 const lane_float deposit_amount, const lane_int active, __global PhysarumDepositCell* deposits,
-                 const float deposit_scale, TraceEnd* ends) {
+void move_agents(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face,
+                 const lane_float px, const lane_float py, const lane_float dx, const lane_float dy,
+                 const lane_float distance, const lane_float deposit_amount, const lane_int active,
+                 __global PhysarumDepositCell* deposits, const float deposit_scale, TraceEnd* ends) {
 #ifdef PHYSARUM_FAULT_DEPOSIT_ENDPOINT
   /* planted fault: the whole deposit at the end of the step instead of along the path */
-  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, (lane_float)(0.0f), active, deposits, deposit_scale, ends);
+  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, (lane_float)(0.0f), active, deposits, deposit_scale,
+                   ends);
   for (int lane = 0; lane < lanes; ++lane) {
     const float amount = float_in_lane(deposit_amount, lane);
     if (int_in_lane(active, lane) && amount != 0.0f)
       deposit_at_barycentric(faces, ends[lane].face, ends[lane].barycentric, amount, deposits, deposit_scale);
   }
 #else
-  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, deposit_amount, active, deposits, deposit_scale, ends);
+  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, deposit_amount, active, deposits, deposit_scale,
+                   ends);
 #endif
 }
 

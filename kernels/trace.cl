@@ -4,11 +4,12 @@
  * parallel tolerance is relative to float rounding, and end points are clamped into the end face.
  *
  * Cost: a walk is a chain of dependent face reads, so each step does as little as it can.
- *   - Walks advance as four lanes of lane_float vectors (WalkLanes): the three sensors of an agent walk
- *     in lockstep, one lane each, so one vector instruction does the arithmetic of all three and the
- *     processor overlaps three independent chains of face reads instead of waiting on one. A lane's
- *     choices (which edge, cross or end, reflect or stop) are selects, not branches: the exit edge
- *     is as good as random, and a mispredicted branch costs as much as the arithmetic it skips.
+ *   - Several walks advance in lockstep (WalkLanes), so the processor overlaps independent chains of
+ *     face reads instead of waiting on one: the three sensors of an agent, and the moves of the
+ *     agents of one work-item. On CPUs they are the lanes of float4 vectors, so one instruction
+ *     does the arithmetic of all of them (PHYSARUM_WALK_LANES, below). A lane's choices (which
+ *     edge, cross or end, reflect or stop) are selects, not branches: the exit edge is as good as
+ *     random, and a mispredicted branch costs as much as the arithmetic it skips.
  *   - The point's barycentric coordinates are carried along rather than solved for: after a
  *     crossing the point lies on the shared edge, where they are (1 - s, s, 0) up to the corner
  *     order; only their rate along the heading needs the new face's layout, and the face record
@@ -53,8 +54,12 @@ float float_in_lane(const float4 v, const int lane) {
 }
 int int_in_lane(const int4 v, const int lane) { return lane == 0 ? v.x : (lane == 1 ? v.y : (lane == 2 ? v.z : v.w)); }
 /* v with lane `lane` set to x (lane a compile-time constant where this is inlined). */
-float4 with_lane(const float4 v, const int lane, const float x) { return select(v, (float4)(x), (int4)(0, 1, 2, 3) == lane); }
-int4 with_lane_int(const int4 v, const int lane, const int x) { return select(v, (int4)(x), (int4)(0, 1, 2, 3) == lane); }
+float4 with_lane(const float4 v, const int lane, const float x) {
+  return select(v, (float4)(x), (int4)(0, 1, 2, 3) == lane);
+}
+int4 with_lane_int(const int4 v, const int lane, const int x) {
+  return select(v, (int4)(x), (int4)(0, 1, 2, 3) == lane);
+}
 #elif PHYSARUM_WALK_LANES == 1
 typedef float lane_float;
 typedef int lane_int;
@@ -134,14 +139,16 @@ typedef struct {
   lane_int walked; /* the lane was walking at the start of the step */
 } WalkPieces;
 
-/* Lanes where `active` is set (`lanes` of them, the first ones) start walking `length` from p (in `face`) along unit d. */
-WalkLanes walk_lanes_start(
-    __global const PhysarumFaceRecord* faces, const int lanes, const lane_int face, const lane_float px, const lane_float py,
-    const lane_float dx, const lane_float dy, const lane_float length, const lane_int active) {
+/* Lanes where `active` is set (among the first `lanes`) start walking `length` from p (in `face`)
+ * along unit d. */
+WalkLanes walk_lanes_start(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face,
+                           const lane_float px, const lane_float py, const lane_float dx, const lane_float dy,
+                           const lane_float length, const lane_int active) {
   WalkLanes w;
   w.face = face;
   w.b2 = py * GATHER_FIELD(lane_float, faces, face, inv_y2, lanes);
-  w.b1 = px * GATHER_FIELD(lane_float, faces, face, inv_x1, lanes) - py * GATHER_FIELD(lane_float, faces, face, shear, lanes);
+  w.b1 = px * GATHER_FIELD(lane_float, faces, face, inv_x1, lanes) -
+         py * GATHER_FIELD(lane_float, faces, face, shear, lanes);
   w.b0 = 1.0f - w.b1 - w.b2;
   w.dx = dx;
   w.dy = dy;
@@ -181,7 +188,8 @@ inline __attribute__((always_inline)) void walk_lanes_step(__global const Physar
   const lane_float t0 = select(never, n0 / -db0, exits0);
   const lane_float t1 = select(never, n1 / -db1, exits1);
   const lane_float t2 = select(never, n2 / -db2, exits2);
-  lane_int corner = select(select((lane_int)(2), (lane_int)(1), t1 <= t2), (lane_int)(0), (t0 <= t1) & (t0 <= t2));
+  lane_int corner =
+      select(select((lane_int)(2), (lane_int)(1), t1 <= t2), (lane_int)(0), (t0 <= t1) & (t0 <= t2));
   lane_float t_exit = fmin(t0, fmin(t1, t2));
   /* Only the entry edge lies ahead: rounding made a heading parallel to it look like it points
    * back. Crossing back is still a valid move (the step bound caps any ping-pong). */
@@ -258,8 +266,8 @@ inline __attribute__((always_inline)) void walk_lanes_step(__global const Physar
   if (!LANE_ANY(through)) return;
 
   /* Cross into g, where the shared edge runs from corner j+1 to corner j. */
-  const lane_int edges_of = CONVERT_LANE_INT(GATHER_FIELD(lane_uint, faces, f, neighbour_edges, lanes) >> CONVERT_LANE_UINT(2 * e));
-  const lane_int j = edges_of & 3;
+  const lane_uint edges = GATHER_FIELD(lane_uint, faces, f, neighbour_edges, lanes);
+  const lane_int j = CONVERT_LANE_INT(edges >> CONVERT_LANE_UINT(2 * e)) & 3;
   const lane_float c = GATHER_EDGE_FIELD(lane_float, faces, f, e, transition_cos, lanes);
   const lane_float sn = GATHER_EDGE_FIELD(lane_float, faces, f, e, transition_sin, lanes);
   lane_float next0, next1, next2;
@@ -283,7 +291,6 @@ typedef struct {
   int face_crossings;
 } TraceEnd;
 
-
 /* Where lane `lane` of a walk ended (a lane the step bound cut short is clamped into its face). */
 TraceEnd walk_lane_end(__global const PhysarumFaceRecord* faces, const WalkLanes* w, const int lane) {
   lane_float b0 = w->b0, b1 = w->b1, b2 = w->b2;
@@ -302,10 +309,10 @@ TraceEnd walk_lane_end(__global const PhysarumFaceRecord* faces, const WalkLanes
  * from p[i] along unit d[i] in face[i], reflecting at boundaries; when deposit_amount[i] != 0 each
  * of its pieces deposits deposit_amount[i] * (piece length / length[i]) at the piece's midpoint
  * (the whole amount at the end point when the length is 0). Lanes whose `active` is 0 do not walk. */
-void trace_walk_lanes(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face, const lane_float px,
-                      const lane_float py, const lane_float dx, const lane_float dy, const lane_float length,
-                      const lane_float deposit_amount, const lane_int active, __global PhysarumDepositCell* deposits,
-                      const float deposit_scale, TraceEnd* ends) {
+void trace_walk_lanes(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face,
+                      const lane_float px, const lane_float py, const lane_float dx, const lane_float dy,
+                      const lane_float length, const lane_float deposit_amount, const lane_int active,
+                      __global PhysarumDepositCell* deposits, const float deposit_scale, TraceEnd* ends) {
   WalkLanes w = walk_lanes_start(faces, lanes, face, px, py, dx, dy, length, active);
   const lane_float per_length = select((lane_float)(0.0f), deposit_amount / w.remaining, w.remaining > 0.0f);
   for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step) {
@@ -338,9 +345,11 @@ void trace_three_sensors(__global const PhysarumFaceRecord* faces, const int fac
                          TraceEnd* end2) {
   WalkPieces piece;
 #if PHYSARUM_WALK_LANES == 4
-  WalkLanes w = walk_lanes_start(faces, 3, (int4)(face), (float4)(p.x), (float4)(p.y), (float4)(d0.x, d1.x, d2.x, 0.0f),
-                                 (float4)(d0.y, d1.y, d2.y, 0.0f), (float4)(length), (int4)(-1, -1, -1, 0));
-  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && any(w.walking); ++step) walk_lanes_step(faces, 3, &w, 0, &piece);
+  WalkLanes w = walk_lanes_start(faces, 3, (int4)(face), (float4)(p.x), (float4)(p.y),
+                                 (float4)(d0.x, d1.x, d2.x, 0.0f), (float4)(d0.y, d1.y, d2.y, 0.0f), (float4)(length),
+                                 (int4)(-1, -1, -1, 0));
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && any(w.walking); ++step)
+    walk_lanes_step(faces, 3, &w, 0, &piece);
   *end0 = walk_lane_end(faces, &w, 0);
   *end1 = walk_lane_end(faces, &w, 1);
   *end2 = walk_lane_end(faces, &w, 2);
