@@ -1,6 +1,7 @@
 #pragma once
 // What the benchmark suites share: the surfaces they run on (built once per process, skipped with a
 // message when the shared meshes are absent) and the model parameters of the agent benchmarks.
+#include "common/default_scene.hpp"
 #include "common/input_mesh.hpp"
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
@@ -11,7 +12,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <utility>
 
@@ -42,22 +42,6 @@ inline const SurfaceDomain* scaled_domain(const std::string& mesh, double max_ci
 }
 
 // The default scene's parameters (tools/scenes/default.json) with `agents` agents.
-inline Scene bench_scene(int agents) {
-  Scene s;
-  s.agents = agents;
-  s.time_step = 0.01;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * std::numbers::pi / 180.0;
-  s.move_rate = 0.5;
-  s.turn_rate = std::numbers::pi;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 1.0;
-  s.diffuse_rate = 0.0002;
-  s.mean_lifetime = 1.0;
-  s.activation_time = 0.2;
-  s.seed = 1;
-  return s;
-}
+inline Scene bench_scene(int agents) { return default_scene_parameters(agents); }
 
 }  // namespace physarum::bench

@@ -8,6 +8,7 @@
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/random_streams.hpp"
+#include "common/default_scene.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
@@ -60,20 +61,9 @@ SurfaceDomain domain_as_is(const InputMesh& mesh) { return build_surface_domain(
 
 // A Scene with plain values, for building parameter maps.
 Scene plain_scene() {
-  Scene s;
+  Scene s = default_scene_parameters(1);
   s.mesh = "shape:square";
-  s.agents = 1;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * kDegree;
-  s.move_rate = 0.5;
-  s.turn_rate = 180.0 * kDegree;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.mean_lifetime = 1.0;
-  s.activation_time = 0.2;
-  s.decay_rate = 1.0;
   s.diffuse_rate = 0.0;
-  s.time_step = 0.01;
   return s;
 }
 

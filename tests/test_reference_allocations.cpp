@@ -6,6 +6,7 @@
 // forward to the normal allocator, so every other test is unaffected.
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
+#include "common/default_scene.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
 #include "reference/simulation.hpp"
@@ -15,7 +16,6 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
-#include <numbers>
 
 namespace {
 
@@ -134,17 +134,7 @@ TEST(ReferenceAllocations, CounterSeesAnAllocation) {
 }
 
 Scene uniform_scene(Integrator integrator) {
-  Scene s;
-  s.agents = 500;
-  s.time_step = 0.01;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * std::numbers::pi / 180.0;
-  s.move_rate = 0.5;
-  s.turn_rate = std::numbers::pi;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 1.0;
-  s.diffuse_rate = 0.0002;
+  Scene s = default_scene_parameters(500);
   s.mean_lifetime = 0.2;  // short, so respawns happen inside the counted steps
   s.activation_time = 0.05;
   s.integrator = integrator;

@@ -2,6 +2,8 @@
 // allowed range, unknown keys with a suggestion, JSON errors with line and column.
 #include "common/scene.hpp"
 
+#include "common/default_scene.hpp"
+
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/vertex_parameters.hpp"
@@ -252,6 +254,27 @@ TEST(Scene, VertexParametersAreConstantPerVertex) {
   EXPECT_DOUBLE_EQ(p.diffuse_rate[6], 0.0002);
   EXPECT_TRUE(std::isinf(p.mean_lifetime[0]));  // no turnover: zero hazard
   EXPECT_FALSE(is_uniform({1.0, 1.0, 2.0}));
+}
+
+// The parameters code builds without a file (benchmarks, tests) are the shipped default scene's,
+// bit for bit, as load_scene converts them.
+TEST(Scene, DefaultSceneParametersAreTheShippedDefaultScene) {
+  const Scene file = load_scene(std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/default.json");
+  const Scene code = default_scene_parameters(file.agents);
+  EXPECT_EQ(code.agents, file.agents);
+  EXPECT_EQ(code.time_step, file.time_step);
+  EXPECT_EQ(code.sensor_distance, file.sensor_distance);
+  EXPECT_EQ(code.sensor_angle, file.sensor_angle);
+  EXPECT_EQ(code.move_rate, file.move_rate);
+  EXPECT_EQ(code.turn_rate, file.turn_rate);
+  EXPECT_EQ(code.turn_frequency, file.turn_frequency);
+  EXPECT_EQ(code.deposit_rate, file.deposit_rate);
+  EXPECT_EQ(code.decay_rate, file.decay_rate);
+  EXPECT_EQ(code.diffuse_rate, file.diffuse_rate);
+  EXPECT_EQ(code.mean_lifetime, file.mean_lifetime);
+  EXPECT_EQ(code.activation_time, file.activation_time);
+  EXPECT_EQ(code.integrator, file.integrator);
+  EXPECT_EQ(code.seed, file.seed);
 }
 
 }  // namespace
