@@ -1,11 +1,13 @@
 // The pheromone step alone (Eq. 6 forward Euler, Eq. 7 backward Euler), both backends side by side,
-// on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces. Counters: vertices per second, the
-// forward-Euler sub-steps per step (finer meshes need more for stability), and for forward Euler the
-// bytes per second at ~104 bytes per vertex and sub-step (a CSR row of ~7 entries with its gathered
-// values, two rates, u in and out), to set against the machine's bandwidth (`physarum bench`).
+// on spot.obj scaled to 4 m^2 from 6k to 850k intrinsic faces; the OpenCL field numbered as a
+// simulation numbers it (opencl::in_device_vertex_order). Counters: vertices per second, the
+// forward-Euler sub-steps per step (finer meshes need more for stability), and for the OpenCL forward
+// step the bytes per second its sub-step matrix and fields move, to set against the machine's
+// bandwidth (`physarum bench` prints both as a roofline).
 #include "bench/bench_backends.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
+#include "opencl/face_records.hpp"
 #include "opencl/pheromone.hpp"
 #include "reference/pheromone.hpp"
 
@@ -22,14 +24,17 @@ void BM_PheromoneStep(benchmark::State& state) {
   const Scene scene = bench_scene(0);
   const VertexParameters params = VertexParameters::constant(scene, domain->vertex_count);
   int sub_steps = 1;
+  double bytes_per_sub_step = 0.0;
   if (backend == kOpenCL) {
-    opencl::OpenCLPheromone field(compute(), *domain, params, integrator, scene.time_step);
+    const SurfaceDomain device_domain = opencl::in_device_vertex_order(*domain);
+    opencl::OpenCLPheromone field(compute(), device_domain, params, integrator, scene.time_step);
     field.fill(1.0);
     for (auto _ : state) {
       field.step();
       compute().queue.finish();
     }
     sub_steps = field.sub_steps();
+    bytes_per_sub_step = field.forward_bytes_per_sub_step();
   } else {
     ReferencePheromone field(*domain, params, integrator, scene.time_step);
     field.fill(1.0);
@@ -40,11 +45,10 @@ void BM_PheromoneStep(benchmark::State& state) {
   state.counters["vertices_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
   state.counters["vertices"] = domain->vertex_count;
-  if (integrator == Integrator::ForwardEuler) {
-    state.counters["sub_steps"] = sub_steps;
+  if (integrator == Integrator::ForwardEuler) state.counters["sub_steps"] = sub_steps;
+  if (bytes_per_sub_step > 0.0)
     state.counters["bytes_per_s"] = benchmark::Counter(
-        104.0 * sub_steps * static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
-  }
+        bytes_per_sub_step * sub_steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}.

@@ -22,6 +22,10 @@ typedef float dev_float;
 #define PHYSARUM_FIELD_SUM_COMPONENTS 4
 #define PHYSARUM_COVERAGE_THRESHOLDS 3
 
+/* ---- sliced ELLPACK matrices (pheromone.cl, opencl/sliced_matrix.hpp) ----
+ * Rows per slice: one int4/float4 slot holds an entry of each of four consecutive rows. */
+#define PHYSARUM_SLICE_ROWS 4
+
 /* ---- conjugate gradients (pheromone.cl) ----
  * The scalars of one solve live on the device so iterations run without a host round trip; the
  * host reads this struct only every few iterations to see whether the solve has stopped. */

@@ -14,24 +14,44 @@ float csr_row_times(const uint i, __global const int* row_start, __global const 
   return sum;
 }
 
-/* One forward Euler sub-step of Eq. 6 divided by M:
- *   u_out = u_in - h (r_dif,i / m_i (L u_in)_i + r_dec,i u_in,i).
- * sub_step numbers the sub-steps of one time step; only the planted fault no-decay-substep reads it. */
-__kernel void pheromone_forward_substep(const uint n, __global const int* row_start, __global const int* column,
-                                        __global const float* laplacian, __global const float* diffuse_over_mass,
-                                        __global const float* decay_rate, const float h,
-                                        __global const float* u_in, __global float* u_out, const uint sub_step) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const float lu = csr_row_times(i, row_start, column, laplacian, u_in);
-  const float u = u_in[i];
+/* One forward Euler sub-step of Eq. 6 divided by M for the four rows of slice s:
+ *   u_out = F u_in,  F = I - h (diag(r_dif / m) L + diag(r_dec)),
+ * with F assembled once on the host (opencl/pheromone.cpp) in sliced ELLPACK form
+ * (opencl/sliced_matrix.hpp). Folding the rates into F leaves one matrix-vector product per
+ * sub-step, which reads fewer bytes per vertex than L, two rate arrays and u_i would; the slice's
+ * rows share one loop of uniform length and one float4 of arithmetic. sub_step numbers the
+ * sub-steps of one time step; only the planted fault no-decay-substep reads it, and decay_rate and h
+ * with it, to add the first sub-step's decay back. */
+__kernel void pheromone_forward_substep(const uint n, __global const int* slice_start, __global const int4* column,
+                                        __global const float4* value, __global const float* decay_rate,
+                                        const float h, __global const float* u_in, __global float* u_out,
+                                        const uint sub_step) {
+  const uint s = get_global_id(0);
+  const uint first = s * PHYSARUM_SLICE_ROWS;
+  if (first >= n) return;
+  const uint rows = min((uint)PHYSARUM_SLICE_ROWS, n - first);
+  float4 sum = (float4)(0.0f);
+  const int end = slice_start[s + 1];
+  for (int k = slice_start[s]; k < end; ++k) {
+    const int4 c = column[k];
+    sum += value[k] * (float4)(u_in[c.x], u_in[c.y], u_in[c.z], u_in[c.w]);
+  }
 #ifdef PHYSARUM_FAULT_NO_DECAY_SUBSTEP
-  const float decay = sub_step == 0 ? 0.0f : decay_rate[i]; /* planted fault: the first sub-step skips decay */
+  if (sub_step == 0) { /* planted fault: the first sub-step skips decay */
+    float skipped[PHYSARUM_SLICE_ROWS] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (uint r = 0; r < rows; ++r) skipped[r] = h * decay_rate[first + r] * u_in[first + r];
+    sum += vload4(0, skipped);
+  }
 #else
-  const float decay = decay_rate[i];
-  (void)sub_step;
+  (void)decay_rate, (void)h, (void)sub_step;
 #endif
-  u_out[i] = u - h * (diffuse_over_mass[i] * lu + decay * u);
+  if (rows == PHYSARUM_SLICE_ROWS) {
+    vstore4(sum, s, u_out);
+    return;
+  }
+  float row_sum[PHYSARUM_SLICE_ROWS]; /* the last slice of a matrix whose size is not a multiple of 4 */
+  vstore4(sum, 0, row_sum);
+  for (uint r = 0; r < rows; ++r) u_out[first + r] = row_sum[r];
 }
 
 /* Deposits: an amount at a vertex raises its concentration by amount / m_i. */

@@ -80,6 +80,10 @@ SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& 
   return d;
 }
 
+SurfaceDomain in_device_vertex_order(const SurfaceDomain& domain) {
+  return renumber_vertices(domain, locality_vertex_order(domain, locality_face_order(domain)));
+}
+
 std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order) {
   std::vector<double> out(domain_values.size());
   for (size_t i = 0; i < out.size(); ++i) out[i] = domain_values[static_cast<size_t>(order.domain_of_device[i])];

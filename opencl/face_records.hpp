@@ -40,6 +40,11 @@ VertexOrder locality_vertex_order(const SurfaceDomain& domain, const FaceOrder& 
 // columns); faces keep their domain order. What the device's pheromone field is built from.
 SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& order);
 
+// The domain numbered as OpenCLSimulation numbers it for its pheromone field (the locality vertex
+// order of the locality face order): what a benchmark of the device's pheromone step alone uses, so
+// it reads memory the way a simulation's does.
+SurfaceDomain in_device_vertex_order(const SurfaceDomain& domain);
+
 // Per-vertex values between the two numberings.
 std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order);
 std::vector<double> to_domain_order(const std::vector<double>& device_values, const VertexOrder& order);

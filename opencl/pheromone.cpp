@@ -6,6 +6,7 @@
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
+#include "opencl/sliced_matrix.hpp"
 #include "opencl/work_group_size.hpp"
 
 #include <algorithm>
@@ -117,10 +118,30 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   const size_t field_bytes = un * sizeof(float);
-  row_start_ = upload_buffer(compute, "Laplacian row starts", L.row_start, kRead, false);
-  column_ = upload_buffer(compute, "Laplacian columns", L.column, kRead, false);
-  laplacian_ = upload_buffer(compute, "Laplacian values", to_float(L.value), kRead, false);
-  diffuse_over_mass_ = upload_buffer(compute, "diffuse rate / mass", to_float(diffuse_over_mass), kRead, false);
+  if (integrator == Integrator::ForwardEuler) {
+    // The sub-step matrix F = I - h (diag(r_dif / m) L + diag(r_dec)), in double, then sliced.
+    CsrMatrix F;
+    F.rows = F.cols = n;
+    F.row_start.push_back(0);
+    for (int i = 0; i < n; ++i) {
+      const double keep = 1.0 - sub_step_ * params.decay_rate[i];
+      bool diagonal = false;
+      for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
+        const int j = L.column[k];
+        F.column.push_back(j);
+        F.value.push_back(-sub_step_ * diffuse_over_mass[i] * L.value[k] + (j == i ? keep : 0.0));
+        diagonal |= j == i;
+      }
+      if (!diagonal) F.column.push_back(i), F.value.push_back(keep);  // a Laplacian row without a diagonal entry
+      F.row_start.push_back(static_cast<int>(F.column.size()));
+    }
+    const SlicedMatrix sliced = slice_rows(F);
+    forward_slices_ = sliced.slices();
+    forward_bytes_per_sub_step_ = (sliced.slice_start.size() + sliced.column.size() + sliced.value.size() + 2 * un) * 4.0;
+    forward_slice_start_ = upload_buffer(compute, "forward Euler slice starts", sliced.slice_start, kRead, false);
+    forward_column_ = upload_buffer(compute, "forward Euler columns", sliced.column, kRead, false);
+    forward_value_ = upload_buffer(compute, "forward Euler values", sliced.value, kRead, false);
+  }
   decay_rate_ = upload_buffer(compute, "decay rate", to_float(params.decay_rate), kRead, false);
   mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
@@ -253,22 +274,21 @@ void OpenCLPheromone::step() {
 
 void OpenCLPheromone::forward_step() {
   cl::Kernel& k = kernels_->forward_substep;
-  const cl::NDRange global(group_count_ * group_), local(group_);
+  const cl::NDRange global(padded_global_size(static_cast<size_t>(forward_slices_), group_)), local(group_);
   k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, row_start_.buffer);
-  k.setArg(2, column_.buffer);
-  k.setArg(3, laplacian_.buffer);
-  k.setArg(4, diffuse_over_mass_.buffer);
-  k.setArg(5, decay_rate_.buffer);
-  k.setArg(6, static_cast<cl_float>(sub_step_));
+  k.setArg(1, forward_slice_start_.buffer);
+  k.setArg(2, forward_column_.buffer);
+  k.setArg(3, forward_value_.buffer);
+  k.setArg(4, decay_rate_.buffer);
+  k.setArg(5, static_cast<cl_float>(sub_step_));
   // Ping-pong between u and scratch; an odd count ends in scratch and costs one device-side copy,
   // so u stays the buffer every other kernel knows.
   const cl::Buffer* from = &u_.buffer;
   const cl::Buffer* to = &scratch_.buffer;
   for (int s = 0; s < sub_steps_; ++s) {
-    k.setArg(7, *from);
-    k.setArg(8, *to);
-    k.setArg(9, static_cast<cl_uint>(s));
+    k.setArg(6, *from);
+    k.setArg(7, *to);
+    k.setArg(8, static_cast<cl_uint>(s));
     compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, global, local);
     std::swap(from, to);
   }

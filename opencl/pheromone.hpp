@@ -38,8 +38,9 @@ struct ConjugateGradientReport {
 
 class OpenCLPheromone {
  public:
-  // Uploads the domain's Laplacian (float values, int indices), masses and the per-vertex rates of
-  // params; builds pheromone.cl. Throws InputError like ReferencePheromone (sizes, time step,
+  // Uploads the operators the integrator needs (forward Euler: the sub-step matrix, see pheromone.cl;
+  // backward Euler: the symmetrised system), masses and the per-vertex rates of params, all in
+  // float with int indices; builds pheromone.cl. Throws InputError like ReferencePheromone (sizes, time step,
   // masses, rates) and DeviceError when a buffer exceeds the device's limits or a build fails.
   OpenCLPheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                   Integrator integrator, double time_step, const OpenCLPheromoneOptions& options = {});
@@ -67,6 +68,9 @@ class OpenCLPheromone {
   Integrator integrator() const { return integrator_; }
   double stable_time_step() const { return stable_time_step_; }  // same bound as the reference
   int sub_steps() const { return sub_steps_; }
+  // Bytes one forward-Euler sub-step reads and writes at the least (its matrix once, u in and out):
+  // the memory traffic a roofline sets against the bandwidth. 0 for backward Euler.
+  double forward_bytes_per_sub_step() const { return forward_bytes_per_sub_step_; }
   const ConjugateGradientReport& last_solve() const { return last_solve_; }
 
   // ---- summaries, reduced on the device ----
@@ -101,7 +105,11 @@ class OpenCLPheromone {
   std::size_t group_count_ = 1;  // work-groups of a per-vertex launch (= partials per reduction)
 
   // Operators and per-vertex data (read-only on the device).
-  DeviceBuffer row_start_, column_, laplacian_, diffuse_over_mass_, decay_rate_, mass_, inverse_mass_;
+  DeviceBuffer decay_rate_, mass_, inverse_mass_;
+  // Forward Euler: the sub-step matrix in sliced ELLPACK form (opencl/sliced_matrix.hpp).
+  int forward_slices_ = 0;
+  double forward_bytes_per_sub_step_ = 0.0;
+  DeviceBuffer forward_slice_start_, forward_column_, forward_value_;
   // Backward Euler: S x = B u, S symmetric positive definite (same sparsity as L), B mostly diagonal.
   DeviceBuffer system_row_start_, system_column_, system_value_, inverse_diagonal_;
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;

@@ -76,7 +76,9 @@ TEST(BenchCommand, QuickRunWritesItsReportCsvAndPlots) {
   TempDir dir;
   const CommandResult r = run_physarum("bench --quick --out " + quoted(dir.path));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  for (const char* name : {"bench.json", "bench.csv", "agents.png", "faces.png"})
+  for (const char* name :
+       {"bench.json", "bench.csv", "agents.png", "faces.png", "faces_scaled.png", "agents_throughput.png",
+        "faces_throughput.png"})
     EXPECT_TRUE(std::filesystem::exists(dir.path / name)) << name;
   const nlohmann::json j = nlohmann::json::parse(slurp(dir.path / "bench.json"));
   for (const char* key : {"device", "rows", "pheromone_steps", "paper_case", "roofline", "slopes"})
@@ -87,6 +89,20 @@ TEST(BenchCommand, QuickRunWritesItsReportCsvAndPlots) {
   bool both = false;
   for (const auto& row : j["rows"]) both = both || row["backend"] == "reference";
   EXPECT_TRUE(both);
+  // The sweep with constant work per face keeps crossings per agent-step constant as the mesh is
+  // refined (lengths scale with the edge length); at fixed lengths they grow like sqrt(faces).
+  auto crossings_spread = [&](const std::string& sweep) {
+    double lo = 1e300, hi = 0.0;
+    for (const auto& row : j["rows"])
+      if (row["sweep"] == sweep && row["backend"] == "opencl") {
+        lo = std::min(lo, row["crossings_per_agent_step"].get<double>());
+        hi = std::max(hi, row["crossings_per_agent_step"].get<double>());
+      }
+    return hi / lo;
+  };
+  EXPECT_LT(crossings_spread("faces_scaled"), 1.3);
+  EXPECT_GT(crossings_spread("faces"), 1.5);
+  EXPECT_TRUE(j["slopes"].contains("faces_scaled"));
   const std::string csv = slurp(dir.path / "bench.csv");
   EXPECT_EQ(csv.rfind("sweep,surface,backend,agents,faces,vertices,seconds_per_step,", 0), 0u) << csv.substr(0, 120);
 }

@@ -9,7 +9,9 @@
 #include "common/errors.hpp"
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
+#include "kernels/device_types.h"
 #include "opencl/pheromone.hpp"
+#include "opencl/sliced_matrix.hpp"
 #include "reference/pheromone.hpp"
 #include "test_support.hpp"
 
@@ -24,6 +26,17 @@ namespace {
 const SurfaceDomain& sphere_domain() {
   static const SurfaceDomain domain = [] {
     IntrinsicTriangulation triangulation(load_mesh("shape:sphere"));
+    triangulation.flip_to_delaunay();
+    return build_surface_domain(triangulation.snapshot());
+  }();
+  return domain;
+}
+
+// A flat disk: boundary vertices have fewer neighbours than interior ones, so the forward step's
+// slices of four rows mix row lengths and carry padding (the sphere's rows are all alike).
+const SurfaceDomain& disk_domain() {
+  static const SurfaceDomain domain = [] {
+    IntrinsicTriangulation triangulation(load_mesh("shape:disk"));
     triangulation.flip_to_delaunay();
     return build_surface_domain(triangulation.snapshot());
   }();
@@ -88,8 +101,8 @@ struct StepPair {
   std::vector<std::string> damaged;
 };
 
-StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1) {
-  const SurfaceDomain& d = sphere_domain();
+StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1,
+                  const SurfaceDomain& d = sphere_domain()) {
   // The time step is chosen relative to the stability bound so the sub-step count is known.
   ReferencePheromone probe(d, params, Integrator::ForwardEuler, 1.0);
   const double dt = dt_in_stable_steps * probe.stable_time_step();
@@ -110,6 +123,8 @@ TEST(OpenCLPheromone, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
   // The canary checks need padding work-items: a vertex count that is not a multiple of the group size.
   EXPECT_GT(sphere_domain().vertex_count, 500);
   EXPECT_NE(sphere_domain().vertex_count % 64, 0);
+  // The forward step's last slice of four rows is then partly empty, and its guarded stores are tested.
+  EXPECT_NE(sphere_domain().vertex_count % PHYSARUM_SLICE_ROWS, 0);
 }
 
 TEST(OpenCLPheromone, ForwardStepEqualsReference) {
@@ -141,6 +156,17 @@ TEST(OpenCLPheromone, ForwardStepWithSubStepsEqualsReference) {
   const StepPair even = one_step(uniform_rates(n, 0.01, 0.5), Integrator::ForwardEuler, 3.5, 3);
   EXPECT_EQ(even.device_sub_steps, 4);
   EXPECT_LE(max_difference(even.device, even.reference).first, 1e-5 * max_abs(even.reference));
+}
+
+TEST(OpenCLPheromone, ForwardStepWithPaddedSlicesEqualsReference) {
+  const SurfaceDomain& d = disk_domain();
+  const SlicedMatrix sliced = slice_rows(d.laplacian);
+  ASSERT_GT(sliced.column.size(), d.laplacian.column.size()) << "the disk's slices should need padding";
+  const StepPair r = one_step(varying_rates(d.vertex_count, 0.01, 0.5, 7), Integrator::ForwardEuler, 2.5, 1, d);
+  EXPECT_EQ(r.device_sub_steps, 3);
+  const auto [diff, at] = max_difference(r.device, r.reference);
+  EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << "at vertex " << at;
+  EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
 }
 
 TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
@@ -268,7 +294,7 @@ TEST(OpenCLPheromone, RejectsBadInputAndOversizedBuffers) {
                InputError);
   OpenCLPheromone ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
   EXPECT_THROW(ok.set_concentration(std::vector<double>(3, 1.0)), InputError);
-  // A device whose largest allocation is smaller than the Laplacian: a clear error, not a crash.
+  // A device whose largest allocation is smaller than the sub-step matrix: a clear error, not a crash.
   ComputeContext small = compute();
   small.device.max_allocation_bytes = 1024;
   try {
@@ -276,7 +302,7 @@ TEST(OpenCLPheromone, RejectsBadInputAndOversizedBuffers) {
     FAIL() << "expected DeviceError";
   } catch (const DeviceError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("Laplacian"), std::string::npos) << m;
+    EXPECT_NE(m.find("forward Euler"), std::string::npos) << m;
     EXPECT_NE(m.find("1024"), std::string::npos) << m;
   }
 }

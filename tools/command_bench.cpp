@@ -1,7 +1,9 @@
 // `physarum bench [--device SPEC] [--quick] [--out DIR] [--meshes DIR]`: how the cost of a simulation
 // step grows with the number of agents and with the surface's resolution, on both backends, in one
 // run (so ratios are meaningful on a shared machine). Writes DIR/bench.json, DIR/bench.csv and
-// log-log plots DIR/agents.png and DIR/faces.png with fitted slopes, and prints a table, the
+// log-log plots with fitted slopes (time per step against agents, against faces at fixed agents and
+// against faces with the work per face held constant: agents.png, faces.png, faces_scaled.png;
+// agent-steps per second: agents_throughput.png, faces_throughput.png), and prints a table, the
 // paper-size case and a roofline estimate.
 //
 // What is timed: full steps (agents + pheromone) after three warm-up steps, until at least
@@ -14,6 +16,7 @@
 #include "common/line_plot.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
+#include "opencl/face_records.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/pheromone.hpp"
@@ -93,6 +96,24 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y,
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+// The default scene rescaled to a domain so that the work per face is the same at every resolution.
+// At fixed agents and fixed distances a finer mesh is not simply more of the same work: crossings
+// per agent-step grow like 1/h ~ sqrt(F) (h the edge length) and forward Euler's sub-steps like
+// 1/h^2 ~ F, so the fixed-agent sweep's slope in faces measures the model (about 0.5), not whether
+// the implementation scales linearly. Here agents grow with F (one per face), lengths (sensor
+// distance, speed) with h, and the diffusion rate with h^2: the same pattern in units of faces, with
+// the same crossings per agent-step and sub-steps per step at every resolution, so a linear
+// implementation takes time proportional to F (slope 1).
+Scene scene_scaled_to(const SurfaceDomain& d) {
+  constexpr double kNativeFaces = 20000;  // where the default scene's lengths are used as they are
+  const double scale = std::sqrt(kNativeFaces / d.face_count);  // h over the native resolution's h
+  Scene s = bench_scene(d.face_count);
+  s.sensor_distance *= scale;
+  s.move_rate *= scale;
+  s.diffuse_rate *= scale * scale;
+  return s;
+}
+
 // Host memory bandwidth: a STREAM-style triad a = b + s c over 3 x 64 MB, one thread per core,
 // best of five. Bytes counted: 2 reads + 1 write per element.
 double measure_bandwidth() {
@@ -144,9 +165,9 @@ class Bench {
   }
 
   Row run(const std::string& sweep, const std::string& surface, const SurfaceDomain& d, const std::string& backend,
-          int agents) {
+          const Scene& scene) {
     const double min_seconds = options_.quick ? 0.15 : 0.6;
-    const Scene scene = bench_scene(agents);
+    const int agents = scene.agents;
     std::unique_ptr<SimulationBackend> sim;
     if (backend == "opencl") sim = std::make_unique<opencl::OpenCLSimulation>(compute_, d, scene);
     else sim = std::make_unique<ReferenceSimulation>(d, scene);
@@ -167,6 +188,7 @@ class Bench {
   struct PheromoneTiming {
     double seconds = 0.0;
     int sub_steps = 1;
+    double bytes_per_step = 0.0;  // OpenCL forward Euler: what its sub-steps read and write
   };
   PheromoneTiming pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator) {
     const Scene scene = bench_scene(0);
@@ -185,8 +207,10 @@ class Bench {
       return seconds_since(start) / steps;
     };
     if (backend == "opencl") {
-      opencl::OpenCLPheromone field(compute_, d, params, integrator, scene.time_step);
-      return {time(field, [&] { compute_.queue.finish(); }), field.sub_steps()};
+      // Numbered as a simulation numbers the device's field, so it reads memory the same way.
+      opencl::OpenCLPheromone field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
+      return {time(field, [&] { compute_.queue.finish(); }), field.sub_steps(),
+              field.forward_bytes_per_sub_step() * field.sub_steps()};
     }
     ReferencePheromone field(d, params, integrator, scene.time_step);
     return {time(field, [] {}), field.sub_steps()};
@@ -202,9 +226,12 @@ class Bench {
   std::vector<Row> rows_;
 };
 
-// Draws one sweep (a line per surface and backend) and returns the fitted slopes.
+// Draws one sweep (a line per surface and backend), seconds per step or agent-steps per second
+// against agents or faces, and returns the fitted log-log slopes.
+enum class Axis { kAgents, kFaces };
+enum class Measure { kSecondsPerStep, kAgentStepsPerSecond };
 nlohmann::ordered_json plot(const std::string& path, const std::vector<Row>& rows, const std::string& sweep,
-                            bool by_agents, const std::string& title) {
+                            Axis axis, Measure measure, const std::string& title) {
   nlohmann::ordered_json slopes = nlohmann::ordered_json::array();
   std::vector<PlotSeries> series;
   const std::array<std::array<float, 3>, 6> colors = {{{0.12f, 0.35f, 0.75f},
@@ -224,11 +251,11 @@ nlohmann::ordered_json plot(const std::string& path, const std::vector<Row>& row
     std::vector<double> x, y;
     for (const Row& r : rows)
       if (r.sweep == sweep && r.surface == keys[k].first && r.backend == keys[k].second) {
-        x.push_back(by_agents ? r.agents : r.faces);
-        y.push_back(r.seconds_per_step);
+        x.push_back(axis == Axis::kAgents ? r.agents : r.faces);
+        y.push_back(measure == Measure::kSecondsPerStep ? r.seconds_per_step : r.agent_steps_per_second);
       }
     // The ranges (1e5..1e7 agents, 1e4..1e6 faces); a quick run fits whatever it has.
-    double slope = by_agents ? log_log_slope(x, y, 1e5, 1e7) : log_log_slope(x, y, 1e4, 1e6);
+    double slope = axis == Axis::kAgents ? log_log_slope(x, y, 1e5, 1e7) : log_log_slope(x, y, 1e4, 1e6);
     if (std::isnan(slope)) slope = log_log_slope(x, y, 0.0, 1e300);
     char label[96];
     std::snprintf(label, sizeof label, "%s %s, slope %.2f", keys[k].first.c_str(), keys[k].second.c_str(), slope);
@@ -243,8 +270,8 @@ nlohmann::ordered_json plot(const std::string& path, const std::vector<Row>& row
   o.log_x = o.log_y = true;
   o.width = 1000;
   o.title = title;
-  o.x_label = by_agents ? "agents" : "intrinsic faces";
-  o.y_label = "seconds per step";
+  o.x_label = axis == Axis::kAgents ? "agents" : "intrinsic faces";
+  o.y_label = measure == Measure::kSecondsPerStep ? "seconds per step" : "agent-steps per second";
   write_line_plot_png(path, series, o);
   return slopes;
 }
@@ -265,7 +292,7 @@ int run_bench(const BenchOptions& o) {
   for (int n : agent_counts)
     for (const std::string& b : backends) {
       if (b == "reference" && n > 1000000) continue;  // ~5 s a step: the slope is clear without it
-      bench.run("agents", agent_surface, *fixed, b, n);
+      bench.run("agents", agent_surface, *fixed, b, bench_scene(n));
     }
 
   // ---- resolution scaling at a fixed agent count ----
@@ -283,12 +310,14 @@ int run_bench(const BenchOptions& o) {
     }
     for (double radius : radii) {
       const SurfaceDomain* d = bench.domain(surface, radius);
-      for (const std::string& b : backends) bench.run("faces", surface, *d, b, resolution_agents);
+      for (const std::string& b : backends) bench.run("faces", surface, *d, b, bench_scene(resolution_agents));
+      for (const std::string& b : backends) bench.run("faces_scaled", surface, *d, b, scene_scaled_to(*d));
       nlohmann::ordered_json p = {{"surface", surface}, {"faces", d->face_count}, {"vertices", d->vertex_count}};
       for (const std::string& b : backends) {
         const auto forward = bench.pheromone_step(*d, b, Integrator::ForwardEuler);
         p[b + "_forward_seconds"] = forward.seconds;
         p["forward_sub_steps"] = forward.sub_steps;
+        if (forward.bytes_per_step > 0.0) p["opencl_forward_bytes"] = forward.bytes_per_step;
         p[b + "_backward_seconds"] = bench.pheromone_step(*d, b, Integrator::BackwardEuler).seconds;
       }
       pheromone.push_back(p);
@@ -340,13 +369,14 @@ int run_bench(const BenchOptions& o) {
                                 {"measured_seconds_per_step", last->seconds_per_step},
                                 {"fraction_of_bound", bound / last->seconds_per_step}};
     }
-    if (!pheromone.empty()) {
+    if (!pheromone.empty() && pheromone.back().contains("opencl_forward_bytes")) {
       const auto& p = pheromone.back();
       const int n = p["vertices"].get<int>();
-      // Forward Euler: per vertex and sub-step a CSR row (~7 entries of 4 B column + 4 B value + 4 B
-      // gathered u), its start, two rates, u in and u out: ~104 B.
+      // Forward Euler: each sub-step reads its matrix (sliced ELLPACK, ~8 slots of 4 B column and
+      // 4 B value per vertex) and u once and writes u once (opencl/pheromone.hpp counts the bytes);
+      // the neighbours' u it gathers are the cache's, not memory's.
       const int sub_steps = p["forward_sub_steps"].get<int>();
-      const double bytes = 104.0 * n * sub_steps;
+      const double bytes = p["opencl_forward_bytes"].get<double>();
       const double measured = p["opencl_forward_seconds"].get<double>();
       roofline["pheromone_forward_step"] = {{"vertices", n},
                                             {"sub_steps", sub_steps},
@@ -374,14 +404,26 @@ int run_bench(const BenchOptions& o) {
         << "," << r.seconds_per_step << "," << r.agent_steps_per_second << "," << r.crossings_per_agent_step << ","
         << r.crossings_per_second << "\n";
   write_text_file_atomically((out / "bench.csv").string(), csv.str());
+  // Slopes of time per step (those of agent-steps per second follow from them).
+  const auto png = [&](const char* name) { return (out / name).string(); };
+  const std::string fixed_agents = " (" + std::to_string(resolution_agents) + " agents)";
   report["slopes"] = {
-      {"agents", plot((out / "agents.png").string(), bench.rows(), "agents", true,
+      {"agents", plot(png("agents.png"), bench.rows(), "agents", Axis::kAgents, Measure::kSecondsPerStep,
                       "Time per step against agents (" + agent_surface + ")")},
-      {"faces", plot((out / "faces.png").string(), bench.rows(), "faces", false,
-                     "Time per step against intrinsic faces (" + std::to_string(resolution_agents) + " agents)")}};
+      {"faces", plot(png("faces.png"), bench.rows(), "faces", Axis::kFaces, Measure::kSecondsPerStep,
+                     "Time per step against intrinsic faces" + fixed_agents)},
+      {"faces_scaled", plot(png("faces_scaled.png"), bench.rows(), "faces_scaled", Axis::kFaces,
+                            Measure::kSecondsPerStep,
+                            "Time per step against intrinsic faces, work per face held constant")}};
+  plot(png("agents_throughput.png"), bench.rows(), "agents", Axis::kAgents, Measure::kAgentStepsPerSecond,
+       "Agent-steps per second against agents (" + agent_surface + ")");
+  plot(png("faces_throughput.png"), bench.rows(), "faces", Axis::kFaces, Measure::kAgentStepsPerSecond,
+       "Agent-steps per second against intrinsic faces" + fixed_agents);
   std::printf("fitted log-log slopes of time per step: %s\n", report["slopes"].dump().c_str());
   write_text_file_atomically((out / "bench.json").string(), report.dump(2) + "\n");
-  std::printf("wrote %s/{bench.json, bench.csv, agents.png, faces.png}\n", out.string().c_str());
+  std::printf("wrote %s/{bench.json, bench.csv, agents.png, faces.png, faces_scaled.png, agents_throughput.png, "
+              "faces_throughput.png}\n",
+              out.string().c_str());
   return 0;
 }
 
@@ -393,7 +435,7 @@ Command add_bench_command(CLI::App& parent) {
       "bench", "Scaling benchmarks: time per step against agents and against faces, both backends, with plots");
   app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
   app->add_flag("--quick", options->quick, "Small sweeps (about two minutes), for frequent runs");
-  app->add_option("--out", options->out, "Folder for bench.json, bench.csv, agents.png and faces.png")
+  app->add_option("--out", options->out, "Folder for bench.json, bench.csv and the plots (*.png)")
       ->capture_default_str();
   app->add_option("--meshes", options->meshes, "Folder of spot.obj and stanford-bunny.obj")->capture_default_str();
   return Command{app, [options] { return run_bench(*options); }};
