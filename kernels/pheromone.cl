@@ -22,6 +22,9 @@ float csr_row_times(const uint i, __global const int* row_start, __global const 
  * rows share one loop of uniform length and one float4 of arithmetic. sub_step numbers the
  * sub-steps of one time step; only the planted fault no-decay-substep reads it, and decay_rate and h
  * with it, to add the first sub-step's decay back. */
+#if PHYSARUM_SLICE_ROWS != 4
+#error "pheromone_forward_substep holds a slice in int4/float4"
+#endif
 __kernel void pheromone_forward_substep(const uint n, __global const int* slice_start, __global const int4* column,
                                         __global const float4* value, __global const float* decay_rate,
                                         const float h, __global const float* u_in, __global float* u_out,

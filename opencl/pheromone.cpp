@@ -137,7 +137,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     }
     const SlicedMatrix sliced = slice_rows(F);
     forward_slices_ = sliced.slices();
-    forward_bytes_per_sub_step_ = (sliced.slice_start.size() + sliced.column.size() + sliced.value.size() + 2 * un) * 4.0;
+    forward_bytes_per_sub_step_ =
+        4.0 * static_cast<double>(sliced.slice_start.size() + sliced.column.size() + sliced.value.size() + 2 * un);
     forward_slice_start_ = upload_buffer(compute, "forward Euler slice starts", sliced.slice_start, kRead, false);
     forward_column_ = upload_buffer(compute, "forward Euler columns", sliced.column, kRead, false);
     forward_value_ = upload_buffer(compute, "forward Euler values", sliced.value, kRead, false);

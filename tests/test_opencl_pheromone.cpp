@@ -22,24 +22,22 @@
 namespace physarum::opencl {
 namespace {
 
+SurfaceDomain intrinsic_delaunay_domain(const std::string& mesh) {
+  IntrinsicTriangulation triangulation(load_mesh(mesh));
+  triangulation.flip_to_delaunay();
+  return build_surface_domain(triangulation.snapshot());
+}
+
 // The real surface: the built-in sphere, intrinsic Delaunay (non-negative cotan weights).
 const SurfaceDomain& sphere_domain() {
-  static const SurfaceDomain domain = [] {
-    IntrinsicTriangulation triangulation(load_mesh("shape:sphere"));
-    triangulation.flip_to_delaunay();
-    return build_surface_domain(triangulation.snapshot());
-  }();
+  static const SurfaceDomain domain = intrinsic_delaunay_domain("shape:sphere");
   return domain;
 }
 
 // A flat disk: boundary vertices have fewer neighbours than interior ones, so the forward step's
 // slices of four rows mix row lengths and carry padding (the sphere's rows are all alike).
 const SurfaceDomain& disk_domain() {
-  static const SurfaceDomain domain = [] {
-    IntrinsicTriangulation triangulation(load_mesh("shape:disk"));
-    triangulation.flip_to_delaunay();
-    return build_surface_domain(triangulation.snapshot());
-  }();
+  static const SurfaceDomain domain = intrinsic_delaunay_domain("shape:disk");
   return domain;
 }
 
