@@ -142,8 +142,9 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     forward_slice_start_ = upload_buffer(compute, "forward Euler slice starts", sliced.slice_start, kRead, false);
     forward_column_ = upload_buffer(compute, "forward Euler columns", sliced.column, kRead, false);
     forward_value_ = upload_buffer(compute, "forward Euler values", sliced.value, kRead, false);
+    // Read only by the planted fault no-decay-substep (see pheromone_forward_substep).
+    decay_rate_ = upload_buffer(compute, "decay rate", to_float(params.decay_rate), kRead, false);
   }
-  decay_rate_ = upload_buffer(compute, "decay rate", to_float(params.decay_rate), kRead, false);
   mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
   u_ = allocate_buffer(compute, "concentration", field_bytes, CL_MEM_READ_WRITE, true);

@@ -105,11 +105,12 @@ class OpenCLPheromone {
   std::size_t group_count_ = 1;  // work-groups of a per-vertex launch (= partials per reduction)
 
   // Operators and per-vertex data (read-only on the device).
-  DeviceBuffer decay_rate_, mass_, inverse_mass_;
-  // Forward Euler: the sub-step matrix in sliced ELLPACK form (opencl/sliced_matrix.hpp).
+  DeviceBuffer mass_, inverse_mass_;
+  // Forward Euler: the sub-step matrix in sliced ELLPACK form (opencl/sliced_matrix.hpp), and the
+  // decay rates for the planted fault no-decay-substep.
   int forward_slices_ = 0;
   double forward_bytes_per_sub_step_ = 0.0;
-  DeviceBuffer forward_slice_start_, forward_column_, forward_value_;
+  DeviceBuffer forward_slice_start_, forward_column_, forward_value_, decay_rate_;
   // Backward Euler: S x = B u, S symmetric positive definite (same sparsity as L), B mostly diagonal.
   DeviceBuffer system_row_start_, system_column_, system_value_, inverse_diagonal_;
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;

@@ -7,12 +7,11 @@
 // relative residual of 1e-6 on a system whose condition number here is ~10-100, so 1e-4 of the
 // maximum bounds the solve's error with room for float rounding.
 #include "common/errors.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
 #include "kernels/device_types.h"
 #include "opencl/pheromone.hpp"
 #include "opencl/sliced_matrix.hpp"
 #include "reference/pheromone.hpp"
+#include "delaunay_domain.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -22,22 +21,18 @@
 namespace physarum::opencl {
 namespace {
 
-SurfaceDomain intrinsic_delaunay_domain(const std::string& mesh) {
-  IntrinsicTriangulation triangulation(load_mesh(mesh));
-  triangulation.flip_to_delaunay();
-  return build_surface_domain(triangulation.snapshot());
-}
+using testing::delaunay_domain;
 
 // The real surface: the built-in sphere, intrinsic Delaunay (non-negative cotan weights).
 const SurfaceDomain& sphere_domain() {
-  static const SurfaceDomain domain = intrinsic_delaunay_domain("shape:sphere");
+  static const SurfaceDomain domain = delaunay_domain("shape:sphere");
   return domain;
 }
 
 // A flat disk: boundary vertices have fewer neighbours than interior ones, so the forward step's
 // slices of four rows mix row lengths and carry padding (the sphere's rows are all alike).
 const SurfaceDomain& disk_domain() {
-  static const SurfaceDomain domain = intrinsic_delaunay_domain("shape:disk");
+  static const SurfaceDomain domain = delaunay_domain("shape:disk");
   return domain;
 }
 

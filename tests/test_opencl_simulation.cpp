@@ -10,11 +10,10 @@
 //
 // Statistical layer: the U metric (Eq. 5) holds on the device exactly as in the reference test.
 #include "common/field_statistics.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
+#include "delaunay_domain.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
 #include "test_support.hpp"
@@ -39,11 +38,7 @@ const ComputeContext& compute() {
   return c;
 }
 
-SurfaceDomain delaunay_domain(const std::string& spec) {
-  IntrinsicTriangulation triangulation(load_mesh(spec));
-  triangulation.flip_to_delaunay();
-  return build_surface_domain(triangulation.snapshot());
-}
+using testing::delaunay_domain;
 
 using testing::StepComparison;
 

@@ -4,12 +4,11 @@
 // glibc also interposes malloc/calloc/realloc, because Eigen (the backward-Euler solve) allocates
 // its temporaries with std::malloc, not with operator new. Outside an armed window both only
 // forward to the normal allocator, so every other test is unaffected.
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
 #include "common/default_scene.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
 #include "reference/simulation.hpp"
+#include "delaunay_domain.hpp"
 
 #include <gtest/gtest.h>
 
@@ -145,9 +144,7 @@ Scene uniform_scene(Integrator integrator) {
 // Warm-up (10 steps: the first deposits, respawns and face crossings are behind us), then 50 counted
 // steps: every agent moves, senses across faces and deposits, agents respawn, the pheromone steps.
 void expect_steps_allocate_nothing(Integrator integrator) {
-  IntrinsicTriangulation triangulation(load_mesh("shape:sphere"));
-  triangulation.flip_to_delaunay();
-  const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
+  const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
   ReferenceSimulation sim(domain, uniform_scene(integrator));
   sim.run(10);
   const long long respawns_before = sim.counters().respawns;

@@ -1,12 +1,12 @@
 // The serial reference simulation as a whole: the U metric of Eq. 5, time-step independence,
 // reproducibility, and `physarum run` as a user runs it.
 #include "common/field_statistics.hpp"
-#include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 #include "reference/simulation.hpp"
+#include "delaunay_domain.hpp"
 #include "model_scene.hpp"
 #include "test_support.hpp"
 
@@ -29,11 +29,7 @@ using testing::model_scene;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-SurfaceDomain delaunay_domain(const std::string& spec) {
-  IntrinsicTriangulation triangulation(load_mesh(spec));
-  triangulation.flip_to_delaunay();
-  return build_surface_domain(triangulation.snapshot());
-}
+using testing::delaunay_domain;
 
 
 // Time average of the area-weighted mean over steps [first, last] of a run whose field starts at U.

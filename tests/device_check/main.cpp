@@ -10,6 +10,7 @@
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
 #include "pheromone_test_meshes.hpp"
+#include "probe_checks.hpp"
 #include "reference/simulation.hpp"
 
 #include <chrono>
@@ -22,11 +23,7 @@
 namespace physarum::opencl {
 namespace {
 
-int failures = 0;
-void check(bool ok, const std::string& what) {
-  std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
-  if (!ok) ++failures;
-}
+using testing::check;
 
 Scene scene(int agents, Integrator integrator) { return testing::model_scene(agents, 0.01, 0.5, integrator); }
 
@@ -103,8 +100,8 @@ int run(const std::string& device) {
   u_metric(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
   throughput(compute, refined(sphere, 0.015));
   throughput(compute, refined(sphere, 0.004));
-  std::printf("%d failed\n", failures);
-  return failures == 0 ? 0 : 1;
+  std::printf("%d failed\n", testing::probe_failures());
+  return testing::probe_exit_status();
 }
 
 }  // namespace

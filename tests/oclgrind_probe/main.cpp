@@ -12,6 +12,7 @@
 #include "opencl/simulation.hpp"
 #include "opencl/program_cache.hpp"
 #include "pheromone_test_meshes.hpp"
+#include "probe_checks.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -21,12 +22,7 @@
 namespace physarum::opencl {
 namespace {
 
-int failures = 0;
-
-void check(bool ok, const std::string& what) {
-  std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
-  if (!ok) ++failures;
-}
+using testing::check;
 
 VertexParameters rates(int n, double diffuse, double decay) {
   VertexParameters p;
@@ -144,7 +140,7 @@ int run(int argc, char** argv) {
   std::printf("device: %s\n", compute.device.describe().c_str());
   if (argc > 1 && std::strcmp(argv[1], "--fault-demo") == 0) {
     run_fault_demo(compute);
-    return failures == 0 ? 0 : 1;
+    return testing::probe_exit_status();
   }
   // 162 vertices: small enough to interpret, not a multiple of any power-of-two group size, so the
   // padded work-items and their guards are exercised.
@@ -163,7 +159,7 @@ int run(int argc, char** argv) {
     run_agents(compute, square, Integrator::BackwardEuler, grouping, "agents on a square, backward Euler" + lanes);
   }
   run_philox(compute);
-  return failures == 0 ? 0 : 1;
+  return testing::probe_exit_status();
 }
 
 }  // namespace
