@@ -22,9 +22,12 @@ typedef float dev_float;
 #define PHYSARUM_FIELD_SUM_COMPONENTS 4
 #define PHYSARUM_COVERAGE_THRESHOLDS 3
 
-/* ---- sliced ELLPACK matrices (pheromone.cl, opencl/sliced_matrix.hpp) ----
- * Rows per slice: one int4/float4 slot holds an entry of each of four consecutive rows. */
-#define PHYSARUM_SLICE_ROWS 4
+/* ---- hybrid ELL + CSR matrices (pheromone.cl, opencl/hybrid_matrix.hpp) ----
+ * Entries per row in the fixed-width ELL block. A row of the sub-step matrix has its vertex's degree
+ * plus one entries, 7 on average on a triangle mesh; on the intrinsic Delaunay meshes we run
+ * (spot, bunny, sphere, torus) 8 slots hold 96-97 % of rows whole, and the rest spill 1-3 entries
+ * into the overflow part. */
+#define PHYSARUM_ELL_WIDTH 8
 
 /* ---- conjugate gradients (pheromone.cl) ----
  * The scalars of one solve live on the device so iterations run without a host round trip; the

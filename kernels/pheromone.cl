@@ -14,47 +14,41 @@ float csr_row_times(const uint i, __global const int* row_start, __global const 
   return sum;
 }
 
-/* One forward Euler sub-step of Eq. 6 divided by M for the four rows of slice s:
+/* One forward Euler sub-step of Eq. 6 divided by M, for row i:
  *   u_out = F u_in,  F = I - h (diag(r_dif / m) L + diag(r_dec)),
- * with F assembled once on the host (opencl/pheromone.cpp) in sliced ELLPACK form
- * (opencl/sliced_matrix.hpp). Folding the rates into F leaves one matrix-vector product per
- * sub-step, which reads fewer bytes per vertex than L, two rate arrays and u_i would; the slice's
- * rows share one loop of uniform length and one float4 of arithmetic. sub_step numbers the
+ * with F assembled once on the host (opencl/pheromone.cpp) in hybrid ELL + CSR form
+ * (opencl/hybrid_matrix.hpp). Folding the rates into F leaves one matrix-vector product per
+ * sub-step, which reads fewer bytes per vertex than L, two rate arrays and u_i would. This kernel
+ * does the ELL block: a fixed loop of PHYSARUM_ELL_WIDTH slots, read slot-major so that adjacent
+ * work-items read adjacent words and a CPU device can run it as gathers across work-items; it runs
+ * on all `stride` rows of the block (padding rows read zeros) and writes only the real ones.
+ * pheromone_forward_overflow then adds the entries of the few longer rows. sub_step numbers the
  * sub-steps of one time step; only the planted fault no-decay-substep reads it, and decay_rate and h
  * with it, to add the first sub-step's decay back. */
-#if PHYSARUM_SLICE_ROWS != 4
-#error "pheromone_forward_substep holds a slice in int4/float4"
-#endif
-__kernel void pheromone_forward_substep(const uint n, __global const int* slice_start, __global const int4* column,
-                                        __global const float4* value, __global const float* decay_rate,
+__kernel void pheromone_forward_substep(const uint n, const uint stride, __global const int* column,
+                                        __global const float* value, __global const float* decay_rate,
                                         const float h, __global const float* u_in, __global float* u_out,
                                         const uint sub_step) {
-  const uint s = get_global_id(0);
-  const uint first = s * PHYSARUM_SLICE_ROWS;
-  if (first >= n) return;
-  const uint rows = min((uint)PHYSARUM_SLICE_ROWS, n - first);
-  float4 sum = (float4)(0.0f);
-  const int end = slice_start[s + 1];
-  for (int k = slice_start[s]; k < end; ++k) {
-    const int4 c = column[k];
-    sum += value[k] * (float4)(u_in[c.x], u_in[c.y], u_in[c.z], u_in[c.w]);
-  }
+  const uint i = get_global_id(0);
+  float sum = 0.0f;
+#pragma unroll
+  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) sum += value[k * stride + i] * u_in[column[k * stride + i]];
 #ifdef PHYSARUM_FAULT_NO_DECAY_SUBSTEP
-  if (sub_step == 0) { /* planted fault: the first sub-step skips decay */
-    float skipped[PHYSARUM_SLICE_ROWS] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (uint r = 0; r < rows; ++r) skipped[r] = h * decay_rate[first + r] * u_in[first + r];
-    sum += vload4(0, skipped);
-  }
+  if (sub_step == 0 && i < n) sum += h * decay_rate[i] * u_in[i]; /* planted fault: the first sub-step skips decay */
 #else
   (void)decay_rate, (void)h, (void)sub_step;
 #endif
-  if (rows == PHYSARUM_SLICE_ROWS) {
-    vstore4(sum, s, u_out);
-    return;
-  }
-  float row_sum[PHYSARUM_SLICE_ROWS]; /* the last slice of a matrix whose size is not a multiple of 4 */
-  vstore4(sum, 0, row_sum);
-  for (uint r = 0; r < rows; ++r) u_out[first + r] = row_sum[r];
+  if (i < n) u_out[i] = sum;
+}
+
+/* The rest of the forward sub-step: each row with more than PHYSARUM_ELL_WIDTH entries adds its
+ * remaining ones (CSR, one work-item per long row, so no two work-items touch one vertex). */
+__kernel void pheromone_forward_overflow(const uint count, __global const int* row, __global const int* row_start,
+                                         __global const int* column, __global const float* value,
+                                         __global const float* u_in, __global float* u_out) {
+  const uint j = get_global_id(0);
+  if (j >= count) return;
+  u_out[row[j]] += csr_row_times(j, row_start, column, value, u_in);
 }
 
 /* Deposits: an amount at a vertex raises its concentration by amount / m_i. */

@@ -6,7 +6,7 @@
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
-#include "opencl/sliced_matrix.hpp"
+#include "opencl/hybrid_matrix.hpp"
 #include "opencl/work_group_size.hpp"
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 namespace physarum::opencl {
 
 struct OpenCLPheromone::Kernels {
-  cl::Kernel forward_substep, add_amounts, csr_multiply;
+  cl::Kernel forward_substep, forward_overflow, add_amounts, csr_multiply;
   cl::Kernel cg_start, cg_start_finish, cg_multiply, cg_alpha, cg_update, cg_beta, cg_direction;
 };
 
@@ -92,6 +92,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
                       options.build_options);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
+    k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
     k.add_amounts = cl::Kernel(program, "pheromone_add_amounts");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
     k.cg_start = cl::Kernel(program, "cg_start");
@@ -104,7 +105,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     // One local size for every per-vertex kernel, so all reductions have the same number of
     // partials; the smallest the kernels allow.
     group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.add_amounts, &k.csr_multiply, &k.cg_start, &k.cg_multiply,
+    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply, &k.cg_start, &k.cg_multiply,
                                      &k.cg_update, &k.cg_direction})
       group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
     final_group_ = 256;
@@ -119,7 +120,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   const size_t field_bytes = un * sizeof(float);
   if (integrator == Integrator::ForwardEuler) {
-    // The sub-step matrix F = I - h (diag(r_dif / m) L + diag(r_dec)), in double, then sliced.
+    // The sub-step matrix F = I - h (diag(r_dif / m) L + diag(r_dec)), in double, then in hybrid
+    // form with one ELL row per work-item of the padded launch.
     CsrMatrix F;
     F.rows = F.cols = n;
     F.row_start.push_back(0);
@@ -135,13 +137,24 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
       if (!diagonal) F.column.push_back(i), F.value.push_back(keep);  // a Laplacian row without a diagonal entry
       F.row_start.push_back(static_cast<int>(F.column.size()));
     }
-    const SlicedMatrix sliced = slice_rows(F);
-    forward_slices_ = sliced.slices();
+    const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(un, group_)));
+    forward_stride_ = hybrid.stride;
+    forward_overflow_rows_ = hybrid.overflow_rows();
+    // The ELL block and the overflow part once each, u in once, u out written once and the long
+    // rows' entries of it read and written again.
     forward_bytes_per_sub_step_ =
-        4.0 * static_cast<double>(sliced.slice_start.size() + sliced.column.size() + sliced.value.size() + 2 * un);
-    forward_slice_start_ = upload_buffer(compute, "forward Euler slice starts", sliced.slice_start, kRead, false);
-    forward_column_ = upload_buffer(compute, "forward Euler columns", sliced.column, kRead, false);
-    forward_value_ = upload_buffer(compute, "forward Euler values", sliced.value, kRead, false);
+        4.0 * static_cast<double>(hybrid.column.size() + hybrid.value.size() + hybrid.overflow_row.size() +
+                                  hybrid.overflow_start.size() + hybrid.overflow_column.size() +
+                                  hybrid.overflow_value.size() + 2 * hybrid.overflow_row.size() + 2 * un);
+    forward_column_ = upload_buffer(compute, "forward Euler ELL columns", hybrid.column, kRead, false);
+    forward_value_ = upload_buffer(compute, "forward Euler ELL values", hybrid.value, kRead, false);
+    forward_overflow_row_ = upload_buffer(compute, "forward Euler overflow rows", hybrid.overflow_row, kRead, false);
+    forward_overflow_start_ =
+        upload_buffer(compute, "forward Euler overflow row starts", hybrid.overflow_start, kRead, false);
+    forward_overflow_column_ =
+        upload_buffer(compute, "forward Euler overflow columns", hybrid.overflow_column, kRead, false);
+    forward_overflow_value_ =
+        upload_buffer(compute, "forward Euler overflow values", hybrid.overflow_value, kRead, false);
     // Read only by the planted fault no-decay-substep (see pheromone_forward_substep).
     decay_rate_ = upload_buffer(compute, "decay rate", to_float(params.decay_rate), kRead, false);
   }
@@ -276,22 +289,35 @@ void OpenCLPheromone::step() {
 
 void OpenCLPheromone::forward_step() {
   cl::Kernel& k = kernels_->forward_substep;
-  const cl::NDRange global(padded_global_size(static_cast<size_t>(forward_slices_), group_)), local(group_);
   k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, forward_slice_start_.buffer);
+  k.setArg(1, static_cast<cl_uint>(forward_stride_));
   k.setArg(2, forward_column_.buffer);
   k.setArg(3, forward_value_.buffer);
   k.setArg(4, decay_rate_.buffer);
   k.setArg(5, static_cast<cl_float>(sub_step_));
+  cl::Kernel& overflow = kernels_->forward_overflow;
+  overflow.setArg(0, static_cast<cl_uint>(forward_overflow_rows_));
+  overflow.setArg(1, forward_overflow_row_.buffer);
+  overflow.setArg(2, forward_overflow_start_.buffer);
+  overflow.setArg(3, forward_overflow_column_.buffer);
+  overflow.setArg(4, forward_overflow_value_.buffer);
+  const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(forward_overflow_rows_), group_));
   // Ping-pong between u and scratch; an odd count ends in scratch and costs one device-side copy,
-  // so u stays the buffer every other kernel knows.
+  // so u stays the buffer every other kernel knows. The in-order queue runs each overflow pass
+  // after its ELL pass.
   const cl::Buffer* from = &u_.buffer;
   const cl::Buffer* to = &scratch_.buffer;
   for (int s = 0; s < sub_steps_; ++s) {
     k.setArg(6, *from);
     k.setArg(7, *to);
     k.setArg(8, static_cast<cl_uint>(s));
-    compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, global, local);
+    compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(static_cast<size_t>(forward_stride_)),
+                                        cl::NDRange(group_));
+    if (forward_overflow_rows_ > 0) {
+      overflow.setArg(5, *from);
+      overflow.setArg(6, *to);
+      compute_.queue.enqueueNDRangeKernel(overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
+    }
     std::swap(from, to);
   }
   if (from != &u_.buffer) compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);

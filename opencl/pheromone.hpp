@@ -106,11 +106,13 @@ class OpenCLPheromone {
 
   // Operators and per-vertex data (read-only on the device).
   DeviceBuffer mass_, inverse_mass_;
-  // Forward Euler: the sub-step matrix in sliced ELLPACK form (opencl/sliced_matrix.hpp), and the
+  // Forward Euler: the sub-step matrix in hybrid ELL + CSR form (opencl/hybrid_matrix.hpp), and the
   // decay rates for the planted fault no-decay-substep.
-  int forward_slices_ = 0;
+  int forward_stride_ = 0;
+  int forward_overflow_rows_ = 0;
   double forward_bytes_per_sub_step_ = 0.0;
-  DeviceBuffer forward_slice_start_, forward_column_, forward_value_, decay_rate_;
+  DeviceBuffer forward_column_, forward_value_, decay_rate_;
+  DeviceBuffer forward_overflow_row_, forward_overflow_start_, forward_overflow_column_, forward_overflow_value_;
   // Backward Euler: S x = B u, S symmetric positive definite (same sparsity as L), B mostly diagonal.
   DeviceBuffer system_row_start_, system_column_, system_value_, inverse_diagonal_;
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;

@@ -9,7 +9,7 @@
 #include "common/errors.hpp"
 #include "kernels/device_types.h"
 #include "opencl/pheromone.hpp"
-#include "opencl/sliced_matrix.hpp"
+#include "opencl/hybrid_matrix.hpp"
 #include "reference/pheromone.hpp"
 #include "delaunay_domain.hpp"
 #include "test_support.hpp"
@@ -29,10 +29,16 @@ const SurfaceDomain& sphere_domain() {
   return domain;
 }
 
-// A flat disk: boundary vertices have fewer neighbours than interior ones, so the forward step's
-// slices of four rows mix row lengths and carry padding (the sphere's rows are all alike).
-const SurfaceDomain& disk_domain() {
-  static const SurfaceDomain domain = delaunay_domain("shape:disk");
+// Surfaces whose rows overflow the forward step's ELL width (kernels/device_types.h) with non-zero
+// weights, and pad it: the octagonal prism's two cap centres have 17 entries, the skinny sphere's two
+// poles 97, their other rows 6 or 7 (the sphere's rows are all alike and fit; the square's 9-entry
+// rows overflow only with the zero weight of a right triangle's diagonal).
+const SurfaceDomain& prism_domain() {
+  static const SurfaceDomain domain = delaunay_domain("shape:octagonal-prism");
+  return domain;
+}
+const SurfaceDomain& skinny_sphere_domain() {
+  static const SurfaceDomain domain = delaunay_domain("shape:skinny-sphere");
   return domain;
 }
 
@@ -116,8 +122,6 @@ TEST(OpenCLPheromone, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
   // The canary checks need padding work-items: a vertex count that is not a multiple of the group size.
   EXPECT_GT(sphere_domain().vertex_count, 500);
   EXPECT_NE(sphere_domain().vertex_count % 64, 0);
-  // The forward step's last slice of four rows is then partly empty, and its guarded stores are tested.
-  EXPECT_NE(sphere_domain().vertex_count % PHYSARUM_SLICE_ROWS, 0);
 }
 
 TEST(OpenCLPheromone, ForwardStepEqualsReference) {
@@ -151,15 +155,22 @@ TEST(OpenCLPheromone, ForwardStepWithSubStepsEqualsReference) {
   EXPECT_LE(max_difference(even.device, even.reference).first, 1e-5 * max_abs(even.reference));
 }
 
-TEST(OpenCLPheromone, ForwardStepWithPaddedSlicesEqualsReference) {
-  const SurfaceDomain& d = disk_domain();
-  const SlicedMatrix sliced = slice_rows(d.laplacian);
-  ASSERT_GT(sliced.column.size(), d.laplacian.column.size()) << "the disk's slices should need padding";
-  const StepPair r = one_step(varying_rates(d.vertex_count, 0.01, 0.5, 7), Integrator::ForwardEuler, 2.5, 1, d);
-  EXPECT_EQ(r.device_sub_steps, 3);
-  const auto [diff, at] = max_difference(r.device, r.reference);
-  EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << "at vertex " << at;
-  EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
+TEST(OpenCLPheromone, ForwardStepWithPaddedAndOverflowingRowsEqualsReference) {
+  for (const SurfaceDomain* d : {&prism_domain(), &skinny_sphere_domain()}) {
+    const HybridMatrix hybrid = to_hybrid(d->laplacian, d->vertex_count);
+    double overflow_weight = 0.0;
+    for (const float w : hybrid.overflow_value) overflow_weight += std::abs(w);
+    ASSERT_GT(overflow_weight, 0.0) << "the surface should have rows longer than the ELL width";
+    int short_rows = 0;
+    for (int i = 0; i < d->vertex_count; ++i)
+      short_rows += d->laplacian.row_start[i + 1] - d->laplacian.row_start[i] < PHYSARUM_ELL_WIDTH;
+    ASSERT_GT(short_rows, 0) << "the surface should have padded rows";
+    const StepPair r = one_step(varying_rates(d->vertex_count, 0.01, 0.5, 7), Integrator::ForwardEuler, 2.5, 1, *d);
+    EXPECT_EQ(r.device_sub_steps, 3);
+    const auto [diff, at] = max_difference(r.device, r.reference);
+    EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << d->vertex_count << " vertices: at vertex " << at;
+    EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
+  }
 }
 
 TEST(OpenCLPheromone, BackwardSolveEqualsReference) {

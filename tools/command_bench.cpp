@@ -376,7 +376,7 @@ int run_bench(const BenchOptions& o) {
     if (!pheromone.empty() && pheromone.back().contains("opencl_forward_bytes")) {
       const auto& p = pheromone.back();
       const int n = p["vertices"].get<int>();
-      // Forward Euler: each sub-step reads its matrix (sliced ELLPACK, ~8 slots of 4 B column and
+      // Forward Euler: each sub-step reads its matrix (hybrid ELL + CSR, 8 slots of 4 B column and
       // 4 B value per vertex) and u once and writes u once (opencl/pheromone.hpp counts the bytes);
       // the neighbours' u it gathers are the cache's, not memory's.
       const int sub_steps = p["forward_sub_steps"].get<int>();

@@ -1,16 +1,20 @@
 // A self-contained check of the OpenCL backend on whatever device the machine has (a GPU where one
 // is lent): the surfaces are built in code (no mesh files), so the program needs nothing but an
 // OpenCL driver. For each device: one agent step from identical states against the reference
-// (fraction of agents that agree), the U metric over a short run, canaries, and the throughput of
-// the full step at 1e5..1e7 agents on a refined sphere.
+// (fraction of agents that agree), the U metric over a short run, one forward-Euler pheromone step
+// against the reference, canaries, the throughput of the full step at 1e5..1e7 agents on a refined
+// sphere, and the forward step's bytes per second.
 //   physarum_device_check [--device SPEC]
 #include "common/field_statistics.hpp"
 #include "common/intrinsic_triangulation.hpp"
+#include "opencl/hybrid_matrix.hpp"
+#include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "probe_checks.hpp"
+#include "reference/pheromone.hpp"
 #include "reference/simulation.hpp"
 
 #include <chrono>
@@ -57,6 +61,45 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
   check(std::abs(sum / n - 1.0) < 0.01, label + ": time-averaged mean / U = " + std::to_string(sum / n));
 }
 
+// Three forward-Euler sub-steps from a varied field against the reference (relative 1e-5, as in
+// tests/test_opencl_pheromone.cpp), then the step's memory throughput.
+void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label) {
+  const int n = domain.vertex_count;
+  VertexParameters params;
+  params.diffuse_rate.assign(static_cast<size_t>(n), 0.01);
+  params.decay_rate.assign(static_cast<size_t>(n), 0.5);
+  ReferencePheromone reference(domain, params, Integrator::ForwardEuler, 1.0);
+  const double dt = 2.5 * reference.stable_time_step();
+  ReferencePheromone expected(domain, params, Integrator::ForwardEuler, dt);
+  OpenCLPheromone device(compute, domain, params, Integrator::ForwardEuler, dt);
+  std::vector<double> u0(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) u0[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
+  expected.set_concentration(u0);
+  device.set_concentration(u0);
+  expected.step();
+  device.step();
+  const std::vector<double> got = device.concentration(), want = expected.concentration();
+  double diff = 0.0, scale = 0.0;
+  for (int i = 0; i < n; ++i) {
+    diff = std::max(diff, std::abs(got[static_cast<size_t>(i)] - want[static_cast<size_t>(i)]));
+    scale = std::max(scale, std::abs(want[static_cast<size_t>(i)]));
+  }
+  const int long_rows = to_hybrid(domain.laplacian, n).overflow_rows();
+  check(diff <= 1e-5 * scale, label + ": forward Euler (" + std::to_string(device.sub_steps()) + " sub-steps, " +
+                                  std::to_string(long_rows) + " rows past the ELL width) max difference " +
+                                  std::to_string(diff) + " of " + std::to_string(scale));
+  check(device.damaged_canaries().empty(), label + ": forward Euler canaries intact");
+  const int steps = 50;
+  device.step();
+  compute.queue.finish();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) device.step();
+  compute.queue.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / steps;
+  std::printf("pheromone forward step: %d vertices, %d sub-steps, %.3f ms/step, %.3g GB/s\n", n, device.sub_steps(),
+              1e3 * seconds, device.forward_bytes_per_sub_step() * device.sub_steps() / seconds / 1e9);
+}
+
 // One throughput line; agents_per_work_item 0 is the device's automatic choice.
 void throughput_line(const ComputeContext& compute, const SurfaceDomain& domain, int agents, int agents_per_work_item) {
   OpenCLSimulationOptions options;
@@ -98,8 +141,11 @@ int run(const std::string& device) {
   one_step(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
   u_metric(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
   u_metric(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
+  pheromone_forward(compute, sphere_domain, "sphere");
   throughput(compute, refined(sphere, 0.015));
-  throughput(compute, refined(sphere, 0.004));
+  const SurfaceDomain fine_sphere = refined(sphere, 0.004);
+  throughput(compute, fine_sphere);
+  pheromone_forward(compute, fine_sphere, "fine sphere");
   std::printf("%d failed\n", testing::probe_failures());
   return testing::probe_exit_status();
 }

@@ -6,7 +6,10 @@
 //   physarum_oclgrind_probe --fault-demo  a kernel that writes one element past its buffer: proves
 //                                         the oclgrind check can fail
 #include "common/errors.hpp"
+#include "delaunay_domain.hpp"
+#include "kernels/device_types.h"
 #include "opencl/compute_context.hpp"
+#include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
@@ -149,6 +152,13 @@ int run(int argc, char** argv) {
   VertexParameters mixed = rates(n, 0.02, 0.5);
   for (int i = 0; i < n; ++i) mixed.diffuse_rate[static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::ForwardEuler, 3.0, "forward Euler, sub-steps");
+  // The icosphere's rows all fit the ELL width; the prism's two cap centres (16 neighbours) do not,
+  // so its forward step runs the overflow kernel too.
+  const SurfaceDomain prism = testing::delaunay_domain("shape:octagonal-prism");
+  check(to_hybrid(prism.laplacian, prism.vertex_count).overflow_rows() > 0,
+        "the prism has rows longer than the ELL width (" + std::to_string(PHYSARUM_ELL_WIDTH) + ")");
+  run_pheromone(compute, prism, rates(prism.vertex_count, 0.02, 0.5), Integrator::ForwardEuler, 3.0,
+                "forward Euler, rows past the ELL width");
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
   run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
   run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
