@@ -7,6 +7,7 @@
 //   physarum_device_check [--device SPEC]
 #include "common/field_statistics.hpp"
 #include "common/intrinsic_triangulation.hpp"
+#include "opencl/face_records.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
@@ -62,8 +63,10 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
 }
 
 // Three forward-Euler sub-steps from a varied field against the reference (relative 1e-5, as in
-// tests/test_opencl_pheromone.cpp), then the step's memory throughput.
-void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label) {
+// tests/test_opencl_pheromone.cpp), then the step's memory throughput; vertices numbered as a
+// simulation numbers them on the device.
+void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surface, const std::string& label) {
+  const SurfaceDomain domain = in_device_vertex_order(surface);
   const int n = domain.vertex_count;
   VertexParameters params;
   params.diffuse_rate.assign(static_cast<size_t>(n), 0.01);
@@ -85,9 +88,10 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& domai
     scale = std::max(scale, std::abs(want[static_cast<size_t>(i)]));
   }
   const int long_rows = to_hybrid(domain.laplacian, n).overflow_rows();
-  check(diff <= 1e-5 * scale, label + ": forward Euler (" + std::to_string(device.sub_steps()) + " sub-steps, " +
-                                  std::to_string(long_rows) + " rows past the ELL width) max difference " +
-                                  std::to_string(diff) + " of " + std::to_string(scale));
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, " (%d sub-steps, %d rows past the ELL width): max difference %.3g of %.3g",
+                device.sub_steps(), long_rows, diff, scale);
+  check(diff <= 1e-5 * scale, label + ": forward Euler" + numbers);
   check(device.damaged_canaries().empty(), label + ": forward Euler canaries intact");
   const int steps = 50;
   device.step();
