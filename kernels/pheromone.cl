@@ -21,7 +21,7 @@ float csr_row_times(const uint i, __global const int* row_start, __global const 
  * sub-step, which reads fewer bytes per vertex than L, two rate arrays and u_i would. This kernel
  * does the ELL block: a fixed loop of PHYSARUM_ELL_WIDTH slots, read slot-major so that adjacent
  * work-items read adjacent words and a CPU device can run it as gathers across work-items; it runs
- * on all `stride` rows of the block (padding rows read zeros) and writes only the real ones.
+ * on all `stride` rows of the block (padding rows have zero weights) and writes only the real ones.
  * pheromone_forward_overflow then adds the entries of the few longer rows. sub_step numbers the
  * sub-steps of one time step; only the planted fault no-decay-substep reads it, and decay_rate and h
  * with it, to add the first sub-step's decay back. */

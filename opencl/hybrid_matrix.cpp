@@ -11,8 +11,8 @@ namespace physarum::opencl {
 HybridMatrix to_hybrid(const CsrMatrix& csr, int stride) {
   constexpr int W = PHYSARUM_ELL_WIDTH;
   if (stride < csr.rows || csr.rows <= 0)
-    throw std::invalid_argument("hybrid matrix: stride " + std::to_string(stride) + " for " + std::to_string(csr.rows) +
-                        " rows");
+    throw std::invalid_argument("hybrid matrix: stride " + std::to_string(stride) + " for " +
+                                std::to_string(csr.rows) + " rows");
   HybridMatrix h;
   h.rows = csr.rows;
   h.stride = stride;

@@ -105,8 +105,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     // One local size for every per-vertex kernel, so all reductions have the same number of
     // partials; the smallest the kernels allow.
     group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply, &k.cg_start, &k.cg_multiply,
-                                     &k.cg_update, &k.cg_direction})
+    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply,
+                                     &k.cg_start, &k.cg_multiply, &k.cg_update, &k.cg_direction})
       group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
     final_group_ = 256;
     for (const cl::Kernel* kernel : {&k.cg_start_finish, &k.cg_alpha, &k.cg_beta})
@@ -303,8 +303,8 @@ void OpenCLPheromone::forward_step() {
   overflow.setArg(4, forward_overflow_value_.buffer);
   const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(forward_overflow_rows_), group_));
   // Ping-pong between u and scratch; an odd count ends in scratch and costs one device-side copy,
-  // so u stays the buffer every other kernel knows. The in-order queue runs each overflow pass
-  // after its ELL pass.
+  // so u stays the buffer every other kernel knows. The queue is in order (compute_context.cpp), so
+  // each overflow pass runs after its ELL pass.
   const cl::Buffer* from = &u_.buffer;
   const cl::Buffer* to = &scratch_.buffer;
   for (int s = 0; s < sub_steps_; ++s) {
