@@ -26,6 +26,15 @@ std::vector<cl_float2> to_float2(const std::vector<Eigen::Vector2d>& v) {
   return out;
 }
 
+// The domain-order index of the agent a device slot holds (slots are permuted by the face sort):
+// an id outside 0..count-1 means the device's state is corrupt.
+size_t agent_index(cl_uint id, int count) {
+  if (id >= static_cast<cl_uint>(count))
+    throw DeviceError("opencl agents: the device returned agent id " + std::to_string(id) + " of " +
+                      std::to_string(count));
+  return id;
+}
+
 }  // namespace
 
 DeviceAgents DeviceAgents::allocate(const ComputeContext& compute, int count) {
@@ -82,8 +91,7 @@ Agents DeviceAgents::download(const ComputeContext& compute) const {
   Agents out;
   out.resize(count);
   for (size_t i = 0; i < static_cast<size_t>(count); ++i) {
-    const size_t a = ids[i];
-    if (a >= static_cast<size_t>(count)) throw DeviceError("opencl agents: the device returned agent id " + std::to_string(a));
+    const size_t a = agent_index(ids[i], count);
     out.face[a] = f[i];
     out.position[a] = {p[i].s[0], p[i].s[1]};
     out.heading[a] = {h[i].s[0], h[i].s[1]};
@@ -100,10 +108,7 @@ std::vector<int> DeviceAgents::download_faces(const ComputeContext& compute) con
   const std::vector<cl_uint> ids = read_all<cl_uint>(compute, id, count);
   const std::vector<cl_int> f = read_all<cl_int>(compute, face, count);
   std::vector<int> out(static_cast<size_t>(count));
-  for (size_t i = 0; i < f.size(); ++i) {
-    if (ids[i] >= static_cast<cl_uint>(count)) throw DeviceError("opencl agents: the device returned agent id " + std::to_string(ids[i]));
-    out[ids[i]] = f[i];
-  }
+  for (size_t i = 0; i < f.size(); ++i) out[agent_index(ids[i], count)] = f[i];
   return out;
 }
 

@@ -3,7 +3,6 @@
 #include "common/scene.hpp"
 
 #include "common/default_scene.hpp"
-
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/vertex_parameters.hpp"
