@@ -1,6 +1,7 @@
 /* One agent step of the extended slime-mold model (mirrors the agent half of
  * reference/simulation.cpp): every agent, independently,
- *   1. senses and steers (sensing_steering.cl) on the field of the previous step,
+ *   1. steers (sensing_steering.cl) by what it sensed on the field of the previous step (sensed
+ *      ahead of this kernel by sense_deciders, for the agents with a decision due),
  *   2. moves, reflecting at boundaries, depositing along its path (movement.cl, deposition.cl),
  *   3. ages and turns over (turnover.cl).
  * A few agents per work-item (PHYSARUM_AGENTS_PER_WORK_ITEM, below). Rates are read where the
@@ -37,7 +38,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
                          __global int* face, __global float2* position, __global float2* heading,
                          __global float* age, __global float* exposure, __global float* exposure_threshold,
                          __global float* time_since_decision, __global float* accumulated_turn,
-                         __global const uint* id, __global ulong* group_counters, __local uint* local_counters) {
+                         __global const uint* id, __global const uint* first_sensing, __global ulong* group_counters,
+                         __local uint* local_counters) {
   const int first = get_global_id(0) * AGENTS;
   const int lid = get_local_id(0);
   if (lid < PHYSARUM_COUNTERS) local_counters[lid] = 0u;
@@ -63,7 +65,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
 
     const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position);
     int crossings = 0;
-    sense_and_steer(faces, concentration, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position, &s[i].heading,
+    sense_and_steer(faces, concentration, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position, first_sensing[a],
+                    &s[i].heading,
                     &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
     sensor_crossings += (uint)crossings;
 

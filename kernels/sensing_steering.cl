@@ -39,46 +39,81 @@ int jones_turn_choice(const float left, const float centre, const float right) {
   return PHYSARUM_TURN_STRAIGHT;
 }
 
-/* Steers one agent for one step of length dt. The clock is a float sum of dt, so a decision due
- * at a whole number of steps may arrive a few float ulps short of its period; the tolerance
- * (PHYSARUM_TURN_DECISION_TOLERANCE dt, far above float rounding and far below any meaningful time)
- * keeps it on time. The reference uses the same tolerance, so both decide alike from one state. */
+/* The time between turn decisions (s). */
+float decision_period(const PhysarumAgentParameters* p, const float dt) {
+#ifdef PHYSARUM_FAULT_TURN_EVERY_STEP
+  return dt; /* planted fault: decisions ignore the decision frequency */
+#else
+  return 1.0f / p->turn_frequency;
+#endif
+}
+
+/* Whether a decision is due once the decision clock reads `clock`. The clock is a float sum of dt,
+ * so a decision due at a whole number of steps may arrive a few float ulps short of its period; the
+ * tolerance (PHYSARUM_TURN_DECISION_TOLERANCE dt, far above float rounding and far below any
+ * meaningful time) keeps it on time. The reference uses the same tolerance, so both decide alike
+ * from one state; collect_deciders and sense_and_steer both ask here, so they agree to the bit. */
+int decision_due(const float clock, const float dt, const float period) {
+  const float tolerance = PHYSARUM_TURN_DECISION_TOLERANCE * dt;
+  return clock + tolerance >= period;
+}
+
+float sensor_angle_of(const PhysarumAgentParameters* p) {
+#ifdef PHYSARUM_FAULT_SENSOR_ANGLE
+  return 1.15f * p->sensor_angle; /* planted fault: the sensor angle 15 % too wide */
+#else
+  return p->sensor_angle;
+#endif
+}
+
+/* One sensing of one agent: its three sensor traces, read and compared by Jones' rule. */
+int sense_turn_choice(__global const PhysarumFaceRecord* faces, __global const float* concentration,
+                      const PhysarumAgentParameters* p, const int face, const float2 position, const float2 heading,
+                      int* sensor_crossings) {
+  const float sensor_angle = sensor_angle_of(p);
+  TraceEnd left_end, centre_end, right_end;
+  trace_three_sensors(faces, face, position, rotate(heading, sensor_angle), heading, rotate(heading, -sensor_angle),
+                      p->sensor_distance, &left_end, &centre_end, &right_end);
+  *sensor_crossings += left_end.face_crossings + centre_end.face_crossings + right_end.face_crossings;
+  return jones_turn_choice(sensor_reading(faces, concentration, &left_end),
+                           sensor_reading(faces, concentration, &centre_end),
+                           sensor_reading(faces, concentration, &right_end));
+}
+
+/* A sensing done ahead of the agent step (sense_deciders, below): the turn choice in the low two
+ * bits, the face crossings of its three traces above them. */
+uint pack_sensing(const int choice, const int crossings) { return (uint)choice | ((uint)crossings << 2); }
+int sensing_choice(const uint packed) { return (int)(packed & 3u); }
+int sensing_crossings(const uint packed) { return (int)(packed >> 2); }
+
+/* Steers one agent for one step of length dt. The step's first sensing (if a decision is due) was
+ * done by sense_deciders and arrives packed in `first_sensing`; a second or later decision in the
+ * same step (turn frequency above 1/dt) senses here, from the heading the earlier ones left. */
 void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const float* concentration,
                      const PhysarumAgentParameters* p, const float dt, const uint seed, const uint step,
-                     const uint agent, const int face, const float2 position, float2* heading,
-                     float* time_since_decision, float* accumulated_turn, int* sensor_crossings) {
-#ifdef PHYSARUM_FAULT_TURN_EVERY_STEP
-  const float period = dt; /* planted fault: decisions ignore the decision frequency */
-#else
-  const float period = 1.0f / p->turn_frequency;
-#endif
-#ifdef PHYSARUM_FAULT_SENSOR_ANGLE
-  const float sensor_angle = 1.15f * p->sensor_angle; /* planted fault: the sensor angle 15 % too wide */
-#else
-  const float sensor_angle = p->sensor_angle;
-#endif
+                     const uint agent, const int face, const float2 position, const uint first_sensing,
+                     float2* heading, float* time_since_decision, float* accumulated_turn, int* sensor_crossings) {
+  const float period = decision_period(p, dt);
   *time_since_decision += dt;
   *accumulated_turn += p->turn_rate * dt;
-  const float tolerance = PHYSARUM_TURN_DECISION_TOLERANCE * dt;
-  if (*time_since_decision + tolerance < period) return;
+  if (!decision_due(*time_since_decision, dt, period)) return;
 
   uint4 side_bits = (uint4)(0u);
   int side_bits_drawn = 0;
-  for (int k = 0; k < PHYSARUM_MAX_TURN_DECISIONS_PER_STEP && *time_since_decision + tolerance >= period; ++k) {
+  for (int k = 0; k < PHYSARUM_MAX_TURN_DECISIONS_PER_STEP && decision_due(*time_since_decision, dt, period); ++k) {
     const float overshoot = fmax(*time_since_decision - period, 0.0f);
     const float carried_turn = p->turn_rate * overshoot;
     const float magnitude = *accumulated_turn - carried_turn;
     *time_since_decision = overshoot;
     *accumulated_turn = carried_turn;
 
-    TraceEnd left_end, centre_end, right_end;
-    trace_three_sensors(faces, face, position, rotate(*heading, sensor_angle), *heading,
-                        rotate(*heading, -sensor_angle), p->sensor_distance, &left_end, &centre_end, &right_end);
-    *sensor_crossings += left_end.face_crossings + centre_end.face_crossings + right_end.face_crossings;
-    const float left = sensor_reading(faces, concentration, &left_end);
-    const float centre = sensor_reading(faces, concentration, &centre_end);
-    const float right = sensor_reading(faces, concentration, &right_end);
-    int choice = jones_turn_choice(left, centre, right);
+    int choice;
+    if (k == 0) {
+      choice = sensing_choice(first_sensing);
+      *sensor_crossings += sensing_crossings(first_sensing);
+    } else {
+      choice = sense_turn_choice(faces, concentration, p, face, position, *heading, sensor_crossings);
+    }
     if (choice == PHYSARUM_TURN_RANDOM_SIDE) {
       if (!side_bits_drawn) {
         side_bits = agent_random_words(seed, agent, step, PHYSARUM_PURPOSE_TURN_DIRECTION, 0u);
@@ -94,6 +129,114 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
     *time_since_decision = fmod(*time_since_decision, period);
     *accumulated_turn = p->turn_rate * *time_since_decision;
   }
+}
+
+/* ---- Sensing ahead of the agent step ----
+ * Sensor traces are most of an agent step's face crossings (ten sensor lengths of travel for each
+ * of the three sensors, against one move), yet only the agents with a decision due sense: one in
+ * turn_frequency dt. Sensing inside the agent step would leave most vector lanes (CPU) or threads
+ * (GPU) idle, and one agent's three traces in flight are too few to hide the latency of their
+ * chains of face reads. So the step starts by listing the agents with a decision due
+ * (collect_deciders), then senses for exactly those, packed densely (sense_deciders): on a CPU the
+ * 15 traces of five agents walk together in the lanes of float16 vectors; on a GPU each thread
+ * senses for one agent. The agent step then steers with the packed result. */
+
+/* Agents sensed per work-item: five (15 traces in 16 lanes) with vector lanes, one without. */
+#if PHYSARUM_WALK_LANES == 16
+#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM 5
+#else
+#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM 1
+#endif
+
+/* Appends every agent with a decision due in this step to `deciders` (`decider_count` must be 0
+ * before): slots are taken per work-group in local memory, then one global atomic per group. */
+__kernel void collect_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
+                               __global const PhysarumAgentParameters* vertex_parameters, __global const int* face,
+                               __global const float2* position, __global const float* time_since_decision,
+                               __global int* deciders, __global uint* decider_count, __local uint* group_slots) {
+  const int a = get_global_id(0);
+  if (get_local_id(0) == 0) group_slots[0] = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  int slot = -1;
+  if (a < k.agent_count) {
+    const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, face[a], position[a]);
+    if (decision_due(time_since_decision[a] + k.dt, k.dt, decision_period(&p, k.dt)))
+      slot = (int)atomic_inc(&group_slots[0]);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0) group_slots[1] = atomic_add(decider_count, group_slots[0]);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (slot >= 0) deciders[group_slots[1] + (uint)slot] = a;
+}
+
+/* The first sensing of this step for the agents listed in deciders[first .. first + count). */
+void sense_listed_agents(const PhysarumStepConstants* k, __global const PhysarumFaceRecord* faces,
+                         __global const PhysarumAgentParameters* vertex_parameters, __global const float* concentration,
+                         __global const int* face, __global const float2* position, __global const float2* heading,
+                         __global const int* deciders, const int first, const int count,
+                         __global uint* first_sensing) {
+#if PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM == 1
+  const int a = deciders[first];
+  const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
+  int crossings = 0;
+  const int choice = sense_turn_choice(faces, concentration, &p, face[a], position[a], heading[a], &crossings);
+  first_sensing[a] = pack_sensing(choice, crossings);
+#else
+  /* Lanes 3i, 3i+1, 3i+2: the left, centre and right traces of the i-th listed agent. */
+  lane_int start_face = (lane_int)(0), active = (lane_int)(0);
+  lane_float px = (lane_float)(0.0f), py = (lane_float)(0.0f), dx = (lane_float)(0.0f), dy = (lane_float)(0.0f);
+  lane_float length = (lane_float)(0.0f);
+  for (int i = 0; i < count; ++i) {
+    const int a = deciders[first + i];
+    const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
+    const float sensor_angle = sensor_angle_of(&p);
+    const float2 h = heading[a];
+    const float2 ray[3] = {rotate(h, sensor_angle), h, rotate(h, -sensor_angle)};
+    for (int r = 0; r < 3; ++r) {
+      const int lane = 3 * i + r;
+      active = with_lane_int(active, lane, -1);
+      start_face = with_lane_int(start_face, lane, face[a]);
+      px = with_lane(px, lane, position[a].x);
+      py = with_lane(py, lane, position[a].y);
+      dx = with_lane(dx, lane, ray[r].x);
+      dy = with_lane(dy, lane, ray[r].y);
+      length = with_lane(length, lane, p.sensor_distance);
+    }
+  }
+  WalkLanes w = walk_lanes_start(faces, PHYSARUM_WALK_LANES, start_face, px, py, dx, dy, length, active);
+  WalkPieces piece;
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step)
+    walk_lanes_step(faces, PHYSARUM_WALK_LANES, &w, 0, &piece);
+  for (int i = 0; i < count; ++i) {
+    const TraceEnd left = walk_lane_end(faces, &w, 3 * i);
+    const TraceEnd centre = walk_lane_end(faces, &w, 3 * i + 1);
+    const TraceEnd right = walk_lane_end(faces, &w, 3 * i + 2);
+    const int choice = jones_turn_choice(sensor_reading(faces, concentration, &left),
+                                         sensor_reading(faces, concentration, &centre),
+                                         sensor_reading(faces, concentration, &right));
+    first_sensing[deciders[first + i]] =
+        pack_sensing(choice, left.face_crossings + centre.face_crossings + right.face_crossings);
+  }
+#endif
+}
+
+/* The first sensing of this step for every listed agent (from its state at the step's start),
+ * packed into first_sensing[agent]. The list's length is known only on the device, so the host
+ * launches a fixed number of work-items, enough to fill the device, and each takes every
+ * get_global_size(0)-th block of PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM agents: launching one
+ * work-item per possible block would leave most of them idle and, where a runtime hands out
+ * work-groups in contiguous chunks (PoCL), all the work to the first chunk. */
+__kernel void sense_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
+                             __global const PhysarumAgentParameters* vertex_parameters,
+                             __global const float* concentration, __global const int* face,
+                             __global const float2* position, __global const float2* heading,
+                             __global const int* deciders, __global const uint* decider_count,
+                             __global uint* first_sensing) {
+  const int count = (int)*decider_count;
+  const int stride = (int)get_global_size(0) * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
+  for (int first = (int)get_global_id(0) * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM; first < count; first += stride)
+    sense_listed_agents(&k, faces, vertex_parameters, concentration, face, position, heading, deciders, first,
+                        min(count - first, PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM), first_sensing);
 }
 
 #endif /* PHYSARUM_SENSING_STEERING_CL */

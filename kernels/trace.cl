@@ -24,21 +24,23 @@
 #include "deposition.cl"
 
 /* Walk lanes. A walker advances PHYSARUM_WALK_LANES walks at once (a build option the host sets):
- * 4 on CPUs, as float4 vectors, so one instruction does the arithmetic of several walks; 1 on GPUs,
- * as scalars, since a GPU's threads are its lanes already and idle vector lanes would only cost
- * instructions. The code below is written once for both: masks are comparison results combined with
- * & | ! (true is -1 in a vector, 1 in a scalar; both work with select), and the helpers here hide
- * the rest. Results are the same bits either way. */
+ * on CPUs 4 (float4) for the moves of the agents of one work-item and 16 (float16) for the sensor
+ * rays of five agents (sensing_steering.cl), so one instruction does the arithmetic of several walks
+ * and their face reads are in flight together; 1 on GPUs, as scalars, since a GPU's threads are its
+ * lanes already and idle vector lanes would only cost instructions. The code below is written once
+ * for all: masks are comparison results combined with & | ! (true is -1 in a vector, 1 in a scalar;
+ * both work with select), and the helpers here hide the rest. Results are the same bits either way. */
 #ifndef PHYSARUM_WALK_LANES
 #define PHYSARUM_WALK_LANES 1
 #endif
+#if PHYSARUM_WALK_LANES == 4 || PHYSARUM_WALK_LANES == 16
 #if PHYSARUM_WALK_LANES == 4
 typedef float4 lane_float;
 typedef int4 lane_int;
 typedef uint4 lane_uint;
-#define LANE_ANY(mask) any(mask)
 #define CONVERT_LANE_INT convert_int4
 #define CONVERT_LANE_UINT convert_uint4
+#define LANE_INDICES ((int4)(0, 1, 2, 3))
 /* Per-lane reads of one face-record field (each lane its own face f, and its own edge e). With
  * lanes == 1 (a compile-time constant where the walk is inlined) only lane 0's face is read, so a
  * lone walk pays for one read, not four. */
@@ -49,16 +51,45 @@ typedef uint4 lane_uint;
   ((lanes) == 1 ? (type)((faces)[(f).x].field[(e).x])                                                \
                 : (type)((faces)[(f).x].field[(e).x], (faces)[(f).y].field[(e).y],                   \
                          (faces)[(f).z].field[(e).z], (faces)[(f).w].field[(e).w]))
-float float_in_lane(const float4 v, const int lane) {
-  return lane == 0 ? v.x : (lane == 1 ? v.y : (lane == 2 ? v.z : v.w));
-}
-int int_in_lane(const int4 v, const int lane) { return lane == 0 ? v.x : (lane == 1 ? v.y : (lane == 2 ? v.z : v.w)); }
+#else
+typedef float16 lane_float;
+typedef int16 lane_int;
+typedef uint16 lane_uint;
+#define CONVERT_LANE_INT convert_int16
+#define CONVERT_LANE_UINT convert_uint16
+#define LANE_INDICES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+/* Lane i's face record (i a hexadecimal digit: .s0 .. .sf). */
+#define FACE_OF_LANE(faces, f_, i) (faces)[(f_).s##i]
+#define GATHER_FIELD(type, faces, f_, field, lanes)                             \
+  ((type)(FACE_OF_LANE(faces, f_, 0).field, FACE_OF_LANE(faces, f_, 1).field,   \
+          FACE_OF_LANE(faces, f_, 2).field, FACE_OF_LANE(faces, f_, 3).field,   \
+          FACE_OF_LANE(faces, f_, 4).field, FACE_OF_LANE(faces, f_, 5).field,   \
+          FACE_OF_LANE(faces, f_, 6).field, FACE_OF_LANE(faces, f_, 7).field,   \
+          FACE_OF_LANE(faces, f_, 8).field, FACE_OF_LANE(faces, f_, 9).field,   \
+          FACE_OF_LANE(faces, f_, a).field, FACE_OF_LANE(faces, f_, b).field,   \
+          FACE_OF_LANE(faces, f_, c).field, FACE_OF_LANE(faces, f_, d).field,   \
+          FACE_OF_LANE(faces, f_, e).field, FACE_OF_LANE(faces, f_, f).field))
+#define GATHER_EDGE_FIELD(type, faces, f_, e_, field, lanes)                                      \
+  ((type)(FACE_OF_LANE(faces, f_, 0).field[(e_).s0], FACE_OF_LANE(faces, f_, 1).field[(e_).s1],   \
+          FACE_OF_LANE(faces, f_, 2).field[(e_).s2], FACE_OF_LANE(faces, f_, 3).field[(e_).s3],   \
+          FACE_OF_LANE(faces, f_, 4).field[(e_).s4], FACE_OF_LANE(faces, f_, 5).field[(e_).s5],   \
+          FACE_OF_LANE(faces, f_, 6).field[(e_).s6], FACE_OF_LANE(faces, f_, 7).field[(e_).s7],   \
+          FACE_OF_LANE(faces, f_, 8).field[(e_).s8], FACE_OF_LANE(faces, f_, 9).field[(e_).s9],   \
+          FACE_OF_LANE(faces, f_, a).field[(e_).sa], FACE_OF_LANE(faces, f_, b).field[(e_).sb],   \
+          FACE_OF_LANE(faces, f_, c).field[(e_).sc], FACE_OF_LANE(faces, f_, d).field[(e_).sd],   \
+          FACE_OF_LANE(faces, f_, e).field[(e_).se], FACE_OF_LANE(faces, f_, f).field[(e_).sf]))
+#endif
+#define LANE_ANY(mask) any(mask)
+/* Lane `lane` of a private vector, read through its elements in memory (the lane need not be a
+ * compile-time constant). */
+float float_in_lane(const lane_float v, const int lane) { return ((const float*)&v)[lane]; }
+int int_in_lane(const lane_int v, const int lane) { return ((const int*)&v)[lane]; }
 /* v with lane `lane` set to x (lane a compile-time constant where this is inlined). */
-float4 with_lane(const float4 v, const int lane, const float x) {
-  return select(v, (float4)(x), (int4)(0, 1, 2, 3) == lane);
+lane_float with_lane(const lane_float v, const int lane, const float x) {
+  return select(v, (lane_float)(x), LANE_INDICES == lane);
 }
-int4 with_lane_int(const int4 v, const int lane, const int x) {
-  return select(v, (int4)(x), (int4)(0, 1, 2, 3) == lane);
+lane_int with_lane_int(const lane_int v, const int lane, const int x) {
+  return select(v, (lane_int)(x), LANE_INDICES == lane);
 }
 #elif PHYSARUM_WALK_LANES == 1
 typedef float lane_float;
@@ -74,7 +105,7 @@ int int_in_lane(const int v, const int lane) { return v; }
 float with_lane(const float v, const int lane, const float x) { return lane == 0 ? x : v; }
 int with_lane_int(const int v, const int lane, const int x) { return lane == 0 ? x : v; }
 #else
-#error "PHYSARUM_WALK_LANES must be 1 or 4"
+#error "PHYSARUM_WALK_LANES must be 1, 4 or 16"
 #endif
 
 /* Per lane, component k (0, 1 or 2) of a three-component quantity held as three vectors. */
@@ -344,11 +375,13 @@ void trace_three_sensors(__global const PhysarumFaceRecord* faces, const int fac
                          const float2 d1, const float2 d2, const float length, TraceEnd* end0, TraceEnd* end1,
                          TraceEnd* end2) {
   WalkPieces piece;
-#if PHYSARUM_WALK_LANES == 4
-  WalkLanes w = walk_lanes_start(faces, 3, (int4)(face), (float4)(p.x), (float4)(p.y),
-                                 (float4)(d0.x, d1.x, d2.x, 0.0f), (float4)(d0.y, d1.y, d2.y, 0.0f), (float4)(length),
-                                 (int4)(-1, -1, -1, 0));
-  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && any(w.walking); ++step)
+#if PHYSARUM_WALK_LANES > 1
+  const lane_int first_three = LANE_INDICES < 3;
+  const lane_float dx = with_lane(with_lane(with_lane((lane_float)(0.0f), 0, d0.x), 1, d1.x), 2, d2.x);
+  const lane_float dy = with_lane(with_lane(with_lane((lane_float)(0.0f), 0, d0.y), 1, d1.y), 2, d2.y);
+  WalkLanes w = walk_lanes_start(faces, 3, (lane_int)(face), (lane_float)(p.x), (lane_float)(p.y), dx, dy,
+                                 (lane_float)(length), first_three);
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step)
     walk_lanes_step(faces, 3, &w, 0, &piece);
   *end0 = walk_lane_end(faces, &w, 0);
   *end1 = walk_lane_end(faces, &w, 1);

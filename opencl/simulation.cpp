@@ -18,7 +18,8 @@
 namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
-  cl::Kernel initialise, agent_step, collect_deposits, bin_counts, bin_offsets, scatter;
+  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step, collect_deposits, bin_counts, bin_offsets,
+      scatter;
 };
 
 namespace {
@@ -127,8 +128,12 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   kernels_ = std::make_unique<Kernels>();
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
+  // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
+  const bool vector_lanes = agents_per_work_item_ > 1;
+  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1");
+  sensing_agents_per_item_ = vector_lanes ? 5 : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
-           " -DPHYSARUM_WALK_LANES=" + (agents_per_work_item_ > 1 ? "4" : "1");
+           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1");
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
@@ -144,10 +149,25 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   } catch (const cl::Error& e) {
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
   }
+  try {
+    const cl::Program program = build_program(compute.context, compute.device, "sensing_steering.cl",
+                                              kernel_source("sensing_steering.cl"), sensing_build);
+    kernels_->collect_deciders = cl::Kernel(program, "collect_deciders");
+    kernels_->sense_deciders = cl::Kernel(program, "sense_deciders");
+    sensing_group_ = work_group_size(kernels_->sense_deciders, compute.device, 64);
+  } catch (const cl::Error& e) {
+    throw device_error("preparing the sensing kernels (sensing_steering.cl) on " + compute.device.device_name, e.err());
+  }
   agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
   const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + agents_per_work_item_ - 1) /
                             static_cast<size_t>(agents_per_work_item_);
   step_groups_ = padded_global_size(step_items, agent_group_) / agent_group_;
+  const size_t sensing_items = (static_cast<size_t>(std::max(agent_count, 1)) + sensing_agents_per_item_ - 1) /
+                               sensing_agents_per_item_;
+  // sense_deciders loops over its blocks of agents: 16 work-groups per compute unit keep every unit
+  // busy whatever the share of agents that sense.
+  sensing_groups_ = std::min<size_t>(padded_global_size(sensing_items, sensing_group_) / sensing_group_,
+                                     16 * std::max(1u, compute.device.compute_units));
 
   // ---- sorting bins: one per device face, or per 2^shift faces, at most kMaxBins ----
   constexpr cl_uint kMaxBins = 65536;
@@ -170,6 +190,13 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
                                     CL_MEM_READ_WRITE, true);
   agents_ = DeviceAgents::allocate(compute, agent_count);
+  const size_t agent_slots = static_cast<size_t>(std::max(agent_count, 1));
+  deciders_ = allocate_buffer(compute, "agents with a decision due", agent_slots * sizeof(cl_int), CL_MEM_READ_WRITE,
+                              true);
+  decider_count_ = allocate_buffer(compute, "count of agents with a decision due", sizeof(cl_uint), CL_MEM_READ_WRITE,
+                                   true);
+  first_sensing_ = allocate_buffer(compute, "first sensing of each agent", agent_slots * sizeof(cl_uint),
+                                   CL_MEM_READ_WRITE, true);
   if (sort_interval_ > 0) {
     sorted_agents_ = DeviceAgents::allocate(compute, agent_count);
     bin_cursor_ = allocate_buffer(compute, "agent sort bins", bins_ * sizeof(cl_uint), CL_MEM_READ_WRITE, true);
@@ -182,6 +209,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
     compute.queue.enqueueFillBuffer(group_counters_.buffer, cl_uint{0}, 0, group_counters_.payload_bytes);
+    compute.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
     if (agent_count > 0) {
       cl::Kernel& k = kernels_->initialise;
       int arg = 0;
@@ -200,10 +228,36 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   }
 }
 
+// The agents with a decision due this step, listed and sensed ahead of the agent step
+// (kernels/sensing_steering.cl says why).
+void OpenCLSimulation::enqueue_sensing() {
+  if (settings_.agents == 0) return;
+  compute_.queue.enqueueFillBuffer(decider_count_.buffer, cl_uint{0}, 0, decider_count_.payload_bytes);
+  cl::Kernel& collect = kernels_->collect_deciders;
+  int arg = 0;
+  collect.setArg(arg++, constants_);
+  for (const cl::Buffer* b : {&faces_.buffer, &vertex_parameters_.buffer, &agents_.face.buffer,
+                              &agents_.position.buffer, &agents_.time_since_decision.buffer, &deciders_.buffer,
+                              &decider_count_.buffer})
+    collect.setArg(arg++, *b);
+  collect.setArg(arg++, cl::Local(2 * sizeof(cl_uint)));
+  compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
+                                      cl::NDRange(agent_group_));
+  cl::Kernel& sense = kernels_->sense_deciders;
+  arg = 0;
+  sense.setArg(arg++, constants_);
+  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
+           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &agents_.face.buffer,
+           &agents_.position.buffer, &agents_.heading.buffer, &deciders_.buffer, &decider_count_.buffer,
+           &first_sensing_.buffer})
+    sense.setArg(arg++, *b);
+  compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
+                                      cl::NDRange(sensing_group_));
+}
+
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  constants_.step = static_cast<dev_uint>(steps_taken_);
   int arg = 0;
   k.setArg(arg++, constants_);
   for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
@@ -212,7 +266,7 @@ void OpenCLSimulation::enqueue_agent_step() {
     k.setArg(arg++, *b);
   for (const DeviceBuffer* b : {&agents_.face, &agents_.position, &agents_.heading, &agents_.age, &agents_.exposure,
                                 &agents_.exposure_threshold, &agents_.time_since_decision, &agents_.accumulated_turn,
-                                &agents_.id})
+                                &agents_.id, &first_sensing_})
     k.setArg(arg++, b->buffer);
   k.setArg(arg++, group_counters_.buffer);
   k.setArg(arg++, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
@@ -259,6 +313,8 @@ void OpenCLSimulation::enqueue_sort_by_face() {
 void OpenCLSimulation::step() {
   try {
     if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) enqueue_sort_by_face();
+    constants_.step = static_cast<dev_uint>(steps_taken_);
+    enqueue_sensing();
     enqueue_agent_step();
     // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
     if (settings_.integrator == Integrator::ForwardEuler) {
@@ -336,6 +392,7 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   std::vector<const DeviceBuffer*> guarded = agents_.buffers();
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);
+  for (const DeviceBuffer* b : {&deciders_, &decider_count_, &first_sensing_}) guarded.push_back(b);
   if (sort_interval_ > 0) {
     for (const DeviceBuffer* b : sorted_agents_.buffers()) guarded.push_back(b);
     guarded.push_back(&bin_cursor_);

@@ -51,9 +51,9 @@ StepComparison compare_one_step(const SurfaceDomain& domain, const Scene& scene,
   return c;
 }
 
-void expect_one_step_agrees(const std::string& spec, Integrator integrator) {
+void expect_one_step_agrees(const std::string& spec, const Scene& scene) {
   const SurfaceDomain domain = delaunay_domain(spec);
-  const StepComparison c = compare_one_step(domain, model_scene(20000, 0.5, integrator), 60);
+  const StepComparison c = compare_one_step(domain, scene, 60);
   ASSERT_EQ(c.agents, 20000);
   std::cout << spec << ": " << c.mismatched << " of " << c.agents << " agents disagree after one step; worst "
             << "position difference of the others " << c.worst_position << ", field " << c.field_error << "\n";
@@ -67,10 +67,17 @@ void expect_one_step_agrees(const std::string& spec, Integrator integrator) {
 }
 
 TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceOnASphere) {
-  expect_one_step_agrees("shape:sphere", Integrator::ForwardEuler);
+  expect_one_step_agrees("shape:sphere", model_scene(20000, 0.5, Integrator::ForwardEuler));
 }
 TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBoundaries) {
-  expect_one_step_agrees("shape:square", Integrator::BackwardEuler);
+  expect_one_step_agrees("shape:square", model_scene(20000, 0.5, Integrator::BackwardEuler));
+}
+// Turn decisions faster than steps (2.5 per step): the first sensing of a step is done ahead of the
+// agent step (sense_deciders), the later ones inside it from the heading the earlier ones left.
+TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
+  Scene scene = model_scene(20000, 0.5, Integrator::ForwardEuler);
+  scene.turn_frequency = 250.0;
+  expect_one_step_agrees("shape:sphere", scene);
 }
 
 // The comparison has power: a planted 15 % sensor-angle error (which changes only the decisions it

@@ -66,7 +66,7 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
 // A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
 // reflecting, depositing, respawning) and deposits_to_concentration, on a closed surface and on one
 // with a boundary, with scalar walks (one agent per work-item, as on GPUs) and with vector-lane walks
-// (four, as on CPUs). Turn decisions every step and a short lifetime make every branch run.
+// (four, as on CPUs). Several turn decisions every step and a short lifetime make every branch run.
 void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
                 int agents_per_work_item, const std::string& label) {
   Scene scene;
@@ -76,7 +76,7 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   scene.sensor_angle = 0.4;
   scene.move_rate = 10.0;  // several faces per step, and boundary hits on the square
   scene.turn_rate = 3.0;
-  scene.turn_frequency = 50.0;
+  scene.turn_frequency = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
   scene.deposit_rate = 1.0;
   scene.decay_rate = 0.5;
   scene.diffuse_rate = 0.01;
