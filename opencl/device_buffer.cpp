@@ -3,6 +3,11 @@
 #include "opencl/opencl_error.hpp"
 
 #include <algorithm>
+#include <cstring>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 namespace physarum::opencl {
 
@@ -30,6 +35,45 @@ DeviceBuffer allocate_buffer(const ComputeContext& compute, const std::string& n
                            compute.device.device_name,
                        e.err());
   }
+  return b;
+}
+
+DeviceBuffer upload_random_access_buffer(const ComputeContext& compute, const std::string& name, const void* data,
+                                         std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  if (compute.device.type == "CPU" && bytes >= kHugePage && bytes <= compute.device.max_allocation_bytes) {
+    // Fresh pages from mmap (a heap block may reuse pages already faulted in small), aligned by
+    // over-allocating one huge page, and marked before the first write so they are huge from the
+    // start. Where the kernel refuses, the memory is still good, in small pages.
+    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    const std::size_t mapped = rounded + kHugePage;
+    void* region = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (region == MAP_FAILED) throw DeviceError("allocating " + std::to_string(mapped) + " bytes of host memory for '" +
+                                                name + "' failed");
+    std::shared_ptr<void> mapping(region, [mapped](void* p) { munmap(p, mapped); });
+    const auto address = reinterpret_cast<std::uintptr_t>(region);
+    void* aligned = reinterpret_cast<void*>((address + kHugePage - 1) / kHugePage * kHugePage);
+    std::shared_ptr<void> memory(mapping, aligned);  // shares the mapping's lifetime
+    if (madvise(aligned, rounded, MADV_HUGEPAGE) == 0) {
+      std::memcpy(memory.get(), data, bytes);
+      DeviceBuffer b;
+      b.name = name;
+      b.payload_bytes = bytes;
+      b.host_memory = memory;
+      try {
+        b.buffer = cl::Buffer(compute.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, memory.get());
+      } catch (const cl::Error& e) {
+        throw device_error("allocating device buffer '" + name + "' of " + std::to_string(bytes) + " bytes on " +
+                               compute.device.device_name,
+                           e.err());
+      }
+      return b;
+    }
+  }
+#endif
+  DeviceBuffer b = allocate_buffer(compute, name, bytes, CL_MEM_READ_ONLY, false);
+  if (bytes > 0) compute.queue.enqueueWriteBuffer(b.buffer, CL_TRUE, 0, bytes, data);
   return b;
 }
 

@@ -176,7 +176,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  faces_ = upload_buffer(compute, "face records", build_face_records(device_domain, face_order_), kRead, false);
+  faces_ = upload_random_access_buffer(compute, "face records", build_face_records(device_domain, face_order_));
   device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
   vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
