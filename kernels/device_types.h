@@ -114,4 +114,10 @@ typedef struct {
 #define PHYSARUM_MAX_TURN_DECISIONS_PER_STEP 4
 #define PHYSARUM_TURN_DECISION_TOLERANCE 1e-4f
 
+/* Sensing with vector lanes (sensing_steering.cl): walkers of 16 lanes (five agents' three sensor
+ * traces each) that take turns step by step in one work-item, so the face reads of some are in
+ * flight while the others compute. Three measured best on the 2-core test machine at 200k-800k
+ * faces (two: 1.2x slower, four: no faster in cache and slower out of it, from register spills). */
+#define PHYSARUM_SENSING_WALKERS 3
+
 #endif /* PHYSARUM_DEVICE_TYPES_H */

@@ -141,9 +141,10 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
  * 15 traces of five agents walk together in the lanes of float16 vectors; on a GPU each thread
  * senses for one agent. The agent step then steers with the packed result. */
 
-/* Agents sensed per work-item: five (15 traces in 16 lanes) with vector lanes, one without. */
+/* Agents sensed per block of a work-item: five per walker (15 traces in 16 lanes) with vector lanes,
+ * one without. */
 #if PHYSARUM_WALK_LANES == 16
-#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM 5
+#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM (5 * PHYSARUM_SENSING_WALKERS)
 #else
 #define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM 1
 #endif
@@ -182,35 +183,55 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
   const int choice = sense_turn_choice(faces, concentration, &p, face[a], position[a], heading[a], &crossings);
   first_sensing[a] = pack_sensing(choice, crossings);
 #else
-  /* Lanes 3i, 3i+1, 3i+2: the left, centre and right traces of the i-th listed agent. */
-  lane_int start_face = (lane_int)(0), active = (lane_int)(0);
-  lane_float px = (lane_float)(0.0f), py = (lane_float)(0.0f), dx = (lane_float)(0.0f), dy = (lane_float)(0.0f);
-  lane_float length = (lane_float)(0.0f);
+  /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, five agents each: lanes 3j, 3j+1, 3j+2 of walker
+   * i / 5 (j = i % 5) are the left, centre and right traces of the i-th listed agent. The walkers
+   * take turns step by step and each prefetches the faces it enters (trace.cl), so one walker's face
+   * reads arrive while the others compute. */
+  lane_int start_face[PHYSARUM_SENSING_WALKERS], active[PHYSARUM_SENSING_WALKERS];
+  lane_float px[PHYSARUM_SENSING_WALKERS], py[PHYSARUM_SENSING_WALKERS], dx[PHYSARUM_SENSING_WALKERS];
+  lane_float dy[PHYSARUM_SENSING_WALKERS], length[PHYSARUM_SENSING_WALKERS];
+  for (int h = 0; h < PHYSARUM_SENSING_WALKERS; ++h) {
+    start_face[h] = active[h] = (lane_int)(0);
+    px[h] = py[h] = dx[h] = dy[h] = length[h] = (lane_float)(0.0f);
+  }
   for (int i = 0; i < count; ++i) {
     const int a = deciders[first + i];
     const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
     const float sensor_angle = sensor_angle_of(&p);
     const float2 h = heading[a];
     const float2 ray[3] = {rotate(h, sensor_angle), h, rotate(h, -sensor_angle)};
+    const int walker = i / 5;
     for (int r = 0; r < 3; ++r) {
-      const int lane = 3 * i + r;
-      active = with_lane_int(active, lane, -1);
-      start_face = with_lane_int(start_face, lane, face[a]);
-      px = with_lane(px, lane, position[a].x);
-      py = with_lane(py, lane, position[a].y);
-      dx = with_lane(dx, lane, ray[r].x);
-      dy = with_lane(dy, lane, ray[r].y);
-      length = with_lane(length, lane, p.sensor_distance);
+      const int lane = 3 * (i % 5) + r;
+      active[walker] = with_lane_int(active[walker], lane, -1);
+      start_face[walker] = with_lane_int(start_face[walker], lane, face[a]);
+      px[walker] = with_lane(px[walker], lane, position[a].x);
+      py[walker] = with_lane(py[walker], lane, position[a].y);
+      dx[walker] = with_lane(dx[walker], lane, ray[r].x);
+      dy[walker] = with_lane(dy[walker], lane, ray[r].y);
+      length[walker] = with_lane(length[walker], lane, p.sensor_distance);
     }
   }
-  WalkLanes w = walk_lanes_start(faces, PHYSARUM_WALK_LANES, start_face, px, py, dx, dy, length, active);
+  WalkLanes w[PHYSARUM_SENSING_WALKERS];
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_SENSING_WALKERS; ++h)
+    w[h] = walk_lanes_start(faces, PHYSARUM_WALK_LANES, start_face[h], px[h], py[h], dx[h], dy[h], length[h], active[h]);
   WalkPieces piece;
-  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step)
-    walk_lanes_step(faces, PHYSARUM_WALK_LANES, &w, 0, &piece);
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS; ++step) {
+    lane_int walking = (lane_int)(0);
+#pragma unroll
+    for (int h = 0; h < PHYSARUM_SENSING_WALKERS; ++h) {
+      if (LANE_ANY(w[h].walking)) walk_lanes_step(faces, PHYSARUM_WALK_LANES, &w[h], 0, &piece);
+      walking |= w[h].walking;
+    }
+    if (!LANE_ANY(walking)) break;
+  }
   for (int i = 0; i < count; ++i) {
-    const TraceEnd left = walk_lane_end(faces, &w, 3 * i);
-    const TraceEnd centre = walk_lane_end(faces, &w, 3 * i + 1);
-    const TraceEnd right = walk_lane_end(faces, &w, 3 * i + 2);
+    const WalkLanes* walker = &w[i / 5];
+    const int lane = 3 * (i % 5);
+    const TraceEnd left = walk_lane_end(faces, walker, lane);
+    const TraceEnd centre = walk_lane_end(faces, walker, lane + 1);
+    const TraceEnd right = walk_lane_end(faces, walker, lane + 2);
     const int choice = jones_turn_choice(sensor_reading(faces, concentration, &left),
                                          sensor_reading(faces, concentration, &centre),
                                          sensor_reading(faces, concentration, &right));

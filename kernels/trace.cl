@@ -58,6 +58,13 @@ typedef uint16 lane_uint;
 #define CONVERT_LANE_INT convert_int16
 #define CONVERT_LANE_UINT convert_uint16
 #define LANE_INDICES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+/* A hint to fetch the cache line at p. On CPU devices the host asks for clang's prefetch
+ * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's. */
+#ifdef PHYSARUM_CLANG_PREFETCH
+#define PHYSARUM_PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PHYSARUM_PREFETCH(p) prefetch((__global const float16*)(p), 1)
+#endif
 /* Lane i's face record (i a hexadecimal digit: .s0 .. .sf). */
 #define FACE_OF_LANE(faces, f_, i) (faces)[(f_).s##i]
 #define GATHER_FIELD(type, faces, f_, field, lanes)                             \
@@ -69,6 +76,15 @@ typedef uint16 lane_uint;
           FACE_OF_LANE(faces, f_, a).field, FACE_OF_LANE(faces, f_, b).field,   \
           FACE_OF_LANE(faces, f_, c).field, FACE_OF_LANE(faces, f_, d).field,   \
           FACE_OF_LANE(faces, f_, e).field, FACE_OF_LANE(faces, f_, f).field))
+#define PREFETCH_FACES(faces, f_)                                                                  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 0)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 1));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 2)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 3));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 4)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 5));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 6)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 7));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 8)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 9));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, a)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, b));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, c)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, d));  \
+  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, e)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, f));
 #define GATHER_EDGE_FIELD(type, faces, f_, e_, field, lanes)                                      \
   ((type)(FACE_OF_LANE(faces, f_, 0).field[(e_).s0], FACE_OF_LANE(faces, f_, 1).field[(e_).s1],   \
           FACE_OF_LANE(faces, f_, 2).field[(e_).s2], FACE_OF_LANE(faces, f_, 3).field[(e_).s3],   \
@@ -309,6 +325,11 @@ inline __attribute__((always_inline)) void walk_lanes_step(__global const Physar
   w->b1 = select(w->b1, next1, through);
   w->b2 = select(w->b2, next2, through);
   w->face = select(w->face, g, through);
+#if PHYSARUM_WALK_LANES == 16
+  /* The faces entered, read at the top of this walker's next step: fetched now, they arrive while
+   * the other walkers of the work-item take their steps (sensing_steering.cl). */
+  PREFETCH_FACES(faces, w->face);
+#endif
   w->entry_edge = select(w->entry_edge, j, through);
   w->face_crossings = select(w->face_crossings, w->face_crossings + 1, through);
 }

@@ -130,8 +130,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
-  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1");
-  sensing_agents_per_item_ = vector_lanes ? 5 : 1;
+  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") +
+                                    (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
+  sensing_agents_per_item_ = vector_lanes ? 5 * PHYSARUM_SENSING_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
            " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1");
   try {
