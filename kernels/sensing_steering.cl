@@ -254,8 +254,11 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
                              __global const int* deciders, __global const uint* decider_count,
                              __global uint* first_sensing) {
   const int count = (int)*decider_count;
+  /* Consecutive blocks go to consecutive work-groups, so however few blocks there are, every group
+   * (and every compute unit) gets its share. */
+  const int item = (int)(get_local_id(0) * get_num_groups(0) + get_group_id(0));
   const int stride = (int)get_global_size(0) * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
-  for (int first = (int)get_global_id(0) * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM; first < count; first += stride)
+  for (int first = item * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM; first < count; first += stride)
     sense_listed_agents(&k, faces, vertex_parameters, concentration, face, position, heading, deciders, first,
                         min(count - first, PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM), first_sensing);
 }
