@@ -45,17 +45,17 @@ DeviceBuffer upload_random_access_buffer(const ComputeContext& compute, const st
   if (compute.device.type == "CPU" && bytes >= kHugePage && bytes <= compute.device.max_allocation_bytes) {
     // Fresh pages from mmap (a heap block may reuse pages already faulted in small), aligned by
     // over-allocating one huge page, and marked before the first write so they are huge from the
-    // start. Where the kernel refuses, the memory is still good, in small pages.
+    // start. Where mmap or madvise fail, the ordinary buffer below serves.
     const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     const std::size_t mapped = rounded + kHugePage;
     void* region = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (region == MAP_FAILED) throw DeviceError("allocating " + std::to_string(mapped) + " bytes of host memory for '" +
-                                                name + "' failed");
-    std::shared_ptr<void> mapping(region, [mapped](void* p) { munmap(p, mapped); });
+    std::shared_ptr<void> mapping(region == MAP_FAILED ? nullptr : region, [mapped](void* p) {
+      if (p) munmap(p, mapped);
+    });
     const auto address = reinterpret_cast<std::uintptr_t>(region);
     void* aligned = reinterpret_cast<void*>((address + kHugePage - 1) / kHugePage * kHugePage);
     std::shared_ptr<void> memory(mapping, aligned);  // shares the mapping's lifetime
-    if (madvise(aligned, rounded, MADV_HUGEPAGE) == 0) {
+    if (mapping && madvise(aligned, rounded, MADV_HUGEPAGE) == 0) {
       std::memcpy(memory.get(), data, bytes);
       DeviceBuffer b;
       b.name = name;

@@ -2,12 +2,14 @@
 // build and cache, and the device's Philox against the host's known answers.
 #include "common/philox.hpp"
 #include "opencl/compute_context.hpp"
+#include "opencl/device_buffer.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/program_cache.hpp"
 #include "test_support.hpp"
 
 #include <cstdlib>
 #include <filesystem>
+#include <numeric>
 
 namespace physarum::opencl {
 namespace {
@@ -94,6 +96,31 @@ TEST(OpenCLProgramCache, SecondBuildComesFromTheCache) {
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
   EXPECT_EQ(files, 2u);
   ::unsetenv("PHYSARUM_CACHE_DIR");
+}
+
+// Random-access buffers (face records) live in huge pages on CPU devices (device_buffer.hpp): a
+// kernel reads back exactly what was uploaded, for a payload below one huge page (the ordinary
+// buffer) and one of 3 MiB plus a bit (the huge-page buffer, partly filling its last page).
+TEST(OpenCLBuffers, RandomAccessUploadIsWhatKernelsRead) {
+  const ComputeContext c = make_compute_context("");
+  const char* source = "__kernel void copy_words(__global const uint* in, __global uint* out) {\n"
+                       "  out[get_global_id(0)] = in[get_global_id(0)];\n"
+                       "}\n";
+  cl::Program p = build_program(c.context, c.device, "copy_words.cl", source);
+  for (std::size_t words : {std::size_t{1000}, (std::size_t{3} << 18) + 17}) {
+    std::vector<cl_uint> values(words);
+    std::iota(values.begin(), values.end(), 0x9e3779b9u);
+    const DeviceBuffer in = upload_random_access_buffer(c, "test words", values);
+    const DeviceBuffer out = allocate_buffer(c, "copied words", words * sizeof(cl_uint), CL_MEM_WRITE_ONLY, true);
+    cl::Kernel k(p, "copy_words");
+    k.setArg(0, in.buffer);
+    k.setArg(1, out.buffer);
+    c.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(words));
+    std::vector<cl_uint> copied(words);
+    c.queue.enqueueReadBuffer(out.buffer, CL_TRUE, 0, words * sizeof(cl_uint), copied.data());
+    EXPECT_EQ(copied, values) << words << " words";
+    EXPECT_TRUE(canary_intact(c, out));
+  }
 }
 
 // Random123's published known-answer vectors for philox4x32-10 (kat_vectors in its distribution),
