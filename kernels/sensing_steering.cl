@@ -138,8 +138,9 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
  * (GPU) idle, and one agent's three traces in flight are too few to hide the latency of their
  * chains of face reads. So the step starts by listing the agents with a decision due
  * (collect_deciders), then senses for exactly those, packed densely (sense_deciders): on a CPU the
- * 15 traces of five agents walk together in the lanes of float16 vectors; on a GPU each thread
- * senses for one agent. The agent step then steers with the packed result. */
+ * 15 traces of five agents walk together in the lanes of float16 vectors, several such walkers per
+ * work-item taking turns; on a GPU each thread senses for one agent. The agent step then steers
+ * with the packed result. */
 
 /* Agents sensed per block of a work-item: five per walker (15 traces in 16 lanes) with vector lanes,
  * one without. */
