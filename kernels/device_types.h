@@ -119,5 +119,6 @@ typedef struct {
  * flight while the others compute. Three measured best on the 2-core test machine at 200k-800k
  * faces (two: 1.2x slower, four: no faster in cache and slower out of it, from register spills). */
 #define PHYSARUM_SENSING_WALKERS 3
+#define PHYSARUM_SENSING_AGENTS_PER_WALKER 5 /* 15 of 16 lanes */
 
 #endif /* PHYSARUM_DEVICE_TYPES_H */

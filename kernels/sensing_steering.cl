@@ -145,7 +145,7 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
 /* Agents sensed per block of a work-item: five per walker (15 traces in 16 lanes) with vector lanes,
  * one without. */
 #if PHYSARUM_WALK_LANES == 16
-#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM (5 * PHYSARUM_SENSING_WALKERS)
+#define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM (PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS)
 #else
 #define PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM 1
 #endif
@@ -185,7 +185,7 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
   first_sensing[a] = pack_sensing(choice, crossings);
 #else
   /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, five agents each: lanes 3j, 3j+1, 3j+2 of walker
-   * i / 5 (j = i % 5) are the left, centre and right traces of the i-th listed agent. The walkers
+   * i / 5 (j = i % 5, 5 = PHYSARUM_SENSING_AGENTS_PER_WALKER) are the left, centre and right traces of the i-th listed agent. The walkers
    * take turns step by step and each prefetches the faces it enters (trace.cl), so one walker's face
    * reads arrive while the others compute. */
   lane_int start_face[PHYSARUM_SENSING_WALKERS], active[PHYSARUM_SENSING_WALKERS];
@@ -201,9 +201,9 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     const float sensor_angle = sensor_angle_of(&p);
     const float2 h = heading[a];
     const float2 ray[3] = {rotate(h, sensor_angle), h, rotate(h, -sensor_angle)};
-    const int walker = i / 5;
+    const int walker = i / PHYSARUM_SENSING_AGENTS_PER_WALKER;
     for (int r = 0; r < 3; ++r) {
-      const int lane = 3 * (i % 5) + r;
+      const int lane = 3 * (i % PHYSARUM_SENSING_AGENTS_PER_WALKER) + r;
       active[walker] = with_lane_int(active[walker], lane, -1);
       start_face[walker] = with_lane_int(start_face[walker], lane, face[a]);
       px[walker] = with_lane(px[walker], lane, position[a].x);
@@ -228,8 +228,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     if (!LANE_ANY(walking)) break;
   }
   for (int i = 0; i < count; ++i) {
-    const WalkLanes* walker = &w[i / 5];
-    const int lane = 3 * (i % 5);
+    const WalkLanes* walker = &w[i / PHYSARUM_SENSING_AGENTS_PER_WALKER];
+    const int lane = 3 * (i % PHYSARUM_SENSING_AGENTS_PER_WALKER);
     const TraceEnd left = walk_lane_end(faces, walker, lane);
     const TraceEnd centre = walk_lane_end(faces, walker, lane + 1);
     const TraceEnd right = walk_lane_end(faces, walker, lane + 2);

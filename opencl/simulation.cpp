@@ -132,7 +132,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const bool vector_lanes = agents_per_work_item_ > 1;
   const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") +
                                     (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
-  sensing_agents_per_item_ = vector_lanes ? 5 * PHYSARUM_SENSING_WALKERS : 1;
+  const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
            " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1");
   try {
@@ -163,8 +163,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + agents_per_work_item_ - 1) /
                             static_cast<size_t>(agents_per_work_item_);
   step_groups_ = padded_global_size(step_items, agent_group_) / agent_group_;
-  const size_t sensing_items = (static_cast<size_t>(std::max(agent_count, 1)) + sensing_agents_per_item_ - 1) /
-                               sensing_agents_per_item_;
+  const size_t sensing_items = (static_cast<size_t>(std::max(agent_count, 1)) + sensing_agents_per_item - 1) /
+                               sensing_agents_per_item;
   // sense_deciders loops over its blocks of agents: 16 work-groups per compute unit keep every unit
   // busy whatever the share of agents that sense.
   sensing_groups_ = std::min<size_t>(padded_global_size(sensing_items, sensing_group_) / sensing_group_,

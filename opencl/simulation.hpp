@@ -110,10 +110,10 @@ class OpenCLSimulation final : public SimulationBackend {
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)
   DeviceAgents agents_, sorted_agents_;  // the sort scatters from the first into the second, then swaps
   // agent_groups_ work-groups cover one agent per work-item (initialise, sort); step_groups_ cover
-  // agents_per_work_item_ per work-item (agent_step); sensing_groups_ cover the most agents that can
-  // sense in one step, sensing_agents_per_item_ per work-item (sense_deciders).
+  // agents_per_work_item_ per work-item (agent_step); sensing_groups_ run sense_deciders, which loops
+  // over the step's deciders.
   std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
-  std::size_t sensing_group_ = 1, sensing_groups_ = 1, sensing_agents_per_item_ = 1;
+  std::size_t sensing_group_ = 1, sensing_groups_ = 1;
   int agents_per_work_item_ = 1;
   cl_uint bin_shift_ = 0, bins_ = 1;
   bool fixed_point_ = true;
