@@ -184,9 +184,9 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
   const int choice = sense_turn_choice(faces, concentration, &p, face[a], position[a], heading[a], &crossings);
   first_sensing[a] = pack_sensing(choice, crossings);
 #else
-  /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, five agents each: lanes 3j, 3j+1, 3j+2 of walker
-   * i / 5 (j = i % 5, 5 = PHYSARUM_SENSING_AGENTS_PER_WALKER) are the left, centre and right traces of the i-th listed agent. The walkers
-   * take turns step by step and each prefetches the faces it enters (trace.cl), so one walker's face
+  /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, PHYSARUM_SENSING_AGENTS_PER_WALKER (five) agents
+   * each: lanes 3j, 3j+1, 3j+2 of walker i / 5 (j = i % 5) are the left, centre and right traces of
+   * the i-th listed agent. The walkers take turns step by step and each prefetches the faces it enters (trace.cl), so one walker's face
    * reads arrive while the others compute. */
   lane_int start_face[PHYSARUM_SENSING_WALKERS], active[PHYSARUM_SENSING_WALKERS];
   lane_float px[PHYSARUM_SENSING_WALKERS], py[PHYSARUM_SENSING_WALKERS], dx[PHYSARUM_SENSING_WALKERS];
