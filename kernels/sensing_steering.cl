@@ -186,8 +186,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
 #else
   /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, PHYSARUM_SENSING_AGENTS_PER_WALKER (five) agents
    * each: lanes 3j, 3j+1, 3j+2 of walker i / 5 (j = i % 5) are the left, centre and right traces of
-   * the i-th listed agent. The walkers take turns step by step and each prefetches the faces it enters (trace.cl), so one walker's face
-   * reads arrive while the others compute. */
+   * the i-th listed agent. The walkers take turns step by step and each prefetches the faces it
+   * enters (trace.cl), so one walker's face reads arrive while the others compute. */
   lane_int start_face[PHYSARUM_SENSING_WALKERS], active[PHYSARUM_SENSING_WALKERS];
   lane_float px[PHYSARUM_SENSING_WALKERS], py[PHYSARUM_SENSING_WALKERS], dx[PHYSARUM_SENSING_WALKERS];
   lane_float dy[PHYSARUM_SENSING_WALKERS], length[PHYSARUM_SENSING_WALKERS];
