@@ -8,20 +8,33 @@
 #include "agents.cl"
 #include "trace.cl"
 
-/* What a sensor reads: the pheromone at its trace's end, interpolated barycentrically; 0 when the
- * trace met the boundary (a sensor past the boundary reads nothing). */
+/* The pheromone at barycentric point b of `face`, interpolated from its corners. */
+float reading_at(__global const PhysarumFaceRecord* faces, __global const float* concentration, const int face,
+                 const float3 b) {
+  return b.x * concentration[faces[face].vertex[0]] + b.y * concentration[faces[face].vertex[1]] +
+         b.z * concentration[faces[face].vertex[2]];
+}
+
+/* What a sensor reads: the pheromone at its trace's end; 0 when the trace met the boundary (a
+ * sensor past the boundary reads nothing). */
 float sensor_reading(__global const PhysarumFaceRecord* faces, __global const float* concentration,
                      const TraceEnd* end) {
-  if (end->hit_boundary) return 0.0f;
-  const float3 b = end->barycentric;
-  return b.x * concentration[faces[end->face].vertex[0]] + b.y * concentration[faces[end->face].vertex[1]] +
-         b.z * concentration[faces[end->face].vertex[2]];
+  return end->hit_boundary ? 0.0f : reading_at(faces, concentration, end->face, end->barycentric);
 }
 
 float2 rotate(const float2 v, const float angle) {
   float c;
   const float s = sincos(angle, &c);
   return (float2)(c * v.x - s * v.y, s * v.x + c * v.y);
+}
+
+/* The left and right sensor directions, heading h rotated by +angle and -angle: one sincos for
+ * both (sin is odd, so this is rotate(h, -angle) for the right one). */
+void sensor_rays(const float2 h, const float angle, float2* left, float2* right) {
+  float c;
+  const float s = sincos(angle, &c);
+  *left = (float2)(c * h.x - s * h.y, s * h.x + c * h.y);
+  *right = (float2)(c * h.x + s * h.y, -s * h.x + c * h.y);
 }
 
 #define PHYSARUM_TURN_STRAIGHT 0
@@ -72,8 +85,10 @@ int sense_turn_choice(__global const PhysarumFaceRecord* faces, __global const f
                       int* sensor_crossings) {
   const float sensor_angle = sensor_angle_of(p);
   TraceEnd left_end, centre_end, right_end;
-  trace_three_sensors(faces, face, position, rotate(heading, sensor_angle), heading, rotate(heading, -sensor_angle),
-                      p->sensor_distance, &left_end, &centre_end, &right_end);
+  float2 left, right;
+  sensor_rays(heading, sensor_angle, &left, &right);
+  trace_three_sensors(faces, face, position, left, heading, right, p->sensor_distance, &left_end, &centre_end,
+                      &right_end);
   *sensor_crossings += left_end.face_crossings + centre_end.face_crossings + right_end.face_crossings;
   return jones_turn_choice(sensor_reading(faces, concentration, &left_end),
                            sensor_reading(faces, concentration, &centre_end),
@@ -199,8 +214,9 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     const int a = deciders[first + i];
     const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
     const float sensor_angle = sensor_angle_of(&p);
-    const float2 h = heading[a];
-    const float2 ray[3] = {rotate(h, sensor_angle), h, rotate(h, -sensor_angle)};
+    float2 ray[3];
+    ray[1] = heading[a];
+    sensor_rays(ray[1], sensor_angle, &ray[0], &ray[2]);
     const int walker = i / PHYSARUM_SENSING_AGENTS_PER_WALKER;
     for (int r = 0; r < 3; ++r) {
       const int lane = 3 * (i % PHYSARUM_SENSING_AGENTS_PER_WALKER) + r;
@@ -227,17 +243,23 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     }
     if (!LANE_ANY(walking)) break;
   }
+  /* Each trace's end clamped into its face, as walk_lane_end does, once per walker. */
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_SENSING_WALKERS; ++h) clamp_barycentric_lanes(&w[h].b0, &w[h].b1, &w[h].b2);
   for (int i = 0; i < count; ++i) {
     const WalkLanes* walker = &w[i / PHYSARUM_SENSING_AGENTS_PER_WALKER];
     const int lane = 3 * (i % PHYSARUM_SENSING_AGENTS_PER_WALKER);
-    const TraceEnd left = walk_lane_end(faces, walker, lane);
-    const TraceEnd centre = walk_lane_end(faces, walker, lane + 1);
-    const TraceEnd right = walk_lane_end(faces, walker, lane + 2);
-    const int choice = jones_turn_choice(sensor_reading(faces, concentration, &left),
-                                         sensor_reading(faces, concentration, &centre),
-                                         sensor_reading(faces, concentration, &right));
-    first_sensing[deciders[first + i]] =
-        pack_sensing(choice, left.face_crossings + centre.face_crossings + right.face_crossings);
+    float reading[3];
+    int crossings = 0;
+    for (int r = 0; r < 3; ++r) {
+      const float3 b = (float3)(float_in_lane(walker->b0, lane + r), float_in_lane(walker->b1, lane + r),
+                                float_in_lane(walker->b2, lane + r));
+      reading[r] = int_in_lane(walker->hit_boundary, lane + r)
+                       ? 0.0f
+                       : reading_at(faces, concentration, int_in_lane(walker->face, lane + r), b);
+      crossings += int_in_lane(walker->face_crossings, lane + r);
+    }
+    first_sensing[deciders[first + i]] = pack_sensing(jones_turn_choice(reading[0], reading[1], reading[2]), crossings);
   }
 #endif
 }
@@ -255,13 +277,15 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
                              __global const int* deciders, __global const uint* decider_count,
                              __global uint* first_sensing) {
   const int count = (int)*decider_count;
-  /* Consecutive blocks go to consecutive work-groups, so however few blocks there are, every group
-   * (and every compute unit) gets its share. */
-  const int item = (int)(get_local_id(0) * get_num_groups(0) + get_group_id(0));
-  const int stride = (int)get_global_size(0) * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
-  for (int first = item * PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM; first < count; first += stride)
+  const int per_item = PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
+  const int blocks = (count + per_item - 1) / per_item;
+  const int groups = (int)get_num_groups(0), group = (int)get_group_id(0);
+  const int group_first = (int)(((long)blocks * group) / groups), group_end = (int)(((long)blocks * (group + 1)) / groups);
+  for (int b = group_first + (int)get_local_id(0); b < group_end; b += (int)get_local_size(0)) {
+    const int first = b * per_item;
     sense_listed_agents(&k, faces, vertex_parameters, concentration, face, position, heading, deciders, first,
-                        min(count - first, PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM), first_sensing);
+                        min(count - first, per_item), first_sensing);
+  }
 }
 
 #endif /* PHYSARUM_SENSING_STEERING_CL */
