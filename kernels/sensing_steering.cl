@@ -266,10 +266,13 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
 
 /* The first sensing of this step for every listed agent (from its state at the step's start),
  * packed into first_sensing[agent]. The list's length is known only on the device, so the host
- * launches a fixed number of work-items, enough to fill the device, and each takes every
- * get_global_size(0)-th block of PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM agents: launching one
- * work-item per possible block would leave most of them idle and, where a runtime hands out
- * work-groups in contiguous chunks (PoCL), all the work to the first chunk. */
+ * launches a fixed number of work-groups, enough to fill the device, and each group takes an equal,
+ * contiguous share of the list's blocks of PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM agents. Equal:
+ * launching one work-item per possible block would leave most of them idle and, where a runtime
+ * hands out work-groups in contiguous chunks (PoCL), all the work to the first chunk. Contiguous:
+ * the list is in agent order, agents are sorted by face, so a group's traces stay in one region
+ * of the surface and its face reads hit the core's own cache (1.1x over dealing blocks
+ * round-robin, at 200k faces). */
 __kernel void sense_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                              __global const PhysarumAgentParameters* vertex_parameters,
                              __global const float* concentration, __global const int* face,
@@ -280,7 +283,8 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
   const int per_item = PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
   const int blocks = (count + per_item - 1) / per_item;
   const int groups = (int)get_num_groups(0), group = (int)get_group_id(0);
-  const int group_first = (int)(((long)blocks * group) / groups), group_end = (int)(((long)blocks * (group + 1)) / groups);
+  const int group_first = (int)(((long)blocks * group) / groups);
+  const int group_end = (int)(((long)blocks * (group + 1)) / groups);
   for (int b = group_first + (int)get_local_id(0); b < group_end; b += (int)get_local_size(0)) {
     const int first = b * per_item;
     sense_listed_agents(&k, faces, vertex_parameters, concentration, face, position, heading, deciders, first,
