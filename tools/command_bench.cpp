@@ -197,14 +197,17 @@ class Bench {
       field.fill(1.0);
       field.step();
       finish();
+      // Best of several single steps, as the bandwidth it is compared with is the best of five:
+      // on a shared machine the best is what the code can do, the rest is other tenants.
       const Clock::time_point start = Clock::now();
-      int steps = 0;
-      while (steps < 2 || (steps < 20 && seconds_since(start) < 0.2)) {
+      double best = INFINITY;
+      for (int steps = 0; steps < 3 || (steps < 30 && seconds_since(start) < 0.3); ++steps) {
+        const Clock::time_point step_start = Clock::now();
         field.step();
-        ++steps;
+        finish();
+        best = std::min(best, seconds_since(step_start));
       }
-      finish();
-      return seconds_since(start) / steps;
+      return best;
     };
     if (backend == "opencl") {
       // Numbered as a simulation numbers the device's field, so it reads memory the same way.
