@@ -259,7 +259,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
                        : reading_at(faces, concentration, int_in_lane(walker->face, lane + r), b);
       crossings += int_in_lane(walker->face_crossings, lane + r);
     }
-    first_sensing[deciders[first + i]] = pack_sensing(jones_turn_choice(reading[0], reading[1], reading[2]), crossings);
+    const int choice = jones_turn_choice(reading[0], reading[1], reading[2]);
+    first_sensing[deciders[first + i]] = pack_sensing(choice, crossings);
   }
 #endif
 }
