@@ -16,9 +16,10 @@
 #include "turnover.cl"
 #include "agent_order.cl"
 
-/* Agents per work-item (1..4, a build option the host sets): on a CPU several agents in one
- * work-item move in lockstep, one vector lane each (trace.cl), which overlaps their chains of face
- * reads; a GPU overlaps them across its threads instead and takes 1. Results do not depend on it. */
+/* Agents per walker (1..4) and walkers per work-item (build options the host sets): on a CPU the
+ * agents of one walker move in lockstep, one vector lane each, and several walkers take turns
+ * (trace.cl), which overlaps their chains of face reads; a GPU overlaps them across its threads
+ * instead and takes 1 and 1. Results do not depend on either. */
 #ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
 #define PHYSARUM_AGENTS_PER_WORK_ITEM 1
 #endif
@@ -28,7 +29,8 @@
 #if PHYSARUM_AGENTS_PER_WORK_ITEM > PHYSARUM_WALK_LANES
 #error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (trace.cl)"
 #endif
-#define AGENTS PHYSARUM_AGENTS_PER_WORK_ITEM
+#define LANES PHYSARUM_AGENTS_PER_WORK_ITEM
+#define AGENTS (PHYSARUM_AGENTS_PER_WORK_ITEM * PHYSARUM_MOVE_WALKERS)
 
 __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters,
@@ -47,9 +49,13 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
 
   /* No early return: every work-item must reach the barriers below. */
   AgentState s[AGENTS];
-  lane_int active = (lane_int)(0), start_face = (lane_int)(0);
-  lane_float px = (lane_float)(0.0f), py = (lane_float)(0.0f), dx = (lane_float)(0.0f), dy = (lane_float)(0.0f);
-  lane_float distance = (lane_float)(0.0f), deposit = (lane_float)(0.0f);
+  lane_int active[PHYSARUM_MOVE_WALKERS], start_face[PHYSARUM_MOVE_WALKERS];
+  lane_float px[PHYSARUM_MOVE_WALKERS], py[PHYSARUM_MOVE_WALKERS], dx[PHYSARUM_MOVE_WALKERS];
+  lane_float dy[PHYSARUM_MOVE_WALKERS], distance[PHYSARUM_MOVE_WALKERS], deposit[PHYSARUM_MOVE_WALKERS];
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
+    active[h] = start_face[h] = (lane_int)(0);
+    px[h] = py[h] = dx[h] = dy[h] = distance[h] = deposit[h] = (lane_float)(0.0f);
+  }
   uint sensor_crossings = 0u;
   for (int i = 0; i < AGENTS; ++i) {
     const int a = first + i;
@@ -70,19 +76,20 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
                     &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
     sensor_crossings += (uint)crossings;
 
-    active = with_lane_int(active, i, -1);
-    start_face = with_lane_int(start_face, i, s[i].face);
-    px = with_lane(px, i, s[i].position.x);
-    py = with_lane(py, i, s[i].position.y);
-    dx = with_lane(dx, i, s[i].heading.x);
-    dy = with_lane(dy, i, s[i].heading.y);
-    distance = with_lane(distance, i, p.move_rate * k.dt);
-    deposit = with_lane(deposit, i, p.deposit_rate * k.dt * active_fraction(s[i].age, k.dt, p.activation_time));
+    const int h = i / LANES, lane = i % LANES;
+    active[h] = with_lane_int(active[h], lane, -1);
+    start_face[h] = with_lane_int(start_face[h], lane, s[i].face);
+    px[h] = with_lane(px[h], lane, s[i].position.x);
+    py[h] = with_lane(py[h], lane, s[i].position.y);
+    dx[h] = with_lane(dx[h], lane, s[i].heading.x);
+    dy[h] = with_lane(dy[h], lane, s[i].heading.y);
+    distance[h] = with_lane(distance[h], lane, p.move_rate * k.dt);
+    deposit[h] = with_lane(deposit[h], lane, p.deposit_rate * k.dt * active_fraction(s[i].age, k.dt, p.activation_time));
   }
 
   TraceEnd moved[AGENTS];
-  if (LANE_ANY(active))
-    move_agents(faces, AGENTS, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
+  if (LANE_ANY(active[0]))
+    move_agents(faces, LANES, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
 
   uint move_crossings = 0u, boundary_hits = 0u, respawns = 0u;
   for (int i = 0; i < AGENTS; ++i) {

@@ -243,7 +243,7 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     }
     if (!LANE_ANY(walking)) break;
   }
-  /* Each trace's end clamped into its face, as walk_lane_end does, once per walker. */
+  /* Each trace's end clamped into its face, as walk_lane_ends does, once per walker. */
 #pragma unroll
   for (int h = 0; h < PHYSARUM_SENSING_WALKERS; ++h) clamp_barycentric_lanes(&w[h].b0, &w[h].b1, &w[h].b2);
   for (int i = 0; i < count; ++i) {

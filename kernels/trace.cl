@@ -33,6 +33,13 @@
 #ifndef PHYSARUM_WALK_LANES
 #define PHYSARUM_WALK_LANES 1
 #endif
+/* A hint to fetch the cache line at p. On CPU devices the host asks for clang's prefetch
+ * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's. */
+#ifdef PHYSARUM_CLANG_PREFETCH
+#define PHYSARUM_PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PHYSARUM_PREFETCH(p) prefetch((__global const float16*)(p), 1)
+#endif
 #if PHYSARUM_WALK_LANES == 4 || PHYSARUM_WALK_LANES == 16
 #if PHYSARUM_WALK_LANES == 4
 typedef float4 lane_float;
@@ -51,6 +58,9 @@ typedef uint4 lane_uint;
   ((lanes) == 1 ? (type)((faces)[(f).x].field[(e).x])                                                \
                 : (type)((faces)[(f).x].field[(e).x], (faces)[(f).y].field[(e).y],                   \
                          (faces)[(f).z].field[(e).z], (faces)[(f).w].field[(e).w]))
+#define PREFETCH_FACES(faces, f)                                                                   \
+  PHYSARUM_PREFETCH(&(faces)[(f).x]); PHYSARUM_PREFETCH(&(faces)[(f).y]);                           \
+  PHYSARUM_PREFETCH(&(faces)[(f).z]); PHYSARUM_PREFETCH(&(faces)[(f).w]);
 #else
 typedef float16 lane_float;
 typedef int16 lane_int;
@@ -58,13 +68,6 @@ typedef uint16 lane_uint;
 #define CONVERT_LANE_INT convert_int16
 #define CONVERT_LANE_UINT convert_uint16
 #define LANE_INDICES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-/* A hint to fetch the cache line at p. On CPU devices the host asks for clang's prefetch
- * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's. */
-#ifdef PHYSARUM_CLANG_PREFETCH
-#define PHYSARUM_PREFETCH(p) __builtin_prefetch(p)
-#else
-#define PHYSARUM_PREFETCH(p) prefetch((__global const float16*)(p), 1)
-#endif
 /* Lane i's face record (i a hexadecimal digit: .s0 .. .sf). */
 #define FACE_OF_LANE(faces, f_, i) (faces)[(f_).s##i]
 #define GATHER_FIELD(type, faces, f_, field, lanes)                             \
@@ -325,9 +328,9 @@ inline __attribute__((always_inline)) void walk_lanes_step(__global const Physar
   w->b1 = select(w->b1, next1, through);
   w->b2 = select(w->b2, next2, through);
   w->face = select(w->face, g, through);
-#if PHYSARUM_WALK_LANES == 16
+#if PHYSARUM_WALK_LANES > 1
   /* The faces entered, read at the top of this walker's next step: fetched now, they arrive while
-   * the other walkers of the work-item take their steps (sensing_steering.cl). */
+   * the other walkers of the work-item take their steps (sensing_steering.cl, movement.cl). */
   PREFETCH_FACES(faces, w->face);
 #endif
   w->entry_edge = select(w->entry_edge, j, through);
@@ -343,50 +346,86 @@ typedef struct {
   int face_crossings;
 } TraceEnd;
 
-/* Where lane `lane` of a walk ended (a lane the step bound cut short is clamped into its face). */
-TraceEnd walk_lane_end(__global const PhysarumFaceRecord* faces, const WalkLanes* w, const int lane) {
+/* Where the first `lanes` lanes of a walk ended, in ends[0 .. lanes) (a lane the step bound cut
+ * short is clamped into its face). */
+void walk_lane_ends(__global const PhysarumFaceRecord* faces, const WalkLanes* w, const int lanes, TraceEnd* ends) {
   lane_float b0 = w->b0, b1 = w->b1, b2 = w->b2;
   clamp_barycentric_lanes(&b0, &b1, &b2);
-  TraceEnd r;
-  r.face = int_in_lane(w->face, lane);
-  r.barycentric = (float3)(float_in_lane(b0, lane), float_in_lane(b1, lane), float_in_lane(b2, lane));
-  r.position = r.barycentric.y * face_corner1(faces, r.face) + r.barycentric.z * face_corner2(faces, r.face);
-  r.heading = (float2)(float_in_lane(w->dx, lane), float_in_lane(w->dy, lane));
-  r.hit_boundary = int_in_lane(w->hit_boundary, lane) != 0;
-  r.face_crossings = int_in_lane(w->face_crossings, lane);
-  return r;
+  for (int lane = 0; lane < lanes; ++lane) {
+    TraceEnd r;
+    r.face = int_in_lane(w->face, lane);
+    r.barycentric = (float3)(float_in_lane(b0, lane), float_in_lane(b1, lane), float_in_lane(b2, lane));
+    r.position = r.barycentric.y * face_corner1(faces, r.face) + r.barycentric.z * face_corner2(faces, r.face);
+    r.heading = (float2)(float_in_lane(w->dx, lane), float_in_lane(w->dy, lane));
+    r.hit_boundary = int_in_lane(w->hit_boundary, lane) != 0;
+    r.face_crossings = int_in_lane(w->face_crossings, lane);
+    ends[lane] = r;
+  }
 }
 
-/* The movement walks of `lanes` agents (1..4) in lockstep, one lane each: lane i walks length[i]
- * from p[i] along unit d[i] in face[i], reflecting at boundaries; when deposit_amount[i] != 0 each
- * of its pieces deposits deposit_amount[i] * (piece length / length[i]) at the piece's midpoint
- * (the whole amount at the end point when the length is 0). Lanes whose `active` is 0 do not walk. */
-void trace_walk_lanes(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int face,
-                      const lane_float px, const lane_float py, const lane_float dx, const lane_float dy,
-                      const lane_float length, const lane_float deposit_amount, const lane_int active,
-                      __global PhysarumDepositCell* deposits, const float deposit_scale, TraceEnd* ends) {
-  WalkLanes w = walk_lanes_start(faces, lanes, face, px, py, dx, dy, length, active);
-  const lane_float per_length = select((lane_float)(0.0f), deposit_amount / w.remaining, w.remaining > 0.0f);
-  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step) {
-    WalkPieces piece;
-    walk_lanes_step(faces, lanes, &w, 1, &piece);
-    for (int lane = 0; lane < lanes; ++lane) {
-      const float amount = float_in_lane(deposit_amount, lane);
-      if (!int_in_lane(piece.walked, lane) || amount == 0.0f) continue;
-      const int piece_face = int_in_lane(piece.face, lane);
-      const float3 start = (float3)(float_in_lane(piece.start0, lane), float_in_lane(piece.start1, lane),
-                                    float_in_lane(piece.start2, lane));
-      const float3 end = (float3)(float_in_lane(piece.end0, lane), float_in_lane(piece.end1, lane),
-                                  float_in_lane(piece.end2, lane));
-      const float piece_length = float_in_lane(piece.length, lane);
-      if (!(float_in_lane(length, lane) > 0.0f))
-        deposit_at_barycentric(faces, piece_face, end, amount, deposits, deposit_scale);
-      else if (piece_length > 0.0f)
-        deposit_at_barycentric(faces, piece_face, 0.5f * (start + end), float_in_lane(per_length, lane) * piece_length,
-                               deposits, deposit_scale);
-    }
+/* Movement walks: PHYSARUM_MOVE_WALKERS walkers of `lanes` lanes (1..4) each, one agent a lane.
+ * The walkers take turns step by step and each prefetches the faces it enters (walk_lanes_step),
+ * so one walker's face reads are in flight while the others compute: a move crosses only a few
+ * faces, and the four chains of one walker alone leave most of a face read's latency exposed. */
+#if PHYSARUM_WALK_LANES > 1
+#define PHYSARUM_MOVE_WALKERS PHYSARUM_VECTOR_MOVE_WALKERS
+#else
+#define PHYSARUM_MOVE_WALKERS 1
+#endif
+
+/* The deposits of one step's pieces (see trace_walk_lanes). */
+void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
+                    const lane_float length, const lane_float deposit_amount, const lane_float per_length,
+                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
+  for (int lane = 0; lane < lanes; ++lane) {
+    const float amount = float_in_lane(deposit_amount, lane);
+    if (!int_in_lane(piece->walked, lane) || amount == 0.0f) continue;
+    const int piece_face = int_in_lane(piece->face, lane);
+    const float3 start = (float3)(float_in_lane(piece->start0, lane), float_in_lane(piece->start1, lane),
+                                  float_in_lane(piece->start2, lane));
+    const float3 end = (float3)(float_in_lane(piece->end0, lane), float_in_lane(piece->end1, lane),
+                                float_in_lane(piece->end2, lane));
+    const float piece_length = float_in_lane(piece->length, lane);
+    if (!(float_in_lane(length, lane) > 0.0f))
+      deposit_at_barycentric(faces, piece_face, end, amount, deposits, deposit_scale);
+    else if (piece_length > 0.0f)
+      deposit_at_barycentric(faces, piece_face, 0.5f * (start + end), float_in_lane(per_length, lane) * piece_length,
+                             deposits, deposit_scale);
   }
-  for (int lane = 0; lane < lanes; ++lane) ends[lane] = walk_lane_end(faces, &w, lane);
+}
+
+/* The movement walks of up to PHYSARUM_MOVE_WALKERS * lanes agents: lane i of walker h walks
+ * length[h][i] from p[h][i] along unit d[h][i] in face[h][i], reflecting at boundaries; when
+ * deposit_amount[h][i] != 0 each of its pieces deposits deposit_amount * (piece length / length)
+ * at the piece's midpoint (the whole amount at the end point when the length is 0). Lanes whose
+ * `active` is 0 do not walk. Ends in ends[h * lanes + i]. */
+inline __attribute__((always_inline)) void trace_walk_lanes(
+    __global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face, const lane_float* px,
+    const lane_float* py, const lane_float* dx, const lane_float* dy, const lane_float* length,
+    const lane_float* deposit_amount, const lane_int* active, __global PhysarumDepositCell* deposits,
+    const float deposit_scale, TraceEnd* ends) {
+  WalkLanes w[PHYSARUM_MOVE_WALKERS];
+  lane_float per_length[PHYSARUM_MOVE_WALKERS];
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
+    w[h] = walk_lanes_start(faces, lanes, face[h], px[h], py[h], dx[h], dy[h], length[h], active[h]);
+    per_length[h] = select((lane_float)(0.0f), deposit_amount[h] / w[h].remaining, w[h].remaining > 0.0f);
+  }
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS; ++step) {
+    lane_int walking = (lane_int)(0);
+#pragma unroll
+    for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
+      if (LANE_ANY(w[h].walking)) {
+        WalkPieces piece;
+        walk_lanes_step(faces, lanes, &w[h], 1, &piece);
+        deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale);
+      }
+      walking |= w[h].walking;
+    }
+    if (!LANE_ANY(walking)) break;
+  }
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) walk_lane_ends(faces, &w[h], lanes, &ends[h * lanes]);
 }
 
 /* The three sensor walks of one agent (left, centre, right), which stop at boundaries, in lockstep:
@@ -404,9 +443,11 @@ void trace_three_sensors(__global const PhysarumFaceRecord* faces, const int fac
                                  (lane_float)(length), first_three);
   for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS && LANE_ANY(w.walking); ++step)
     walk_lanes_step(faces, 3, &w, 0, &piece);
-  *end0 = walk_lane_end(faces, &w, 0);
-  *end1 = walk_lane_end(faces, &w, 1);
-  *end2 = walk_lane_end(faces, &w, 2);
+  TraceEnd ends[3];
+  walk_lane_ends(faces, &w, 3, ends);
+  *end0 = ends[0];
+  *end1 = ends[1];
+  *end2 = ends[2];
 #else
   WalkLanes w0 = walk_lanes_start(faces, 1, face, p.x, p.y, d0.x, d0.y, length, 1);
   WalkLanes w1 = walk_lanes_start(faces, 1, face, p.x, p.y, d1.x, d1.y, length, 1);
@@ -416,9 +457,9 @@ void trace_three_sensors(__global const PhysarumFaceRecord* faces, const int fac
     if (w1.walking) walk_lanes_step(faces, 1, &w1, 0, &piece);
     if (w2.walking) walk_lanes_step(faces, 1, &w2, 0, &piece);
   }
-  *end0 = walk_lane_end(faces, &w0, 0);
-  *end1 = walk_lane_end(faces, &w1, 0);
-  *end2 = walk_lane_end(faces, &w2, 0);
+  walk_lane_ends(faces, &w0, 1, end0);
+  walk_lane_ends(faces, &w1, 1, end1);
+  walk_lane_ends(faces, &w2, 1, end2);
 #endif
 }
 

@@ -133,8 +133,11 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") +
                                     (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
   const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
+  // Moves too: walkers of 4 lanes taking turns (trace.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
+  const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
-           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1");
+           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") +
+           (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
@@ -160,8 +163,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     throw device_error("preparing the sensing kernels (sensing_steering.cl) on " + compute.device.device_name, e.err());
   }
   agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
-  const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + agents_per_work_item_ - 1) /
-                            static_cast<size_t>(agents_per_work_item_);
+  const size_t step_agents_per_item = static_cast<size_t>(agents_per_work_item_ * move_walkers);
+  const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + step_agents_per_item - 1) /
+                            step_agents_per_item;
   step_groups_ = padded_global_size(step_items, agent_group_) / agent_group_;
   const size_t sensing_items = (static_cast<size_t>(std::max(agent_count, 1)) + sensing_agents_per_item - 1) /
                                sensing_agents_per_item;

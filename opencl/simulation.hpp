@@ -39,9 +39,10 @@ struct OpenCLSimulationOptions {
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
-  // Agents per agent_step work-item, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where
-  // agents moving in vector lanes overlap their face reads, and 1 elsewhere. More than 1 also makes
-  // the walks vector lanes (kernels/trace.cl), 1 scalars. Changes no result.
+  // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where agents
+  // moving in vector lanes overlap their face reads, and 1 elsewhere. More than 1 also makes the
+  // walks vector lanes (kernels/trace.cl), 1 scalars, and gives each agent_step work-item
+  // PHYSARUM_VECTOR_MOVE_WALKERS walkers. Changes no result.
   int agents_per_work_item = 0;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
   // faults with -D flags, opencl/planted_faults.hpp).
@@ -110,7 +111,7 @@ class OpenCLSimulation final : public SimulationBackend {
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)
   DeviceAgents agents_, sorted_agents_;  // the sort scatters from the first into the second, then swaps
   // agent_groups_ work-groups cover one agent per work-item (initialise, sort); step_groups_ cover
-  // agents_per_work_item_ per work-item (agent_step); sensing_groups_ run sense_deciders, which loops
+  // agents_per_work_item_ per walker (agent_step); sensing_groups_ run sense_deciders, which loops
   // over the step's deciders.
   std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
   std::size_t sensing_group_ = 1, sensing_groups_ = 1;
