@@ -23,6 +23,16 @@ typedef long PhysarumDepositCell;
  * collisions in practice; giving up after it loses one deposit rather than hanging the device. */
 #define PHYSARUM_MAX_CAS_ATTEMPTS 4096
 
+/* x rounded to the nearest integer, ties to even: rint(x) in two additions. Floats of magnitude
+ * 2^23 and more are integers already; below it, x + 2^23 (with x's sign) lies where the float
+ * spacing is exactly 1, so float addition's own round-to-nearest-even rounds it, and subtracting
+ * 2^23 again is exact. (PoCL expands rint and convert_long_rte into compares and branches, and
+ * deposits round several times per agent-step.) */
+float nearest_integer(const float x) {
+  const float magic = copysign(0x1p23f, x);
+  return fabs(x) < 0x1p23f ? (x + magic) - magic : x;
+}
+
 void deposit_amount(__global PhysarumDepositCell* cell, const float amount, const float scale) {
 #ifdef PHYSARUM_FLOAT_DEPOSITS
   (void)scale;
@@ -33,7 +43,7 @@ void deposit_amount(__global PhysarumDepositCell* cell, const float amount, cons
     if (atomic_cmpxchg(word, expected, desired) == expected) return;
   }
 #else
-  const long units = convert_long_rte(amount * scale);
+  const long units = convert_long(nearest_integer(amount * scale));
   if (units != 0) atom_add((volatile __global long*)cell, units);
 #endif
 }

@@ -1,5 +1,5 @@
 // The OpenCL plumbing every backend kernel relies on: device choice, embedded sources, program
-// build and cache, and the device's Philox against the host's known answers.
+// build and cache, the device's Philox against the host's known answers, and the deposits' rounding.
 #include "common/philox.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
@@ -7,6 +7,8 @@
 #include "opencl/program_cache.hpp"
 #include "test_support.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <numeric>
@@ -159,6 +161,40 @@ TEST(OpenCLPhilox, KnownAnswersInsideAKernel) {
     }
   }
   for (int w = 0; w < 4; ++w) EXPECT_EQ(results[n].s[w], 0xdeadbeefu) << "canary overwritten";
+}
+
+// Deposits round to fixed-point units with deposition.cl's nearest_integer, a cheaper form of
+// convert_long_rte: it must be round-to-nearest with ties to even for every float, which the host's
+// std::nearbyint (default rounding mode) gives independently. Ties at each parity, both signs, the
+// edges of the range where the trick applies (2^22, 2^23) and numbers far beyond it, then a spread
+// of random magnitudes.
+TEST(OpenCLDeposition, FixedPointRoundingIsNearestTiesToEven) {
+  std::vector<float> x = {0.0f,        -0.0f,       0.5f,          1.5f,         2.5f,        -0.5f,
+                          -1.5f,       -2.5f,       0.49999997f,   1e-30f,       3.0f,        4194304.5f,
+                          4194305.5f,  8388607.5f,  -8388607.5f,   8388608.0f,   8388609.0f,  16777215.0f,
+                          1e12f,       -1e12f,      0x1.fffffep61f, 123456.789f, -98765.4321f};
+  std::uint32_t state = 12345u;
+  for (int i = 0; i < 4000; ++i) {
+    state = state * 1664525u + 1013904223u;
+    const float mantissa = static_cast<float>(state >> 8) * 0x1p-24f;
+    x.push_back((i % 2 ? -1.0f : 1.0f) * std::ldexp(mantissa, i % 40 - 8));
+  }
+  const ComputeContext c = make_compute_context("");
+  const std::string source = kernel_source("deposition.cl") +
+                             "__kernel void round_units(__global const float* x, __global long* out) {\n"
+                             "  out[get_global_id(0)] = convert_long(nearest_integer(x[get_global_id(0)]));\n"
+                             "}\n";
+  cl::Program p = build_program(c.context, c.device, "round_units.cl", source);
+  cl::Buffer bx(c.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, x.size() * sizeof(float), x.data());
+  cl::Buffer bout(c.context, CL_MEM_WRITE_ONLY, x.size() * sizeof(cl_long));
+  cl::Kernel k(p, "round_units");
+  k.setArg(0, bx);
+  k.setArg(1, bout);
+  c.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(x.size()));
+  std::vector<cl_long> rounded(x.size());
+  c.queue.enqueueReadBuffer(bout, CL_TRUE, 0, x.size() * sizeof(cl_long), rounded.data());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    ASSERT_EQ(rounded[i], static_cast<cl_long>(std::nearbyint(x[i]))) << "x = " << std::hexfloat << x[i];
 }
 
 }  // namespace
