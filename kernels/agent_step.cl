@@ -4,10 +4,10 @@
  *      ahead of this kernel by sense_deciders, for the agents with a decision due),
  *   2. moves, reflecting at boundaries, depositing along its path (movement.cl, deposition.cl),
  *   3. ages and turns over (turnover.cl).
- * A few agents per work-item (PHYSARUM_AGENTS_PER_WORK_ITEM, below). Rates are read where the
- * step starts, the hazard where it ends, as in the reference. Counters (crossings, reflections,
- * respawns) are summed per work-group in local memory and added to that group's own slot, so no
- * global atomics are spent on them. */
+ * Several agents per work-item (walkers of PHYSARUM_AGENTS_PER_WORK_ITEM lanes, below). Rates are
+ * read where the step starts, the hazard where it ends, as in the reference. Counters (crossings,
+ * reflections, respawns) are summed per work-group in local memory and added to that group's own
+ * slot, so no global atomics are spent on them. */
 #include "device_types.h"
 #include "agents.cl"
 #include "deposition.cl"
@@ -84,7 +84,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     dx[h] = with_lane(dx[h], lane, s[i].heading.x);
     dy[h] = with_lane(dy[h], lane, s[i].heading.y);
     distance[h] = with_lane(distance[h], lane, p.move_rate * k.dt);
-    deposit[h] = with_lane(deposit[h], lane, p.deposit_rate * k.dt * active_fraction(s[i].age, k.dt, p.activation_time));
+    deposit[h] =
+        with_lane(deposit[h], lane, p.deposit_rate * k.dt * active_fraction(s[i].age, k.dt, p.activation_time));
   }
 
   TraceEnd moved[AGENTS];

@@ -103,6 +103,20 @@ TEST(BenchCommand, QuickRunWritesItsReportCsvAndPlots) {
   EXPECT_LT(crossings_spread("faces_scaled"), 1.3);
   EXPECT_GT(crossings_spread("faces"), 1.5);
   EXPECT_TRUE(j["slopes"].contains("faces_scaled"));
+  // The in-cache rows: doubling the sensor distance and speed doubles the length walked, so the
+  // crossings per agent-step (on the same mesh) about double too.
+  auto crossings_of = [&](const std::string& sweep) {
+    for (const auto& row : j["rows"])
+      if (row["sweep"] == sweep && row["backend"] == "opencl") return row["crossings_per_agent_step"].get<double>();
+    return 0.0;
+  };
+  ASSERT_GT(crossings_of("in_cache"), 0.0);
+  EXPECT_NEAR(crossings_of("in_cache_x2") / crossings_of("in_cache"), 2.0, 0.3);
+  // Each forward pheromone step carries the triad measured beside it.
+  for (const auto& p : j["pheromone_steps"]) {
+    EXPECT_GT(p["triad_bytes_per_second"].get<double>(), 1e8);
+    EXPECT_GT(p["opencl_forward_fraction_of_triad"].get<double>(), 0.0);
+  }
   const std::string csv = slurp(dir.path / "bench.csv");
   EXPECT_EQ(csv.rfind("sweep,surface,backend,agents,faces,vertices,seconds_per_step,", 0), 0u) << csv.substr(0, 120);
 }
