@@ -16,10 +16,10 @@
 #include "turnover.cl"
 #include "agent_order.cl"
 
-/* Agents per walker (1..4) and walkers per work-item (build options the host sets): on a CPU the
- * agents of one walker move in lockstep, one vector lane each, and several walkers take turns
- * (trace.cl), which overlaps their chains of face reads; a GPU overlaps them across its threads
- * instead and takes 1 and 1. Results do not depend on either. */
+/* Agents per walker (1..4, a build option the host sets) and walkers per work-item
+ * (PHYSARUM_MOVE_WALKERS, trace.cl): on a CPU the agents of one walker move in lockstep, one vector
+ * lane each, and several walkers take turns, which overlaps their chains of face reads; a GPU
+ * overlaps them across its threads instead and takes 1 and 1. Results do not depend on either. */
 #ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
 #define PHYSARUM_AGENTS_PER_WORK_ITEM 1
 #endif
@@ -89,6 +89,7 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
   }
 
   TraceEnd moved[AGENTS];
+  /* Agents fill the walkers in order: when the first walker has none, no walker has any. */
   if (LANE_ANY(active[0]))
     move_agents(faces, LANES, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
 

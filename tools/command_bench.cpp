@@ -325,7 +325,7 @@ int run_bench(const BenchOptions& o) {
   // L3 here is 32 MB). The default scene crosses ~12 faces per agent-step there; with its sensor
   // distance and speed doubled, ~24, the operating point. Both, so the fixed per-agent cost
   // (state, steering, deposits) shows beside the cost per crossing. The reference at 10^5 agents
-  // only: at 10^6 a step takes it tens of seconds.
+  // only: at 10^6 a step takes it several seconds.
   {
     const std::string surface = bench.surface_spec("spot.obj").empty() ? "shape:sphere" : "spot.obj";
     const SurfaceDomain* cached = bench.domain(surface, o.quick ? 0.01 : 0.005);
