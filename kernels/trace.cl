@@ -373,24 +373,25 @@ void walk_lane_ends(__global const PhysarumFaceRecord* faces, const WalkLanes* w
 #define PHYSARUM_MOVE_WALKERS 1
 #endif
 
-/* The deposits of one step's pieces (see trace_walk_lanes). */
+/* The deposits of one step's pieces (see trace_walk_lanes): the amounts and points as lane
+ * vectors, one instruction for all lanes; only the corners' atomics go lane by lane. */
 void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
-                    const lane_float length, const lane_float deposit_amount, const lane_float per_length,
+                    const lane_float length, const lane_float walk_amount, const lane_float per_length,
                     __global PhysarumDepositCell* deposits, const float deposit_scale) {
+  /* Lane i deposits walk_amount[i] spread over its walk; a walk of no length all of it at its end
+   * point. */
+  const lane_int whole = !(length > 0.0f);
+  const lane_float amount = select(per_length * piece->length, walk_amount, whole);
+  const lane_float at0 = amount * select(0.5f * (piece->start0 + piece->end0), piece->end0, whole);
+  const lane_float at1 = amount * select(0.5f * (piece->start1 + piece->end1), piece->end1, whole);
+  const lane_float at2 = amount * select(0.5f * (piece->start2 + piece->end2), piece->end2, whole);
+  const lane_int depositing = piece->walked & (walk_amount != 0.0f) & (whole | (piece->length > 0.0f));
   for (int lane = 0; lane < lanes; ++lane) {
-    const float amount = float_in_lane(deposit_amount, lane);
-    if (!int_in_lane(piece->walked, lane) || amount == 0.0f) continue;
-    const int piece_face = int_in_lane(piece->face, lane);
-    const float3 start = (float3)(float_in_lane(piece->start0, lane), float_in_lane(piece->start1, lane),
-                                  float_in_lane(piece->start2, lane));
-    const float3 end = (float3)(float_in_lane(piece->end0, lane), float_in_lane(piece->end1, lane),
-                                float_in_lane(piece->end2, lane));
-    const float piece_length = float_in_lane(piece->length, lane);
-    if (!(float_in_lane(length, lane) > 0.0f))
-      deposit_at_barycentric(faces, piece_face, end, amount, deposits, deposit_scale);
-    else if (piece_length > 0.0f)
-      deposit_at_barycentric(faces, piece_face, 0.5f * (start + end), float_in_lane(per_length, lane) * piece_length,
-                             deposits, deposit_scale);
+    if (!int_in_lane(depositing, lane)) continue;
+    const int f = int_in_lane(piece->face, lane);
+    deposit_amount(&deposits[faces[f].vertex[0]], float_in_lane(at0, lane), deposit_scale);
+    deposit_amount(&deposits[faces[f].vertex[1]], float_in_lane(at1, lane), deposit_scale);
+    deposit_amount(&deposits[faces[f].vertex[2]], float_in_lane(at2, lane), deposit_scale);
   }
 }
 
