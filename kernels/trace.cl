@@ -373,8 +373,8 @@ void walk_lane_ends(__global const PhysarumFaceRecord* faces, const WalkLanes* w
 #define PHYSARUM_MOVE_WALKERS 1
 #endif
 
-/* The deposits of one step's pieces (see trace_walk_lanes): the amounts and points as lane
- * vectors, one instruction for all lanes; only the corners' atomics go lane by lane. */
+/* The deposits of one step's pieces (see trace_walk_lanes): each lane's amount and point as lane
+ * vectors, one instruction for all lanes; the deposits themselves lane by lane. */
 void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
                     const lane_float length, const lane_float walk_amount, const lane_float per_length,
                     __global PhysarumDepositCell* deposits, const float deposit_scale) {
@@ -382,17 +382,15 @@ void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, c
    * point. */
   const lane_int whole = !(length > 0.0f);
   const lane_float amount = select(per_length * piece->length, walk_amount, whole);
-  const lane_float at0 = amount * select(0.5f * (piece->start0 + piece->end0), piece->end0, whole);
-  const lane_float at1 = amount * select(0.5f * (piece->start1 + piece->end1), piece->end1, whole);
-  const lane_float at2 = amount * select(0.5f * (piece->start2 + piece->end2), piece->end2, whole);
+  const lane_float at0 = select(0.5f * (piece->start0 + piece->end0), piece->end0, whole);
+  const lane_float at1 = select(0.5f * (piece->start1 + piece->end1), piece->end1, whole);
+  const lane_float at2 = select(0.5f * (piece->start2 + piece->end2), piece->end2, whole);
   const lane_int depositing = piece->walked & (walk_amount != 0.0f) & (whole | (piece->length > 0.0f));
-  for (int lane = 0; lane < lanes; ++lane) {
-    if (!int_in_lane(depositing, lane)) continue;
-    const int f = int_in_lane(piece->face, lane);
-    deposit_amount(&deposits[faces[f].vertex[0]], float_in_lane(at0, lane), deposit_scale);
-    deposit_amount(&deposits[faces[f].vertex[1]], float_in_lane(at1, lane), deposit_scale);
-    deposit_amount(&deposits[faces[f].vertex[2]], float_in_lane(at2, lane), deposit_scale);
-  }
+  for (int lane = 0; lane < lanes; ++lane)
+    if (int_in_lane(depositing, lane))
+      deposit_at_barycentric(faces, int_in_lane(piece->face, lane),
+                             (float3)(float_in_lane(at0, lane), float_in_lane(at1, lane), float_in_lane(at2, lane)),
+                             float_in_lane(amount, lane), deposits, deposit_scale);
 }
 
 /* The movement walks of up to PHYSARUM_MOVE_WALKERS * lanes agents: lane i of walker h walks
