@@ -75,6 +75,7 @@ std::vector<DeviceInfo> list_devices() {
       d.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       d.global_memory_bytes = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       d.max_allocation_bytes = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+      d.global_cache_bytes = device.getInfo<CL_DEVICE_GLOBAL_MEM_CACHE_SIZE>();
       d.max_work_group_size = device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
       const std::string extensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
       d.int64_atomics = extensions.find("cl_khr_int64_base_atomics") != std::string::npos;

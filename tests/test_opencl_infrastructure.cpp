@@ -1,9 +1,12 @@
 // The OpenCL plumbing every backend kernel relies on: device choice, embedded sources, program
-// build and cache, the device's Philox against the host's known answers, and the deposits' rounding.
+// build and cache, the device's Philox against the host's known answers, the deposits' rounding, and
+// the device's memory-bandwidth triad.
+#include "common/memory_bandwidth.hpp"
 #include "common/philox.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/kernel_sources.hpp"
+#include "opencl/memory_bandwidth.hpp"
 #include "opencl/program_cache.hpp"
 #include "test_support.hpp"
 
@@ -195,6 +198,22 @@ TEST(OpenCLDeposition, FixedPointRoundingIsNearestTiesToEven) {
   c.queue.enqueueReadBuffer(bout, CL_TRUE, 0, x.size() * sizeof(cl_long), rounded.data());
   for (std::size_t i = 0; i < x.size(); ++i)
     ASSERT_EQ(rounded[i], static_cast<cl_long>(std::nearbyint(x[i]))) << "x = " << std::hexfloat << x[i];
+}
+
+// The device triad sizes its arrays past the device's cache, computes what it claims, and on a CPU
+// device (host memory, as here) measures the same memory the host's triad does: within a factor of
+// three of it, whatever the other tenants of the machine are doing to both.
+TEST(OpenCLMemoryBandwidth, DeviceTriadRunsOutsideTheCacheAndAgreesWithTheHosts) {
+  const ComputeContext compute = make_compute_context("");
+  DeviceTriad device(compute);
+  EXPECT_GE(device.bytes_per_triad(), 3.0 * 4.0 * static_cast<double>(compute.device.global_cache_bytes));
+  const double device_rate = device.bytes_per_second(3);
+  EXPECT_TRUE(device.result_is_correct());
+  if (compute.device.type != "CPU") GTEST_SKIP() << "the device's memory is not the host's";
+  HostTriad host;
+  const double host_rate = host.bytes_per_second(3);
+  EXPECT_GT(device_rate, host_rate / 3.0);
+  EXPECT_LT(device_rate, host_rate * 3.0);
 }
 
 }  // namespace

@@ -14,9 +14,11 @@
 #include "common/atomic_write.hpp"
 #include "common/errors.hpp"
 #include "common/line_plot.hpp"
+#include "common/memory_bandwidth.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/face_records.hpp"
+#include "opencl/memory_bandwidth.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/pheromone.hpp"
@@ -32,9 +34,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace physarum::cli {
@@ -114,34 +116,25 @@ Scene scene_scaled_to(const SurfaceDomain& d) {
   return s;
 }
 
-// Host memory bandwidth: a STREAM-style triad a = b + s c over 3 x 64 MB, one thread per core,
-// best of `repeats`. Bytes counted: 2 reads + 1 write per element. The arrays are kept, so the
-// pheromone timings can each be put beside a triad taken the moment before: the machine is shared,
-// and a bandwidth measured minutes away says little about the one a kernel had.
-class Triad {
+// The bandwidth of the memory the kernels read, for the roofline: a triad on the device over arrays
+// far larger than its cache, and for a CPU device (whose memory is the host's) the better of that
+// and a triad on the host's threads, so the bound is the best rate this memory was seen to give.
+class MemoryBandwidth {
  public:
-  Triad() : a_(kElements, 0.0), b_(kElements, 1.0), c_(kElements, 2.0) {}
-
+  explicit MemoryBandwidth(const opencl::ComputeContext& compute) : device_(compute) {
+    if (compute.device.type == "CPU") host_.emplace();
+  }
   double bytes_per_second(int repeats) {
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    double best = 0.0;
-    for (int repeat = 0; repeat < repeats; ++repeat) {
-      const Clock::time_point start = Clock::now();
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-          const size_t lo = kElements * t / threads, hi = kElements * (t + 1) / threads;
-          for (size_t i = lo; i < hi; ++i) a_[i] = b_[i] + 3.0 * c_[i];
-        });
-      for (std::thread& th : pool) th.join();
-      best = std::max(best, 3.0 * static_cast<double>(kElements) * sizeof(double) / seconds_since(start));
-    }
-    return best;
+    const double device = device_.bytes_per_second(repeats);
+    return host_ ? std::max(device, host_->bytes_per_second(repeats)) : device;
+  }
+  const char* memory() const {
+    return host_ ? "host memory: the better of an OpenCL and a host triad" : "device memory: OpenCL triad";
   }
 
  private:
-  static constexpr size_t kElements = 8u << 20;  // doubles per array (64 MB)
-  std::vector<double> a_, b_, c_;
+  opencl::DeviceTriad device_;
+  std::optional<HostTriad> host_;
 };
 
 struct Row {
@@ -159,7 +152,8 @@ nlohmann::ordered_json to_json(const Row& r) {
 
 class Bench {
  public:
-  Bench(const BenchOptions& o) : options_(o), compute_(opencl::make_compute_context(o.device)) {}
+  Bench(const BenchOptions& o)
+      : options_(o), compute_(opencl::make_compute_context(o.device)), bandwidth_(compute_) {}
 
   std::string surface_spec(const std::string& name) const {
     if (name.rfind("shape:", 0) == 0) return name;
@@ -215,7 +209,7 @@ class Bench {
       const Clock::time_point start = Clock::now();
       double best = INFINITY;
       for (int steps = 0; steps < 5 || (steps < 30 && seconds_since(start) < 0.3); ++steps) {
-        if (beside_triad) t.triad_bytes_per_second = std::max(t.triad_bytes_per_second, triad_.bytes_per_second(1));
+        if (beside_triad) t.triad_bytes_per_second = std::max(t.triad_bytes_per_second, bandwidth_.bytes_per_second(1));
         const Clock::time_point step_start = Clock::now();
         field.step();
         finish();
@@ -238,7 +232,8 @@ class Bench {
     return t;
   }
 
-  double triad_bytes_per_second(int repeats) { return triad_.bytes_per_second(repeats); }
+  double triad_bytes_per_second(int repeats) { return bandwidth_.bytes_per_second(repeats); }
+  const char* bandwidth_memory() const { return bandwidth_.memory(); }
   const std::vector<Row>& rows() const { return rows_; }
   const opencl::ComputeContext& compute() const { return compute_; }
   const BenchOptions& options() const { return options_; }
@@ -247,7 +242,7 @@ class Bench {
   BenchOptions options_;
   opencl::ComputeContext compute_;
   std::vector<Row> rows_;
-  Triad triad_;
+  MemoryBandwidth bandwidth_;
 };
 
 // Draws one sweep (a line per surface and backend), seconds per step or agent-steps per second
@@ -424,7 +419,8 @@ int run_bench(const BenchOptions& o) {
     const Row* last = nullptr;
     for (const Row& r : bench.rows())
       if (r.sweep == "faces" && r.backend == "opencl") last = &r;
-    nlohmann::ordered_json roofline = {{"memory_bandwidth_bytes_per_second", bandwidth}};
+    nlohmann::ordered_json roofline = {{"memory_bandwidth_bytes_per_second", bandwidth},
+                                       {"memory", bench.bandwidth_memory()}};
     if (last) {
       const double visits = last->crossings_per_agent_step + 1.6;  // + one start face per walk (1 move + 3/5 sensing)
       const double bytes = 88.0 + 64.0 * visits + 4.0 * 9.0 * 0.6 + 24.0;
@@ -441,15 +437,16 @@ int run_bench(const BenchOptions& o) {
       // 4 B value per vertex) and u once and writes u once (opencl/pheromone.hpp counts the bytes);
       // the neighbours' u it gathers are the cache's, not memory's. Each field against the triad
       // measured beside it; the last (largest) in detail, and the spread over the fields whose
-      // sub-step moves more than this machine's 32 MB cache holds: smaller ones run partly from
+      // sub-step moves more than the device's cache holds: smaller ones run partly from
       // cache or wait on kernel launches, and the memory bound does not apply to them.
       const auto& p = pheromone.back();
+      const double cache_bytes = static_cast<double>(bench.compute().device.global_cache_bytes);
       const double bytes = p["opencl_forward_bytes"].get<double>();
       const double measured = p["opencl_forward_seconds"].get<double>();
       const double beside = p["triad_bytes_per_second"].get<double>();
       std::vector<double> fractions;
       for (const auto& q : pheromone)
-        if (q["opencl_forward_bytes"].get<double>() / q["forward_sub_steps"].get<int>() > 32e6)
+        if (q["opencl_forward_bytes"].get<double>() / q["forward_sub_steps"].get<int>() > cache_bytes)
           fractions.push_back(q["opencl_forward_fraction_of_triad"].get<double>());
       std::sort(fractions.begin(), fractions.end());
       roofline["pheromone_forward_step"] = {{"vertices", p["vertices"]},
@@ -466,7 +463,8 @@ int run_bench(const BenchOptions& o) {
       }
     }
     report["roofline"] = roofline;
-    std::printf("roofline: memory bandwidth %.3g GB/s; %s\n", bandwidth / 1e9, roofline.dump().c_str());
+    std::printf("roofline: memory bandwidth %.3g GB/s (%s); %s\n", bandwidth / 1e9, bench.bandwidth_memory(),
+                roofline.dump().c_str());
   }
 
   // ---- slopes and outputs ----

@@ -2,13 +2,14 @@
 // is lent): the surfaces are built in code (no mesh files), so the program needs nothing but an
 // OpenCL driver. For each device: one agent step from identical states against the reference
 // (fraction of agents that agree), the U metric over a short run, one forward-Euler pheromone step
-// against the reference, canaries, the throughput of the full step at 1e5..1e7 agents on a refined
-// sphere, and the forward step's bytes per second.
+// against the reference, canaries, the throughput of the full step at 1e5..1e7 agents on refined
+// spheres, and the forward step's bytes per second against the device memory's (a triad).
 //   physarum_device_check [--device SPEC]
 #include "common/field_statistics.hpp"
 #include "common/intrinsic_triangulation.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/hybrid_matrix.hpp"
+#include "opencl/memory_bandwidth.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
@@ -65,7 +66,8 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
 // Three forward-Euler sub-steps from a varied field against the reference (relative 1e-5, as in
 // tests/test_opencl_pheromone.cpp), then the step's memory throughput; vertices numbered as a
 // simulation numbers them on the device.
-void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surface, const std::string& label) {
+void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surface, const std::string& label,
+                       double triad_bytes_per_second) {
   const SurfaceDomain domain = in_device_vertex_order(surface);
   const int n = domain.vertex_count;
   VertexParameters params;
@@ -100,8 +102,11 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
   for (int s = 0; s < steps; ++s) device.step();
   compute.queue.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / steps;
-  std::printf("pheromone forward step: %d vertices, %d sub-steps, %.3f ms/step, %.3g GB/s\n", n, device.sub_steps(),
-              1e3 * seconds, device.forward_bytes_per_sub_step() * device.sub_steps() / seconds / 1e9);
+  const double rate = device.forward_bytes_per_sub_step() * device.sub_steps() / seconds;
+  std::printf("pheromone forward step: %d vertices, %d sub-steps (%.3g MB each), %.3f ms/step, %.3g GB/s, %.2f of the "
+              "triad\n",
+              n, device.sub_steps(), device.forward_bytes_per_sub_step() / 1e6, 1e3 * seconds, rate / 1e9,
+              rate / triad_bytes_per_second);
 }
 
 // One throughput line; agents_per_work_item 0 is the device's automatic choice.
@@ -137,6 +142,11 @@ void throughput(const ComputeContext& compute, const SurfaceDomain& domain) {
 int run(const std::string& device) {
   const ComputeContext compute = make_compute_context(device);
   std::printf("device: %s\n", compute.device.describe().c_str());
+  DeviceTriad triad(compute);
+  const double bandwidth = triad.bytes_per_second(5);
+  check(triad.result_is_correct(), "triad result");
+  std::printf("memory bandwidth (triad, %.3g MB per triad): %.3g GB/s\n", triad.bytes_per_triad() / 1e6,
+              bandwidth / 1e9);
   InputMesh sphere = testing::make_icosphere(4);
   for (Eigen::Vector3d& p : sphere.positions) p *= std::sqrt(4.0 / (4.0 * 3.14159265358979));  // 4 m^2
   InputMesh square = testing::make_square_grid(32);
@@ -145,11 +155,15 @@ int run(const std::string& device) {
   one_step(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
   u_metric(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
   u_metric(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
-  pheromone_forward(compute, sphere_domain, "sphere");
+  pheromone_forward(compute, sphere_domain, "sphere", bandwidth);
   throughput(compute, refined(sphere, 0.015));
   const SurfaceDomain fine_sphere = refined(sphere, 0.004);
   throughput(compute, fine_sphere);
-  pheromone_forward(compute, fine_sphere, "fine sphere");
+  pheromone_forward(compute, fine_sphere, "fine sphere", bandwidth);
+  // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
+  const SurfaceDomain finest_sphere = refined(sphere, 0.0015);
+  throughput(compute, finest_sphere);
+  pheromone_forward(compute, finest_sphere, "finest sphere", bandwidth);
   std::printf("%d failed\n", testing::probe_failures());
   return testing::probe_exit_status();
 }
