@@ -40,7 +40,7 @@ std::string DeviceInfo::describe() const {
   std::ostringstream os;
   os << index << ": " << platform_name << " / " << device_name << " (" << type << ", " << compute_units
      << " compute units, " << (global_memory_bytes >> 20) << " MiB, max allocation " << (max_allocation_bytes >> 20)
-     << " MiB, " << device_version << ", driver " << driver_version
+     << " MiB, cache " << (global_cache_bytes >> 10) << " KiB, " << device_version << ", driver " << driver_version
      << (int64_atomics ? ", 64-bit atomics" : ", no 64-bit atomics") << ")";
   return os.str();
 }
