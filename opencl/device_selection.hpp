@@ -21,7 +21,9 @@ struct DeviceInfo {
   unsigned compute_units = 0;
   std::uint64_t global_memory_bytes = 0;
   std::uint64_t max_allocation_bytes = 0;
-  std::uint64_t global_cache_bytes = 0;  // the cache in front of global memory (a CPU's last level, a GPU's L2)
+  // The cache in front of global memory as the driver reports it: PoCL gives the CPU's last level;
+  // a GPU driver may give its L1s rather than its L2.
+  std::uint64_t global_cache_bytes = 0;
   std::size_t max_work_group_size = 0;
   bool int64_atomics = false;  // cl_khr_int64_base_atomics: deposits use 64-bit fixed point
 

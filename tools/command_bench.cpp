@@ -437,7 +437,8 @@ int run_bench(const BenchOptions& o) {
       // 4 B value per vertex) and u once and writes u once (opencl/pheromone.hpp counts the bytes);
       // the neighbours' u it gathers are the cache's, not memory's. Each field against the triad
       // measured beside it; the last (largest) in detail, and the spread over the fields whose
-      // sub-step moves more than the device's cache holds: smaller ones run partly from
+      // sub-step moves more than the device's cache holds (as its driver reports it; where that is a
+      // GPU's L1s, fields its L2 holds count too): smaller ones run partly from
       // cache or wait on kernel launches, and the memory bound does not apply to them.
       const auto& p = pheromone.back();
       const double cache_bytes = static_cast<double>(bench.compute().device.global_cache_bytes);
