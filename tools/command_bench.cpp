@@ -209,7 +209,8 @@ class Bench {
       const Clock::time_point start = Clock::now();
       double best = INFINITY;
       for (int steps = 0; steps < 5 || (steps < 30 && seconds_since(start) < 0.3); ++steps) {
-        if (beside_triad) t.triad_bytes_per_second = std::max(t.triad_bytes_per_second, bandwidth_.bytes_per_second(1));
+        if (beside_triad)
+          t.triad_bytes_per_second = std::max(t.triad_bytes_per_second, bandwidth_.bytes_per_second(1));
         const Clock::time_point step_start = Clock::now();
         field.step();
         finish();
@@ -232,8 +233,7 @@ class Bench {
     return t;
   }
 
-  double triad_bytes_per_second(int repeats) { return bandwidth_.bytes_per_second(repeats); }
-  const char* bandwidth_memory() const { return bandwidth_.memory(); }
+  MemoryBandwidth& bandwidth() { return bandwidth_; }
   const std::vector<Row>& rows() const { return rows_; }
   const opencl::ComputeContext& compute() const { return compute_; }
   const BenchOptions& options() const { return options_; }
@@ -410,7 +410,7 @@ int run_bench(const BenchOptions& o) {
   }
 
   // ---- roofline estimate ----
-  const double bandwidth = bench.triad_bytes_per_second(5);
+  const double bandwidth = bench.bandwidth().bytes_per_second(5);
   {
     // Agent step: state read and written (face 4, position 8, heading 8, five floats 20, id 4 = 44 B
     // each way), one 64-byte face record per face visited, three concentration reads per sensor
@@ -420,7 +420,7 @@ int run_bench(const BenchOptions& o) {
     for (const Row& r : bench.rows())
       if (r.sweep == "faces" && r.backend == "opencl") last = &r;
     nlohmann::ordered_json roofline = {{"memory_bandwidth_bytes_per_second", bandwidth},
-                                       {"memory", bench.bandwidth_memory()}};
+                                       {"memory", bench.bandwidth().memory()}};
     if (last) {
       const double visits = last->crossings_per_agent_step + 1.6;  // + one start face per walk (1 move + 3/5 sensing)
       const double bytes = 88.0 + 64.0 * visits + 4.0 * 9.0 * 0.6 + 24.0;
@@ -438,8 +438,8 @@ int run_bench(const BenchOptions& o) {
       // the neighbours' u it gathers are the cache's, not memory's. Each field against the triad
       // measured beside it; the last (largest) in detail, and the spread over the fields whose
       // sub-step moves more than the device's cache holds (as its driver reports it; where that is a
-      // GPU's L1s, fields its L2 holds count too): smaller ones run partly from
-      // cache or wait on kernel launches, and the memory bound does not apply to them.
+      // GPU's L1s, fields its L2 holds count too): smaller ones run partly from cache or wait on
+      // kernel launches, and the memory bound does not apply to them.
       const auto& p = pheromone.back();
       const double cache_bytes = static_cast<double>(bench.compute().device.global_cache_bytes);
       const double bytes = p["opencl_forward_bytes"].get<double>();
@@ -464,7 +464,7 @@ int run_bench(const BenchOptions& o) {
       }
     }
     report["roofline"] = roofline;
-    std::printf("roofline: memory bandwidth %.3g GB/s (%s); %s\n", bandwidth / 1e9, bench.bandwidth_memory(),
+    std::printf("roofline: memory bandwidth %.3g GB/s (%s); %s\n", bandwidth / 1e9, bench.bandwidth().memory(),
                 roofline.dump().c_str());
   }
 
