@@ -8,13 +8,13 @@
 namespace physarum {
 namespace {
 
-void check_sizes(const std::vector<double>& values, const std::vector<double>& mass, const char* what) {
+void check_sizes(const IntrinsicVertexData<double>& values, const IntrinsicVertexData<double>& mass, const char* what) {
   if (values.size() != mass.size())
     throw InputError(std::string(what) + ": " + std::to_string(values.size()) + " values for " +
                      std::to_string(mass.size()) + " vertex masses");
 }
 
-double total(const std::vector<double>& mass, const char* what) {
+double total(const IntrinsicVertexData<double>& mass, const char* what) {
   double sum = 0.0;
   for (double m : mass) sum += m;
   if (!(sum > 0.0)) throw InputError(std::string(what) + ": total vertex mass " + std::to_string(sum) + " is not > 0");
@@ -23,7 +23,7 @@ double total(const std::vector<double>& mass, const char* what) {
 
 }  // namespace
 
-double area_weighted_mean(const std::vector<double>& values, const std::vector<double>& mass) {
+double area_weighted_mean(const IntrinsicVertexData<double>& values, const IntrinsicVertexData<double>& mass) {
   check_sizes(values, mass, "mean");
   double weighted = 0.0;
   for (size_t i = 0; i < values.size(); ++i) weighted += mass[i] * values[i];
@@ -31,21 +31,22 @@ double area_weighted_mean(const std::vector<double>& values, const std::vector<d
 }
 
 double uniform_steady_state(int agents, double deposit_rate, double decay_rate, double area, double activation_time,
-                            std::optional<double> mean_lifetime) {
+                            double mean_lifetime) {
   if (!(decay_rate > 0.0) || !(area > 0.0))
     throw InputError("U (Eq. 5): decay rate " + std::to_string(decay_rate) + " and area " + std::to_string(area) +
                      " must both be > 0");
   // Without turnover no agent is ever reborn, so after t_a all of them deposit: the factor is 1.
-  const double depositing_fraction = mean_lifetime ? std::exp(-activation_time / *mean_lifetime) : 1.0;
+  const double depositing_fraction = std::isinf(mean_lifetime) ? 1.0 : std::exp(-activation_time / mean_lifetime);
   return agents * deposit_rate / (decay_rate * area) * depositing_fraction;
 }
 
 double uniform_steady_state(const Scene& scene, double area) {
-  return uniform_steady_state(scene.agents, scene.deposit_rate, scene.decay_rate, area, scene.activation_time,
-                              scene.mean_lifetime);
+  const ParameterValues& p = scene.parameters;
+  return uniform_steady_state(scene.agents, p[Param::deposit_rate], p[Param::decay_rate], area,
+                              p[Param::activation_time], p[Param::mean_lifetime]);
 }
 
-double coverage_fraction(const std::vector<double>& values, const std::vector<double>& mass, double threshold) {
+double coverage_fraction(const IntrinsicVertexData<double>& values, const IntrinsicVertexData<double>& mass, double threshold) {
   check_sizes(values, mass, "coverage");
   double above = 0.0;
   for (size_t i = 0; i < values.size(); ++i)
@@ -53,7 +54,7 @@ double coverage_fraction(const std::vector<double>& values, const std::vector<do
   return above / total(mass, "coverage");
 }
 
-FieldStatistics compute_field_statistics(const std::vector<double>& values, const std::vector<double>& mass, double U) {
+FieldStatistics compute_field_statistics(const IntrinsicVertexData<double>& values, const IntrinsicVertexData<double>& mass, double U) {
   FieldStatistics s;
   s.mean = area_weighted_mean(values, mass);
   s.U = U;

@@ -26,9 +26,10 @@ void check_location(const InputMesh& input, const SurfacePoint& p, size_t intrin
 
 }  // namespace
 
-std::vector<int> input_vertex_to_intrinsic(const InputMesh& input, const std::vector<SurfacePoint>& locations) {
+InputVertexData<int> input_vertex_to_intrinsic(const InputMesh& input,
+                                               const IntrinsicVertexData<SurfacePoint>& locations) {
   const int n_input = input.vertex_count();
-  std::vector<int> map(static_cast<size_t>(n_input), -1);
+  InputVertexData<int> map(static_cast<size_t>(n_input), -1);
 
   // Fast path: the triangulation numbered input vertex v as intrinsic vertex v.
   bool identity = static_cast<int>(locations.size()) >= n_input;
@@ -59,8 +60,9 @@ std::vector<int> input_vertex_to_intrinsic(const InputMesh& input, const std::ve
   return map;
 }
 
-std::vector<double> intrinsic_to_input(const std::vector<int>& map, const std::vector<double>& intrinsic_values) {
-  std::vector<double> out(map.size());
+InputVertexData<double> intrinsic_to_input(const InputVertexData<int>& map,
+                                           const IntrinsicVertexData<double>& intrinsic_values) {
+  InputVertexData<double> out(map.size());
   for (size_t v = 0; v < map.size(); ++v) {
     if (map[v] < 0 || static_cast<size_t>(map[v]) >= intrinsic_values.size())
       throw InputError("field transfer: input vertex " + std::to_string(v) + " maps to intrinsic vertex " +
@@ -71,20 +73,20 @@ std::vector<double> intrinsic_to_input(const std::vector<int>& map, const std::v
   return out;
 }
 
-std::vector<double> intrinsic_to_input(const InputMesh& input, const std::vector<SurfacePoint>& locations,
-                                       const std::vector<double>& intrinsic_values) {
+InputVertexData<double> intrinsic_to_input(const InputMesh& input, const IntrinsicVertexData<SurfacePoint>& locations,
+                                           const IntrinsicVertexData<double>& intrinsic_values) {
   if (intrinsic_values.size() != locations.size())
     throw InputError("field transfer: " + std::to_string(intrinsic_values.size()) + " values for " +
                      std::to_string(locations.size()) + " intrinsic vertices");
   return intrinsic_to_input(input_vertex_to_intrinsic(input, locations), intrinsic_values);
 }
 
-std::vector<double> input_to_intrinsic(const InputMesh& input, const std::vector<SurfacePoint>& locations,
-                                       const std::vector<double>& input_values) {
+IntrinsicVertexData<double> input_to_intrinsic(const InputMesh& input, const IntrinsicVertexData<SurfacePoint>& locations,
+                                               const InputVertexData<double>& input_values) {
   if (static_cast<int>(input_values.size()) != input.vertex_count())
     throw InputError("field transfer: " + std::to_string(input_values.size()) + " values for the " +
                      std::to_string(input.vertex_count()) + " vertices of " + input.source);
-  std::vector<double> out(locations.size());
+  IntrinsicVertexData<double> out(locations.size());
   for (size_t i = 0; i < locations.size(); ++i) {
     const SurfacePoint& p = locations[i];
     check_location(input, p, i);

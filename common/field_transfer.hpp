@@ -1,5 +1,6 @@
 #pragma once
-// Moving per-vertex fields between the input mesh and the intrinsic triangulation.
+// Moving per-vertex fields between the input mesh and the intrinsic triangulation: the one place
+// where values change numbering (common/element_data.hpp).
 //
 // Intrinsic -> input: an intrinsic triangulation keeps every input vertex (flips and insertions
 // never remove one), so each input vertex IS an intrinsic vertex and its value is read directly, no
@@ -10,6 +11,7 @@
 //
 // Input -> intrinsic (parameter maps painted on the input): each intrinsic vertex sits at a
 // SurfacePoint of the input mesh; the input field is interpolated linearly there.
+#include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
 #include "common/surface_point.hpp"
 
@@ -20,18 +22,21 @@ namespace physarum {
 // For each input vertex, the intrinsic vertex sitting on it. `intrinsic_locations` is one
 // SurfacePoint (on the input mesh) per intrinsic vertex, e.g. SurfaceDomain::vertex_location.
 // Throws InputError when some input vertex has no intrinsic vertex on it.
-std::vector<int> input_vertex_to_intrinsic(const InputMesh& input, const std::vector<SurfacePoint>& intrinsic_locations);
+InputVertexData<int> input_vertex_to_intrinsic(const InputMesh& input,
+                                               const IntrinsicVertexData<SurfacePoint>& intrinsic_locations);
 
 // Values at the input vertices from values at the intrinsic vertices.
-std::vector<double> intrinsic_to_input(const InputMesh& input, const std::vector<SurfacePoint>& intrinsic_locations,
-                                       const std::vector<double>& intrinsic_values);
+InputVertexData<double> intrinsic_to_input(const InputMesh& input,
+                                           const IntrinsicVertexData<SurfacePoint>& intrinsic_locations,
+                                           const IntrinsicVertexData<double>& intrinsic_values);
 // Same with a map from input_vertex_to_intrinsic computed once (cheap per frame).
-std::vector<double> intrinsic_to_input(const std::vector<int>& input_to_intrinsic_map,
-                                       const std::vector<double>& intrinsic_values);
+InputVertexData<double> intrinsic_to_input(const InputVertexData<int>& input_to_intrinsic_map,
+                                           const IntrinsicVertexData<double>& intrinsic_values);
 
 // Values at the intrinsic vertices: the input's per-vertex field interpolated linearly (barycentric)
 // at each intrinsic vertex's location.
-std::vector<double> input_to_intrinsic(const InputMesh& input, const std::vector<SurfacePoint>& intrinsic_locations,
-                                       const std::vector<double>& input_values);
+IntrinsicVertexData<double> input_to_intrinsic(const InputMesh& input,
+                                               const IntrinsicVertexData<SurfacePoint>& intrinsic_locations,
+                                               const InputVertexData<double>& input_values);
 
 }  // namespace physarum

@@ -1,8 +1,10 @@
 #pragma once
-// A simulation scene: the surface and every model parameter of Table 1 of the paper, in SI units
-// (angles in degrees in the file, radians here). Read from one flat JSON object (../shared/DESIGN.md, "Scene
-// files"); every bad value is an InputError naming the key, the value and the allowed range, and an
-// unknown key is an error too.
+// A simulation scene: the surface, the run settings and every model parameter of Table 1 of the
+// paper, in SI units (angles in degrees in the file, radians here). Read from one flat JSON object
+// whose keys are listed in the README; every bad value is an InputError naming the key, the value and
+// the allowed range, and an unknown key is an error too.
+#include "common/model_parameters.hpp"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -39,21 +41,10 @@ struct Scene {
   std::optional<double> max_circumradius;  // intrinsic refinement bound, in scaled units (m)
   double min_angle_deg = 0.0;              // optional refinement angle bound
 
-  // ---- agents (Table 1) ----
-  int agents = 0;                  // N
-  double sensor_distance = 0.0;    // m
-  double sensor_angle = 0.0;       // rad (negative = chemo-repulsion)
-  double move_rate = 0.0;          // m/s
-  double turn_rate = 0.0;          // rad/s
-  double turn_frequency = 0.0;     // 1/s, turn decisions per second
-  double deposit_rate = 0.0;       // amount/s per agent
-  std::optional<double> mean_lifetime;  // s; nullopt = no turnover (infinite lifetime)
-  double activation_time = 0.0;    // s, age before an agent deposits
-
-  // ---- pheromone (Eq. 1) ----
-  double decay_rate = 0.0;    // 1/s
-  double diffuse_rate = 0.0;  // m^2/s
-  Integrator integrator = Integrator::ForwardEuler;
+  int agents = 0;  // N
+  // Every model parameter of Table 1 (common/model_parameters.hpp), in SI units.
+  ParameterValues parameters;
+  Integrator integrator = Integrator::ForwardEuler;  // for the pheromone PDE (Eq. 6 / 7)
 
   // ---- time ----
   double time_step = 0.0;  // s

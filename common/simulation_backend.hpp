@@ -1,7 +1,7 @@
 #pragma once
-// What every simulation backend offers (../shared/DESIGN.md, "Data flow": reference | opencl, same
-// interface, same Scene, same seed). `physarum run`, the differential harness and the benchmarks
+// What every simulation backend offers (reference | opencl: same interface, same Scene, same seed). `physarum run`, the differential harness and the benchmarks
 // drive a backend only through this interface, so a new backend plugs into all of them at once.
+#include "common/element_data.hpp"
 #include "common/field_statistics.hpp"
 #include "common/scene.hpp"
 
@@ -56,16 +56,19 @@ class SimulationBackend {
   // call it before reading the clock.
   virtual void finish() {}
 
-  // Sets the pheromone concentration to `value` everywhere (e.g. U, so a run starts at its steady
-  // mean instead of spending several decay times on the way up).
-  virtual void fill_concentration(double value) = 0;
+  // ---- fields: the simulation's per-vertex layers, dynamic ones first (layer 0: the pheromone) ----
+  virtual int layer_count() const = 0;
+  // A layer's values per intrinsic vertex (a copy; may read back from a device).
+  virtual IntrinsicVertexData<double> field_values(int layer = 0) const = 0;
+  virtual void set_field(const IntrinsicVertexData<double>& values, int layer = 0) = 0;
+  // Sets a layer to `value` everywhere (e.g. U, so a run starts at its steady mean instead of
+  // spending several decay times on the way up).
+  virtual void fill_field(double value, int layer = 0) = 0;
+  // Mean and coverage of a layer (on the device where there is one).
+  virtual FieldStatistics field_statistics(double U, int layer = 0) const = 0;
 
   virtual double time() const = 0;
   virtual long long steps_taken() const = 0;
-  // The pheromone concentration per intrinsic vertex (a copy; may read back from a device).
-  virtual std::vector<double> concentration_values() const = 0;
-  // Mean and coverage of the field (on the device where there is one).
-  virtual FieldStatistics field_statistics(double U) const = 0;
   // The intrinsic face every agent is on, in agent-id order.
   virtual std::vector<int> agent_faces() const = 0;
   virtual SimulationCounters counters() const = 0;

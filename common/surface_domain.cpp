@@ -37,7 +37,7 @@ Rigid2 transition_across(const std::array<Eigen::Vector2d, 3>& from, int i, cons
 
 }  // namespace
 
-SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const std::vector<double>& face_weight) {
+SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const IntrinsicFaceData<double>& face_weight) {
   const int nf = mesh.face_count();
   if (static_cast<int>(mesh.edge_lengths.size()) != nf || static_cast<int>(mesh.twin.size()) != nf)
     throw InputError("intrinsic mesh: " + std::to_string(nf) + " faces but " + std::to_string(mesh.edge_lengths.size()) +
@@ -51,7 +51,7 @@ SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const std::vector<
   d.face_count = nf;
   d.face_vertices = mesh.faces;
   d.face_corners.resize(nf);
-  d.face_area.resize(nf);
+  d.face_area.assign(static_cast<size_t>(nf), 0.0);
   d.face_neighbour.resize(nf);
   d.neighbour_edge.resize(nf);
   d.edge_transition.assign(3 * static_cast<size_t>(nf), Rigid2{});
@@ -95,11 +95,11 @@ SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const std::vector<
     }
   }
 
-  d.vertex_mass = lumped_mass(mesh);
-  d.vertex_location = mesh.vertex_location;
+  d.vertex_mass = IntrinsicVertexData<double>(lumped_mass(mesh));
+  d.vertex_location = IntrinsicVertexData<SurfacePoint>(mesh.vertex_location);
   d.laplacian = CsrMatrix::from_eigen(cotan_laplacian(mesh));
 
-  std::vector<double> sampling_weight(d.face_area);
+  std::vector<double> sampling_weight(d.face_area.values());
   if (!face_weight.empty())
     for (int f = 0; f < nf; ++f) {
       if (!std::isfinite(face_weight[f]) || face_weight[f] < 0.0)

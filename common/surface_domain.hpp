@@ -1,12 +1,14 @@
 #pragma once
-// The surface domain: the flat arrays both simulation backends consume (../shared/DESIGN.md, "Data flow").
-// Built once from an intrinsic triangulation; nothing in a backend recomputes geometry.
+// The surface domain: the flat arrays both simulation backends consume (the contract between
+// common/ and the backends: the reference reads them as they are, the OpenCL backend builds its
+// device buffers from them alone). Built once from an intrinsic triangulation; nothing in a backend recomputes geometry.
 //
 // Frames: every intrinsic face has its own 2D coordinate frame, laid out from its edge lengths with
 // corner 0 at the origin, corner 1 on the positive x axis and corner 2 above it (counter-clockwise).
 // Halfedge h = 3*f + i is the edge of face f from corner i to corner (i+1)%3.
 #include "common/alias_table.hpp"
 #include "common/csr_matrix.hpp"
+#include "common/element_data.hpp"
 #include "common/intrinsic_mesh.hpp"
 #include "common/surface_point.hpp"
 
@@ -38,7 +40,7 @@ struct SurfaceDomain {
   // ---- per face ----
   std::vector<std::array<int, 3>> face_vertices;
   std::vector<std::array<Eigen::Vector2d, 3>> face_corners;  // the 2D layout described above
-  std::vector<double> face_area;
+  IntrinsicFaceData<double> face_area;
   std::vector<std::array<int, 3>> face_neighbour;  // face across halfedge 3f+i, or -1 on a boundary
   std::vector<std::array<int, 3>> neighbour_edge;  // index j of that edge in the neighbour (twin = 3g+j)
 
@@ -48,8 +50,8 @@ struct SurfaceDomain {
   std::vector<Rigid2> edge_transition;
 
   // ---- per vertex ----
-  std::vector<double> vertex_mass;            // lumped mass: one third of the incident face areas
-  std::vector<SurfacePoint> vertex_location;  // on the input mesh, for transferring results back
+  IntrinsicVertexData<double> vertex_mass;            // lumped mass: one third of the incident face areas
+  IntrinsicVertexData<SurfacePoint> vertex_location;  // on the input mesh, for transferring fields
 
   // ---- operators ----
   // Cotan Laplacian L (positive semi-definite convention: (L u)_i = sum_j w_ij (u_i - u_j),
@@ -62,7 +64,7 @@ struct SurfaceDomain {
 
 // Builds every array above. face_weight (optional, one per face, >= 0) multiplies the face areas in
 // the alias table; pass an empty vector for pure area weighting.
-SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const std::vector<double>& face_weight = {});
+SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const IntrinsicFaceData<double>& face_weight = {});
 
 // Barycentric coordinates of a point given in face f's frame.
 Eigen::Vector3d barycentric_in_face(const SurfaceDomain& domain, int face, const Eigen::Vector2d& point);

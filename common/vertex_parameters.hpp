@@ -1,37 +1,33 @@
 #pragma once
-// Every scalar model parameter stored per intrinsic vertex (paper Sec. 3.3, "Parameter maps"), so a
-// spatially varying map later changes only how these arrays are filled, not who reads them. Built
-// constant from a Scene by default. Units are SI, angles in radians (as in Scene).
-#include "common/scene.hpp"
+// Every model parameter stored per intrinsic vertex (paper Sec. 3.3, "Parameter maps"), so a
+// spatially varying map changes only how these arrays are filled, not who reads them. One array per
+// row of the parameter table (common/model_parameters.hpp), in SI units (angles in radians);
+// mean_lifetime is +infinity where there is no turnover.
+#include "common/element_data.hpp"
+#include "common/model_parameters.hpp"
 
-#include <vector>
+#include <array>
 
 namespace physarum {
 
-struct VertexParameters {
-  // ---- pheromone (Eq. 6/7: the diagonals of R_dif and R_dec) ----
-  std::vector<double> diffuse_rate;  // m^2/s
-  std::vector<double> decay_rate;    // 1/s
+class VertexParameters {
+ public:
+  IntrinsicVertexData<double>& operator[](Param p) { return values_[static_cast<std::size_t>(p)]; }
+  const IntrinsicVertexData<double>& operator[](Param p) const { return values_[static_cast<std::size_t>(p)]; }
 
-  // ---- agents: interpolated at an agent's position (barycentric over its face's corners) ----
-  std::vector<double> sensor_distance;  // m
-  std::vector<double> sensor_angle;     // rad
-  std::vector<double> move_rate;        // m/s
-  std::vector<double> turn_rate;        // rad/s
-  std::vector<double> turn_frequency;   // 1/s
-  std::vector<double> deposit_rate;     // amount/s per agent
-  // s; +infinity where there is no turnover, so the exposure increment dt / mean_lifetime is 0.
-  std::vector<double> mean_lifetime;
-  std::vector<double> activation_time;  // s
+  int vertex_count() const { return static_cast<int>(values_.front().size()); }
+  // True when parameter p has one value everywhere.
+  bool uniform(Param p) const;
 
-  int vertex_count() const { return static_cast<int>(decay_rate.size()); }
+  // Every parameter constant, equal to `values`, on `vertex_count` vertices.
+  static VertexParameters constant(const ParameterValues& values, int vertex_count);
 
-  // Every parameter constant, equal to the scene's value, on `vertex_count` vertices.
-  static VertexParameters constant(const Scene& scene, int vertex_count);
+ private:
+  std::array<IntrinsicVertexData<double>, kParamCount> values_;
 };
 
 // True when every entry of `values` equals the first (an empty array counts as uniform). Lets a
 // consumer pick a cheaper or symmetric path when a map is in fact constant.
-bool is_uniform(const std::vector<double>& values);
+bool is_uniform(const IntrinsicVertexData<double>& values);
 
 }  // namespace physarum

@@ -1,55 +1,13 @@
 #pragma once
-// The agent population of the extended slime-mold model (paper Sec. 3.2, Table 1), stored as a
-// structure of arrays (one array per attribute, index = agent id), and its initial state.
-//
-// An agent lives on one intrinsic face at a time; its position and heading are expressed in that
-// face's own 2D frame (surface_domain.hpp). Headings are unit vectors; since every face frame is an
-// isometric, counter-clockwise layout, a positive rotation turns the agent to its left.
-#include "common/philox.hpp"
+// The initial state of the agent population (paper Sec. 3.2-3.3), serially: the state itself
+// (Agents) and the sampling it uses live in common/ (agents.hpp, domain_sampling.hpp).
+#include "common/agents.hpp"
+#include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
 
-#include <Eigen/Core>
 #include <cstdint>
-#include <vector>
 
 namespace physarum {
-
-struct Agents {
-  std::vector<int> face;                      // intrinsic face the agent is on
-  std::vector<Eigen::Vector2d> position;      // in that face's frame
-  std::vector<Eigen::Vector2d> heading;       // unit vector in that face's frame
-  std::vector<double> age;                    // a: seconds since the agent (re)spawned
-  std::vector<double> exposure;               // lambda: age normalised by the local mean lifetime
-  std::vector<double> exposure_threshold;     // lambda_t: the agent turns over once lambda >= lambda_t
-  std::vector<double> time_since_decision;    // seconds since the last turn decision (carries the remainder)
-  std::vector<double> accumulated_turn;       // radians of turn_rate integrated since the last decision
-
-  int count() const { return static_cast<int>(face.size()); }
-  void resize(int n);
-};
-
-// A point on the surface: a face and a position in its frame.
-struct FacePoint {
-  int face = -1;
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();
-};
-
-// A point uniformly distributed over the surface (with density proportional to the domain's face
-// sampler weights): the face from the alias table (two uniforms of `face_choice`), then a uniform
-// point inside it by the square-root trick (two uniforms of `in_face`): with s = sqrt(r1), the point
-// (1 - s) A + s (1 - r2) B + s r2 C has constant density over triangle ABC.
-FacePoint sample_surface_point(const SurfaceDomain& domain, const PhiloxWords& face_choice, const PhiloxWords& in_face);
-
-// A uniformly distributed unit direction from one uniform u in (0, 1): angle 2 pi u.
-Eigen::Vector2d heading_from_uniform(double u);
-
-// Exponentially distributed exposure with mean 1 from one uniform u in (0, 1): -ln(u).
-double exponential_exposure(double u);
-
-// Linear (barycentric) interpolation of a per-vertex field at a point of face `face` (paper
-// Sec. 3.3: scalar maps live at vertices and are interpolated across faces).
-double interpolate_vertex_field(const SurfaceDomain& domain, const std::vector<double>& vertex_values, int face,
-                                const Eigen::Vector2d& position);
 
 // Places `count` agents uniformly over the surface (face sampler weights) with uniform random
 // headings, and draws each agent's age and exposure from the steady state of the turnover process
@@ -73,8 +31,8 @@ double interpolate_vertex_field(const SurfaceDomain& domain, const std::vector<d
 //
 // Decision clocks start at a uniform phase of the local decision period 1/f(x) (with the turn
 // omega(x) accumulated over that time), as in a population that has been running for a while.
-Agents initialise_agents(const SurfaceDomain& domain, const std::vector<double>& hazard_rate,
-                         const std::vector<double>& turn_frequency, const std::vector<double>& turn_rate, int count,
-                         std::uint32_t seed);
+Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
+                         const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
+                         int count, std::uint32_t seed);
 
 }  // namespace physarum

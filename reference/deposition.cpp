@@ -8,7 +8,7 @@ namespace {
 
 // Splits `amount` over the three corners of `face` by the barycentric weights of `point`.
 void deposit_at_point(const SurfaceDomain& domain, int face, const Eigen::Vector2d& point, double amount,
-                      std::vector<double>& amount_per_vertex) {
+                      IntrinsicVertexData<double>& amount_per_vertex) {
   const Eigen::Vector3d b = barycentric_in_face(domain, face, point);
   const std::array<int, 3>& v = domain.face_vertices[face];
   for (int k = 0; k < 3; ++k) amount_per_vertex[v[k]] += amount * b[k];
@@ -17,7 +17,7 @@ void deposit_at_point(const SurfaceDomain& domain, int face, const Eigen::Vector
 }  // namespace
 
 void deposit_along_path(const SurfaceDomain& domain, const std::vector<TraceSegment>& segments, double amount,
-                        int face, const Eigen::Vector2d& position, std::vector<double>& amount_per_vertex) {
+                        int face, const Eigen::Vector2d& position, IntrinsicVertexData<double>& amount_per_vertex) {
   if (amount == 0.0) return;
   double path_length = 0.0;
   for (const TraceSegment& s : segments) path_length += (s.end - s.start).norm();

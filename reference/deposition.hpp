@@ -5,6 +5,7 @@
 // midpoint, so each segment deposits (its length / the step length) of the amount at its midpoint,
 // split over the face's three vertices by the midpoint's barycentric weights.
 #include "common/surface_domain.hpp"
+#include "common/element_data.hpp"
 #include "common/trace.hpp"
 
 #include <Eigen/Core>
@@ -17,7 +18,7 @@ namespace physarum {
 // concentration). When the path has no length (move_rate 0) the whole amount is a point deposit at
 // (face, position).
 void deposit_along_path(const SurfaceDomain& domain, const std::vector<TraceSegment>& segments, double amount,
-                        int face, const Eigen::Vector2d& position, std::vector<double>& amount_per_vertex);
+                        int face, const Eigen::Vector2d& position, IntrinsicVertexData<double>& amount_per_vertex);
 
 // The fraction of a step [age, age + dt] during which an agent of this age is active (age >= t_a,
 // Sec. 3.2 "deposit activation"): 0 before, 1 after, the overlapping part in between. For t_a a

@@ -4,7 +4,7 @@
 // never leaves the surface.
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
-#include "reference/agents.hpp"
+#include "common/agents.hpp"
 
 #include <vector>
 

@@ -1,5 +1,6 @@
 #include "reference/sensing_steering.hpp"
 
+#include "common/domain_sampling.hpp"
 #include "common/random_streams.hpp"
 #include "common/trace.hpp"
 
@@ -7,7 +8,7 @@
 
 namespace physarum {
 
-double read_sensor(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
+double read_sensor(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                    const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance,
                    long long* crossings) {
   const TraceResult end = trace(domain, face, position, direction, distance, BoundaryRule::Stop);
@@ -21,7 +22,7 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
 }
 
-SensorReadings read_sensors(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
+SensorReadings read_sensors(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                             const Eigen::Vector2d& position, const Eigen::Vector2d& heading, double sensor_angle,
                             double sensor_distance, long long* crossings) {
   SensorReadings r;
@@ -39,13 +40,13 @@ TurnChoice jones_turn_choice(const SensorReadings& r) {
   return TurnChoice::Straight;
 }
 
-void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const std::vector<double>& concentration,
+void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
                      double dt, std::uint32_t seed, std::uint32_t step, Agents& agents, long long* sensor_crossings) {
   for (int a = 0; a < agents.count(); ++a) {
     const int face = agents.face[a];
     const Eigen::Vector2d& position = agents.position[a];
-    const double turn_rate = interpolate_vertex_field(domain, params.turn_rate, face, position);
-    const double period = 1.0 / interpolate_vertex_field(domain, params.turn_frequency, face, position);
+    const double turn_rate = interpolate_vertex_field(domain, params[Param::turn_rate], face, position);
+    const double period = 1.0 / interpolate_vertex_field(domain, params[Param::turn_frequency], face, position);
     agents.time_since_decision[a] += dt;
     agents.accumulated_turn[a] += turn_rate * dt;
     // A decision is due once a full period has elapsed. The clock is a sum of many dt, so allow a
@@ -56,8 +57,8 @@ void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params
     const double tolerance = kTurnDecisionTolerance * dt;
     if (agents.time_since_decision[a] + tolerance < period) continue;
 
-    const double sensor_angle = interpolate_vertex_field(domain, params.sensor_angle, face, position);
-    const double sensor_distance = interpolate_vertex_field(domain, params.sensor_distance, face, position);
+    const double sensor_angle = interpolate_vertex_field(domain, params[Param::sensor_angle], face, position);
+    const double sensor_distance = interpolate_vertex_field(domain, params[Param::sensor_distance], face, position);
     PhiloxWords side_bits{};
     bool side_bits_drawn = false;
     for (int k = 0; k < kMaxTurnDecisionsPerStep && agents.time_since_decision[a] + tolerance >= period; ++k) {

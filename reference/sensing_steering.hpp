@@ -5,7 +5,9 @@
 // the decision period (omega / f_i for a constant omega), independently of the time step.
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
-#include "reference/agents.hpp"
+#include "common/agent_model.hpp"
+#include "common/agents.hpp"
+#include "common/element_data.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -17,7 +19,7 @@ namespace physarum {
 // Sensors stop at boundaries (BoundaryRule::Stop), and a sensor whose trace meets the boundary
 // reads nothing: 0, so agents are not drawn towards the rim.
 // `crossings`, when given, is increased by the faces the trace crossed.
-double read_sensor(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
+double read_sensor(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                    const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance,
                    long long* crossings = nullptr);
 
@@ -29,7 +31,7 @@ struct SensorReadings {
 
 // Reads the three sensors of an agent. A negative sensor_angle swaps the sides, which turns
 // attraction into chemo-repulsion (Fig. 9c).
-SensorReadings read_sensors(const SurfaceDomain& domain, const std::vector<double>& concentration, int face,
+SensorReadings read_sensors(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                             const Eigen::Vector2d& position, const Eigen::Vector2d& heading, double sensor_angle,
                             double sensor_distance, long long* crossings = nullptr);
 
@@ -42,21 +44,13 @@ TurnChoice jones_turn_choice(const SensorReadings& readings);
 // Rotates a unit vector by `angle` radians (positive = counter-clockwise = to the agent's left).
 Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle);
 
-// At most this many turn decisions fall in one step (one per word of a Philox block); a time step
-// that long is far beyond the decision period the paper considers meaningful (Sec. 4, Fig. 10d).
-constexpr int kMaxTurnDecisionsPerStep = 4;
-
-// A decision is due when the clock is within this fraction of dt of the period (rounding slack;
-// see sense_and_steer). The same value is PHYSARUM_TURN_DECISION_TOLERANCE in the kernels.
-constexpr double kTurnDecisionTolerance = 1e-4;
-
 // Sensing and steering of every agent for one step of length dt (step index `step`, for the random
 // side choice: RandomPurpose::TurnDirection). Each agent's clock and accumulated turn advance by dt
 // and omega(x) dt; whenever the clock reaches the decision period 1/f(x) the agent senses and turns by
 // the turn accumulated over exactly that period, and the remainder carries to the next period.
 // Parameters are interpolated at the agent's position. `sensor_crossings`, when given, is increased
 // by the faces the sensor traces crossed.
-void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const std::vector<double>& concentration,
+void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
                      double dt, std::uint32_t seed, std::uint32_t step, Agents& agents,
                      long long* sensor_crossings = nullptr);
 

@@ -1,6 +1,9 @@
 #include "reference/simulation.hpp"
 
+#include "common/agent_model.hpp"
+#include "common/domain_sampling.hpp"
 #include "common/errors.hpp"
+#include "reference/agents.hpp"
 #include "reference/deposition.hpp"
 #include "reference/movement.hpp"
 #include "reference/sensing_steering.hpp"
@@ -27,16 +30,17 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexPara
     : domain_(domain),
       params_(checked(domain, params, settings)),
       settings_(settings),
-      hazard_rate_(hazard_rate_per_vertex(params_.mean_lifetime)),
-      agents_(initialise_agents(domain_, hazard_rate_, params_.turn_frequency, params_.turn_rate, settings.agents,
-                                settings.seed)),
-      pheromone_(domain_, params_, settings.integrator, settings.time_step),
+      hazard_rate_(hazard_rate_per_vertex(params_[Param::mean_lifetime])),
+      agents_(initialise_agents(domain_, hazard_rate_, params_[Param::turn_frequency], params_[Param::turn_rate],
+                                settings.agents, settings.seed)),
+      field_model_(domain_, params_, settings.integrator, settings.time_step),
+      layers_(1, IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)),
       deposit_amount_(static_cast<size_t>(domain.vertex_count), 0.0) {
   segments_.reserve(64);
 }
 
 ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene)
-    : ReferenceSimulation(domain, VertexParameters::constant(scene, domain.vertex_count), simulation_settings(scene)) {}
+    : ReferenceSimulation(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), simulation_settings(scene)) {}
 
 void ReferenceSimulation::move_and_deposit() {
   const double dt = settings_.time_step;
@@ -44,10 +48,10 @@ void ReferenceSimulation::move_and_deposit() {
     // Rates are read where the step starts.
     const int face = agents_.face[a];
     const Eigen::Vector2d start = agents_.position[a];
-    const double move_rate = interpolate_vertex_field(domain_, params_.move_rate, face, start);
-    const double activation_time = interpolate_vertex_field(domain_, params_.activation_time, face, start);
+    const double move_rate = interpolate_vertex_field(domain_, params_[Param::move_rate], face, start);
+    const double activation_time = interpolate_vertex_field(domain_, params_[Param::activation_time], face, start);
     const double deposit =
-        interpolate_vertex_field(domain_, params_.deposit_rate, face, start) * dt * active_fraction(agents_.age[a], dt, activation_time);
+        interpolate_vertex_field(domain_, params_[Param::deposit_rate], face, start) * dt * active_fraction(agents_.age[a], dt, activation_time);
 
     const TraceResult r = move_agent(domain_, agents_, a, move_rate * dt, segments_);
     counters_.face_crossings += r.face_crossings;
@@ -60,20 +64,14 @@ void ReferenceSimulation::step() {
   const double dt = settings_.time_step;
   const auto step_index = static_cast<std::uint32_t>(steps_taken_);
 
-  sense_and_steer(domain_, params_, pheromone_.concentration(), dt, settings_.seed, step_index, agents_,
+  sense_and_steer(domain_, params_, layers_[0], dt, settings_.seed, step_index, agents_,
                   &counters_.sensor_face_crossings);
   std::fill(deposit_amount_.begin(), deposit_amount_.end(), 0.0);
   move_and_deposit();
   counters_.respawns += advance_turnover(domain_, hazard_rate_, dt, settings_.seed, step_index, agents_);
 
-  // The deposits are the explicit (forward) or implicit (backward) source term; see the header.
-  if (settings_.integrator == Integrator::ForwardEuler) {
-    pheromone_.step();
-    pheromone_.add_deposits(deposit_amount_);
-  } else {
-    pheromone_.add_deposits(deposit_amount_);
-    pheromone_.step();
-  }
+  // One dynamic layer today: the pheromone every agent deposits into.
+  field_model_.advance(layers_[0], deposit_amount_);
 
   counters_.agent_steps += agents_.count();
   ++steps_taken_;
@@ -81,8 +79,17 @@ void ReferenceSimulation::step() {
   time_ = static_cast<double>(steps_taken_) * dt;
 }
 
-FieldStatistics ReferenceSimulation::field_statistics(double U) const {
-  return compute_field_statistics(pheromone_.concentration(), domain_.vertex_mass, U);
+void ReferenceSimulation::set_field(const IntrinsicVertexData<double>& values, int layer) {
+  if (values.size() != static_cast<size_t>(domain_.vertex_count))
+    throw InputError("simulation: set_field got " + std::to_string(values.size()) + " values for " +
+                     std::to_string(domain_.vertex_count) + " vertices");
+  field(layer) = values;
+}
+
+void ReferenceSimulation::fill_field(double value, int layer) { field(layer).assign(field(layer).size(), value); }
+
+FieldStatistics ReferenceSimulation::field_statistics(double U, int layer) const {
+  return compute_field_statistics(field(layer), domain_.vertex_mass, U);
 }
 
 }  // namespace physarum

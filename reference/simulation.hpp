@@ -5,16 +5,12 @@
 //   1. sense + steer   (sensing_steering.hpp) every agent whose turn decision is due
 //   2. move + deposit  (movement.hpp, deposition.hpp) along the path, into an amount buffer
 //   3. turnover        (turnover.hpp) age, exposure, respawn
-//   4. pheromone       (pheromone.hpp) diffusion-decay of Eq. 6 / 7, with this step's deposits
+//   4. fields          the field model (field_model.hpp; today diffusion_decay.hpp, Eq. 6 / 7)
+//                      advances every dynamic layer with this step's deposits, in its own order
 //   5. time += dt
 //
-// How the step's deposits enter the pheromone step (4): they are the source term s of
-// du/dt = -R u + s, integrated consistently with each scheme. Forward Euler evaluates the source
-// explicitly, u' = (I - dt R) u + dt s: decay/diffuse first, then add the deposits. Backward Euler
-// evaluates everything at the new time, (I + dt R) u' = u + dt s: add the deposits, then solve.
-// With either, the total amount obeys m' = (1 - k dt) m + D resp. (1 + k dt) m' = m + D, whose
-// fixed point is exactly D / (k dt): the steady-state mean is exactly U (Eq. 5) in expectation,
-// not U (1 +- k dt).
+// The simulation holds a list of per-vertex field layers: the dynamic ones first (layer 0 is the
+// pheromone the agents deposit and sense; one per species later), then static ones (fixed maps).
 //
 // All randomness comes from Philox streams keyed (seed, agent), counter (step, purpose)
 // (common/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
@@ -26,8 +22,9 @@
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
 #include "common/vertex_parameters.hpp"
-#include "reference/agents.hpp"
-#include "reference/pheromone.hpp"
+#include "common/agents.hpp"
+#include "common/element_data.hpp"
+#include "reference/diffusion_decay.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -53,20 +50,23 @@ class ReferenceSimulation final : public SimulationBackend {
   const VertexParameters& parameters() const { return params_; }
   const Agents& agents() const { return agents_; }
   Agents& agents() { return agents_; }  // tests place agents by hand
-  const std::vector<double>& concentration() const { return pheromone_.concentration(); }
-  ReferencePheromone& pheromone() { return pheromone_; }
-  const ReferencePheromone& pheromone() const { return pheromone_; }
+  const IntrinsicVertexData<double>& field(int layer = 0) const { return layers_.at(static_cast<size_t>(layer)); }
+  IntrinsicVertexData<double>& field(int layer = 0) { return layers_.at(static_cast<size_t>(layer)); }
+  ReferenceDiffusionDecay& field_model() { return field_model_; }
+  const ReferenceDiffusionDecay& field_model() const { return field_model_; }
   SimulationCounters counters() const override { return counters_; }
 
   // ---- SimulationBackend ----
-  std::vector<double> concentration_values() const override { return pheromone_.concentration(); }
-  void fill_concentration(double value) override { pheromone_.fill(value); }
-  FieldStatistics field_statistics(double U) const override;
+  int layer_count() const override { return static_cast<int>(layers_.size()); }
+  IntrinsicVertexData<double> field_values(int layer = 0) const override { return field(layer); }
+  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
+  void fill_field(double value, int layer = 0) override;
+  FieldStatistics field_statistics(double U, int layer = 0) const override;
   std::vector<int> agent_faces() const override { return agents_.face; }
   std::string backend_name() const override { return "reference"; }
   std::string device_name() const override { return "CPU (serial reference, 1 thread)"; }
-  // Hazard rate 1/tau per vertex (turnover.hpp).
-  const std::vector<double>& hazard_rate() const { return hazard_rate_; }
+  // Hazard rate 1/tau per vertex (common/agent_model.hpp).
+  const IntrinsicVertexData<double>& hazard_rate() const { return hazard_rate_; }
 
  private:
   void move_and_deposit();
@@ -74,16 +74,17 @@ class ReferenceSimulation final : public SimulationBackend {
   const SurfaceDomain& domain_;
   VertexParameters params_;
   SimulationSettings settings_;
-  std::vector<double> hazard_rate_;
+  IntrinsicVertexData<double> hazard_rate_;
   Agents agents_;
-  ReferencePheromone pheromone_;
+  ReferenceDiffusionDecay field_model_;
+  std::vector<IntrinsicVertexData<double>> layers_;
 
   double time_ = 0.0;
   long long steps_taken_ = 0;
   SimulationCounters counters_;
 
   // Per-step scratch, sized once.
-  std::vector<double> deposit_amount_;  // amount per vertex deposited during the current step
+  IntrinsicVertexData<double> deposit_amount_;  // amount per vertex deposited during the current step
   std::vector<TraceSegment> segments_;
 };
 

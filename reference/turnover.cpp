@@ -1,20 +1,12 @@
 #include "reference/turnover.hpp"
 
+#include "common/domain_sampling.hpp"
 #include "common/random_streams.hpp"
 
 #include <cmath>
 #include <limits>
 
 namespace physarum {
-
-std::vector<double> hazard_rate_per_vertex(const std::vector<double>& mean_lifetime) {
-  std::vector<double> hazard(mean_lifetime.size());
-  for (size_t i = 0; i < mean_lifetime.size(); ++i) {
-    const double tau = mean_lifetime[i];
-    hazard[i] = std::isinf(tau) ? 0.0 : (tau > 0.0 ? 1.0 / tau : std::numeric_limits<double>::infinity());
-  }
-  return hazard;
-}
 
 void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_t step, int a, Agents& agents) {
   const auto id = static_cast<std::uint32_t>(a);
@@ -32,7 +24,7 @@ void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_
   agents.accumulated_turn[a] = 0.0;
 }
 
-int advance_turnover(const SurfaceDomain& domain, const std::vector<double>& hazard_rate, double dt, std::uint32_t seed,
+int advance_turnover(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate, double dt, std::uint32_t seed,
                      std::uint32_t step, Agents& agents, std::vector<double>* lifetimes) {
   int respawned = 0;
   for (int a = 0; a < agents.count(); ++a) {

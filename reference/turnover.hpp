@@ -6,16 +6,13 @@
 // (face by the area-weighted alias table, point by the square-root trick), with a random heading,
 // age 0, exposure 0 and a fresh threshold. With a constant tau, lifetimes are Exp(tau).
 #include "common/surface_domain.hpp"
-#include "reference/agents.hpp"
+#include "common/agents.hpp"
+#include "common/element_data.hpp"
 
 #include <cstdint>
 #include <vector>
 
 namespace physarum {
-
-// Hazard rate 1/tau per vertex: 0 where tau is infinite (no turnover), +infinity where tau is 0 (a
-// sink). Interpolating the hazard rather than tau keeps both ends finite-safe.
-std::vector<double> hazard_rate_per_vertex(const std::vector<double>& mean_lifetime);
 
 // Rebirth of agent a in step `step` (RandomPurpose::RespawnPlacement / RespawnState).
 void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_t step, int a, Agents& agents);
@@ -23,7 +20,7 @@ void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_
 // Ages every agent by dt, grows its exposure by dt times the hazard at its position, and respawns
 // those whose exposure reached the threshold. Returns how many were respawned. When `lifetimes` is
 // given, the age at decay of every respawned agent is appended (for tests and statistics).
-int advance_turnover(const SurfaceDomain& domain, const std::vector<double>& hazard_rate, double dt, std::uint32_t seed,
+int advance_turnover(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate, double dt, std::uint32_t seed,
                      std::uint32_t step, Agents& agents, std::vector<double>* lifetimes = nullptr);
 
 }  // namespace physarum

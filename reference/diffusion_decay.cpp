@@ -1,6 +1,4 @@
-#include "reference/pheromone.hpp"
-
-#include "common/forward_euler_limit.hpp"
+#include "reference/diffusion_decay.hpp"
 
 #include "common/errors.hpp"
 
@@ -11,8 +9,8 @@
 
 namespace physarum {
 
-ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const VertexParameters& params,
-                                       Integrator integrator, double time_step)
+ReferenceDiffusionDecay::ReferenceDiffusionDecay(const SurfaceDomain& domain, const VertexParameters& params,
+                                                 Integrator integrator, double time_step)
     : domain_(domain), integrator_(integrator), time_step_(time_step) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
@@ -22,25 +20,25 @@ ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const Vertex
     throw InputError("pheromone: the surface domain's mass (" + std::to_string(domain.vertex_mass.size()) +
                      ") or Laplacian (" + std::to_string(domain.laplacian.rows) + ") size differs from its " +
                      std::to_string(n) + " vertices");
-  if (params.diffuse_rate.size() != un || params.decay_rate.size() != un)
-    throw InputError("pheromone: parameter maps have " + std::to_string(params.decay_rate.size()) +
+  const IntrinsicVertexData<double>& diffuse_rate = params[Param::diffuse_rate];
+  if (diffuse_rate.size() != un || params[Param::decay_rate].size() != un)
+    throw InputError("pheromone: parameter maps have " + std::to_string(params[Param::decay_rate].size()) +
                      " values for " + std::to_string(n) + " vertices");
 
-  u_.assign(un, 0.0);
   scratch_.assign(un, 0.0);
-  inverse_mass_.resize(un);
-  diffuse_over_mass_.resize(un);
-  decay_rate_ = params.decay_rate;
+  inverse_mass_.assign(un, 0.0);
+  diffuse_over_mass_.assign(un, 0.0);
+  decay_rate_ = params[Param::decay_rate];
   for (int i = 0; i < n; ++i) {
     const double m = domain.vertex_mass[i];
     if (!(m > 0.0)) throw InputError("pheromone: vertex " + std::to_string(i) + " has lumped mass " + std::to_string(m) + " (must be > 0)");
-    if (!(params.diffuse_rate[i] >= 0.0) || !(params.decay_rate[i] >= 0.0))
+    if (!(diffuse_rate[i] >= 0.0) || !(decay_rate_[i] >= 0.0))
       throw InputError("pheromone: vertex " + std::to_string(i) + " has a negative diffuse or decay rate");
     inverse_mass_[i] = 1.0 / m;
-    diffuse_over_mass_[i] = params.diffuse_rate[i] / m;
+    diffuse_over_mass_[i] = diffuse_rate[i] / m;
   }
 
-  // Forward Euler step limit (common/forward_euler_limit.hpp has the derivation).
+  // Forward Euler step limit (common/diffusion_decay.hpp has the derivation).
   const CsrMatrix& L = domain.laplacian;
   stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass_, decay_rate_);
 
@@ -53,14 +51,14 @@ ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const Vertex
   // Backward Euler: A = M + dt (R_dif L + R_dec M). Symmetric when R_dif is a multiple of the identity
   // (L is symmetric), then LDL^T; a varying R_dif makes R_dif L non-symmetric, then LU.
   sub_steps_ = 1;
-  symmetric_ = is_uniform(params.diffuse_rate);
+  symmetric_ = is_uniform(diffuse_rate);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(L.value.size() + un);
   for (int i = 0; i < n; ++i) {
     const double m = domain.vertex_mass[i];
     triplets.emplace_back(i, i, m * (1.0 + time_step * decay_rate_[i]));
     for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k)
-      triplets.emplace_back(i, L.column[k], time_step * params.diffuse_rate[i] * L.value[k]);
+      triplets.emplace_back(i, L.column[k], time_step * diffuse_rate[i] * L.value[k]);
   }
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(triplets.begin(), triplets.end());
@@ -81,46 +79,54 @@ ReferencePheromone::ReferencePheromone(const SurfaceDomain& domain, const Vertex
   solution_.resize(n);
 }
 
-void ReferencePheromone::set_concentration(const std::vector<double>& u) {
-  if (u.size() != u_.size())
-    throw InputError("pheromone: set_concentration got " + std::to_string(u.size()) + " values for " +
-                     std::to_string(u_.size()) + " vertices");
-  std::copy(u.begin(), u.end(), u_.begin());
+void ReferenceDiffusionDecay::check_size(const IntrinsicVertexData<double>& values, const char* what) const {
+  if (values.size() != inverse_mass_.size())
+    throw InputError(std::string("pheromone: ") + what + " has " + std::to_string(values.size()) + " values for " +
+                     std::to_string(inverse_mass_.size()) + " vertices");
 }
 
-void ReferencePheromone::fill(double value) { std::fill(u_.begin(), u_.end(), value); }
-
-void ReferencePheromone::add_deposits(const std::vector<double>& amount_per_vertex) {
-  if (amount_per_vertex.size() != u_.size())
-    throw InputError("pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) + " values for " +
-                     std::to_string(u_.size()) + " vertices");
-  for (size_t i = 0; i < u_.size(); ++i) u_[i] += amount_per_vertex[i] * inverse_mass_[i];
+void ReferenceDiffusionDecay::advance(IntrinsicVertexData<double>& u, const IntrinsicVertexData<double>& deposits) {
+  if (deposit_order(integrator_) == DepositOrder::AfterTransport) {
+    step(u);
+    add_deposits(u, deposits);
+  } else {
+    add_deposits(u, deposits);
+    step(u);
+  }
 }
 
-void ReferencePheromone::step() {
+void ReferenceDiffusionDecay::add_deposits(IntrinsicVertexData<double>& u,
+                                           const IntrinsicVertexData<double>& amount_per_vertex) const {
+  check_size(u, "the field");
+  check_size(amount_per_vertex, "the deposit");
+  for (size_t i = 0; i < u.size(); ++i) u[i] += amount_per_vertex[i] * inverse_mass_[i];
+}
+
+void ReferenceDiffusionDecay::step(IntrinsicVertexData<double>& u) {
+  check_size(u, "the field");
   if (integrator_ == Integrator::BackwardEuler) {
-    backward_step();
+    backward_step(u);
     return;
   }
-  for (int s = 0; s < sub_steps_; ++s) forward_sub_step(sub_step_);
+  for (int s = 0; s < sub_steps_; ++s) forward_sub_step(u, sub_step_);
 }
 
 // Eq. 6 divided by M: u' = u - h (M^-1 R_dif L u + R_dec u), row by row through the CSR Laplacian.
-void ReferencePheromone::forward_sub_step(double h) {
+void ReferenceDiffusionDecay::forward_sub_step(IntrinsicVertexData<double>& u, double h) {
   const CsrMatrix& L = domain_.laplacian;
-  const int n = static_cast<int>(u_.size());
+  const int n = static_cast<int>(u.size());
   for (int i = 0; i < n; ++i) {
     double Lu = 0.0;
-    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) Lu += L.value[k] * u_[L.column[k]];
-    scratch_[i] = u_[i] - h * (diffuse_over_mass_[i] * Lu + decay_rate_[i] * u_[i]);
+    for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) Lu += L.value[k] * u[L.column[k]];
+    scratch_[i] = u[i] - h * (diffuse_over_mass_[i] * Lu + decay_rate_[i] * u[i]);
   }
-  u_.swap(scratch_);
+  u.values().swap(scratch_.values());
 }
 
 // Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u with the factorisation made in the constructor.
-void ReferencePheromone::backward_step() {
-  const int n = static_cast<int>(u_.size());
-  for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u_[i];
+void ReferenceDiffusionDecay::backward_step(IntrinsicVertexData<double>& u) {
+  const int n = static_cast<int>(u.size());
+  for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u[i];
   if (symmetric_) {
     // P A P^-1 = L D L^T, solved step by step into the buffers sized in the constructor: Eigen's own
     // solve() permutes the result in place, which allocates a mask on every call.
@@ -130,16 +136,17 @@ void ReferencePheromone::backward_step() {
     ldlt_->matrixL().solveInPlace(solution_);
     solution_.array() /= ldlt_diagonal_.array();
     ldlt_->matrixU().solveInPlace(solution_);
-    for (int i = 0; i < n; ++i) u_[i] = solution_[permuted ? p[i] : i];  // u = P^-1 solution
+    for (int i = 0; i < n; ++i) u[i] = solution_[permuted ? p[i] : i];  // u = P^-1 solution
     return;
   }
   solution_ = lu_->solve(rhs_);
-  for (int i = 0; i < n; ++i) u_[i] = solution_[i];
+  for (int i = 0; i < n; ++i) u[i] = solution_[i];
 }
 
-double ReferencePheromone::total_amount() const {
+double ReferenceDiffusionDecay::total_amount(const IntrinsicVertexData<double>& u) const {
+  check_size(u, "the field");
   double total = 0.0;
-  for (size_t i = 0; i < u_.size(); ++i) total += domain_.vertex_mass[i] * u_[i];
+  for (size_t i = 0; i < u.size(); ++i) total += domain_.vertex_mass[i] * u[i];
   return total;
 }
 

@@ -1,4 +1,4 @@
-#include "common/forward_euler_limit.hpp"
+#include "common/diffusion_decay.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,12 @@
 
 namespace physarum {
 
-double forward_euler_stable_step(const CsrMatrix& L, const std::vector<double>& diffuse_over_mass,
-                                 const std::vector<double>& decay_rate) {
+DepositOrder deposit_order(Integrator integrator) {
+  return integrator == Integrator::ForwardEuler ? DepositOrder::AfterTransport : DepositOrder::BeforeTransport;
+}
+
+double forward_euler_stable_step(const CsrMatrix& L, const IntrinsicVertexData<double>& diffuse_over_mass,
+                                 const IntrinsicVertexData<double>& decay_rate) {
   double max_a = 0.0, max_g = 0.0;
   for (int i = 0; i < L.rows; ++i) {
     double diagonal = 0.0, absolute_row = 0.0;

@@ -1,0 +1,141 @@
+#include "common/scene_keys.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace physarum {
+namespace {
+
+SceneKey setting(std::string_view name, KeyKind kind, bool required, ValueRange range, std::string_view unit,
+                 std::string default_text, std::string_view doc, std::string_view allowed_text = {}) {
+  return SceneKey{name, kind, required, range, unit, allowed_text, std::move(default_text), doc, std::nullopt};
+}
+
+SceneKey parameter_key(const ParameterSpec& p) {
+  return SceneKey{p.key,
+                  p.null_means_infinite ? KeyKind::NumberOrNull : KeyKind::Number,
+                  !p.default_value.has_value(),
+                  p.range,
+                  p.unit,
+                  {},
+                  p.default_value ? ValueRange::number(*p.default_value) : std::string(),
+                  p.doc,
+                  p.id};
+}
+
+std::vector<SceneKey> build_keys() {
+  using K = KeyKind;
+  std::vector<SceneKey> keys = {
+      setting("mesh", K::String, true, {}, "", "",
+              "a mesh file (OBJ, OFF, PLY, STL), relative to the scene file's folder or absolute, or shape:NAME"),
+      setting("scale_to_area", K::Number, false, kPositive, "m^2", "",
+              "rescale the input about the origin to this area"),
+      setting("max_circumradius", K::Number, false, kPositive, "m", "",
+              "refine until every intrinsic face's circumradius is at most this (after scaling)"),
+      // Refinement by circumcenter insertion terminates for angle bounds up to about 30 degrees.
+      setting("min_angle", K::Number, false, ValueRange{0.0, false, 30.0, false}, "deg", "0 (off)",
+              "refine faces with a smaller angle"),
+      setting("agents", K::Integer, true, ValueRange{1.0, false, 2147483647.0, false}, "", "",
+              "number of agents N"),
+      setting("time_step", K::Number, true, kPositive, "s", "", "time step dt"),
+  };
+  for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));
+  const std::vector<SceneKey> rest = {
+      setting("integrator", K::String, false, {}, "", "\"forward\"", "time integration of the pheromone PDE",
+              "\"forward\" or \"backward\" (Euler)"),
+      setting("seed", K::Integer, false, ValueRange{0.0, false, 4294967295.0, false}, "", "1", "random seed"),
+      setting("steps", K::Integer, false, ValueRange{1.0, false, 1.0e15, false}, "", "",
+              "run length in steps (at most one of steps, sim_time)"),
+      setting("sim_time", K::Number, false, kPositive, "s", "", "run length in simulated seconds"),
+      // ---- the differential harness (ComparisonSettings, tools/scenes/compare/README.md) ----
+      setting("compare_burn_in", K::Number, false, kNonNegative, "s", "2", "compare: simulated and discarded per seed"),
+      setting("compare_duration", K::Number, false, kPositive, "s", "3", "compare: simulated and averaged per seed"),
+      setting("compare_sample_interval", K::Number, false, kPositive, "s", "0.1", "compare: between two samples"),
+      setting("compare_seeds", K::Integer, false, ValueRange{2.0, false, 10000.0, false}, "",
+              "from the power calculation", "compare: seeds per arm"),
+      setting("compare_margin_mean", K::Number, false, kPositive, "", "0.03", "compare: margin on mean / U"),
+      setting("compare_margin_coverage", K::Number, false, kPositive, "", "0.02",
+              "compare: margin on each coverage fraction"),
+      setting("compare_margin_spectrum", K::Number, false, kPositive, "", "0.3",
+              "compare: relative margin on each spectral band power"),
+      setting("compare_margin_density", K::Number, false, kPositive, "", "0.1",
+              "compare: relative margin on the agent-density dispersion"),
+      setting("compare_margin_detail", K::Number, false, kPositive, "", "0.1",
+              "compare: relative margin on each detail energy"),
+      setting("compare_bands", K::Integer, false, ValueRange{1.0, false, 64.0, false}, "", "6",
+              "compare: manifold-harmonic (and radial) bands"),
+      setting("compare_eigenpairs", K::Integer, false, ValueRange{4.0, false, 2000.0, false}, "", "48",
+              "compare: manifold harmonics computed for the bands"),
+  };
+  keys.insert(keys.end(), rest.begin(), rest.end());
+  return keys;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string allowed_column(const SceneKey& k) {
+  switch (k.kind) {
+    case KeyKind::String:
+      return std::string(k.allowed_text.empty() ? "text" : k.allowed_text);
+    case KeyKind::Integer:
+      return "integer, " + k.range.describe().substr(std::string("must be ").size());
+    case KeyKind::Number:
+      return k.range.describe().substr(std::string("must be ").size());
+    case KeyKind::NumberOrNull:
+      return k.range.describe().substr(std::string("must be ").size()) + ", or null";
+  }
+  return {};
+}
+
+}  // namespace
+
+const std::vector<SceneKey>& scene_keys() {
+  static const std::vector<SceneKey> keys = build_keys();
+  return keys;
+}
+
+const SceneKey* find_scene_key(std::string_view name) {
+  for (const SceneKey& k : scene_keys())
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+// One that contains the name (or is contained in it, as "decay" in "decay_rate"), otherwise the one
+// at the smallest edit distance.
+std::string closest_scene_key(std::string_view name) {
+  for (const SceneKey& k : scene_keys())
+    if (name.size() >= 3 && (k.name.find(name) != std::string_view::npos || name.find(k.name) != std::string_view::npos))
+      return std::string(k.name);
+  std::string best;
+  size_t best_distance = std::numeric_limits<size_t>::max();
+  for (const SceneKey& k : scene_keys()) {
+    const size_t d = edit_distance(name, k.name);
+    if (d < best_distance) best_distance = d, best = std::string(k.name);
+  }
+  return best;
+}
+
+std::string scene_keys_markdown() {
+  std::string out = "| key | unit | allowed | default | meaning |\n|---|---|---|---|---|\n";
+  for (const SceneKey& k : scene_keys()) {
+    const std::string fallback = k.required ? "required" : (k.default_text.empty() ? "optional" : k.default_text);
+    out += "| `" + std::string(k.name) + "` | " + std::string(k.unit) + " | " + allowed_column(k) + " | " + fallback +
+           " | " + std::string(k.doc) + " |\n";
+  }
+  return out;
+}
+
+}  // namespace physarum

@@ -1,0 +1,44 @@
+#pragma once
+// Every key a scene file may contain, with its type, allowed values, unit and one line of
+// documentation: the run settings listed here, and one key per model parameter taken from the
+// parameter table (common/model_parameters.hpp). The scene parser (common/scene.cpp) accepts
+// exactly these keys, and the README's table of scene keys is this list printed as Markdown
+// (`physarum scene-keys`; tests/test_parameter_table.cpp keeps the two equal).
+#include "common/model_parameters.hpp"
+#include "common/value_range.hpp"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace physarum {
+
+enum class KeyKind { Number, Integer, String, NumberOrNull };
+
+struct SceneKey {
+  std::string_view name;
+  KeyKind kind;
+  bool required;
+  ValueRange range;               // numbers, in file units
+  std::string_view unit;          // in the file
+  std::string_view allowed_text;  // strings: the values allowed, as the README shows them
+  std::string default_text;       // what an absent optional key means ("" for none)
+  std::string_view doc;
+  std::optional<Param> parameter;  // set for the model parameters
+};
+
+// In the README's order: the surface, the agents and time step, the model parameters (table order),
+// the integrator, seed and run length, the differential harness's compare_* keys.
+const std::vector<SceneKey>& scene_keys();
+
+// nullptr when `name` is no scene key.
+const SceneKey* find_scene_key(std::string_view name);
+
+// The known key a typo most likely meant.
+std::string closest_scene_key(std::string_view name);
+
+// The README table: "| key | unit | allowed | |" and one row per key.
+std::string scene_keys_markdown();
+
+}  // namespace physarum
