@@ -9,7 +9,7 @@
 #include "opencl/compute_context.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/pheromone.hpp"
-#include "reference/pheromone.hpp"
+#include "reference/diffusion_decay.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -22,7 +22,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
   if (!domain) return;
   const Scene scene = bench_scene(0);
-  const VertexParameters params = VertexParameters::constant(scene, domain->vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.parameters, domain->vertex_count);
   int sub_steps = 1;
   double bytes_per_sub_step = 0.0;
   if (backend == kOpenCL) {
@@ -36,10 +36,10 @@ void BM_PheromoneStep(benchmark::State& state) {
     sub_steps = field.sub_steps();
     bytes_per_sub_step = field.forward_bytes_per_sub_step();
   } else {
-    ReferencePheromone field(*domain, params, integrator, scene.time_step);
-    field.fill(1.0);
-    for (auto _ : state) field.step();
-    sub_steps = field.sub_steps();
+    ReferenceDiffusionDecay model(*domain, params, integrator, scene.time_step);
+    IntrinsicVertexData<double> u(static_cast<size_t>(domain->vertex_count), 1.0);
+    for (auto _ : state) model.step(u);
+    sub_steps = model.sub_steps();
   }
   state.SetLabel(backend == kOpenCL ? "opencl" : "reference");
   state.counters["vertices_per_s"] =

@@ -65,7 +65,7 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   // Detail energies at 0.5, 1 and 2 sensor distances (scene value; maps would use their mean).
   const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
   for (double multiple : kDetailScales) {
-    const double scale = multiple * scene.sensor_distance;
+    const double scale = multiple * scene.parameters[Param::sensor_distance];
     const double t = (scale / (2.0 * 3.14159265358979323846)) * (scale / (2.0 * 3.14159265358979323846));
     Eigen::SparseMatrix<double> S = t * L;
     for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
@@ -89,7 +89,7 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) co
   m.push_back(stats.mean / U_);
   for (double coverage : stats.coverage) m.push_back(coverage);
 
-  const std::vector<double> field = sim.concentration_values();
+  const IntrinsicVertexData<double> field = sim.field_values();
   // Band power: sum of c_k^2 over the band's modes / (area * mean^2), dimensionless (as in
   // spectral_metrics.hpp).
   const Eigen::VectorXd c = manifold_harmonic_coefficients(eigenpairs_, domain_.vertex_mass, field);
@@ -136,7 +136,7 @@ std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim) cons
   const long long every = std::max<long long>(1, steps_for(settings_.sample_interval));
   const long long samples = std::max<long long>(1, steps_for(settings_.duration) / every);
   // The field starts at its analytic steady mean U, so the burn-in only has to let the pattern form.
-  sim.fill_concentration(U_);
+  sim.fill_field(U_);
   sim.run(burn_in);
   std::vector<double> sum(metrics_.size(), 0.0);
   for (long long s = 0; s < samples; ++s) {

@@ -9,20 +9,19 @@
 namespace physarum {
 
 inline Scene default_scene_parameters(int agents) {
-  constexpr double kDegree = std::numbers::pi / 180.0;
   Scene s;
   s.agents = agents;
   s.time_step = 0.01;
-  s.sensor_distance = 0.05;
-  s.sensor_angle = 22.5 * kDegree;
-  s.move_rate = 0.5;
-  s.turn_rate = 180.0 * kDegree;
-  s.turn_frequency = 20.0;
-  s.deposit_rate = 1.0;
-  s.decay_rate = 1.0;
-  s.diffuse_rate = 0.0002;
-  s.mean_lifetime = 1.0;
-  s.activation_time = 0.2;
+  s.parameters[Param::sensor_distance] = 0.05;
+  s.parameters[Param::sensor_angle] = 22.5 * kDegree;
+  s.parameters[Param::move_rate] = 0.5;
+  s.parameters[Param::turn_rate] = 180.0 * kDegree;
+  s.parameters[Param::turn_frequency] = 20.0;
+  s.parameters[Param::deposit_rate] = 1.0;
+  s.parameters[Param::decay_rate] = 1.0;
+  s.parameters[Param::diffuse_rate] = 0.0002;
+  s.parameters[Param::mean_lifetime] = 1.0;
+  s.parameters[Param::activation_time] = 0.2;
   s.integrator = Integrator::ForwardEuler;
   s.seed = 1;
   return s;

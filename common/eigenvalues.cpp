@@ -46,7 +46,7 @@ class ShiftedInverse {
 
 }  // namespace
 
-Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const std::vector<double>& mass, int count,
+Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const IntrinsicVertexData<double>& mass, int count,
                                bool want_vectors) {
   const int n = laplacian.rows;
   if (laplacian.cols != n || static_cast<int>(mass.size()) != n)
@@ -88,7 +88,7 @@ Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const std::vector<dou
   return out;
 }
 
-std::vector<double> smallest_eigenvalues(const CsrMatrix& laplacian, const std::vector<double>& mass, int count) {
+std::vector<double> smallest_eigenvalues(const CsrMatrix& laplacian, const IntrinsicVertexData<double>& mass, int count) {
   const Eigenpairs pairs = smallest_eigenpairs(laplacian, mass, count, false);
   return {pairs.values.data(), pairs.values.data() + pairs.values.size()};
 }

@@ -2,6 +2,7 @@
 // The low end of the manifold-harmonic spectrum: the smallest eigenpairs of the generalized problem
 // L x = lambda M x with the cotan Laplacian L (positive semi-definite) and the diagonal lumped mass M.
 #include "common/csr_matrix.hpp"
+#include "common/element_data.hpp"
 
 #include <Eigen/Core>
 #include <vector>
@@ -16,11 +17,11 @@ struct Eigenpairs {
 // The `count` smallest eigenvalues (and, when want_vectors, eigenvectors). count is clamped to the
 // number of vertices minus one. Throws InputError when the mass has a non-positive entry or the
 // solver does not converge.
-Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const std::vector<double>& mass, int count,
+Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const IntrinsicVertexData<double>& mass, int count,
                                bool want_vectors = true);
 
 // Eigenvalues only, ascending.
-std::vector<double> smallest_eigenvalues(const CsrMatrix& laplacian, const std::vector<double>& mass, int count);
+std::vector<double> smallest_eigenvalues(const CsrMatrix& laplacian, const IntrinsicVertexData<double>& mass, int count);
 
 // The same for a surface domain's own Laplacian and lumped mass.
 struct SurfaceDomain;

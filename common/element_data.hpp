@@ -9,6 +9,7 @@
 // Inside a numbering, elements are plain indices (operator[] takes the index), so numeric loops
 // read as before; `values()` gives the raw array for I/O and libraries that want one.
 #include <cstddef>
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,7 @@ class ElementData {
   explicit ElementData(std::size_t count, const T& value = T{}) : values_(count, value) {}
   // Takes the values as they are: the caller states which numbering they are in by the type it builds.
   explicit ElementData(std::vector<T> values) : values_(std::move(values)) {}
+  explicit ElementData(std::initializer_list<T> values) : values_(values) {}
 
   std::size_t size() const { return values_.size(); }
   bool empty() const { return values_.empty(); }

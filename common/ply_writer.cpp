@@ -24,7 +24,7 @@ void append_le(std::vector<unsigned char>& out, T value) {
 
 }  // namespace
 
-double FieldColoring::upper(const std::vector<double>& values) const {
+double FieldColoring::upper(const InputVertexData<double>& values) const {
   if (high) return *high;
   double top = -std::numeric_limits<double>::infinity();
   for (double v : values)
@@ -37,7 +37,7 @@ double FieldColoring::normalise(double value, double upper_end) const {
   return std::clamp((value - low) / (upper_end - low), 0.0, 1.0);
 }
 
-void write_field_ply(const std::string& path, const InputMesh& mesh, const std::vector<double>& values,
+void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
                      const FieldColoring& coloring, const std::string& property_name) {
   if (static_cast<int>(values.size()) != mesh.vertex_count())
     throw InputError(path + ": cannot write " + std::to_string(values.size()) + " values onto the " +

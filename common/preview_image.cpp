@@ -13,7 +13,7 @@
 
 namespace physarum {
 
-RgbImage render_preview(const InputMesh& mesh, const std::vector<double>& values, const PreviewOptions& options) {
+RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options) {
   if (static_cast<int>(values.size()) != mesh.vertex_count())
     throw InputError("preview of " + mesh.source + ": " + std::to_string(values.size()) + " values for " +
                      std::to_string(mesh.vertex_count()) + " vertices");
@@ -100,7 +100,7 @@ RgbImage render_preview(const InputMesh& mesh, const std::vector<double>& values
   return image;
 }
 
-void write_preview_png(const std::string& path, const InputMesh& mesh, const std::vector<double>& values,
+void write_preview_png(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
                        const PreviewOptions& options) {
   const RgbImage image = render_preview(mesh, values, options);
   write_file_atomically(path, [&](const std::string& temporary) {

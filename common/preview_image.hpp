@@ -30,11 +30,11 @@ struct RgbImage {
 
 // Renders `mesh` coloured by `values` (one per input vertex). InputError on a size mismatch or a
 // size outside 1..16384.
-RgbImage render_preview(const InputMesh& mesh, const std::vector<double>& values, const PreviewOptions& options = {});
+RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options = {});
 
 // Renders and writes a PNG at `path`; InputError naming `path` when it cannot be written (then no
 // file, not even a partial one, is left there).
-void write_preview_png(const std::string& path, const InputMesh& mesh, const std::vector<double>& values,
+void write_preview_png(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
                        const PreviewOptions& options = {});
 
 }  // namespace physarum

@@ -15,7 +15,7 @@
 namespace physarum {
 namespace {
 
-double area_weighted_mean_of(const std::vector<double>& field, const std::vector<double>& mass, double* total_mass) {
+double area_weighted_mean_of(const IntrinsicVertexData<double>& field, const IntrinsicVertexData<double>& mass, double* total_mass) {
   double weighted = 0.0, total = 0.0;
   for (size_t i = 0; i < field.size(); ++i) {
     weighted += mass[i] * field[i];
@@ -30,8 +30,8 @@ double area_weighted_mean_of(const std::vector<double>& field, const std::vector
 
 // ---- manifold-harmonic band powers ---------------------------------------------------------------
 
-Eigen::VectorXd manifold_harmonic_coefficients(const Eigenpairs& pairs, const std::vector<double>& mass,
-                                               const std::vector<double>& field) {
+Eigen::VectorXd manifold_harmonic_coefficients(const Eigenpairs& pairs, const IntrinsicVertexData<double>& mass,
+                                               const IntrinsicVertexData<double>& field) {
   const Eigen::Index n = pairs.vectors.rows();
   if (static_cast<Eigen::Index>(mass.size()) != n || static_cast<Eigen::Index>(field.size()) != n)
     throw InputError("manifold harmonics: " + std::to_string(field.size()) + " field values and " +
@@ -41,7 +41,7 @@ Eigen::VectorXd manifold_harmonic_coefficients(const Eigenpairs& pairs, const st
 }
 
 ManifoldHarmonicBands manifold_harmonic_band_powers(const SurfaceDomain& domain, const Eigenpairs& pairs,
-                                                    const std::vector<double>& field, int bands) {
+                                                    const IntrinsicVertexData<double>& field, int bands) {
   if (bands < 1) throw InputError("manifold harmonics: band count " + std::to_string(bands) + " is not >= 1");
   if (pairs.values.size() == 0 || pairs.vectors.cols() != pairs.values.size())
     throw InputError("manifold harmonics: eigenpairs without eigenvectors");
@@ -124,7 +124,7 @@ std::vector<Eigen::Vector2d> planar_vertex_coordinates(const SurfaceDomain& doma
 }
 
 GridSamples rasterize_planar_field(const std::vector<Eigen::Vector2d>& vertex_xy,
-                                   const std::vector<std::array<int, 3>>& faces, const std::vector<double>& field,
+                                   const std::vector<std::array<int, 3>>& faces, const IntrinsicVertexData<double>& field,
                                    int size) {
   if (size < 2) throw InputError("rasterise: grid size " + std::to_string(size) + " is not >= 2");
   if (vertex_xy.size() != field.size() || vertex_xy.empty())
@@ -240,7 +240,7 @@ RadialSpectrum radial_power_spectrum(const GridSamples& grid) {
 }
 
 RadialSpectrum radial_power_spectrum(const std::vector<Eigen::Vector2d>& vertex_xy,
-                                     const std::vector<std::array<int, 3>>& faces, const std::vector<double>& field,
+                                     const std::vector<std::array<int, 3>>& faces, const IntrinsicVertexData<double>& field,
                                      int size) {
   return radial_power_spectrum(rasterize_planar_field(vertex_xy, faces, field, size));
 }
@@ -248,7 +248,7 @@ RadialSpectrum radial_power_spectrum(const std::vector<Eigen::Vector2d>& vertex_
 // ---- agent density -------------------------------------------------------------------------------
 
 AgentDensityDispersion agent_density_dispersion(const std::vector<int>& agent_face,
-                                                const std::vector<double>& face_area) {
+                                                const IntrinsicFaceData<double>& face_area) {
   if (agent_face.empty()) throw InputError("agent density: no agents");
   const int faces = static_cast<int>(face_area.size());
   double total_area = 0.0;

@@ -32,8 +32,8 @@ struct InputMesh;
 
 // Coefficients c_k = phi_k^T M u of a per-vertex field u on the eigenvectors (M the diagonal lumped
 // mass). With M-orthonormal phi_k, sum_k c_k^2 over ALL modes equals u^T M u = integral of u^2.
-Eigen::VectorXd manifold_harmonic_coefficients(const Eigenpairs& pairs, const std::vector<double>& mass,
-                                               const std::vector<double>& field);
+Eigen::VectorXd manifold_harmonic_coefficients(const Eigenpairs& pairs, const IntrinsicVertexData<double>& mass,
+                                               const IntrinsicVertexData<double>& field);
 
 struct ManifoldHarmonicBands {
   // bands + 1 edges in sqrt(lambda): edges[0] = 0, edges[bands] = sqrt(largest eigenvalue given),
@@ -55,7 +55,7 @@ struct ManifoldHarmonicBands {
 // that band's share of it. Bands are equal in sqrt(lambda) (wavenumber), like the annuli of the
 // radial FFT spectrum. Throws InputError on size mismatches, bands < 1, or a mean <= 0.
 ManifoldHarmonicBands manifold_harmonic_band_powers(const SurfaceDomain& domain, const Eigenpairs& pairs,
-                                                    const std::vector<double>& field, int bands);
+                                                    const IntrinsicVertexData<double>& field, int bands);
 
 // ---- radially averaged power spectrum on flat domains --------------------------------------------
 
@@ -80,7 +80,7 @@ struct GridSamples {
 // Rasterises by barycentric interpolation per triangle (faces index vertex_xy and field, as
 // SurfaceDomain::face_vertices does). Throws InputError on size mismatches or size < 2.
 GridSamples rasterize_planar_field(const std::vector<Eigen::Vector2d>& vertex_xy,
-                                   const std::vector<std::array<int, 3>>& faces, const std::vector<double>& field,
+                                   const std::vector<std::array<int, 3>>& faces, const IntrinsicVertexData<double>& field,
                                    int size);
 
 struct RadialSpectrum {
@@ -99,7 +99,7 @@ struct RadialSpectrum {
 // covered or the mean is <= 0.
 RadialSpectrum radial_power_spectrum(const GridSamples& grid);
 RadialSpectrum radial_power_spectrum(const std::vector<Eigen::Vector2d>& vertex_xy,
-                                     const std::vector<std::array<int, 3>>& faces, const std::vector<double>& field,
+                                     const std::vector<std::array<int, 3>>& faces, const IntrinsicVertexData<double>& field,
                                      int size);
 
 // ---- agent density -------------------------------------------------------------------------------
@@ -122,6 +122,6 @@ struct AgentDensityDispersion {
 // face_area every face's area (all > 0). Throws InputError on an empty agent list, an index out of
 // range or a face area <= 0.
 AgentDensityDispersion agent_density_dispersion(const std::vector<int>& agent_face,
-                                                const std::vector<double>& face_area);
+                                                const IntrinsicFaceData<double>& face_area);
 
 }  // namespace physarum

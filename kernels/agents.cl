@@ -43,14 +43,7 @@ float2 face_corner2(__global const PhysarumFaceRecord* faces, const int face) {
 PhysarumAgentParameters blend_parameters(const PhysarumAgentParameters a, const PhysarumAgentParameters b,
                                          const PhysarumAgentParameters c, const float3 w) {
   PhysarumAgentParameters r;
-  r.sensor_distance = w.x * a.sensor_distance + w.y * b.sensor_distance + w.z * c.sensor_distance;
-  r.sensor_angle = w.x * a.sensor_angle + w.y * b.sensor_angle + w.z * c.sensor_angle;
-  r.move_rate = w.x * a.move_rate + w.y * b.move_rate + w.z * c.move_rate;
-  r.turn_rate = w.x * a.turn_rate + w.y * b.turn_rate + w.z * c.turn_rate;
-  r.turn_frequency = w.x * a.turn_frequency + w.y * b.turn_frequency + w.z * c.turn_frequency;
-  r.deposit_rate = w.x * a.deposit_rate + w.y * b.deposit_rate + w.z * c.deposit_rate;
-  r.hazard_rate = w.x * a.hazard_rate + w.y * b.hazard_rate + w.z * c.hazard_rate;
-  r.activation_time = w.x * a.activation_time + w.y * b.activation_time + w.z * c.activation_time;
+  PHYSARUM_BLEND_AGENT_PARAMETERS(r, a, b, c, w)
   return r;
 }
 

@@ -11,6 +11,9 @@ typedef uint dev_uint;
 typedef float dev_float;
 #else
 #include <stdint.h>
+/* The host takes the number of agent parameters from its table. */
+#include <common/model_parameters.hpp>
+#define PHYSARUM_AGENT_PARAMETER_COUNT (physarum::kAgentParamCount)
 typedef int32_t dev_int;
 typedef uint32_t dev_uint;
 typedef float dev_float;
@@ -68,18 +71,17 @@ typedef struct {
   dev_float transition_sin[3];
 } PhysarumFaceRecord;
 
-/* ---- agent parameters (Table 1), per vertex or uniform (vertex_parameters.hpp) ----
- * Eight floats, so one record is a float8-sized read. */
+/* ---- agent parameters, per vertex or uniform (common/model_parameters.hpp) ----
+ * One float per agent parameter of the host's parameter table, in table order. The kernels see it
+ * as a struct of named floats that the host generates from the table (opencl/agent_parameters.cpp
+ * provides "agent_parameters.h"); the host sees the same floats as an array. */
+#ifdef __OPENCL_VERSION__
+#include "agent_parameters.h"
+#else
 typedef struct {
-  dev_float sensor_distance; /* m */
-  dev_float sensor_angle;    /* rad */
-  dev_float move_rate;       /* m/s */
-  dev_float turn_rate;       /* rad/s */
-  dev_float turn_frequency;  /* 1/s */
-  dev_float deposit_rate;    /* amount/s per agent */
-  dev_float hazard_rate;     /* 1/mean lifetime, 1/s; 0 = no turnover */
-  dev_float activation_time; /* s */
+  dev_float value[PHYSARUM_AGENT_PARAMETER_COUNT];
 } PhysarumAgentParameters;
+#endif
 
 /* ---- one agent step: everything that is the same for every agent ---- */
 typedef struct {

@@ -5,7 +5,7 @@
 // reference's Agents, so tests can hand identical states to both backends.
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
-#include "reference/agents.hpp"
+#include "common/agents.hpp"
 
 #include <string>
 #include <vector>

@@ -84,16 +84,23 @@ SurfaceDomain in_device_vertex_order(const SurfaceDomain& domain) {
   return renumber_vertices(domain, locality_vertex_order(domain, locality_face_order(domain)));
 }
 
-std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order) {
-  std::vector<double> out(domain_values.size());
+DeviceVertexData<double> to_device_order(const IntrinsicVertexData<double>& domain_values, const VertexOrder& order) {
+  DeviceVertexData<double> out(domain_values.size());
   for (size_t i = 0; i < out.size(); ++i) out[i] = domain_values[static_cast<size_t>(order.domain_of_device[i])];
   return out;
 }
 
-std::vector<double> to_domain_order(const std::vector<double>& device_values, const VertexOrder& order) {
-  std::vector<double> out(device_values.size());
+IntrinsicVertexData<double> to_domain_order(const DeviceVertexData<double>& device_values, const VertexOrder& order) {
+  IntrinsicVertexData<double> out(device_values.size());
   for (size_t i = 0; i < out.size(); ++i) out[static_cast<size_t>(order.domain_of_device[i])] = device_values[i];
   return out;
+}
+
+VertexParameters renumber_parameters(const VertexParameters& params, const VertexOrder& order) {
+  VertexParameters renumbered;
+  for (const ParameterSpec& p : kParameterTable)
+    renumbered[p.id] = IntrinsicVertexData<double>(to_device_order(params[p.id], order).values());
+  return renumbered;
 }
 
 std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, const FaceOrder& order) {

@@ -9,7 +9,9 @@
 // line (or page) at every crossing. A breadth-first order over face adjacency keeps neighbours a
 // ring apart (~sqrt(F) records, like Cuthill-McKee), and agents sorted by device face then walk
 // through memory that their neighbours in the agent arrays have just brought into cache.
+#include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
+#include "common/vertex_parameters.hpp"
 #include "kernels/device_types.h"
 
 #include <vector>
@@ -46,8 +48,12 @@ SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& 
 SurfaceDomain in_device_vertex_order(const SurfaceDomain& domain);
 
 // Per-vertex values between the two numberings.
-std::vector<double> to_device_order(const std::vector<double>& domain_values, const VertexOrder& order);
-std::vector<double> to_domain_order(const std::vector<double>& device_values, const VertexOrder& order);
+DeviceVertexData<double> to_device_order(const IntrinsicVertexData<double>& domain_values, const VertexOrder& order);
+IntrinsicVertexData<double> to_domain_order(const DeviceVertexData<double>& device_values, const VertexOrder& order);
+
+// The parameter maps renumbered like renumber_vertices' domain: what the device buffers are built
+// from, beside that domain (held in the domain's own types, as the renumbered domain is).
+VertexParameters renumber_parameters(const VertexParameters& params, const VertexOrder& order);
 
 // One record per face, in device order (neighbour indices are device indices too). Throws
 // InputError when a face is degenerate in float32 (its layout must have x1 > 0 and y2 > 0).

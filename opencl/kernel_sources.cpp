@@ -1,6 +1,7 @@
 #include "opencl/kernel_sources.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/agent_parameters.hpp"
 
 #include <set>
 #include <sstream>
@@ -8,9 +9,11 @@
 namespace physarum::opencl {
 namespace {
 
+// A file of kernels/, or one the host generates from its own tables.
 const char* find_file(const std::string& name) {
   for (const EmbeddedFile& f : embedded_kernel_files())
     if (name == f.name) return f.text;
+  if (name == "agent_parameters.h") return agent_parameters_header().c_str();
   return nullptr;
 }
 

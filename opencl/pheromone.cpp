@@ -1,7 +1,7 @@
 #include "opencl/pheromone.hpp"
 
 #include "common/errors.hpp"
-#include "common/forward_euler_limit.hpp"
+#include "common/diffusion_decay.hpp"
 #include "kernels/device_types.h"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
@@ -25,7 +25,10 @@ namespace {
 
 static_assert(sizeof(PhysarumCgState) == 32, "PhysarumCgState: eight 4-byte fields on host and device");
 
-std::vector<float> to_float(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
+template <class Values>
+std::vector<float> to_float(const Values& v) {
+  return std::vector<float>(v.begin(), v.end());
+}
 
 // A CSR matrix assembled row by row on the host, in double, converted to float when uploaded.
 struct HostCsr {
@@ -57,28 +60,28 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     throw InputError("opencl pheromone: the surface domain's mass (" + std::to_string(domain.vertex_mass.size()) +
                      ") or Laplacian (" + std::to_string(domain.laplacian.rows) + ") size differs from its " +
                      std::to_string(n) + " vertices");
-  if (params.diffuse_rate.size() != un || params.decay_rate.size() != un)
-    throw InputError("opencl pheromone: parameter maps have " + std::to_string(params.decay_rate.size()) +
+  if (params[Param::diffuse_rate].size() != un || params[Param::decay_rate].size() != un)
+    throw InputError("opencl pheromone: parameter maps have " + std::to_string(params[Param::decay_rate].size()) +
                      " values for " + std::to_string(n) + " vertices");
   if (options.cg_max_iterations < 1 || options.cg_check_interval < 1 || !(options.cg_relative_tolerance > 0.0))
     throw InputError("opencl pheromone: conjugate-gradient options need max iterations >= 1, check interval >= 1 "
                      "and tolerance > 0");
   const CsrMatrix& L = domain.laplacian;
-  std::vector<double> diffuse_over_mass(un), inverse_mass(un);
+  IntrinsicVertexData<double> diffuse_over_mass(un), inverse_mass(un);
   for (int i = 0; i < n; ++i) {
     const double m = domain.vertex_mass[i];
     if (!(m > 0.0))
       throw InputError("opencl pheromone: vertex " + std::to_string(i) + " has lumped mass " + std::to_string(m) +
                        " (must be > 0)");
-    if (!(params.diffuse_rate[i] >= 0.0) || !(params.decay_rate[i] >= 0.0))
+    if (!(params[Param::diffuse_rate][i] >= 0.0) || !(params[Param::decay_rate][i] >= 0.0))
       throw InputError("opencl pheromone: vertex " + std::to_string(i) + " has a negative diffuse or decay rate");
     inverse_mass[i] = 1.0 / m;
-    diffuse_over_mass[i] = params.diffuse_rate[i] / m;
+    diffuse_over_mass[i] = params[Param::diffuse_rate][i] / m;
   }
 
-  // ---- forward Euler step limit: the reference's bound (common/forward_euler_limit.hpp), in double,
+  // ---- forward Euler step limit: the reference's bound (common/diffusion_decay.hpp), in double,
   // so both backends take the same number of sub-steps ----
-  stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params.decay_rate);
+  stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params[Param::decay_rate]);
   if (integrator == Integrator::ForwardEuler) {
     sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
     sub_step_ = time_step / sub_steps_;
@@ -126,7 +129,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     F.rows = F.cols = n;
     F.row_start.push_back(0);
     for (int i = 0; i < n; ++i) {
-      const double keep = 1.0 - sub_step_ * params.decay_rate[i];
+      const double keep = 1.0 - sub_step_ * params[Param::decay_rate][i];
       bool diagonal = false;
       for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
         const int j = L.column[k];
@@ -156,7 +159,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     forward_overflow_value_ =
         upload_buffer(compute, "forward Euler overflow values", hybrid.overflow_value, kRead, false);
     // Read only by the planted fault no-decay-substep (see pheromone_forward_substep).
-    decay_rate_ = upload_buffer(compute, "decay rate", to_float(params.decay_rate), kRead, false);
+    decay_rate_ = upload_buffer(compute, "decay rate", to_float(params[Param::decay_rate]), kRead, false);
   }
   mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
@@ -177,18 +180,18 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     // So S x = B u with S SPD (same sparsity as L) and B = the right-hand-side operator.
     std::vector<char> active(un);
     bool any_active = false;
-    for (size_t i = 0; i < un; ++i) any_active |= (active[i] = params.diffuse_rate[i] > 0.0);
+    for (size_t i = 0; i < un; ++i) any_active |= (active[i] = params[Param::diffuse_rate][i] > 0.0);
     diagonal_only_ = !any_active;
     HostCsr S, B;
     std::vector<double> inverse_diagonal(un, 1.0);
     for (int i = 0; i < n; ++i) {
       const double m = domain.vertex_mass[i];
-      const double keep = 1.0 + time_step * params.decay_rate[i];
+      const double keep = 1.0 + time_step * params[Param::decay_rate][i];
       if (!active[i]) {
         S.add(i, 1.0);
         B.add(i, 1.0 / keep);
       } else {
-        const double r = params.diffuse_rate[i];
+        const double r = params[Param::diffuse_rate][i];
         double diagonal = m * keep / r;
         for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
           const int j = L.column[k];
@@ -205,7 +208,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
         B.add(i, m / r);
         for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
           const int j = L.column[k];
-          if (j != i && !active[j]) B.add(j, -time_step * L.value[k] / (1.0 + time_step * params.decay_rate[j]));
+          if (j != i && !active[j]) B.add(j, -time_step * L.value[k] / (1.0 + time_step * params[Param::decay_rate][j]));
         }
       }
       S.end_row();
@@ -234,17 +237,17 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
 
 // ---- the field ----
 
-std::vector<double> OpenCLPheromone::concentration() const {
+DeviceVertexData<double> OpenCLPheromone::concentration() const {
   std::vector<float> u(static_cast<size_t>(vertex_count_));
   try {
     compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, u.data());
   } catch (const cl::Error& e) {
     throw device_error("reading the pheromone field back from " + compute_.device.device_name, e.err());
   }
-  return std::vector<double>(u.begin(), u.end());
+  return DeviceVertexData<double>(std::vector<double>(u.begin(), u.end()));
 }
 
-void OpenCLPheromone::set_concentration(const std::vector<double>& u) {
+void OpenCLPheromone::set_concentration(const DeviceVertexData<double>& u) {
   if (u.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: set_concentration got " + std::to_string(u.size()) + " values for " +
                      std::to_string(vertex_count_) + " vertices");
@@ -256,7 +259,7 @@ void OpenCLPheromone::fill(double value) {
   compute_.queue.enqueueFillBuffer(u_.buffer, static_cast<float>(value), 0, u_.payload_bytes);
 }
 
-void OpenCLPheromone::add_deposits(const std::vector<double>& amount_per_vertex) {
+void OpenCLPheromone::add_deposits(const DeviceVertexData<double>& amount_per_vertex) {
   if (amount_per_vertex.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) +
                      " values for " + std::to_string(vertex_count_) + " vertices");

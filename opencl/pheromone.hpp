@@ -3,6 +3,7 @@
 // intrinsic vertex on the device, advanced by the diffusion-decay PDE with the cotan Laplacian L and
 // lumped mass M (Eq. 6 forward Euler with automatic sub-steps, Eq. 7 backward Euler by conjugate
 // gradients on the device). The field stays on the device; the host reads it only on demand.
+#include "common/element_data.hpp"
 #include "common/field_statistics.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
@@ -49,11 +50,12 @@ class OpenCLPheromone {
   OpenCLPheromone& operator=(const OpenCLPheromone&) = delete;
 
   // ---- the field ----
-  std::vector<double> concentration() const;  // blocking read-back, converted to double
-  void set_concentration(const std::vector<double>& u);
+  // The field in the device's vertex order (the domain this was built from is renumbered so).
+  DeviceVertexData<double> concentration() const;  // blocking read-back, converted to double
+  void set_concentration(const DeviceVertexData<double>& u);
   void fill(double value);
   // An AMOUNT at a vertex raises its concentration by amount / vertex_mass.
-  void add_deposits(const std::vector<double>& amount_per_vertex);
+  void add_deposits(const DeviceVertexData<double>& amount_per_vertex);
   // The device buffer holding u (float, vertex_count): the same buffer for the object's lifetime,
   // so agent kernels may keep it as an argument.
   const cl::Buffer& concentration_buffer() const;

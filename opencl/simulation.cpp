@@ -1,6 +1,7 @@
 #include "opencl/simulation.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/agent_parameters.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
@@ -8,8 +9,7 @@
 #include "opencl/work_group_size.hpp"
 #include "common/random_streams.hpp"
 #include "common/trace.hpp"
-#include "reference/sensing_steering.hpp"
-#include "reference/turnover.hpp"
+#include "common/agent_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +24,6 @@ struct OpenCLSimulation::Kernels {
 
 namespace {
 
-static_assert(sizeof(PhysarumAgentParameters) == 32, "PhysarumAgentParameters: eight floats");
 static_assert(sizeof(PhysarumStepConstants) == 64, "PhysarumStepConstants: sixteen 4-byte fields");
 // The bounds the kernels share with the reference must be the reference's.
 static_assert(PHYSARUM_MAX_TRACE_STEPS == kMaxTraceSteps);
@@ -36,26 +35,13 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
-PhysarumAgentParameters parameters_of_vertex(const VertexParameters& p, const std::vector<double>& hazard, size_t i) {
-  PhysarumAgentParameters r;
-  r.sensor_distance = static_cast<float>(p.sensor_distance[i]);
-  r.sensor_angle = static_cast<float>(p.sensor_angle[i]);
-  r.move_rate = static_cast<float>(p.move_rate[i]);
-  r.turn_rate = static_cast<float>(p.turn_rate[i]);
-  r.turn_frequency = static_cast<float>(p.turn_frequency[i]);
-  r.deposit_rate = static_cast<float>(p.deposit_rate[i]);
-  r.hazard_rate = static_cast<float>(hazard[i]);
-  r.activation_time = static_cast<float>(p.activation_time[i]);
-  return r;
-}
-
 }  // namespace
 
 OpenCLSimulation::~OpenCLSimulation() = default;
 
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
                                    const OpenCLSimulationOptions& options)
-    : OpenCLSimulation(compute, domain, VertexParameters::constant(scene, domain.vertex_count),
+    : OpenCLSimulation(compute, domain, VertexParameters::constant(scene.parameters, domain.vertex_count),
                        simulation_settings(scene), options) {}
 
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
@@ -77,29 +63,18 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   // The domain with vertices in device order: what the face records and the field are built from
   // (needed only here; the buffers keep what the kernels read).
   const SurfaceDomain device_domain = renumber_vertices(domain, vertex_order_);
-  VertexParameters device_params = params;
-  for (std::vector<double>* field :
-       {&device_params.diffuse_rate, &device_params.decay_rate, &device_params.sensor_distance,
-        &device_params.sensor_angle, &device_params.move_rate, &device_params.turn_rate,
-        &device_params.turn_frequency, &device_params.deposit_rate, &device_params.mean_lifetime,
-        &device_params.activation_time})
-    *field = to_device_order(*field, vertex_order_);
+  const VertexParameters device_params = renumber_parameters(params, vertex_order_);
 
   // ---- parameters per vertex, and whether they are all one value ----
-  const std::vector<double> hazard = hazard_rate_per_vertex(device_params.mean_lifetime);
-  std::vector<PhysarumAgentParameters> vertex_parameters(nv);
-  for (size_t i = 0; i < nv; ++i) vertex_parameters[i] = parameters_of_vertex(device_params, hazard, i);
-  bool uniform = true;
-  for (const std::vector<double>* field : {&params.sensor_distance, &params.sensor_angle, &params.move_rate,
-                                           &params.turn_rate, &params.turn_frequency, &params.deposit_rate,
-                                           &params.mean_lifetime, &params.activation_time})
-    uniform = uniform && is_uniform(*field);
+  const PackedAgentParameters packed = pack_agent_parameters(device_params);
+  const std::vector<PhysarumAgentParameters>& vertex_parameters = packed.per_vertex;
+  const bool uniform = packed.uniform;
 
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
   fixed_point_ = compute.device.int64_atomics;
   if (fixed_point_) {
     double max_rate = 0.0, min_positive_rate = INFINITY;
-    for (double r : params.deposit_rate) {
+    for (double r : params[Param::deposit_rate]) {
       max_rate = std::max(max_rate, r);
       if (r > 0.0) min_positive_rate = std::min(min_positive_rate, r);
     }
@@ -338,16 +313,27 @@ void OpenCLSimulation::step() {
 
 void OpenCLSimulation::finish() { compute_.queue.finish(); }
 
-std::vector<double> OpenCLSimulation::concentration_values() const {
-  return to_domain_order(pheromone_->concentration(), vertex_order_);
+OpenCLPheromone& OpenCLSimulation::layer(int index) const {
+  if (index != 0)
+    throw InputError("opencl simulation: no field layer " + std::to_string(index) + " (it has " +
+                     std::to_string(layer_count()) + ")");
+  return *pheromone_;
 }
 
-void OpenCLSimulation::set_concentration(const std::vector<double>& domain_values) {
-  if (domain_values.size() != static_cast<size_t>(domain_.vertex_count))
-    throw InputError("opencl simulation: set_concentration got " + std::to_string(domain_values.size()) +
-                     " values for " + std::to_string(domain_.vertex_count) + " vertices");
-  pheromone_->set_concentration(to_device_order(domain_values, vertex_order_));
+IntrinsicVertexData<double> OpenCLSimulation::field_values(int index) const {
+  return to_domain_order(layer(index).concentration(), vertex_order_);
 }
+
+void OpenCLSimulation::set_field(const IntrinsicVertexData<double>& domain_values, int index) {
+  if (domain_values.size() != static_cast<size_t>(domain_.vertex_count))
+    throw InputError("opencl simulation: set_field got " + std::to_string(domain_values.size()) +
+                     " values for " + std::to_string(domain_.vertex_count) + " vertices");
+  layer(index).set_concentration(to_device_order(domain_values, vertex_order_));
+}
+
+void OpenCLSimulation::fill_field(double value, int index) { layer(index).fill(value); }
+
+FieldStatistics OpenCLSimulation::field_statistics(double U, int index) const { return layer(index).statistics(U); }
 
 // The device keeps faces in its locality order (face_records.hpp); the host sees domain faces.
 std::vector<int> OpenCLSimulation::agent_faces() const {

@@ -68,11 +68,13 @@ class OpenCLSimulation final : public SimulationBackend {
 
   double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
   long long steps_taken() const override { return steps_taken_; }
-  // The field in the domain's vertex order (the device keeps its own locality order).
-  std::vector<double> concentration_values() const override;
-  void set_concentration(const std::vector<double>& domain_values);
-  void fill_concentration(double value) override { pheromone_->fill(value); }
-  FieldStatistics field_statistics(double U) const override { return pheromone_->statistics(U); }
+  // Fields in the domain's vertex order (the device keeps its own locality order). One dynamic
+  // layer today: the pheromone.
+  int layer_count() const override { return 1; }
+  IntrinsicVertexData<double> field_values(int layer = 0) const override;
+  void set_field(const IntrinsicVertexData<double>& domain_values, int layer = 0) override;
+  void fill_field(double value, int layer = 0) override;
+  FieldStatistics field_statistics(double U, int layer = 0) const override;
   std::vector<int> agent_faces() const override;
   SimulationCounters counters() const override;
   std::string backend_name() const override { return "opencl"; }
@@ -92,6 +94,7 @@ class OpenCLSimulation final : public SimulationBackend {
 
  private:
   struct Kernels;
+  OpenCLPheromone& layer(int index) const;
   void enqueue_agent_step();
   void enqueue_sensing();
   void enqueue_collect_deposits();

@@ -4,6 +4,7 @@
 // the OpenCL tests and the device check, so they test the same model.
 #include "common/default_scene.hpp"
 
+#include <limits>
 #include <optional>
 
 namespace physarum::testing {
@@ -11,9 +12,9 @@ namespace physarum::testing {
 inline Scene model_scene(int agents, double time_step, std::optional<double> mean_lifetime, Integrator integrator) {
   Scene s = default_scene_parameters(agents);
   s.time_step = time_step;
-  s.decay_rate = 2.5;
-  s.mean_lifetime = mean_lifetime;
-  s.activation_time = 0.1;
+  s.parameters[Param::decay_rate] = 2.5;
+  s.parameters[Param::mean_lifetime] = mean_lifetime.value_or(std::numeric_limits<double>::infinity());
+  s.parameters[Param::activation_time] = 0.1;
   s.integrator = integrator;
   s.seed = 11;
   return s;

@@ -35,13 +35,13 @@ inline StepComparison compare_one_step(const ComputeContext& compute, const Surf
 
   OpenCLSimulation device(compute, domain, scene, options);
   device.write_agents(developed.agents());
-  device.set_concentration(developed.concentration());
+  device.set_field(developed.field());
   const Agents start = device.read_agents();  // float-rounded: the common starting point
-  const std::vector<double> field = device.concentration_values();
+  const IntrinsicVertexData<double> field = device.field_values();
 
   ReferenceSimulation reference(domain, scene);
   reference.agents() = start;
-  reference.pheromone().set_concentration(field);
+  reference.set_field(field);
 
   reference.step();
   device.step();
@@ -68,7 +68,7 @@ inline StepComparison compare_one_step(const ComputeContext& compute, const Surf
       c.worst_position = std::max(c.worst_position, dp);
     }
   }
-  const std::vector<double> ur = reference.concentration(), uo = device.concentration_values();
+  const IntrinsicVertexData<double> ur = reference.field(), uo = device.field_values();
   double scale = 0.0, err = 0.0;
   for (size_t i = 0; i < ur.size(); ++i) {
     scale = std::max(scale, std::abs(ur[i]));

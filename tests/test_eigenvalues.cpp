@@ -79,10 +79,10 @@ TEST(Eigenvalues, SpotIntrinsicDelaunayMatchesAnIndependentImplementation) {
 
 TEST(Eigenvalues, RejectsMismatchedOrNonPositiveMass) {
   const SurfaceDomain d = build_surface_domain(intrinsic_mesh_from_input(load_mesh("shape:sphere")));
-  std::vector<double> mass = d.vertex_mass;
+  IntrinsicVertexData<double> mass = d.vertex_mass;
   mass[7] = 0.0;
   EXPECT_THROW(smallest_eigenvalues(d.laplacian, mass, 4), InputError);
-  mass.pop_back();
+  mass.values().pop_back();
   EXPECT_THROW(smallest_eigenvalues(d.laplacian, mass, 4), InputError);
 }
 

@@ -8,17 +8,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
 namespace physarum {
 namespace {
 
+using V = IntrinsicVertexData<double>;
+constexpr double kNoTurnover = std::numeric_limits<double>::infinity();  // mean_lifetime null
+
 TEST(FieldStatistics, MeanIsWeightedByLumpedMass) {
   // (1*2 + 3*6) / (1 + 3) = 5; an unweighted mean would give 4.
-  EXPECT_DOUBLE_EQ(area_weighted_mean({2.0, 6.0}, {1.0, 3.0}), 5.0);
-  EXPECT_THROW(area_weighted_mean({1.0}, {1.0, 2.0}), InputError);
-  EXPECT_THROW(area_weighted_mean({1.0}, {0.0}), InputError);
+  EXPECT_DOUBLE_EQ(area_weighted_mean(V{2.0, 6.0}, V{1.0, 3.0}), 5.0);
+  EXPECT_THROW(area_weighted_mean(V{1.0}, V{1.0, 2.0}), InputError);
+  EXPECT_THROW(area_weighted_mean(V{1.0}, V{0.0}), InputError);
 }
 
 // On the unit sphere the mass-weighted mean of z^2 approximates its surface average 1/3, and of z
@@ -26,7 +30,7 @@ TEST(FieldStatistics, MeanIsWeightedByLumpedMass) {
 TEST(FieldStatistics, MeanOnSphereMatchesSurfaceIntegral) {
   const InputMesh sphere = testing::make_icosphere(3);
   const SurfaceDomain domain = testing::make_domain(sphere);
-  std::vector<double> z(sphere.positions.size()), z2(sphere.positions.size());
+  V z(sphere.positions.size()), z2(sphere.positions.size());
   for (size_t i = 0; i < z.size(); ++i) z[i] = sphere.positions[i].z(), z2[i] = z[i] * z[i];
   EXPECT_NEAR(area_weighted_mean(z2, domain.vertex_mass), 1.0 / 3.0, 2e-3);
   EXPECT_NEAR(area_weighted_mean(z, domain.vertex_mass), 0.0, 1e-12);
@@ -35,7 +39,7 @@ TEST(FieldStatistics, MeanOnSphereMatchesSurfaceIntegral) {
 TEST(FieldStatistics, UniformSteadyStateFollowsEquationFive) {
   // N r_dep / (r_dec A) = 100 * 2 / (0.5 * 4) = 100; times exp(-t_a / tau) = exp(-0.2).
   EXPECT_DOUBLE_EQ(uniform_steady_state(100, 2.0, 0.5, 4.0, 0.2, 1.0), 100.0 * std::exp(-0.2));
-  EXPECT_DOUBLE_EQ(uniform_steady_state(100, 2.0, 0.5, 4.0, 0.2, std::nullopt), 100.0);
+  EXPECT_DOUBLE_EQ(uniform_steady_state(100, 2.0, 0.5, 4.0, 0.2, kNoTurnover), 100.0);
   EXPECT_DOUBLE_EQ(uniform_steady_state(100, 2.0, 0.5, 4.0, 0.0, 0.3), 100.0);
   // The paper's Fig. 5 keeps U fixed by raising N as tau falls: N exp(-t_a/tau) constant.
   EXPECT_NEAR(uniform_steady_state(1000, 1.0, 1.0, 1.0, 0.2, 1.0),
@@ -44,17 +48,17 @@ TEST(FieldStatistics, UniformSteadyStateFollowsEquationFive) {
               1.0);
   Scene s;
   s.agents = 50;
-  s.deposit_rate = 3.0;
-  s.decay_rate = 1.5;
-  s.activation_time = 0.1;
-  s.mean_lifetime = 0.4;
+  s.parameters[Param::deposit_rate] = 3.0;
+  s.parameters[Param::decay_rate] = 1.5;
+  s.parameters[Param::activation_time] = 0.1;
+  s.parameters[Param::mean_lifetime] = 0.4;
   EXPECT_DOUBLE_EQ(uniform_steady_state(s, 2.0), 50 * 3.0 / (1.5 * 2.0) * std::exp(-0.25));
-  EXPECT_THROW(uniform_steady_state(1, 1.0, 0.0, 1.0, 0.0, std::nullopt), InputError);
+  EXPECT_THROW(uniform_steady_state(1, 1.0, 0.0, 1.0, 0.0, kNoTurnover), InputError);
 }
 
 TEST(FieldStatistics, CoverageIsMassFractionStrictlyAboveThreshold) {
-  const std::vector<double> mass = {1.0, 2.0, 3.0, 4.0};
-  const std::vector<double> u = {0.0, 1.0, 2.0, 4.0};
+  const V mass{1.0, 2.0, 3.0, 4.0};
+  const V u{0.0, 1.0, 2.0, 4.0};
   EXPECT_DOUBLE_EQ(coverage_fraction(u, mass, 0.5), 0.9);  // masses 2 + 3 + 4 of 10
   EXPECT_DOUBLE_EQ(coverage_fraction(u, mass, 2.0), 0.4);  // 2.0 is not strictly above
   EXPECT_DOUBLE_EQ(coverage_fraction(u, mass, 10.0), 0.0);

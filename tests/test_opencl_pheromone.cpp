@@ -10,7 +10,7 @@
 #include "kernels/device_types.h"
 #include "opencl/pheromone.hpp"
 #include "opencl/hybrid_matrix.hpp"
-#include "reference/pheromone.hpp"
+#include "reference_field.hpp"
 #include "delaunay_domain.hpp"
 #include "test_support.hpp"
 
@@ -20,6 +20,12 @@
 
 namespace physarum::opencl {
 namespace {
+
+// OpenCLPheromone keeps the vertex order of the domain it is given; these tests give it the domain
+// as it is, so its device order is the domain's and values change type, not order.
+DeviceVertexData<double> as_device(const IntrinsicVertexData<double>& v) { return DeviceVertexData<double>(v.values()); }
+IntrinsicVertexData<double> as_domain(const DeviceVertexData<double>& v) { return IntrinsicVertexData<double>(v.values()); }
+
 
 using testing::delaunay_domain;
 
@@ -47,18 +53,18 @@ const ComputeContext& compute() {
   return c;
 }
 
-std::vector<double> random_values(int n, unsigned seed, double lo, double hi) {
+IntrinsicVertexData<double> random_values(int n, unsigned seed, double lo, double hi) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(lo, hi);
-  std::vector<double> v(static_cast<size_t>(n));
+  IntrinsicVertexData<double> v(static_cast<size_t>(n));
   for (double& x : v) x = uniform(rng);
   return v;
 }
 
 VertexParameters uniform_rates(int n, double diffuse, double decay) {
   VertexParameters p;
-  p.diffuse_rate.assign(static_cast<size_t>(n), diffuse);
-  p.decay_rate.assign(static_cast<size_t>(n), decay);
+  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
+  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
   return p;
 }
 
@@ -66,19 +72,19 @@ VertexParameters uniform_rates(int n, double diffuse, double decay) {
 // for all) disagrees with the reference.
 VertexParameters varying_rates(int n, double diffuse, double decay, unsigned seed) {
   VertexParameters p;
-  p.diffuse_rate = random_values(n, seed, 0.5 * diffuse, 1.5 * diffuse);
-  p.decay_rate = random_values(n, seed + 1, 0.5 * decay, 1.5 * decay);
+  p[Param::diffuse_rate] = random_values(n, seed, 0.5 * diffuse, 1.5 * diffuse);
+  p[Param::decay_rate] = random_values(n, seed + 1, 0.5 * decay, 1.5 * decay);
   return p;
 }
 
-double max_abs(const std::vector<double>& v) {
+double max_abs(const IntrinsicVertexData<double>& v) {
   double m = 0;
   for (double x : v) m = std::max(m, std::abs(x));
   return m;
 }
 
 // Largest |a_i - b_i|, with the vertex where it happens (for the failure message).
-std::pair<double, size_t> max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+std::pair<double, size_t> max_difference(const IntrinsicVertexData<double>& a, const IntrinsicVertexData<double>& b) {
   double worst = -1;
   size_t at = 0;
   for (size_t i = 0; i < a.size(); ++i)
@@ -94,7 +100,7 @@ std::string joined(const std::vector<std::string>& names) {
 
 // One step of both backends from the same random positive field; returns (reference, device).
 struct StepPair {
-  std::vector<double> reference, device;
+  IntrinsicVertexData<double> reference, device;
   int reference_sub_steps = 0, device_sub_steps = 0;
   ConjugateGradientReport solve;
   std::vector<std::string> damaged;
@@ -103,18 +109,18 @@ struct StepPair {
 StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1,
                   const SurfaceDomain& d = sphere_domain()) {
   // The time step is chosen relative to the stability bound so the sub-step count is known.
-  ReferencePheromone probe(d, params, Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   const double dt = dt_in_stable_steps * probe.stable_time_step();
-  ReferencePheromone reference(d, params, integrator, dt);
+  testing::ReferenceField reference(d, params, integrator, dt);
   OpenCLPheromone device(compute(), d, params, integrator, dt);
-  const std::vector<double> u0 = random_values(d.vertex_count, 11, 0.1, 1.0);
+  const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 11, 0.1, 1.0);
   reference.set_concentration(u0);
-  device.set_concentration(u0);
+  device.set_concentration(as_device(u0));
   for (int s = 0; s < steps; ++s) {
     reference.step();
     device.step();
   }
-  return {reference.concentration(), device.concentration(), reference.sub_steps(), device.sub_steps(),
+  return {reference.concentration(), as_domain(device.concentration()), reference.sub_steps(), device.sub_steps(),
           device.last_solve(), device.damaged_canaries()};
 }
 
@@ -177,7 +183,7 @@ TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
   const int n = sphere_domain().vertex_count;
   VertexParameters mixed = varying_rates(n, 0.01, 0.5, 9);
   // Some vertices that do not diffuse at all: their rows leave the CG system (see pheromone.cpp).
-  for (int i = 0; i < n; i += 7) mixed.diffuse_rate[static_cast<size_t>(i)] = 0.0;
+  for (int i = 0; i < n; i += 7) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = 0.0;
   struct Case {
     const char* name;
     VertexParameters params;
@@ -202,10 +208,10 @@ TEST(OpenCLPheromone, BackwardWithoutDiffusionIsTheExactDecayFactor) {
   const SurfaceDomain& d = sphere_domain();
   const VertexParameters params = uniform_rates(d.vertex_count, 0.0, 0.5);
   OpenCLPheromone device(compute(), d, params, Integrator::BackwardEuler, 0.2);
-  const std::vector<double> u0 = random_values(d.vertex_count, 13, 0.1, 1.0);
-  device.set_concentration(u0);
+  const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 13, 0.1, 1.0);
+  device.set_concentration(as_device(u0));
   device.step();
-  const std::vector<double> u1 = device.concentration();
+  const IntrinsicVertexData<double> u1 = as_domain(device.concentration());
   for (size_t i = 0; i < u0.size(); ++i) ASSERT_NEAR(u1[i], u0[i] / (1.0 + 0.2 * 0.5), 1e-6) << "vertex " << i;
   EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
 }
@@ -215,17 +221,17 @@ TEST(OpenCLPheromone, DiffusionAloneConservesTheTotalAmount) {
   // A uniform diffuse rate: 1^T L = 0 makes sum m u invariant (a varying R_dif does not conserve it:
   // 1^T R_dif L != 0). The sphere's vertex masses differ, so a scheme that forgot M^-1 would drift.
   const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.0);
-  ReferencePheromone probe(d, params, Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
     OpenCLPheromone device(compute(), d, params, integrator, 3.0 * probe.stable_time_step());
-    const std::vector<double> u0 = random_values(d.vertex_count, 17, 0.0, 1.0);
-    device.set_concentration(u0);
+    const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 17, 0.0, 1.0);
+    device.set_concentration(as_device(u0));
     const double before = device.total_amount();
     double host_before = 0;
     for (int i = 0; i < d.vertex_count; ++i) host_before += d.vertex_mass[i] * static_cast<float>(u0[i]);
     EXPECT_NEAR(before / host_before, 1.0, 1e-6) << "device sum of m u";
     for (int s = 0; s < 20; ++s) device.step();
-    const std::vector<double> u = device.concentration();
+    const IntrinsicVertexData<double> u = as_domain(device.concentration());
     double after = 0;
     for (int i = 0; i < d.vertex_count; ++i) after += d.vertex_mass[i] * u[i];
     EXPECT_NEAR(after / host_before, 1.0, 2e-5);
@@ -241,11 +247,11 @@ TEST(OpenCLPheromone, DecayAloneScalesByOneMinusRateTimesStep) {
   const double rate = 0.5, dt = 0.1;
   OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::ForwardEuler, dt);
   ASSERT_EQ(device.sub_steps(), 1);
-  const std::vector<double> u0 = random_values(d.vertex_count, 19, 0.1, 1.0);
-  device.set_concentration(u0);
+  const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 19, 0.1, 1.0);
+  device.set_concentration(as_device(u0));
   const double before = device.total_amount();
   device.step();
-  const std::vector<double> u1 = device.concentration();
+  const IntrinsicVertexData<double> u1 = as_domain(device.concentration());
   for (size_t i = 0; i < u0.size(); ++i)
     ASSERT_NEAR(u1[i], (1.0 - rate * dt) * u0[i], 2e-7) << "vertex " << i;
   for (int s = 1; s < 10; ++s) device.step();
@@ -256,9 +262,9 @@ TEST(OpenCLPheromone, DepositsRaiseConcentrationByAmountOverMass) {
   const SurfaceDomain& d = sphere_domain();
   OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
   device.fill(0.25);
-  const std::vector<double> amount = random_values(d.vertex_count, 23, 0.0, 1e-3);
-  device.add_deposits(amount);
-  const std::vector<double> u = device.concentration();
+  const IntrinsicVertexData<double> amount = random_values(d.vertex_count, 23, 0.0, 1e-3);
+  device.add_deposits(as_device(amount));
+  const IntrinsicVertexData<double> u = as_domain(device.concentration());
   for (size_t i = 0; i < u.size(); ++i)
     ASSERT_NEAR(u[i], 0.25 + amount[i] / d.vertex_mass[i], 1e-5 * (0.25 + amount[i] / d.vertex_mass[i])) << i;
   EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
@@ -267,9 +273,9 @@ TEST(OpenCLPheromone, DepositsRaiseConcentrationByAmountOverMass) {
 TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
   const SurfaceDomain& d = sphere_domain();
   OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
-  device.set_concentration(random_values(d.vertex_count, 29, 0.0, 1.0));
+  device.set_concentration(as_device(random_values(d.vertex_count, 29, 0.0, 1.0)));
   device.step();  // a field the device made, not just the one uploaded
-  const std::vector<double> u = device.concentration();
+  const IntrinsicVertexData<double> u = as_domain(device.concentration());
   // U = 0.4 puts the thresholds 0.2, 0.4 and 0.8 inside the field's range: coverages away from 0 and 1.
   const double U = 0.4;
   const FieldStatistics host = compute_field_statistics(u, d.vertex_mass, U);
@@ -297,7 +303,7 @@ TEST(OpenCLPheromone, RejectsBadInputAndOversizedBuffers) {
   EXPECT_THROW(OpenCLPheromone(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.0),
                InputError);
   OpenCLPheromone ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
-  EXPECT_THROW(ok.set_concentration(std::vector<double>(3, 1.0)), InputError);
+  EXPECT_THROW(ok.set_concentration(DeviceVertexData<double>(3, 1.0)), InputError);
   // A device whose largest allocation is smaller than the sub-step matrix: a clear error, not a crash.
   ComputeContext small = compute();
   small.device.max_allocation_bytes = 1024;

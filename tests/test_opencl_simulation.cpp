@@ -76,7 +76,7 @@ TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBoundari
 // agent step (sense_deciders), the later ones inside it from the heading the earlier ones left.
 TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
   Scene scene = model_scene(20000, 0.5, Integrator::ForwardEuler);
-  scene.turn_frequency = 250.0;
+  scene.parameters[Param::turn_frequency] = 250.0;
   expect_one_step_agrees("shape:sphere", scene);
 }
 
@@ -115,18 +115,18 @@ TEST(OpenCLSimulation, InitialStateIsTheReferences) {
 TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
   Scene scene = model_scene(10000, std::nullopt, Integrator::ForwardEuler);
-  scene.decay_rate = 0.0;
-  scene.diffuse_rate = 0.0;
-  scene.activation_time = 0.0;
+  scene.parameters[Param::decay_rate] = 0.0;
+  scene.parameters[Param::diffuse_rate] = 0.0;
+  scene.parameters[Param::activation_time] = 0.0;
   OpenCLSimulation device(compute(), domain, scene);
   device.run(3);
-  const double expected = 3 * scene.agents * scene.deposit_rate * scene.time_step;
+  const double expected = 3 * scene.agents * scene.parameters[Param::deposit_rate] * scene.time_step;
   EXPECT_NEAR(device.pheromone().total_amount() / expected, 1.0, 1e-5);
   if (device.fixed_point_deposits()) {
     // Order independence: a second run gives the very same bits.
     OpenCLSimulation again(compute(), domain, scene);
     again.run(3);
-    EXPECT_EQ(device.concentration_values(), again.concentration_values());
+    EXPECT_EQ(device.field_values(), again.field_values());
   }
 }
 
@@ -142,7 +142,7 @@ TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
   a.run(20);
   b.run(20);
   if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
-  EXPECT_EQ(a.concentration_values(), b.concentration_values());
+  EXPECT_EQ(a.field_values(), b.field_values());
   const Agents x = a.read_agents(), y = b.read_agents();
   EXPECT_EQ(x.face, y.face);
   EXPECT_EQ(x.position, y.position);
@@ -168,7 +168,7 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
     grouped.agents_per_work_item = lanes;
     OpenCLSimulation b(compute(), domain, scene, grouped);
     b.run(20);
-    EXPECT_EQ(a.concentration_values(), b.concentration_values()) << lanes << " agents per work-item";
+    EXPECT_EQ(a.field_values(), b.field_values()) << lanes << " agents per work-item";
     const Agents y = b.read_agents();
     EXPECT_EQ(x.face, y.face) << lanes;
     EXPECT_EQ(x.position, y.position) << lanes;

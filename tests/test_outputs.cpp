@@ -26,8 +26,8 @@ namespace {
 
 using testing::TempDir;
 
-std::vector<double> linear_field(const InputMesh& mesh) {
-  std::vector<double> f(mesh.positions.size());
+InputVertexData<double> linear_field(const InputMesh& mesh) {
+  InputVertexData<double> f(mesh.positions.size());
   for (size_t v = 0; v < f.size(); ++v) f[v] = 1.0 + 2.0 * mesh.positions[v].x() - 0.5 * mesh.positions[v].y() + 3.0 * mesh.positions[v].z();
   return f;
 }
@@ -51,12 +51,12 @@ TEST(FieldTransfer, RefinedTriangulationKeepsInputVerticesFirst) {
   triangulation.refine(options);
   const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
   ASSERT_GT(domain.vertex_count, mesh.vertex_count()) << "test premise: refinement inserted vertices";
-  const std::vector<int> map = input_vertex_to_intrinsic(mesh, domain.vertex_location);
+  const InputVertexData<int> map = input_vertex_to_intrinsic(mesh, domain.vertex_location);
   for (int v = 0; v < mesh.vertex_count(); ++v) ASSERT_EQ(map[v], v);
   // Values come back unchanged at the input vertices.
-  std::vector<double> intrinsic(static_cast<size_t>(domain.vertex_count));
+  IntrinsicVertexData<double> intrinsic(static_cast<size_t>(domain.vertex_count));
   for (int i = 0; i < domain.vertex_count; ++i) intrinsic[i] = 10.0 * i + 0.5;
-  const std::vector<double> input = intrinsic_to_input(mesh, domain.vertex_location, intrinsic);
+  const InputVertexData<double> input = intrinsic_to_input(mesh, domain.vertex_location, intrinsic);
   for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 10.0 * v + 0.5);
 }
 
@@ -65,17 +65,17 @@ TEST(FieldTransfer, FindsInputVerticesByLocationWhenRenumbered) {
   const InputMesh mesh = testing::make_square_grid(3);
   const IntrinsicMesh as_is = intrinsic_mesh_from_input(mesh);
   // Intrinsic vertices: two inserted ones (face interiors) first, then the input vertices reversed.
-  std::vector<SurfacePoint> locations;
-  locations.push_back({0, Eigen::Vector3d(0.2, 0.3, 0.5)});
-  locations.push_back({4, Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3)});
-  for (int v = mesh.vertex_count() - 1; v >= 0; --v) locations.push_back(as_is.vertex_location[v]);
-  std::vector<double> intrinsic(locations.size());
+  IntrinsicVertexData<SurfacePoint> locations;
+  locations.values().push_back({0, Eigen::Vector3d(0.2, 0.3, 0.5)});
+  locations.values().push_back({4, Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3)});
+  for (int v = mesh.vertex_count() - 1; v >= 0; --v) locations.values().push_back(as_is.vertex_location[v]);
+  IntrinsicVertexData<double> intrinsic(locations.size());
   for (size_t i = 0; i < intrinsic.size(); ++i) intrinsic[i] = static_cast<double>(i);
-  const std::vector<double> input = intrinsic_to_input(mesh, locations, intrinsic);
+  const InputVertexData<double> input = intrinsic_to_input(mesh, locations, intrinsic);
   for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 2.0 + (mesh.vertex_count() - 1 - v)) << v;
 
-  locations.pop_back();  // input vertex 0 now has no intrinsic vertex on it
-  intrinsic.pop_back();
+  locations.values().pop_back();  // input vertex 0 now has no intrinsic vertex on it
+  intrinsic.values().pop_back();
   EXPECT_THROW(intrinsic_to_input(mesh, locations, intrinsic), InputError);
 }
 
@@ -83,15 +83,15 @@ TEST(FieldTransfer, FindsInputVerticesByLocationWhenRenumbered) {
 // every intrinsic vertex, inserted ones included.
 TEST(FieldTransfer, InputToIntrinsicReproducesLinearFields) {
   const InputMesh mesh = testing::make_square_grid(4);
-  std::vector<SurfacePoint> locations = intrinsic_mesh_from_input(mesh).vertex_location;
+  IntrinsicVertexData<SurfacePoint> locations(intrinsic_mesh_from_input(mesh).vertex_location);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   for (int k = 0; k < 20; ++k) {
     double a = uniform(rng), b = uniform(rng) * (1 - a);
-    locations.push_back({k % mesh.triangle_count(), Eigen::Vector3d(a, b, 1 - a - b)});
+    locations.values().push_back({k % mesh.triangle_count(), Eigen::Vector3d(a, b, 1 - a - b)});
   }
-  const std::vector<double> field = linear_field(mesh);
-  const std::vector<double> sampled = input_to_intrinsic(mesh, locations, field);
+  const InputVertexData<double> field = linear_field(mesh);
+  const IntrinsicVertexData<double> sampled = input_to_intrinsic(mesh, locations, field);
   for (size_t i = 0; i < locations.size(); ++i) {
     const auto& t = mesh.triangles[locations[i].face];
     const Eigen::Vector3d p = locations[i].barycentric[0] * mesh.positions[t[0]] +
@@ -99,7 +99,7 @@ TEST(FieldTransfer, InputToIntrinsicReproducesLinearFields) {
                               locations[i].barycentric[2] * mesh.positions[t[2]];
     EXPECT_NEAR(sampled[i], 1.0 + 2.0 * p.x() - 0.5 * p.y() + 3.0 * p.z(), 1e-12);
   }
-  EXPECT_THROW(input_to_intrinsic(mesh, locations, {1.0, 2.0}), InputError);
+  EXPECT_THROW(input_to_intrinsic(mesh, locations, InputVertexData<double>{1.0, 2.0}), InputError);
 }
 
 // ---- colour maps ---------------------------------------------------------------------------------
@@ -177,7 +177,7 @@ ParsedPly parse_ply(const std::string& path) {
 
 TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
   const InputMesh mesh = testing::make_icosphere(2);
-  const std::vector<double> values = linear_field(mesh);
+  const InputVertexData<double> values = linear_field(mesh);
   TempDir dir;
   const std::string path = (dir.path / "pheromone.ply").string();
   write_field_ply(path, mesh, values);
@@ -203,7 +203,7 @@ TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
 TEST(PlyWriter, SizeMismatchThrowsAndWritesNothing) {
   const InputMesh mesh = testing::make_square_grid(2);
   TempDir dir;
-  EXPECT_THROW(write_field_ply((dir.path / "p.ply").string(), mesh, {1.0, 2.0}), InputError);
+  EXPECT_THROW(write_field_ply((dir.path / "p.ply").string(), mesh, InputVertexData<double>{1.0, 2.0}), InputError);
   EXPECT_TRUE(files_in(dir.path).empty());
 }
 
@@ -211,7 +211,7 @@ TEST(PlyWriter, SizeMismatchThrowsAndWritesNothing) {
 
 TEST(AtomicWrite, FailingWriteLeavesNoFile) {
   const InputMesh mesh = testing::make_square_grid(2);
-  const std::vector<double> values(static_cast<size_t>(mesh.vertex_count()), 1.0);
+  const InputVertexData<double> values(static_cast<size_t>(mesh.vertex_count()), 1.0);
   TempDir dir;
   // A folder that does not exist, and a "folder" that is a regular file.
   const std::string missing = (dir.path / "no-such-dir" / "pheromone.ply").string();
@@ -286,7 +286,7 @@ TEST(PreviewImage, WritesShadedPngOfRequestedSize) {
   TempDir dir;
   const std::string path = (dir.path / "preview.png").string();
   // Hot near +z, cold elsewhere.
-  std::vector<double> values(mesh.positions.size());
+  InputVertexData<double> values(mesh.positions.size());
   for (size_t v = 0; v < values.size(); ++v) values[v] = std::max(0.0, mesh.positions[v].z());
   write_preview_png(path, mesh, values);
   const ReadImage image = read_png(path);
@@ -332,7 +332,7 @@ TEST(PreviewImage, DepthTestHidesTheFarSide) {
   options.height = 150;
   const double az = options.azimuth_deg * std::numbers::pi / 180, el = options.elevation_deg * std::numbers::pi / 180;
   const Eigen::Vector3d toward_camera(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-  std::vector<double> values(mesh.positions.size());
+  InputVertexData<double> values(mesh.positions.size());
   for (size_t v = 0; v < values.size(); ++v) values[v] = mesh.positions[v].dot(toward_camera) < -0.3 ? 1.0 : 0.0;
   ASSERT_GT(*std::max_element(values.begin(), values.end()), 0.0);
   const RgbImage image = render_preview(mesh, values, options);
@@ -346,7 +346,7 @@ TEST(PreviewImage, DepthTestHidesTheFarSide) {
 
 TEST(PreviewImage, HonoursSizeOptionAndRejectsBadSize) {
   const InputMesh mesh = testing::make_square_grid(4);
-  const std::vector<double> values = linear_field(mesh);
+  const InputVertexData<double> values = linear_field(mesh);
   PreviewOptions options;
   options.width = 160;
   options.height = 90;
@@ -356,7 +356,7 @@ TEST(PreviewImage, HonoursSizeOptionAndRejectsBadSize) {
   EXPECT_EQ(image.pixels.size(), 160u * 90u * 3u);
   options.width = 0;
   EXPECT_THROW(render_preview(mesh, values, options), InputError);
-  EXPECT_THROW(render_preview(mesh, {1.0}, PreviewOptions{}), InputError);
+  EXPECT_THROW(render_preview(mesh, InputVertexData<double>{1.0}, PreviewOptions{}), InputError);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The reference pheromone PDE (paper Eq. 1, 6, 7): conservation, exact decay factors, the stability
 // bound and its sub-steps, the backward-Euler recursion and an analytic diffusion eigenmode.
 #include "pheromone_test_meshes.hpp"
-#include "reference/pheromone.hpp"
+#include "reference_field.hpp"
 
 #include "common/errors.hpp"
 
@@ -21,20 +21,20 @@ using testing::make_square_grid;
 
 VertexParameters rates(int n, double diffuse, double decay) {
   VertexParameters p;
-  p.diffuse_rate.assign(static_cast<size_t>(n), diffuse);
-  p.decay_rate.assign(static_cast<size_t>(n), decay);
+  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
+  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
   return p;
 }
 
-std::vector<double> random_field(int n, unsigned seed) {
+IntrinsicVertexData<double> random_field(int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::vector<double> u(static_cast<size_t>(n));
+  IntrinsicVertexData<double> u(static_cast<size_t>(n));
   for (double& x : u) x = uniform(rng);
   return u;
 }
 
-double mass_total(const SurfaceDomain& d, const std::vector<double>& u) {
+double mass_total(const SurfaceDomain& d, const IntrinsicVertexData<double>& u) {
   double s = 0;
   for (int i = 0; i < d.vertex_count; ++i) s += d.vertex_mass[i] * u[i];
   return s;
@@ -46,7 +46,7 @@ TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
   // so a scheme that forgot M^-1 would not conserve the mass-weighted total.
   const SurfaceDomain domain = make_domain(make_square_grid(16));
   for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
-    ReferencePheromone field(domain, rates(domain.vertex_count, 0.01, 0.0), integrator, 0.01);
+    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 0.0), integrator, 0.01);
     field.set_concentration(random_field(domain.vertex_count, 7));
     const double before = mass_total(domain, field.concentration());
     for (int s = 0; s < 300; ++s) field.step();
@@ -62,9 +62,9 @@ TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
 TEST(Pheromone, DecayAloneScalesEveryVertexExactly) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.7, dt = 0.05;
-  const std::vector<double> start = random_field(domain.vertex_count, 3);
+  const IntrinsicVertexData<double> start = random_field(domain.vertex_count, 3);
   for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
-    ReferencePheromone field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
+    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
     EXPECT_EQ(field.sub_steps(), 1);
     field.set_concentration(start);
     field.step();
@@ -78,7 +78,7 @@ TEST(Pheromone, DecayAloneApproachesExponential) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
   const double r = 1.3, dt = 1e-4, t_end = 1.0;
   for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
-    ReferencePheromone field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
+    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
     field.fill(2.0);
     const int steps = static_cast<int>(std::lround(t_end / dt));
     for (int s = 0; s < steps; ++s) field.step();
@@ -93,7 +93,7 @@ TEST(Pheromone, ConstantFieldFollowsScalarRecursion) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.4, dt = 0.1, c0 = 3.0;
   for (Integrator integrator : {Integrator::BackwardEuler, Integrator::ForwardEuler}) {
-    ReferencePheromone field(domain, rates(domain.vertex_count, 0.05, r), integrator, dt);
+    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.05, r), integrator, dt);
     field.fill(c0);
     const int steps = 25;
     for (int s = 0; s < steps; ++s) field.step();
@@ -111,24 +111,24 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
   const InputMesh sphere = make_icosphere(3);
   const SurfaceDomain domain = make_domain(sphere);
   const double r_dif = 0.1, r_dec = 0.3, t_end = 2.0;
-  std::vector<double> z(static_cast<size_t>(domain.vertex_count));
+  IntrinsicVertexData<double> z(static_cast<size_t>(domain.vertex_count));
   for (int i = 0; i < domain.vertex_count; ++i) z[i] = sphere.positions[i].z();
-  auto m_dot = [&](const std::vector<double>& a, const std::vector<double>& b) {
+  auto m_dot = [&](const IntrinsicVertexData<double>& a, const IntrinsicVertexData<double>& b) {
     double s = 0;
     for (int i = 0; i < domain.vertex_count; ++i) s += domain.vertex_mass[i] * a[i] * b[i];
     return s;
   };
   const double expected = std::exp(-(2.0 * r_dif + r_dec) * t_end);
   for (auto [integrator, dt] : {std::pair{Integrator::ForwardEuler, 1e-3}, std::pair{Integrator::BackwardEuler, 1e-3}}) {
-    ReferencePheromone field(domain, rates(domain.vertex_count, r_dif, r_dec), integrator, dt);
+    testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), integrator, dt);
     field.set_concentration(z);
     const int steps = static_cast<int>(std::lround(t_end / dt));
     for (int s = 0; s < steps; ++s) field.step();
-    const std::vector<double>& u = field.concentration();
+    const IntrinsicVertexData<double>& u = field.concentration();
     const double amplitude = m_dot(u, z) / m_dot(z, z);
     EXPECT_NEAR(amplitude / expected, 1.0, 3e-3) << (integrator == Integrator::ForwardEuler ? "forward" : "backward");
     // The shape is preserved: what is left after removing the z component is tiny.
-    std::vector<double> rest(u.size());
+    IntrinsicVertexData<double> rest(u.size());
     for (size_t i = 0; i < u.size(); ++i) rest[i] = u[i] - amplitude * z[i];
     EXPECT_LT(std::sqrt(m_dot(rest, rest) / m_dot(z, z)), 1e-3 * expected);
   }
@@ -139,7 +139,7 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
 TEST(Pheromone, StableTimeStepRespectsTrueSpectralRadius) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.02, r_dec = 0.5;
-  ReferencePheromone field(domain, rates(domain.vertex_count, r_dif, r_dec), Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), Integrator::ForwardEuler, 1.0);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = domain.laplacian.to_eigen();
   Eigen::VectorXd inv_m(domain.vertex_count);
   for (int i = 0; i < domain.vertex_count; ++i) inv_m[i] = 1.0 / domain.vertex_mass[i];
@@ -161,13 +161,13 @@ TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.05, r_dec = 0.2;
   const VertexParameters p = rates(domain.vertex_count, r_dif, r_dec);
-  const double limit = ReferencePheromone(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
+  const double limit = testing::ReferenceField(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
   const double dt = 10.0 * limit;
-  ReferencePheromone field(domain, p, Integrator::ForwardEuler, dt);
+  testing::ReferenceField field(domain, p, Integrator::ForwardEuler, dt);
   EXPECT_GE(field.sub_steps(), 10);
   EXPECT_LE(field.sub_steps(), 11);
 
-  std::vector<double> spike(static_cast<size_t>(domain.vertex_count), 0.0);
+  IntrinsicVertexData<double> spike(static_cast<size_t>(domain.vertex_count), 0.0);
   spike[5] = 1.0;
   // One unsplit Euler step at dt: u'_5 = 1 - dt (r_dif L_55 / m_5 + r_dec) < 0.
   double L55 = 0;
@@ -189,11 +189,11 @@ TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
 TEST(Pheromone, NoSubStepsBelowLimit) {
   const SurfaceDomain domain = make_domain(make_square_grid(8));
   const VertexParameters p = rates(domain.vertex_count, 0.01, 0.3);
-  const double limit = ReferencePheromone(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
+  const double limit = testing::ReferenceField(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
   const double dt = 0.95 * limit;
-  ReferencePheromone field(domain, p, Integrator::ForwardEuler, dt);
+  testing::ReferenceField field(domain, p, Integrator::ForwardEuler, dt);
   EXPECT_EQ(field.sub_steps(), 1);
-  const std::vector<double> u0 = random_field(domain.vertex_count, 11);
+  const IntrinsicVertexData<double> u0 = random_field(domain.vertex_count, 11);
   field.set_concentration(u0);
   field.step();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = domain.laplacian.to_eigen();
@@ -213,27 +213,27 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
   const int n = domain.vertex_count;
   VertexParameters p = rates(n, 0.0, 0.0);
   for (int i = 0; i < n; ++i) {
-    p.diffuse_rate[i] = 0.001 + 0.01 * grid.positions[i].x();
-    p.decay_rate[i] = 0.2 + grid.positions[i].y();
+    p[Param::diffuse_rate][i] = 0.001 + 0.01 * grid.positions[i].x();
+    p[Param::decay_rate][i] = 0.2 + grid.positions[i].y();
   }
   const double dt = 0.5;
-  const std::vector<double> u0 = random_field(n, 5);
+  const IntrinsicVertexData<double> u0 = random_field(n, 5);
   const Eigen::MatrixXd L = Eigen::MatrixXd(domain.laplacian.to_eigen());
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), Rdif = M, Rdec = M;
   for (int i = 0; i < n; ++i) {
     M(i, i) = domain.vertex_mass[i];
-    Rdif(i, i) = p.diffuse_rate[i];
-    Rdec(i, i) = p.decay_rate[i];
+    Rdif(i, i) = p[Param::diffuse_rate][i];
+    Rdec(i, i) = p[Param::decay_rate][i];
   }
   const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(u0.data(), n);
 
-  ReferencePheromone backward(domain, p, Integrator::BackwardEuler, dt);
+  testing::ReferenceField backward(domain, p, Integrator::BackwardEuler, dt);
   backward.set_concentration(u0);
   backward.step();
   const Eigen::VectorXd expected_backward = (M + dt * (Rdif * L + Rdec * M)).partialPivLu().solve(M * u);
   for (int i = 0; i < n; ++i) ASSERT_NEAR(backward.concentration()[i], expected_backward[i], 1e-12);
 
-  ReferencePheromone forward(domain, p, Integrator::ForwardEuler, 0.01);
+  testing::ReferenceField forward(domain, p, Integrator::ForwardEuler, 0.01);
   ASSERT_EQ(forward.sub_steps(), 1);
   forward.set_concentration(u0);
   forward.step();
@@ -244,17 +244,17 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
 // A deposit is an amount: it raises the mass-weighted total by exactly that amount.
 TEST(Pheromone, DepositsAddAmountOverVertexMass) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
-  ReferencePheromone field(domain, rates(domain.vertex_count, 0.01, 1.0), Integrator::ForwardEuler, 0.01);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 1.0), Integrator::ForwardEuler, 0.01);
   field.add_deposit(17, 0.25);
   EXPECT_DOUBLE_EQ(field.concentration()[17], 0.25 / domain.vertex_mass[17]);
   EXPECT_NEAR(field.total_amount(), 0.25, 1e-15);
-  std::vector<double> amounts(static_cast<size_t>(domain.vertex_count), 0.0);
+  IntrinsicVertexData<double> amounts(static_cast<size_t>(domain.vertex_count), 0.0);
   amounts[3] = 1.0;
   amounts[17] = 0.5;
   field.add_deposits(amounts);
   EXPECT_NEAR(field.total_amount(), 1.75, 1e-14);
   EXPECT_DOUBLE_EQ(field.concentration()[17], 0.75 / domain.vertex_mass[17]);
-  EXPECT_THROW(field.add_deposits(std::vector<double>(3, 0.0)), InputError);
+  EXPECT_THROW(field.add_deposits(IntrinsicVertexData<double>(3, 0.0)), InputError);
 }
 
 // Deposits spread uniformly at N r_dep per second with backward Euler settle at exactly U (Eq. 5,
@@ -262,8 +262,8 @@ TEST(Pheromone, DepositsAddAmountOverVertexMass) {
 TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double agents = 200, deposit_rate = 0.5, r_dec = 2.0, dt = 0.05;
-  ReferencePheromone field(domain, rates(domain.vertex_count, 0.001, r_dec), Integrator::BackwardEuler, dt);
-  std::vector<double> amounts(static_cast<size_t>(domain.vertex_count));
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.001, r_dec), Integrator::BackwardEuler, dt);
+  IntrinsicVertexData<double> amounts(static_cast<size_t>(domain.vertex_count));
   double area = 0;
   for (double m : domain.vertex_mass) area += m;
   for (int i = 0; i < domain.vertex_count; ++i) amounts[i] = agents * deposit_rate * dt * domain.vertex_mass[i] / area;
@@ -277,12 +277,12 @@ TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
 
 TEST(Pheromone, RejectsMismatchedSizesAndBadTimeStep) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
-  EXPECT_THROW(ReferencePheromone(domain, rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::ForwardEuler, 0.1),
+  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::ForwardEuler, 0.1),
                InputError);
-  EXPECT_THROW(ReferencePheromone(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.0),
+  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.0),
                InputError);
-  ReferencePheromone field(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.1);
-  EXPECT_THROW(field.set_concentration(std::vector<double>(2, 0.0)), InputError);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.1);
+  EXPECT_THROW(field.set_concentration(IntrinsicVertexData<double>(2, 0.0)), InputError);
 }
 
 }  // namespace

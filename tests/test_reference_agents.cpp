@@ -63,7 +63,7 @@ SurfaceDomain domain_as_is(const InputMesh& mesh) { return build_surface_domain(
 Scene plain_scene() {
   Scene s = default_scene_parameters(1);
   s.mesh = "shape:square";
-  s.diffuse_rate = 0.0;
+  s.parameters[Param::diffuse_rate] = 0.0;
   return s;
 }
 
@@ -175,7 +175,7 @@ TEST(ReferenceAgents, LifetimesAreExponentialWithTheMeanLifetime) {
   const SurfaceDomain domain = domain_as_is(uneven_strip());
   const double tau = 0.5, dt = 0.01;
   const int n = 20000;
-  const std::vector<double> hazard(static_cast<size_t>(domain.vertex_count), 1.0 / tau);
+  const IntrinsicVertexData<double> hazard(static_cast<size_t>(domain.vertex_count), 1.0 / tau);
   Agents agents;
   agents.resize(n);
   for (int a = 0; a < n; ++a) respawn_agent(domain, 9, 0, a, agents);
@@ -224,9 +224,9 @@ TEST(ReferenceAgents, InitialAgesAreTheSteadyStateWithoutInspectionBias) {
   const SurfaceDomain domain = domain_as_is(uneven_strip());
   const double tau = 0.5, t_a = 0.2;
   const int n = 40000;
-  const std::vector<double> hazard(static_cast<size_t>(domain.vertex_count), 1.0 / tau);
+  const IntrinsicVertexData<double> hazard(static_cast<size_t>(domain.vertex_count), 1.0 / tau);
   const double frequency = 20.0, omega = 3.0;
-  const std::vector<double> turn_frequency(hazard.size(), frequency), turn_rate(hazard.size(), omega);
+  const IntrinsicVertexData<double> turn_frequency(hazard.size(), frequency), turn_rate(hazard.size(), omega);
   const Agents agents = initialise_agents(domain, hazard, turn_frequency, turn_rate, n, 3);
   double exposure = 0, remaining = 0, product = 0, phase = 0, phase_squared = 0;
   int active = 0;
@@ -258,7 +258,7 @@ TEST(ReferenceAgents, InitialAgesAreTheSteadyStateWithoutInspectionBias) {
 
   // No turnover: newborn with an infinite threshold.
   const Agents immortal =
-      initialise_agents(domain, std::vector<double>(hazard.size(), 0.0), turn_frequency, turn_rate, 10, 3);
+      initialise_agents(domain, IntrinsicVertexData<double>(hazard.size(), 0.0), turn_frequency, turn_rate, 10, 3);
   for (int a = 0; a < 10; ++a) {
     EXPECT_EQ(immortal.age[a], 0.0);
     EXPECT_TRUE(std::isinf(immortal.exposure_threshold[a]));
@@ -286,12 +286,12 @@ SteeringRun steer_in_gradient(double dt, double seconds, double sensor_angle_deg
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
-  scene.turn_rate = 20.0 * kDegree;  // 1 degree per decision at f = 20
-  scene.turn_frequency = 20.0;
-  scene.sensor_angle = sensor_angle_deg * kDegree;
-  scene.sensor_distance = 0.1;
-  const VertexParameters params = VertexParameters::constant(scene, domain.vertex_count);
-  std::vector<double> u(static_cast<size_t>(domain.vertex_count));
+  scene.parameters[Param::turn_rate] = 20.0 * kDegree;  // 1 degree per decision at f = 20
+  scene.parameters[Param::turn_frequency] = 20.0;
+  scene.parameters[Param::sensor_angle] = sensor_angle_deg * kDegree;
+  scene.parameters[Param::sensor_distance] = 0.1;
+  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  IntrinsicVertexData<double> u(static_cast<size_t>(domain.vertex_count));
   for (int v = 0; v < domain.vertex_count; ++v) u[v] = mesh.positions[v].x();
   Agents agents;
   agents.resize(1);
@@ -325,10 +325,10 @@ TEST(ReferenceAgents, CentreWeakestTurnsToARandomSide) {
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
-  scene.turn_rate = 20.0 * kDegree;
-  scene.sensor_distance = 0.1;
-  const VertexParameters params = VertexParameters::constant(scene, domain.vertex_count);
-  std::vector<double> u(static_cast<size_t>(domain.vertex_count));
+  scene.parameters[Param::turn_rate] = 20.0 * kDegree;
+  scene.parameters[Param::sensor_distance] = 0.1;
+  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  IntrinsicVertexData<double> u(static_cast<size_t>(domain.vertex_count));
   for (int v = 0; v < domain.vertex_count; ++v) u[v] = std::abs(mesh.positions[v].x() - 0.5);
   const int n = 4000;
   Agents agents;
@@ -358,7 +358,7 @@ TEST(ReferenceAgents, CentreWeakestTurnsToARandomSide) {
 TEST(ReferenceAgents, SensorsStopAtBoundariesAndReadNothing) {
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
-  const std::vector<double> u(static_cast<size_t>(domain.vertex_count), 1.0);
+  const IntrinsicVertexData<double> u(static_cast<size_t>(domain.vertex_count), 1.0);
   // 0.03 from the right edge, facing it: a 0.05 sensor crosses the edge, a 0.02 one does not.
   const FacePoint p = locate_on_flat(mesh, domain, {0.97, 0.5});
   const Eigen::Vector2d east = direction_in_face(mesh, p.face, Eigen::Vector3d::UnitX());
@@ -385,7 +385,7 @@ TEST(ReferenceAgents, DepositAlongThePathMatchesTheLineIntegralOfEq4) {
   std::vector<TraceSegment> segments;
   const TraceResult r = trace(domain, p.face, p.position, dir, length, BoundaryRule::Reflect, &segments);
   ASSERT_GT(r.face_crossings, 5);
-  std::vector<double> midpoint(static_cast<size_t>(domain.vertex_count), 0.0), brute(midpoint.size(), 0.0);
+  IntrinsicVertexData<double> midpoint(static_cast<size_t>(domain.vertex_count), 0.0), brute(midpoint.size(), 0.0);
   const double amount = 2.5;
   deposit_along_path(domain, segments, amount, p.face, p.position, midpoint);
   const int pieces = 4000;
@@ -401,7 +401,7 @@ TEST(ReferenceAgents, DepositAlongThePathMatchesTheLineIntegralOfEq4) {
   }
   EXPECT_NEAR(total, amount, 1e-12);
   // A path of no length is a point deposit where the agent stands.
-  std::vector<double> still(midpoint.size(), 0.0);
+  IntrinsicVertexData<double> still(midpoint.size(), 0.0);
   deposit_along_path(domain, {}, 1.0, p.face, p.position, still);
   const Eigen::Vector3d b = barycentric_in_face(domain, p.face, p.position);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(still[domain.face_vertices[p.face][k]], b[k], 1e-15);
@@ -426,9 +426,9 @@ TEST(ReferenceAgents, ReflectionKeepsEveryAgentInsideItsFace) {
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
   scene.agents = 500;
-  scene.move_rate = 2.0;  // 0.02 per step: a boundary every ~25 steps
+  scene.parameters[Param::move_rate] = 2.0;  // 0.02 per step: a boundary every ~25 steps
   SimulationSettings settings{scene.agents, scene.time_step, 2, Integrator::ForwardEuler};
-  ReferenceSimulation sim(domain, VertexParameters::constant(scene, domain.vertex_count), settings);
+  ReferenceSimulation sim(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), settings);
   double worst = 0.0;
   for (int s = 0; s < 200; ++s) {
     sim.step();
@@ -472,12 +472,12 @@ TEST(ReferenceAgents, ZeroTurnRateWalksGeodesics) {
     const InputMesh mesh = load_mesh("shape:sphere");
     const SurfaceDomain domain = domain_as_is(mesh);
     Scene scene = plain_scene();
-    scene.turn_rate = 0.0;
-    scene.mean_lifetime.reset();
+    scene.parameters[Param::turn_rate] = 0.0;
+    scene.parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
     scene.agents = 50;
-    scene.move_rate = 0.5;
+    scene.parameters[Param::move_rate] = 0.5;
     SimulationSettings settings{scene.agents, scene.time_step, 6, Integrator::ForwardEuler};
-    VertexParameters params = VertexParameters::constant(scene, domain.vertex_count);
+    VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
     ReferenceSimulation sim(domain, params, settings);
     const Eigen::Vector3d x0 = point_in_3d(mesh, domain, sim.agents().face[0], sim.agents().position[0]);
     const Eigen::Vector3d d0 = direction_in_3d(mesh, sim.agents().face[0], sim.agents().heading[0]);

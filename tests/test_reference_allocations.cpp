@@ -134,8 +134,8 @@ TEST(ReferenceAllocations, CounterSeesAnAllocation) {
 
 Scene uniform_scene(Integrator integrator) {
   Scene s = default_scene_parameters(500);
-  s.mean_lifetime = 0.2;  // short, so respawns happen inside the counted steps
-  s.activation_time = 0.05;
+  s.parameters[Param::mean_lifetime] = 0.2;  // short, so respawns happen inside the counted steps
+  s.parameters[Param::activation_time] = 0.05;
   s.integrator = integrator;
   s.seed = 5;
   return s;

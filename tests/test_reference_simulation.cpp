@@ -36,11 +36,11 @@ using testing::delaunay_domain;
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
   ReferenceSimulation sim(domain, scene);
   const double U = uniform_steady_state(scene, domain.total_area);
-  sim.pheromone().fill(U);
+  sim.fill_field(U);
   double sum = 0.0;
   for (int s = 1; s <= last; ++s) {
     sim.step();
-    if (s >= first) sum += area_weighted_mean(sim.concentration(), domain.vertex_mass);
+    if (s >= first) sum += area_weighted_mean(sim.field(), domain.vertex_mass);
   }
   return sum / (last - first + 1) / U;
 }
@@ -84,7 +84,7 @@ SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std
   for (long long s = 1; s <= steps; ++s) {
     sim.step();
     if (2 * s > steps && s % std::llround(0.05 / scene.time_step) == 0) {
-      const FieldStatistics f = compute_field_statistics(sim.concentration(), domain.vertex_mass, U);
+      const FieldStatistics f = compute_field_statistics(sim.field(), domain.vertex_mass, U);
       r.mean += f.mean / U;
       r.coverage += f.coverage[1];
       ++samples;
@@ -98,7 +98,7 @@ SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std
 void expect_time_step_independence(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(3000, 0.01, 0.5, integrator);
-  scene.decay_rate = 1.0;
+  scene.parameters[Param::decay_rate] = 1.0;
   const int seeds = 4;
   std::vector<SteadyStatistics> coarse, fine;
   for (int s = 0; s < seeds; ++s) {
@@ -143,13 +143,13 @@ TEST(ReferenceSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
   a.run(150);
   b.run(150);
   c.run(150);
-  EXPECT_EQ(a.concentration(), b.concentration());
+  EXPECT_EQ(a.field(), b.field());
   EXPECT_EQ(a.agents().position, b.agents().position);
   // A different seed grows a different pattern: the fields differ by a sizeable fraction of their norm.
   double diff = 0, norm = 0;
-  for (size_t i = 0; i < a.concentration().size(); ++i) {
-    diff += std::pow(a.concentration()[i] - c.concentration()[i], 2);
-    norm += std::pow(a.concentration()[i], 2);
+  for (size_t i = 0; i < a.field().size(); ++i) {
+    diff += std::pow(a.field()[i] - c.field()[i], 2);
+    norm += std::pow(a.field()[i], 2);
   }
   EXPECT_GT(std::sqrt(diff / norm), 0.2);
 }
@@ -382,15 +382,15 @@ TEST(ReferenceRunCommand, PlyIsTheUnscaledInputMeshAfterRefinementAndScaling) {
 void expect_newborn_start_without_turnover(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(1000, 0.01, std::nullopt, integrator);
-  scene.activation_time = 0.2;
+  scene.parameters[Param::activation_time] = 0.2;
   ReferenceSimulation sim(domain, scene);
   for (double age : sim.agents().age) ASSERT_EQ(age, 0.0) << "agents start newborn without turnover";
   for (int k = 1; k <= 19; ++k) {
     sim.step();
-    for (double u : sim.concentration()) ASSERT_EQ(u, 0.0) << "step " << k << " (t = " << sim.time() << " s)";
+    for (double u : sim.field()) ASSERT_EQ(u, 0.0) << "step " << k << " (t = " << sim.time() << " s)";
   }
   sim.run(2);  // steps 20, 21
-  EXPECT_GT(area_weighted_mean(sim.concentration(), domain.vertex_mass), 0.0) << "agents older than t_a deposit";
+  EXPECT_GT(area_weighted_mean(sim.field(), domain.vertex_mass), 0.0) << "agents older than t_a deposit";
   sim.run(279);  // to 3 s: with a 1 s lifetime this would be ~3000 respawns
   EXPECT_EQ(sim.counters().respawns, 0);
   for (double age : sim.agents().age) EXPECT_NEAR(age, 3.0, 1e-9);

@@ -55,17 +55,17 @@ TEST(Scene, LoadsTheDesignExampleWithUnitsConverted) {
   EXPECT_EQ(s.agents, 100000);
   EXPECT_DOUBLE_EQ(*s.scale_to_area, 4.0);
   EXPECT_DOUBLE_EQ(*s.max_circumradius, 0.02);
-  EXPECT_DOUBLE_EQ(s.sensor_angle, 22.5 * std::numbers::pi / 180.0);  // degrees in the file
-  EXPECT_DOUBLE_EQ(s.turn_rate, std::numbers::pi);                    // 180 deg/s
+  EXPECT_DOUBLE_EQ(s.parameters[Param::sensor_angle], 22.5 * std::numbers::pi / 180.0);  // degrees in the file
+  EXPECT_DOUBLE_EQ(s.parameters[Param::turn_rate], std::numbers::pi);                    // 180 deg/s
   EXPECT_DOUBLE_EQ(s.time_step, 0.01);
-  EXPECT_DOUBLE_EQ(s.sensor_distance, 0.05);
-  EXPECT_DOUBLE_EQ(s.move_rate, 0.5);
-  EXPECT_DOUBLE_EQ(s.turn_frequency, 20.0);
-  EXPECT_DOUBLE_EQ(s.deposit_rate, 1.0);
-  EXPECT_DOUBLE_EQ(s.decay_rate, 1.0);
-  EXPECT_DOUBLE_EQ(s.diffuse_rate, 0.0002);
-  EXPECT_DOUBLE_EQ(*s.mean_lifetime, 1.0);
-  EXPECT_DOUBLE_EQ(s.activation_time, 0.2);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::sensor_distance], 0.05);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::move_rate], 0.5);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::turn_frequency], 20.0);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::deposit_rate], 1.0);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::decay_rate], 1.0);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::diffuse_rate], 0.0002);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::mean_lifetime], 1.0);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::activation_time], 0.2);
   EXPECT_EQ(s.integrator, Integrator::ForwardEuler);
   EXPECT_EQ(s.seed, 1u);
   EXPECT_FALSE(s.steps.has_value());
@@ -84,13 +84,13 @@ TEST(Scene, OptionalKeysAndNullLifetime) {
   j.erase("activation_time");
   TempDir dir;
   const Scene s = load_scene(write(dir, j.dump()));
-  EXPECT_FALSE(s.mean_lifetime.has_value());
+  EXPECT_TRUE(std::isinf(s.parameters[Param::mean_lifetime]));  // null: no turnover
   EXPECT_EQ(s.integrator, Integrator::BackwardEuler);
   EXPECT_DOUBLE_EQ(s.min_angle_deg, 25.0);
   EXPECT_EQ(*s.steps, 300);
   EXPECT_EQ(s.seed, 4294967295u);
   EXPECT_FALSE(s.scale_to_area.has_value());
-  EXPECT_DOUBLE_EQ(s.activation_time, 0.0);
+  EXPECT_DOUBLE_EQ(s.parameters[Param::activation_time], 0.0);
   // No turnover: every agent deposits eventually, so U has no exp(-t_a / tau) factor.
   EXPECT_DOUBLE_EQ(uniform_steady_state(s, 2.0), 100000 * 1.0 / (1.0 * 2.0));
 }
@@ -224,7 +224,7 @@ TEST(Scene, ValidateSceneChecksSceneBuiltInCode) {
   TempDir dir;
   Scene s = load_scene(write(dir, valid_scene().dump()));
   EXPECT_NO_THROW(validate_scene(s));
-  s.sensor_angle = 4.0;  // radians: 229 degrees
+  s.parameters[Param::sensor_angle] = 4.0;  // radians: 229 degrees
   try {
     validate_scene(s);
     FAIL() << "sensor angle of 229 degrees accepted";
@@ -242,17 +242,16 @@ TEST(Scene, VertexParametersAreConstantPerVertex) {
   json j = valid_scene();
   j["mean_lifetime"] = nullptr;
   const Scene s = load_scene(write(dir, j.dump()));
-  const VertexParameters p = VertexParameters::constant(s, 7);
+  const VertexParameters p = VertexParameters::constant(s.parameters, 7);
   EXPECT_EQ(p.vertex_count(), 7);
-  for (const auto* field : {&p.diffuse_rate, &p.decay_rate, &p.sensor_distance, &p.sensor_angle, &p.move_rate,
-                            &p.turn_rate, &p.turn_frequency, &p.deposit_rate, &p.mean_lifetime, &p.activation_time}) {
-    EXPECT_EQ(field->size(), 7u);
-    EXPECT_TRUE(is_uniform(*field));
+  for (const ParameterSpec& spec : kParameterTable) {
+    EXPECT_EQ(p[spec.id].size(), 7u) << spec.key;
+    EXPECT_TRUE(p.uniform(spec.id)) << spec.key;
   }
-  EXPECT_DOUBLE_EQ(p.sensor_angle[3], s.sensor_angle);
-  EXPECT_DOUBLE_EQ(p.diffuse_rate[6], 0.0002);
-  EXPECT_TRUE(std::isinf(p.mean_lifetime[0]));  // no turnover: zero hazard
-  EXPECT_FALSE(is_uniform({1.0, 1.0, 2.0}));
+  EXPECT_DOUBLE_EQ(p[Param::sensor_angle][3], s.parameters[Param::sensor_angle]);
+  EXPECT_DOUBLE_EQ(p[Param::diffuse_rate][6], 0.0002);
+  EXPECT_TRUE(std::isinf(p[Param::mean_lifetime][0]));  // no turnover: zero hazard
+  EXPECT_FALSE(is_uniform(IntrinsicVertexData<double>(std::vector<double>{1.0, 1.0, 2.0})));
 }
 
 // The parameters code builds without a file (benchmarks, tests) are the shipped default scene's,
@@ -262,16 +261,8 @@ TEST(Scene, DefaultSceneParametersAreTheShippedDefaultScene) {
   const Scene code = default_scene_parameters(file.agents);
   EXPECT_EQ(code.agents, file.agents);
   EXPECT_EQ(code.time_step, file.time_step);
-  EXPECT_EQ(code.sensor_distance, file.sensor_distance);
-  EXPECT_EQ(code.sensor_angle, file.sensor_angle);
-  EXPECT_EQ(code.move_rate, file.move_rate);
-  EXPECT_EQ(code.turn_rate, file.turn_rate);
-  EXPECT_EQ(code.turn_frequency, file.turn_frequency);
-  EXPECT_EQ(code.deposit_rate, file.deposit_rate);
-  EXPECT_EQ(code.decay_rate, file.decay_rate);
-  EXPECT_EQ(code.diffuse_rate, file.diffuse_rate);
-  EXPECT_EQ(code.mean_lifetime, file.mean_lifetime);
-  EXPECT_EQ(code.activation_time, file.activation_time);
+  for (const ParameterSpec& spec : kParameterTable)
+    EXPECT_EQ(code.parameters[spec.id], file.parameters[spec.id]) << spec.key;
   EXPECT_EQ(code.integrator, file.integrator);
   EXPECT_EQ(code.seed, file.seed);
 }

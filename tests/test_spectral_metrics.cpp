@@ -37,14 +37,14 @@ const SphereFixture& sphere() {
 
 // The field f(position) at every vertex (for shapes, domain vertex i is input vertex i).
 template <class F>
-std::vector<double> sample(const SphereFixture& s, F f) {
-  std::vector<double> u(s.domain.vertex_count);
+IntrinsicVertexData<double> sample(const SphereFixture& s, F f) {
+  IntrinsicVertexData<double> u(s.domain.vertex_count);
   for (int v = 0; v < s.domain.vertex_count; ++v) u[v] = f(s.input.positions[v]);
   return u;
 }
 
 // Area-weighted variance / mean^2, straight from the definition.
-double squared_cv(const std::vector<double>& u, const std::vector<double>& m) {
+double squared_cv(const IntrinsicVertexData<double>& u, const IntrinsicVertexData<double>& m) {
   double a = 0, s = 0;
   for (size_t i = 0; i < u.size(); ++i) {
     a += m[i];
@@ -58,7 +58,7 @@ double squared_cv(const std::vector<double>& u, const std::vector<double>& m) {
 
 TEST(SpectralMetrics, BandEdgesAreEqualInSqrtLambdaAndTheConstantModeIsLeftOut) {
   const SphereFixture& s = sphere();
-  const std::vector<double> constant(s.domain.vertex_count, 3.0);
+  const IntrinsicVertexData<double> constant(s.domain.vertex_count, 3.0);
   const ManifoldHarmonicBands r = manifold_harmonic_band_powers(s.domain, s.pairs, constant, 4);
   ASSERT_EQ(r.edges.size(), 5u);
   EXPECT_EQ(r.edges[0], 0.0);
@@ -76,7 +76,7 @@ TEST(SpectralMetrics, OneEigenvectorLandsInItsOwnBandOnly) {
   const SphereFixture& s = sphere();
   for (int k : {2, 6, 12, 20}) {
     // u = 2 + 0.5 phi_k: c_k = 0.5 (phi_k is M-normalised), so its band holds 0.25 / (A * 2^2).
-    std::vector<double> u(s.domain.vertex_count);
+    IntrinsicVertexData<double> u(s.domain.vertex_count);
     for (int v = 0; v < s.domain.vertex_count; ++v) u[v] = 2.0 + 0.5 * s.pairs.vectors(v, k);
     const ManifoldHarmonicBands r = manifold_harmonic_band_powers(s.domain, s.pairs, u, 4);
     const double root = std::sqrt(s.pairs.values[k]);
@@ -96,7 +96,7 @@ TEST(SpectralMetrics, SphericalHarmonicsLandInTheBandOfTheirDegree) {
   // u = 1 + x y: integral of x^2 y^2 = 4 pi / 15 -> 1/15, band 2.
   // u = 1 + 2 x y z: integral of 4 x^2 y^2 z^2 = 16 pi / 105 -> 4/105, band 3.
   struct Case {
-    std::vector<double> u;
+    IntrinsicVertexData<double> u;
     int band;
     double power;
   };
@@ -124,7 +124,7 @@ TEST(SpectralMetrics, BandPowersSumToTheSquaredCoefficientOfVariationAndAreScale
   const SphereFixture& s = sphere();
   // u = 3 + sum of modes across several bands: Parseval says the bands hold exactly the
   // area-weighted variance / mean^2, computed here from the vertex values directly.
-  std::vector<double> u(s.domain.vertex_count, 3.0);
+  IntrinsicVertexData<double> u(s.domain.vertex_count, 3.0);
   const double a[] = {0.0, 0.7, 0.0, 0.0, -0.4, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5};
   for (int k = 0; k < 19; ++k)
     for (int v = 0; v < s.domain.vertex_count; ++v) u[v] += a[k] * s.pairs.vectors(v, k);
@@ -135,7 +135,7 @@ TEST(SpectralMetrics, BandPowersSumToTheSquaredCoefficientOfVariationAndAreScale
   EXPECT_NEAR(total, by_hand, 1e-12);
   EXPECT_NEAR(total, squared_cv(u, s.domain.vertex_mass), 1e-10);
   // Dimensionless: scaling the field changes nothing.
-  std::vector<double> scaled = u;
+  IntrinsicVertexData<double> scaled = u;
   for (double& x : scaled) x *= 250.0;
   const ManifoldHarmonicBands q = manifold_harmonic_band_powers(s.domain, s.pairs, scaled, 3);
   for (int b = 0; b < 3; ++b) EXPECT_NEAR(q.power[b], r.power[b], 1e-12 * std::max(1.0, r.power[b]));
@@ -145,9 +145,9 @@ TEST(SpectralMetrics, BandPowersSumToTheSquaredCoefficientOfVariationAndAreScale
   EXPECT_NEAR(c[1], 0.7, 1e-9);
   EXPECT_NEAR(c[2], 0.0, 1e-9);
 
-  EXPECT_THROW(manifold_harmonic_band_powers(s.domain, s.pairs, std::vector<double>(5, 1.0), 3), InputError);
+  EXPECT_THROW(manifold_harmonic_band_powers(s.domain, s.pairs, IntrinsicVertexData<double>(5, 1.0), 3), InputError);
   EXPECT_THROW(manifold_harmonic_band_powers(s.domain, s.pairs, u, 0), InputError);
-  EXPECT_THROW(manifold_harmonic_band_powers(s.domain, s.pairs, std::vector<double>(s.domain.vertex_count, 0.0), 3),
+  EXPECT_THROW(manifold_harmonic_band_powers(s.domain, s.pairs, IntrinsicVertexData<double>(s.domain.vertex_count, 0.0), 3),
                InputError);
 }
 
@@ -163,8 +163,8 @@ const SquareFixture& square() {
 }
 
 template <class F>
-std::vector<double> sample_xy(const std::vector<Eigen::Vector2d>& xy, F f) {
-  std::vector<double> u(xy.size());
+IntrinsicVertexData<double> sample_xy(const std::vector<Eigen::Vector2d>& xy, F f) {
+  IntrinsicVertexData<double> u(xy.size());
   for (size_t v = 0; v < xy.size(); ++v) u[v] = f(xy[v]);
   return u;
 }
@@ -198,7 +198,7 @@ TEST(SpectralMetrics, RasterisationInterpolatesLinearFieldsExactly) {
   const InputMesh disk = load_mesh("shape:disk");
   std::vector<Eigen::Vector2d> dxy;
   for (const auto& p : disk.positions) dxy.emplace_back(p.x(), p.y());
-  const GridSamples d = rasterize_planar_field(dxy, disk.triangles, std::vector<double>(dxy.size(), 1.0), 64);
+  const GridSamples d = rasterize_planar_field(dxy, disk.triangles, IntrinsicVertexData<double>(dxy.size(), 1.0), 64);
   int covered = 0;
   for (int j = 0; j < 64; ++j)
     for (int i = 0; i < 64; ++i) {
@@ -249,7 +249,7 @@ TEST(SpectralMetrics, OnTheDiskTheMeanAndParsevalUseTheCoveredCellsOnly) {
   const InputMesh disk = load_mesh("shape:disk");
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : disk.positions) xy.emplace_back(p.x(), p.y());
-  std::vector<double> u(xy.size());
+  IntrinsicVertexData<double> u(xy.size());
   for (size_t v = 0; v < xy.size(); ++v) u[v] = 2.0 + xy[v].x();
   const GridSamples g = rasterize_planar_field(xy, disk.triangles, u, 32);
   const RadialSpectrum r = radial_power_spectrum(g);
@@ -269,7 +269,7 @@ TEST(SpectralMetrics, PlaneWavePeaksAtItsWavenumber) {
   const SquareFixture& s = square();
   for (int k : {2, 3, 5}) {
     // u = 2 + cos(2 pi k x): all variance (1/2, over mean^2 = 4: 1/8) at (kx, ky) = (+-k, 0).
-    const std::vector<double> u =
+    const IntrinsicVertexData<double> u =
         sample_xy(s.xy, [k](const Eigen::Vector2d& p) { return 2.0 + std::cos(2 * kPi * k * p.x()); });
     const RadialSpectrum r = radial_power_spectrum(s.xy, s.domain.face_vertices, u, 64);
     EXPECT_NEAR(r.side, 1.0, 1e-14);
@@ -292,7 +292,7 @@ TEST(SpectralMetrics, PlaneWavePeaksAtItsWavenumber) {
     EXPECT_LT(r.power[0], 1e-25);  // the mean is subtracted
   }
   // An oblique wave cos(2 pi (3 x + 4 y)) has |k| = 5.
-  const std::vector<double> u =
+  const IntrinsicVertexData<double> u =
       sample_xy(s.xy, [](const Eigen::Vector2d& p) { return 2.0 + std::cos(2 * kPi * (3 * p.x() + 4 * p.y())); });
   const RadialSpectrum r = radial_power_spectrum(s.xy, s.domain.face_vertices, u, 64);
   int peak = 1;
@@ -305,7 +305,7 @@ TEST(SpectralMetrics, RadialSpectrumSatisfiesParsevalAndCountsEveryFrequencyOnce
   const SquareFixture& s = square();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> uniform(0.5, 1.5);
-  std::vector<double> u(s.xy.size());
+  IntrinsicVertexData<double> u(s.xy.size());
   for (double& x : u) x = uniform(rng);
   const int n = 48;
   const GridSamples g = rasterize_planar_field(s.xy, s.domain.face_vertices, u, n);
@@ -328,17 +328,17 @@ TEST(SpectralMetrics, RadialSpectrumSatisfiesParsevalAndCountsEveryFrequencyOnce
   EXPECT_NEAR(r.mean, mean, 1e-14);
   EXPECT_NEAR(total, variance / (mean * mean), 1e-12);
   // Scale free.
-  std::vector<double> scaled = u;
+  IntrinsicVertexData<double> scaled = u;
   for (double& x : scaled) x *= 1e3;
   const RadialSpectrum q = radial_power_spectrum(s.xy, s.domain.face_vertices, scaled, n);
   for (size_t k = 0; k < r.power.size(); ++k) EXPECT_NEAR(q.power[k], r.power[k], 1e-12 * r.power[k] + 1e-30);
-  EXPECT_THROW(radial_power_spectrum(s.xy, s.domain.face_vertices, std::vector<double>(s.xy.size(), 0.0), n),
+  EXPECT_THROW(radial_power_spectrum(s.xy, s.domain.face_vertices, IntrinsicVertexData<double>(s.xy.size(), 0.0), n),
                InputError);
 }
 
 TEST(SpectralMetrics, AgentDensityDispersionKnownPlacements) {
   // Faces of area 1, 3, 2, 2 (total 8).
-  const std::vector<double> area = {1.0, 3.0, 2.0, 2.0};
+  const IntrinsicFaceData<double> area{1.0, 3.0, 2.0, 2.0};
   // Exactly proportional to area: 1, 3, 2, 2 agents -> no dispersion.
   AgentDensityDispersion d = agent_density_dispersion({0, 1, 1, 1, 2, 2, 3, 3}, area);
   EXPECT_NEAR(d.dispersion, 0.0, 1e-15);
@@ -353,12 +353,12 @@ TEST(SpectralMetrics, AgentDensityDispersionKnownPlacements) {
   EXPECT_NEAR(agent_density_dispersion({2, 3}, area).dispersion, 1.0, 1e-13);
   EXPECT_THROW(agent_density_dispersion({}, area), InputError);
   EXPECT_THROW(agent_density_dispersion({4}, area), InputError);
-  EXPECT_THROW(agent_density_dispersion({0}, {1.0, 0.0}), InputError);
+  EXPECT_THROW(agent_density_dispersion({0}, IntrinsicFaceData<double>{1.0, 0.0}), InputError);
 }
 
 TEST(SpectralMetrics, AgentDensityDispersionOfUniformPlacementIsTheShotNoiseFloor) {
   // Agents placed independently with probability proportional to area: E[D] = (F - 1) / N.
-  const std::vector<double> area = {0.5, 1.0, 2.0, 0.25, 1.25, 3.0, 0.75, 1.5, 1.0, 0.5};
+  const IntrinsicFaceData<double> area{0.5, 1.0, 2.0, 0.25, 1.25, 3.0, 0.75, 1.5, 1.0, 0.5};
   std::mt19937_64 rng(99);
   std::discrete_distribution<int> pick(area.begin(), area.end());
   const int agents = 200, runs = 4000;

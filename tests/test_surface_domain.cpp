@@ -267,7 +267,7 @@ TEST(SurfaceDomain, BarycentricCoordinatesOfCornersAndCentroid) {
 TEST(SurfaceDomain, FaceSamplerIsProportionalToAreaTimesWeight) {
   const InputMesh input = make_square_grid(2, false, 0.0);
   const IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
-  std::vector<double> weight(mesh.face_count(), 1.0);
+  IntrinsicFaceData<double> weight(mesh.face_count(), 1.0);
   weight[0] = 0.0;
   weight[3] = 3.0;
   const SurfaceDomain d = build_surface_domain(mesh, weight);
@@ -282,7 +282,7 @@ TEST(SurfaceDomain, FaceSamplerIsProportionalToAreaTimesWeight) {
   for (int f = 0; f < d.face_count; ++f) EXPECT_NEAR(p[f], weight[f] / 9.0, 1e-12);
   weight[2] = -1.0;
   EXPECT_THROW(build_surface_domain(mesh, weight), InputError);
-  EXPECT_THROW(build_surface_domain(mesh, std::vector<double>(3, 1.0)), InputError);
+  EXPECT_THROW(build_surface_domain(mesh, IntrinsicFaceData<double>(3, 1.0)), InputError);
 }
 
 TEST(SurfaceDomain, RejectsImpossibleTrianglesNamingTheFace) {

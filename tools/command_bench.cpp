@@ -21,7 +21,7 @@
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
-#include "reference/pheromone.hpp"
+#include "reference/diffusion_decay.hpp"
 #include "reference/simulation.hpp"
 #include "tools/commands.hpp"
 
@@ -110,9 +110,9 @@ Scene scene_scaled_to(const SurfaceDomain& d) {
   constexpr double kNativeFaces = 20000;  // where the default scene's lengths are used as they are
   const double scale = std::sqrt(kNativeFaces / d.face_count);  // h over the native resolution's h
   Scene s = bench_scene(d.face_count);
-  s.sensor_distance *= scale;
-  s.move_rate *= scale;
-  s.diffuse_rate *= scale * scale;
+  s.parameters[Param::sensor_distance] *= scale;
+  s.parameters[Param::move_rate] *= scale;
+  s.parameters[Param::diffuse_rate] *= scale * scale;
   return s;
 }
 
@@ -198,11 +198,10 @@ class Bench {
   };
   PheromoneTiming pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator) {
     const Scene scene = bench_scene(0);
-    const VertexParameters params = VertexParameters::constant(scene, d.vertex_count);
+    const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
     PheromoneTiming t;
-    auto time = [&](auto& field, auto finish, bool beside_triad) {
-      field.fill(1.0);
-      field.step();
+    auto time = [&](auto step, auto finish, bool beside_triad) {
+      step();
       finish();
       // The best of several single steps: on a shared machine the best is what the code can do,
       // the rest is other tenants.
@@ -212,7 +211,7 @@ class Bench {
         if (beside_triad)
           t.triad_bytes_per_second = std::max(t.triad_bytes_per_second, bandwidth_.bytes_per_second(1));
         const Clock::time_point step_start = Clock::now();
-        field.step();
+        step();
         finish();
         best = std::min(best, seconds_since(step_start));
       }
@@ -222,14 +221,16 @@ class Bench {
       // Numbered as a simulation numbers the device's field, so it reads memory the same way.
       opencl::OpenCLPheromone field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
       const bool forward = integrator == Integrator::ForwardEuler;
-      t.seconds = time(field, [&] { compute_.queue.finish(); }, forward);
+      field.fill(1.0);
+      t.seconds = time([&] { field.step(); }, [&] { compute_.queue.finish(); }, forward);
       t.sub_steps = field.sub_steps();
       if (forward) t.bytes_per_step = field.forward_bytes_per_sub_step() * field.sub_steps();
       return t;
     }
-    ReferencePheromone field(d, params, integrator, scene.time_step);
-    t.seconds = time(field, [] {}, false);
-    t.sub_steps = field.sub_steps();
+    ReferenceDiffusionDecay model(d, params, integrator, scene.time_step);
+    IntrinsicVertexData<double> u(static_cast<size_t>(d.vertex_count), 1.0);
+    t.seconds = time([&] { model.step(u); }, [] {}, false);
+    t.sub_steps = model.sub_steps();
     return t;
   }
 
@@ -326,7 +327,7 @@ int run_bench(const BenchOptions& o) {
     const SurfaceDomain* cached = bench.domain(surface, o.quick ? 0.01 : 0.005);
     for (const bool doubled : {false, true}) {
       Scene scene = bench_scene(0);
-      if (doubled) scene.sensor_distance *= 2.0, scene.move_rate *= 2.0;
+      if (doubled) scene.parameters[Param::sensor_distance] *= 2.0, scene.parameters[Param::move_rate] *= 2.0;
       const std::string sweep = doubled ? "in_cache_x2" : "in_cache";
       for (const int agents : o.quick ? std::vector<int>{100000} : std::vector<int>{100000, 1000000})
         for (const std::string& b : backends) {

@@ -139,7 +139,7 @@ int run_run(const RunOptions& o) {
   create_output_folder(o.out);
   const std::filesystem::path out(o.out);
 
-  const std::vector<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, simulation.concentration_values());
+  const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, simulation.field_values());
   // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
   // of one scene are comparable (the value itself is in the PLY property).
   FieldColoring coloring;

@@ -16,7 +16,7 @@
 #include "one_step_comparison.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "probe_checks.hpp"
-#include "reference/pheromone.hpp"
+#include "reference/diffusion_decay.hpp"
 #include "reference/simulation.hpp"
 
 #include <chrono>
@@ -53,7 +53,7 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
   const Scene sc = scene(5000, integrator);
   OpenCLSimulation sim(compute, domain, sc);
   const double U = uniform_steady_state(sc, domain.total_area);
-  sim.fill_concentration(U);
+  sim.fill_field(U);
   double sum = 0.0;
   int n = 0;
   for (int s = 1; s <= 600; ++s) {
@@ -70,20 +70,22 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
                        double triad_bytes_per_second) {
   const SurfaceDomain domain = in_device_vertex_order(surface);
   const int n = domain.vertex_count;
-  VertexParameters params;
-  params.diffuse_rate.assign(static_cast<size_t>(n), 0.01);
-  params.decay_rate.assign(static_cast<size_t>(n), 0.5);
-  ReferencePheromone reference(domain, params, Integrator::ForwardEuler, 1.0);
+  ParameterValues rates;
+  rates[Param::diffuse_rate] = 0.01;
+  rates[Param::decay_rate] = 0.5;
+  const VertexParameters params = VertexParameters::constant(rates, n);
+  ReferenceDiffusionDecay reference(domain, params, Integrator::ForwardEuler, 1.0);
   const double dt = 2.5 * reference.stable_time_step();
-  ReferencePheromone expected(domain, params, Integrator::ForwardEuler, dt);
+  ReferenceDiffusionDecay expected(domain, params, Integrator::ForwardEuler, dt);
   OpenCLPheromone device(compute, domain, params, Integrator::ForwardEuler, dt);
+  // The domain is already in the device's vertex order, so one list of values serves both.
   std::vector<double> u0(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) u0[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
-  expected.set_concentration(u0);
-  device.set_concentration(u0);
-  expected.step();
+  IntrinsicVertexData<double> want(u0);
+  device.set_concentration(DeviceVertexData<double>(u0));
+  expected.step(want);
   device.step();
-  const std::vector<double> got = device.concentration(), want = expected.concentration();
+  const DeviceVertexData<double> got = device.concentration();
   double diff = 0.0, scale = 0.0;
   for (int i = 0; i < n; ++i) {
     diff = std::max(diff, std::abs(got[static_cast<size_t>(i)] - want[static_cast<size_t>(i)]));

@@ -29,13 +29,13 @@ using testing::check;
 
 VertexParameters rates(int n, double diffuse, double decay) {
   VertexParameters p;
-  p.diffuse_rate.assign(static_cast<size_t>(n), diffuse);
-  p.decay_rate.assign(static_cast<size_t>(n), decay);
+  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
+  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
   return p;
 }
 
-std::vector<double> ramp(int n) {
-  std::vector<double> u(static_cast<size_t>(n));
+DeviceVertexData<double> ramp(int n) {
+  DeviceVertexData<double> u(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) u[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
   return u;
 }
@@ -47,11 +47,11 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
   options.cg_check_interval = 8;
   OpenCLPheromone field(compute, domain, params, integrator, dt, options);
   field.set_concentration(ramp(domain.vertex_count));
-  field.add_deposits(std::vector<double>(static_cast<size_t>(domain.vertex_count), 1e-3));
+  field.add_deposits(DeviceVertexData<double>(static_cast<size_t>(domain.vertex_count), 1e-3));
   for (int s = 0; s < 2; ++s) field.step();
   const FieldStatistics stats = field.statistics(0.5);
   const double total = field.total_amount();
-  const std::vector<double> u = field.concentration();
+  const DeviceVertexData<double> u = field.concentration();
   bool finite = std::isfinite(stats.mean) && std::isfinite(total);
   for (double x : u) finite = finite && std::isfinite(x);
   check(finite, label + ": field and statistics finite (mean " + std::to_string(stats.mean) + ", " +
@@ -73,16 +73,16 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   Scene scene;
   scene.agents = 301;  // not a multiple of the work-group size or of 4: padded and part-filled work-items run too
   scene.time_step = 0.02;
-  scene.sensor_distance = 0.3;
-  scene.sensor_angle = 0.4;
-  scene.move_rate = 10.0;  // several faces per step, and boundary hits on the square
-  scene.turn_rate = 3.0;
-  scene.turn_frequency = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
-  scene.deposit_rate = 1.0;
-  scene.decay_rate = 0.5;
-  scene.diffuse_rate = 0.01;
-  scene.mean_lifetime = 0.05;
-  scene.activation_time = 0.01;
+  scene.parameters[Param::sensor_distance] = 0.3;
+  scene.parameters[Param::sensor_angle] = 0.4;
+  scene.parameters[Param::move_rate] = 10.0;  // several faces per step, and boundary hits on the square
+  scene.parameters[Param::turn_rate] = 3.0;
+  scene.parameters[Param::turn_frequency] = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
+  scene.parameters[Param::deposit_rate] = 1.0;
+  scene.parameters[Param::decay_rate] = 0.5;
+  scene.parameters[Param::diffuse_rate] = 0.01;
+  scene.parameters[Param::mean_lifetime] = 0.05;
+  scene.parameters[Param::activation_time] = 0.01;
   scene.integrator = integrator;
   OpenCLSimulationOptions options;
   options.agents_per_work_item = agents_per_work_item;
@@ -151,7 +151,7 @@ int run(int argc, char** argv) {
   const SurfaceDomain domain = testing::make_domain(testing::make_icosphere(2));
   const int n = domain.vertex_count;
   VertexParameters mixed = rates(n, 0.02, 0.5);
-  for (int i = 0; i < n; ++i) mixed.diffuse_rate[static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
+  for (int i = 0; i < n; ++i) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::ForwardEuler, 3.0, "forward Euler, sub-steps");
   // The icosphere's rows all fit the ELL width; the prism's two cap centres (16 neighbours) do not,
   // so its forward step runs the overflow kernel too.
