@@ -1,5 +1,7 @@
 #include "common/scene_keys.hpp"
 
+#include "common/scene.hpp"
+
 #include <algorithm>
 #include <limits>
 
@@ -40,6 +42,8 @@ std::vector<SceneKey> build_keys() {
       setting("time_step", K::Number, true, kPositive, "s", "", "time step dt"),
   };
   for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));
+  const ComparisonSettings c;  // the harness's documented defaults, shown as they are in code
+  const auto shown = [](double v) { return ValueRange::number(v); };
   const std::vector<SceneKey> rest = {
       setting("integrator", K::String, false, {}, "", "\"forward\"", "time integration of the pheromone PDE",
               "\"forward\" or \"backward\" (Euler)"),
@@ -48,23 +52,23 @@ std::vector<SceneKey> build_keys() {
               "run length in steps (at most one of steps, sim_time)"),
       setting("sim_time", K::Number, false, kPositive, "s", "", "run length in simulated seconds"),
       // ---- the differential harness (ComparisonSettings, tools/scenes/compare/README.md) ----
-      setting("compare_burn_in", K::Number, false, kNonNegative, "s", "2", "compare: simulated and discarded per seed"),
-      setting("compare_duration", K::Number, false, kPositive, "s", "3", "compare: simulated and averaged per seed"),
-      setting("compare_sample_interval", K::Number, false, kPositive, "s", "0.1", "compare: between two samples"),
+      setting("compare_burn_in", K::Number, false, kNonNegative, "s", shown(c.burn_in), "compare: simulated and discarded per seed"),
+      setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed"),
+      setting("compare_sample_interval", K::Number, false, kPositive, "s", shown(c.sample_interval), "compare: between two samples"),
       setting("compare_seeds", K::Integer, false, ValueRange{2.0, false, 10000.0, false}, "",
               "from the power calculation", "compare: seeds per arm"),
-      setting("compare_margin_mean", K::Number, false, kPositive, "", "0.03", "compare: margin on mean / U"),
-      setting("compare_margin_coverage", K::Number, false, kPositive, "", "0.02",
+      setting("compare_margin_mean", K::Number, false, kPositive, "", shown(c.margin_mean), "compare: margin on mean / U"),
+      setting("compare_margin_coverage", K::Number, false, kPositive, "", shown(c.margin_coverage),
               "compare: margin on each coverage fraction"),
-      setting("compare_margin_spectrum", K::Number, false, kPositive, "", "0.3",
+      setting("compare_margin_spectrum", K::Number, false, kPositive, "", shown(c.margin_spectrum),
               "compare: relative margin on each spectral band power"),
-      setting("compare_margin_density", K::Number, false, kPositive, "", "0.1",
+      setting("compare_margin_density", K::Number, false, kPositive, "", shown(c.margin_density),
               "compare: relative margin on the agent-density dispersion"),
-      setting("compare_margin_detail", K::Number, false, kPositive, "", "0.1",
+      setting("compare_margin_detail", K::Number, false, kPositive, "", shown(c.margin_detail),
               "compare: relative margin on each detail energy"),
-      setting("compare_bands", K::Integer, false, ValueRange{1.0, false, 64.0, false}, "", "6",
+      setting("compare_bands", K::Integer, false, ValueRange{1.0, false, 64.0, false}, "", shown(c.spectrum_bands),
               "compare: manifold-harmonic (and radial) bands"),
-      setting("compare_eigenpairs", K::Integer, false, ValueRange{4.0, false, 2000.0, false}, "", "48",
+      setting("compare_eigenpairs", K::Integer, false, ValueRange{4.0, false, 2000.0, false}, "", shown(c.eigenpairs),
               "compare: manifold harmonics computed for the bands"),
   };
   keys.insert(keys.end(), rest.begin(), rest.end());

@@ -131,7 +131,9 @@ TEST(MeshLoading, BunnyDropsUnreferencedVerticesAndLoadsFast) {
   // file_vertex is strictly increasing when only unreferenced vertices were dropped.
   for (int v = 1; v < m.vertex_count(); ++v) ASSERT_LT(m.file_vertex[v - 1], m.file_vertex[v]);
 #ifdef NDEBUG
-  EXPECT_LT(seconds, 1.0) << "loading a 2.4 MB OBJ should take well under a second in Release";
+  // A guard against quadratic behaviour (minutes), not a speed test: it takes ~0.5 s alone and must
+  // pass on a busy 2-core machine; bench/ measures speed.
+  EXPECT_LT(seconds, 10.0) << "loading a 2.4 MB OBJ took far too long";
 #endif
   RecordProperty("load_seconds", std::to_string(seconds));
 }

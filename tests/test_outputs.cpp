@@ -1,11 +1,9 @@
-// Result outputs: intrinsic <-> input field transfer, the PLY file (parsed back here byte by byte),
+// Result outputs: the PLY file (parsed back here byte by byte),
 // the preview PNG (read back through OpenImageIO), the colour maps, and atomic writes that leave no
 // partial file behind.
 #include "common/atomic_write.hpp"
 #include "common/colormap.hpp"
 #include "common/errors.hpp"
-#include "common/field_transfer.hpp"
-#include "common/intrinsic_triangulation.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "pheromone_test_meshes.hpp"
@@ -36,70 +34,6 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
   std::vector<std::string> names;
   for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
   return names;
-}
-
-// ---- field transfer ------------------------------------------------------------------------------
-
-// The intrinsic triangulation keeps the input vertices as intrinsic vertices 0..nV-1 (inserted
-// vertices follow); the transfer finds exactly that numbering from the vertex locations.
-TEST(FieldTransfer, RefinedTriangulationKeepsInputVerticesFirst) {
-  const InputMesh mesh = testing::make_icosphere(1);
-  IntrinsicTriangulation triangulation(mesh);
-  triangulation.flip_to_delaunay();
-  RefinementOptions options;
-  options.max_circumradius = 0.15;
-  triangulation.refine(options);
-  const SurfaceDomain domain = build_surface_domain(triangulation.snapshot());
-  ASSERT_GT(domain.vertex_count, mesh.vertex_count()) << "test premise: refinement inserted vertices";
-  const InputVertexData<int> map = input_vertex_to_intrinsic(mesh, domain.vertex_location);
-  for (int v = 0; v < mesh.vertex_count(); ++v) ASSERT_EQ(map[v], v);
-  // Values come back unchanged at the input vertices.
-  IntrinsicVertexData<double> intrinsic(static_cast<size_t>(domain.vertex_count));
-  for (int i = 0; i < domain.vertex_count; ++i) intrinsic[i] = 10.0 * i + 0.5;
-  const InputVertexData<double> input = intrinsic_to_input(mesh, domain.vertex_location, intrinsic);
-  for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 10.0 * v + 0.5);
-}
-
-// Should a triangulation ever renumber, the transfer still finds each input vertex by location.
-TEST(FieldTransfer, FindsInputVerticesByLocationWhenRenumbered) {
-  const InputMesh mesh = testing::make_square_grid(3);
-  const IntrinsicMesh as_is = intrinsic_mesh_from_input(mesh);
-  // Intrinsic vertices: two inserted ones (face interiors) first, then the input vertices reversed.
-  IntrinsicVertexData<SurfacePoint> locations;
-  locations.values().push_back({0, Eigen::Vector3d(0.2, 0.3, 0.5)});
-  locations.values().push_back({4, Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3)});
-  for (int v = mesh.vertex_count() - 1; v >= 0; --v) locations.values().push_back(as_is.vertex_location[v]);
-  IntrinsicVertexData<double> intrinsic(locations.size());
-  for (size_t i = 0; i < intrinsic.size(); ++i) intrinsic[i] = static_cast<double>(i);
-  const InputVertexData<double> input = intrinsic_to_input(mesh, locations, intrinsic);
-  for (int v = 0; v < mesh.vertex_count(); ++v) EXPECT_EQ(input[v], 2.0 + (mesh.vertex_count() - 1 - v)) << v;
-
-  locations.values().pop_back();  // input vertex 0 now has no intrinsic vertex on it
-  intrinsic.values().pop_back();
-  EXPECT_THROW(intrinsic_to_input(mesh, locations, intrinsic), InputError);
-}
-
-// Input -> intrinsic interpolates linearly: a linear function of position is reproduced exactly at
-// every intrinsic vertex, inserted ones included.
-TEST(FieldTransfer, InputToIntrinsicReproducesLinearFields) {
-  const InputMesh mesh = testing::make_square_grid(4);
-  IntrinsicVertexData<SurfacePoint> locations(intrinsic_mesh_from_input(mesh).vertex_location);
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  for (int k = 0; k < 20; ++k) {
-    double a = uniform(rng), b = uniform(rng) * (1 - a);
-    locations.values().push_back({k % mesh.triangle_count(), Eigen::Vector3d(a, b, 1 - a - b)});
-  }
-  const InputVertexData<double> field = linear_field(mesh);
-  const IntrinsicVertexData<double> sampled = input_to_intrinsic(mesh, locations, field);
-  for (size_t i = 0; i < locations.size(); ++i) {
-    const auto& t = mesh.triangles[locations[i].face];
-    const Eigen::Vector3d p = locations[i].barycentric[0] * mesh.positions[t[0]] +
-                              locations[i].barycentric[1] * mesh.positions[t[1]] +
-                              locations[i].barycentric[2] * mesh.positions[t[2]];
-    EXPECT_NEAR(sampled[i], 1.0 + 2.0 * p.x() - 0.5 * p.y() + 3.0 * p.z(), 1e-12);
-  }
-  EXPECT_THROW(input_to_intrinsic(mesh, locations, InputVertexData<double>{1.0, 2.0}), InputError);
 }
 
 // ---- colour maps ---------------------------------------------------------------------------------

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   commands.push_back(physarum::cli::add_run_command(app));
   commands.push_back(physarum::cli::add_compare_command(app));
   commands.push_back(physarum::cli::add_bench_command(app));
+  commands.push_back(physarum::cli::add_scene_keys_command(app));
 
   try {
     app.parse(argc, argv);
