@@ -1,6 +1,7 @@
 #include "opencl/memory_bandwidth.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -46,11 +47,7 @@ double DeviceTriad::bytes_per_second(int repeats) {
   using Clock = std::chrono::steady_clock;
   double best = 0.0;
   try {
-    kernel_.setArg(0, static_cast<cl_uint>(elements_));
-    kernel_.setArg(1, a_.buffer);
-    kernel_.setArg(2, b_.buffer);
-    kernel_.setArg(3, c_.buffer);
-    kernel_.setArg(4, kS);
+    set_arguments(kernel_, static_cast<cl_uint>(elements_), a_, b_, c_, kS);
     const cl::NDRange global(padded_global_size(elements_, group_)), local(group_);
     compute_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local);  // first touch, not timed
     compute_.queue.finish();

@@ -3,6 +3,7 @@
 #include "common/errors.hpp"
 #include "common/forward_euler_limit.hpp"
 #include "kernels/device_types.h"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -11,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 
 namespace physarum::opencl {
@@ -264,10 +264,7 @@ void OpenCLPheromone::add_deposits(const std::vector<double>& amount_per_vertex)
   if (!amount_.guarded) amount_ = allocate_buffer(compute_, "deposit amounts", u_.payload_bytes, CL_MEM_READ_ONLY, true);
   compute_.queue.enqueueWriteBuffer(amount_.buffer, CL_FALSE, 0, amount_.payload_bytes, amount.data());
   cl::Kernel& k = kernels_->add_amounts;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, amount_.buffer);
-  k.setArg(2, inverse_mass_.buffer);
-  k.setArg(3, u_.buffer);
+  set_arguments(k, static_cast<cl_uint>(vertex_count_), amount_, inverse_mass_, u_);
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
   compute_.queue.finish();  // `amount` is a host temporary the non-blocking write reads from
 }
@@ -289,18 +286,7 @@ void OpenCLPheromone::step() {
 
 void OpenCLPheromone::forward_step() {
   cl::Kernel& k = kernels_->forward_substep;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, static_cast<cl_uint>(forward_stride_));
-  k.setArg(2, forward_column_.buffer);
-  k.setArg(3, forward_value_.buffer);
-  k.setArg(4, decay_rate_.buffer);
-  k.setArg(5, static_cast<cl_float>(sub_step_));
   cl::Kernel& overflow = kernels_->forward_overflow;
-  overflow.setArg(0, static_cast<cl_uint>(forward_overflow_rows_));
-  overflow.setArg(1, forward_overflow_row_.buffer);
-  overflow.setArg(2, forward_overflow_start_.buffer);
-  overflow.setArg(3, forward_overflow_column_.buffer);
-  overflow.setArg(4, forward_overflow_value_.buffer);
   const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(forward_overflow_rows_), group_));
   // Ping-pong between u and scratch; an odd count ends in scratch and costs one device-side copy,
   // so u stays the buffer every other kernel knows. The queue is in order (compute_context.cpp), so
@@ -308,14 +294,13 @@ void OpenCLPheromone::forward_step() {
   const cl::Buffer* from = &u_.buffer;
   const cl::Buffer* to = &scratch_.buffer;
   for (int s = 0; s < sub_steps_; ++s) {
-    k.setArg(6, *from);
-    k.setArg(7, *to);
-    k.setArg(8, static_cast<cl_uint>(s));
+    set_arguments(k, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(forward_stride_), forward_column_,
+                  forward_value_, decay_rate_, static_cast<cl_float>(sub_step_), *from, *to, static_cast<cl_uint>(s));
     compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(static_cast<size_t>(forward_stride_)),
                                         cl::NDRange(group_));
     if (forward_overflow_rows_ > 0) {
-      overflow.setArg(5, *from);
-      overflow.setArg(6, *to);
+      set_arguments(overflow, static_cast<cl_uint>(forward_overflow_rows_), forward_overflow_row_,
+                    forward_overflow_start_, forward_overflow_column_, forward_overflow_value_, *from, *to);
       compute_.queue.enqueueNDRangeKernel(overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
     }
     std::swap(from, to);
@@ -325,12 +310,7 @@ void OpenCLPheromone::forward_step() {
 
 void OpenCLPheromone::diagonal_step() {
   cl::Kernel& k = kernels_->csr_multiply;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, rhs_row_start_.buffer);
-  k.setArg(2, rhs_column_.buffer);
-  k.setArg(3, rhs_value_.buffer);
-  k.setArg(4, u_.buffer);
-  k.setArg(5, scratch_.buffer);
+  set_arguments(k, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_, rhs_value_, u_, scratch_);
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
   compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
   last_solve_ = {};
@@ -346,54 +326,24 @@ void OpenCLPheromone::backward_step() {
   cl::CommandQueue& queue = compute_.queue;
 
   // b = B u
-  k.csr_multiply.setArg(0, n);
-  k.csr_multiply.setArg(1, rhs_row_start_.buffer);
-  k.csr_multiply.setArg(2, rhs_column_.buffer);
-  k.csr_multiply.setArg(3, rhs_value_.buffer);
-  k.csr_multiply.setArg(4, u_.buffer);
-  k.csr_multiply.setArg(5, b_.buffer);
+  set_arguments(k.csr_multiply, n, rhs_row_start_, rhs_column_, rhs_value_, u_, b_);
   queue.enqueueNDRangeKernel(k.csr_multiply, cl::NullRange, global, local);
 
   // x = u (the previous field: a good first guess, and the solution is written in place).
   const cl::Buffer& x = u_.buffer;
-  int arg = 0;
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&system_row_start_.buffer, &system_column_.buffer, &system_value_.buffer,
-                                   &inverse_diagonal_.buffer, &b_.buffer, &x, &r_.buffer, &z_.buffer, &p_.buffer,
-                                   &partials_.buffer})
-    k.cg_start.setArg(++arg, *buffer);
-  k.cg_start.setArg(0, n);
-  k.cg_start.setArg(11, scratch);
+  set_arguments(k.cg_start, n, system_row_start_, system_column_, system_value_, inverse_diagonal_, b_, x, r_, z_, p_,
+                partials_, scratch);
   queue.enqueueNDRangeKernel(k.cg_start, cl::NullRange, global, local);
   const double tolerance = options_.cg_relative_tolerance;
-  k.cg_start_finish.setArg(0, groups);
-  k.cg_start_finish.setArg(1, partials_.buffer);
-  k.cg_start_finish.setArg(2, static_cast<cl_float>(tolerance * tolerance));
-  k.cg_start_finish.setArg(3, cg_state_.buffer);
-  k.cg_start_finish.setArg(4, final_scratch);
+  set_arguments(k.cg_start_finish, groups, partials_, static_cast<cl_float>(tolerance * tolerance), cg_state_,
+                final_scratch);
   queue.enqueueNDRangeKernel(k.cg_start_finish, cl::NullRange, single, single);
 
-  arg = 0;
-  k.cg_multiply.setArg(arg++, n);
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&system_row_start_.buffer, &system_column_.buffer, &system_value_.buffer, &p_.buffer,
-                                   &q_.buffer, &cg_state_.buffer, &partials_.buffer})
-    k.cg_multiply.setArg(arg++, *buffer);
-  k.cg_multiply.setArg(arg, scratch);
-  for (cl::Kernel* finish : {&k.cg_alpha, &k.cg_beta}) {
-    finish->setArg(0, groups);
-    finish->setArg(1, partials_.buffer);
-    finish->setArg(2, cg_state_.buffer);
-    finish->setArg(3, final_scratch);
-  }
-  arg = 0;
-  k.cg_update.setArg(arg++, n);
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&inverse_diagonal_.buffer, &p_.buffer, &q_.buffer, &x, &r_.buffer, &z_.buffer,
-                                   &cg_state_.buffer, &partials_.buffer})
-    k.cg_update.setArg(arg++, *buffer);
-  k.cg_update.setArg(arg, scratch);
-  k.cg_direction.setArg(0, n);
-  k.cg_direction.setArg(1, z_.buffer);
-  k.cg_direction.setArg(2, p_.buffer);
-  k.cg_direction.setArg(3, cg_state_.buffer);
+  set_arguments(k.cg_multiply, n, system_row_start_, system_column_, system_value_, p_, q_, cg_state_, partials_,
+                scratch);
+  for (cl::Kernel* finish : {&k.cg_alpha, &k.cg_beta}) set_arguments(*finish, groups, partials_, cg_state_, final_scratch);
+  set_arguments(k.cg_update, n, inverse_diagonal_, p_, q_, x, r_, z_, cg_state_, partials_, scratch);
+  set_arguments(k.cg_direction, n, z_, p_, cg_state_);
 
   PhysarumCgState state{};
   queue.enqueueReadBuffer(cg_state_.buffer, CL_TRUE, 0, sizeof state, &state);

@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 #include "opencl/face_records.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -13,7 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 
 namespace physarum::opencl {
 
@@ -217,13 +217,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     compute.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
     if (agent_count > 0) {
       cl::Kernel& k = kernels_->initialise;
-      int arg = 0;
-      k.setArg(arg++, constants_);
-      for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-               &faces_.buffer, &vertex_parameters_.buffer, &alias_probability_.buffer, &alias_index_.buffer,
-               &device_face_.buffer})
-        k.setArg(arg++, *b);
-      for (const DeviceBuffer* b : agents_.buffers()) k.setArg(arg++, b->buffer);
+      set_arguments(k, constants_, faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_,
+                    agents_.buffers());
       compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                          cl::NDRange(agent_group_));
     }
@@ -239,23 +234,13 @@ void OpenCLSimulation::enqueue_sensing() {
   if (settings_.agents == 0) return;
   compute_.queue.enqueueFillBuffer(decider_count_.buffer, cl_uint{0}, 0, decider_count_.payload_bytes);
   cl::Kernel& collect = kernels_->collect_deciders;
-  int arg = 0;
-  collect.setArg(arg++, constants_);
-  for (const cl::Buffer* b : {&faces_.buffer, &vertex_parameters_.buffer, &agents_.face.buffer,
-                              &agents_.position.buffer, &agents_.time_since_decision.buffer, &deciders_.buffer,
-                              &decider_count_.buffer})
-    collect.setArg(arg++, *b);
-  collect.setArg(arg++, cl::Local(2 * sizeof(cl_uint)));
+  set_arguments(collect, constants_, faces_, vertex_parameters_, agents_.face, agents_.position,
+                agents_.time_since_decision, deciders_, decider_count_, cl::Local(2 * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
   cl::Kernel& sense = kernels_->sense_deciders;
-  arg = 0;
-  sense.setArg(arg++, constants_);
-  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &agents_.face.buffer,
-           &agents_.position.buffer, &agents_.heading.buffer, &deciders_.buffer, &decider_count_.buffer,
-           &first_sensing_.buffer})
-    sense.setArg(arg++, *b);
+  set_arguments(sense, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), agents_.face,
+                agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
   compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
                                       cl::NDRange(sensing_group_));
 }
@@ -263,29 +248,18 @@ void OpenCLSimulation::enqueue_sensing() {
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  int arg = 0;
-  k.setArg(arg++, constants_);
-  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &alias_probability_.buffer,
-           &alias_index_.buffer, &device_face_.buffer, &deposits_.buffer})
-    k.setArg(arg++, *b);
-  for (const DeviceBuffer* b : {&agents_.face, &agents_.position, &agents_.heading, &agents_.age, &agents_.exposure,
-                                &agents_.exposure_threshold, &agents_.time_since_decision, &agents_.accumulated_turn,
-                                &agents_.id, &first_sensing_})
-    k.setArg(arg++, b->buffer);
-  k.setArg(arg++, group_counters_.buffer);
-  k.setArg(arg++, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
+  set_arguments(k, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), alias_probability_,
+                alias_index_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
+                agents_.exposure, agents_.exposure_threshold, agents_.time_since_decision, agents_.accumulated_turn,
+                agents_.id, first_sensing_, group_counters_, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(step_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
 }
 
 void OpenCLSimulation::enqueue_collect_deposits() {
   cl::Kernel& k = kernels_->collect_deposits;
-  k.setArg(0, static_cast<cl_int>(domain_.vertex_count));
-  k.setArg(1, deposits_.buffer);
-  k.setArg(2, inverse_mass_.buffer);
-  k.setArg(3, static_cast<cl_float>(1.0 / deposit_scale_));
-  k.setArg(4, pheromone_->concentration_buffer());
+  set_arguments(k, static_cast<cl_int>(domain_.vertex_count), deposits_, inverse_mass_,
+                static_cast<cl_float>(1.0 / deposit_scale_), pheromone_->concentration_buffer());
   compute_.queue.enqueueNDRangeKernel(
       k, cl::NullRange, cl::NDRange(padded_global_size(static_cast<size_t>(domain_.vertex_count), vertex_group_)),
       cl::NDRange(vertex_group_));
@@ -296,21 +270,12 @@ void OpenCLSimulation::enqueue_sort_by_face() {
   const cl::NDRange agents_global(agent_groups_ * agent_group_), agents_local(agent_group_);
   Kernels& k = *kernels_;
   compute_.queue.enqueueFillBuffer(bin_cursor_.buffer, cl_uint{0}, 0, bin_cursor_.payload_bytes);
-  k.bin_counts.setArg(0, static_cast<cl_int>(settings_.agents));
-  k.bin_counts.setArg(1, bin_shift_);
-  k.bin_counts.setArg(2, agents_.face.buffer);
-  k.bin_counts.setArg(3, bin_cursor_.buffer);
+  set_arguments(k.bin_counts, static_cast<cl_int>(settings_.agents), bin_shift_, agents_.face, bin_cursor_);
   compute_.queue.enqueueNDRangeKernel(k.bin_counts, cl::NullRange, agents_global, agents_local);
-  k.bin_offsets.setArg(0, bins_);
-  k.bin_offsets.setArg(1, bin_cursor_.buffer);
-  k.bin_offsets.setArg(2, cl::Local(scan_group_ * sizeof(cl_uint)));
+  set_arguments(k.bin_offsets, bins_, bin_cursor_, cl::Local(scan_group_ * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(k.bin_offsets, cl::NullRange, cl::NDRange(scan_group_), cl::NDRange(scan_group_));
-  int arg = 0;
-  k.scatter.setArg(arg++, static_cast<cl_int>(settings_.agents));
-  k.scatter.setArg(arg++, bin_shift_);
-  k.scatter.setArg(arg++, bin_cursor_.buffer);
-  for (const DeviceBuffer* b : agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
-  for (const DeviceBuffer* b : sorted_agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
+  set_arguments(k.scatter, static_cast<cl_int>(settings_.agents), bin_shift_, bin_cursor_, agents_.buffers(),
+                sorted_agents_.buffers());
   compute_.queue.enqueueNDRangeKernel(k.scatter, cl::NullRange, agents_global, agents_local);
   std::swap(agents_, sorted_agents_);
 }
