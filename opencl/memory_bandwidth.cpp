@@ -1,6 +1,7 @@
 #include "opencl/memory_bandwidth.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/device_tuning.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
@@ -29,7 +30,7 @@ DeviceTriad::DeviceTriad(const ComputeContext& compute) : compute_(compute) {
                       d.device_name + " (largest allocation " + std::to_string(d.max_allocation_bytes >> 20) +
                       " MiB, memory " + std::to_string(d.global_memory_bytes >> 20) + " MiB)");
   elements_ = static_cast<std::size_t>(bytes / 16);
-  launches_ = d.type == "CPU" ? 1 : 10;
+  launches_ = tuning_for(d).triad_launches;
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "memory_bandwidth.cl", kernel_source("memory_bandwidth.cl"));

@@ -1,6 +1,7 @@
 #include "opencl/simulation.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/device_tuning.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
@@ -66,8 +67,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
     throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
                      std::to_string(options.agents_per_work_item));
-  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item
-                                                           : (compute.device.type == "CPU" ? 4 : 1);
+  const DeviceTuning tuning = tuning_for(compute.device);
+  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item : tuning.agents_per_work_item;
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
 
@@ -130,14 +131,13 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
-  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") +
-                                    (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
+  const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
+  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") + prefetch;
   const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
   // Moves too: walkers of 4 lanes taking turns (trace.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
   const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
-           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") +
-           (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
+           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") + prefetch;
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);

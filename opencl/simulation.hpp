@@ -39,8 +39,9 @@ struct OpenCLSimulationOptions {
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
-  // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where agents
-  // moving in vector lanes overlap their face reads, and 1 elsewhere. More than 1 also makes the
+  // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 takes the device's tuning
+  // (opencl/device_tuning.hpp: 4 on CPU devices, where agents moving in vector lanes overlap their
+  // face reads, and 1 elsewhere). More than 1 also makes the
   // walks vector lanes (kernels/trace.cl), 1 scalars, and gives each agent_step work-item
   // PHYSARUM_VECTOR_MOVE_WALKERS walkers. Changes no result.
   int agents_per_work_item = 0;
