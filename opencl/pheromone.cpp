@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 #include "common/forward_euler_limit.hpp"
+#include "common/pheromone_operators.hpp"
 #include "kernels/device_types.h"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
@@ -18,26 +19,11 @@ namespace physarum::opencl {
 
 struct OpenCLPheromone::Kernels {
   cl::Kernel forward_substep, forward_overflow, add_amounts, csr_multiply;
-  cl::Kernel cg_start, cg_start_finish, cg_multiply, cg_alpha, cg_update, cg_beta, cg_direction;
 };
 
 namespace {
 
-static_assert(sizeof(PhysarumCgState) == 32, "PhysarumCgState: eight 4-byte fields on host and device");
-
 std::vector<float> to_float(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
-
-// A CSR matrix assembled row by row on the host, in double, converted to float when uploaded.
-struct HostCsr {
-  std::vector<int> row_start{0};
-  std::vector<int> column;
-  std::vector<double> value;
-  void add(int col, double v) {
-    column.push_back(col);
-    value.push_back(v);
-  }
-  void end_row() { row_start.push_back(static_cast<int>(column.size())); }
-};
 
 }  // namespace
 
@@ -95,22 +81,10 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
     k.add_amounts = cl::Kernel(program, "pheromone_add_amounts");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
-    k.cg_start = cl::Kernel(program, "cg_start");
-    k.cg_start_finish = cl::Kernel(program, "cg_start_finish");
-    k.cg_multiply = cl::Kernel(program, "cg_multiply");
-    k.cg_alpha = cl::Kernel(program, "cg_alpha");
-    k.cg_update = cl::Kernel(program, "cg_update");
-    k.cg_beta = cl::Kernel(program, "cg_beta");
-    k.cg_direction = cl::Kernel(program, "cg_direction");
-    // One local size for every per-vertex kernel, so all reductions have the same number of
-    // partials; the smallest the kernels allow.
+    // One local size for every per-vertex kernel; the smallest the kernels allow.
     group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply,
-                                     &k.cg_start, &k.cg_multiply, &k.cg_update, &k.cg_direction})
+    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply})
       group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
-    final_group_ = 256;
-    for (const cl::Kernel* kernel : {&k.cg_start_finish, &k.cg_alpha, &k.cg_beta})
-      final_group_ = std::min(final_group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
   } catch (const cl::Error& e) {
     throw device_error("preparing the pheromone kernels (pheromone.cl) on " + compute.device.device_name, e.err());
   }
@@ -120,23 +94,9 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   const size_t field_bytes = un * sizeof(float);
   if (integrator == Integrator::ForwardEuler) {
-    // The sub-step matrix F = I - h (diag(r_dif / m) L + diag(r_dec)), in double, then in hybrid
-    // form with one ELL row per work-item of the padded launch.
-    CsrMatrix F;
-    F.rows = F.cols = n;
-    F.row_start.push_back(0);
-    for (int i = 0; i < n; ++i) {
-      const double keep = 1.0 - sub_step_ * params.decay_rate[i];
-      bool diagonal = false;
-      for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-        const int j = L.column[k];
-        F.column.push_back(j);
-        F.value.push_back(-sub_step_ * diffuse_over_mass[i] * L.value[k] + (j == i ? keep : 0.0));
-        diagonal |= j == i;
-      }
-      if (!diagonal) F.column.push_back(i), F.value.push_back(keep);  // a Laplacian row without a diagonal entry
-      F.row_start.push_back(static_cast<int>(F.column.size()));
-    }
+    // The sub-step matrix (common/pheromone_operators.hpp), in double, then in hybrid form with one
+    // ELL row per work-item of the padded launch.
+    const CsrMatrix F = forward_substep_matrix(L, diffuse_over_mass, params.decay_rate, sub_step_);
     const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(un, group_)));
     forward_stride_ = hybrid.stride;
     forward_overflow_rows_ = hybrid.overflow_rows();
@@ -165,68 +125,19 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   fill(0.0);
 
   if (integrator == Integrator::BackwardEuler) {
-    // Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u. With a varying R_dif the matrix is not symmetric,
-    // and CG needs a symmetric positive definite system, so:
-    //  * a vertex with r_dif,i > 0 ("active") has its row divided by r_dif,i:
-    //      m_i (1 + dt r_dec,i) / r_dif,i u'_i + dt sum_j L_ij u'_j = m_i u_i / r_dif,i,
-    //    whose matrix diag(m (1 + dt r_dec) / r_dif) + dt L is symmetric (L is) and positive definite
-    //    (positive diagonal plus a PSD Laplacian). A uniform R_dif is the special case of one scale.
-    //  * a vertex with r_dif,i = 0 does not diffuse: u'_i = u_i / (1 + dt r_dec,i), known up front, so
-    //    its row becomes the identity and its column's terms in active rows move to the right-hand
-    //    side (-dt L_ij u_j / (1 + dt r_dec,j)). Keeping only active-active couplings keeps S symmetric.
-    // So S x = B u with S SPD (same sparsity as L) and B = the right-hand-side operator.
-    std::vector<char> active(un);
-    bool any_active = false;
-    for (size_t i = 0; i < un; ++i) any_active |= (active[i] = params.diffuse_rate[i] > 0.0);
-    diagonal_only_ = !any_active;
-    HostCsr S, B;
-    std::vector<double> inverse_diagonal(un, 1.0);
-    for (int i = 0; i < n; ++i) {
-      const double m = domain.vertex_mass[i];
-      const double keep = 1.0 + time_step * params.decay_rate[i];
-      if (!active[i]) {
-        S.add(i, 1.0);
-        B.add(i, 1.0 / keep);
-      } else {
-        const double r = params.diffuse_rate[i];
-        double diagonal = m * keep / r;
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j == i) diagonal += time_step * L.value[k];
-        }
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j == i) S.add(i, diagonal);
-          else if (active[j]) S.add(j, time_step * L.value[k]);
-        }
-        if (std::none_of(S.column.begin() + S.row_start.back(), S.column.end(), [i](int c) { return c == i; }))
-          S.add(i, diagonal);  // a Laplacian row without a stored diagonal entry
-        inverse_diagonal[i] = 1.0 / diagonal;
-        B.add(i, m / r);
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j != i && !active[j]) B.add(j, -time_step * L.value[k] / (1.0 + time_step * params.decay_rate[j]));
-        }
-      }
-      S.end_row();
-      B.end_row();
-    }
-    rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", B.row_start, kRead, false);
-    rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", B.column, kRead, false);
-    rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(B.value), kRead, false);
-    if (!diagonal_only_) {
-      system_row_start_ = upload_buffer(compute, "backward Euler system row starts", S.row_start, kRead, false);
-      system_column_ = upload_buffer(compute, "backward Euler system columns", S.column, kRead, false);
-      system_value_ = upload_buffer(compute, "backward Euler system values", to_float(S.value), kRead, false);
-      inverse_diagonal_ = upload_buffer(compute, "Jacobi preconditioner", to_float(inverse_diagonal), kRead, false);
-      b_ = allocate_buffer(compute, "CG right-hand side", field_bytes, CL_MEM_READ_WRITE, true);
-      r_ = allocate_buffer(compute, "CG residual", field_bytes, CL_MEM_READ_WRITE, true);
-      z_ = allocate_buffer(compute, "CG preconditioned residual", field_bytes, CL_MEM_READ_WRITE, true);
-      p_ = allocate_buffer(compute, "CG direction", field_bytes, CL_MEM_READ_WRITE, true);
-      q_ = allocate_buffer(compute, "CG S times direction", field_bytes, CL_MEM_READ_WRITE, true);
-      partials_ = allocate_buffer(compute, "CG partial sums", group_count_ * sizeof(cl_float4), CL_MEM_READ_WRITE, true);
-      cg_state_ = allocate_buffer(compute, "CG state", sizeof(PhysarumCgState), CL_MEM_READ_WRITE, true);
-    }
+    // Eq. 7 as S u' = B u, S symmetric positive definite (common/pheromone_operators.hpp): B u on
+    // this program's csr_multiply, S by conjugate gradients.
+    const BackwardEulerSystem system =
+        backward_euler_system(L, domain.vertex_mass, params.diffuse_rate, params.decay_rate, time_step);
+    diagonal_only_ = system.diagonal_only;
+    rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
+    rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
+    rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
+    if (!diagonal_only_)
+      solver_ = std::make_unique<DeviceConjugateGradients>(
+          compute, system.system, system.inverse_diagonal,
+          ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
+          options.build_options);
   }
 
   statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
@@ -270,7 +181,6 @@ void OpenCLPheromone::add_deposits(const std::vector<double>& amount_per_vertex)
 }
 
 const cl::Buffer& OpenCLPheromone::concentration_buffer() const { return u_.buffer; }
-const cl::Buffer& OpenCLPheromone::mass_buffer() const { return mass_.buffer; }
 
 // ---- time ----
 
@@ -317,59 +227,13 @@ void OpenCLPheromone::diagonal_step() {
 }
 
 void OpenCLPheromone::backward_step() {
-  Kernels& k = *kernels_;
-  const cl_uint n = static_cast<cl_uint>(vertex_count_);
-  const cl_uint groups = static_cast<cl_uint>(group_count_);
-  const cl::NDRange global(group_count_ * group_), local(group_), single(final_group_);
-  const cl::LocalSpaceArg scratch = cl::Local(group_ * sizeof(cl_float4));
-  const cl::LocalSpaceArg final_scratch = cl::Local(final_group_ * sizeof(cl_float4));
-  cl::CommandQueue& queue = compute_.queue;
-
-  // b = B u
-  set_arguments(k.csr_multiply, n, rhs_row_start_, rhs_column_, rhs_value_, u_, b_);
-  queue.enqueueNDRangeKernel(k.csr_multiply, cl::NullRange, global, local);
-
-  // x = u (the previous field: a good first guess, and the solution is written in place).
-  const cl::Buffer& x = u_.buffer;
-  set_arguments(k.cg_start, n, system_row_start_, system_column_, system_value_, inverse_diagonal_, b_, x, r_, z_, p_,
-                partials_, scratch);
-  queue.enqueueNDRangeKernel(k.cg_start, cl::NullRange, global, local);
-  const double tolerance = options_.cg_relative_tolerance;
-  set_arguments(k.cg_start_finish, groups, partials_, static_cast<cl_float>(tolerance * tolerance), cg_state_,
-                final_scratch);
-  queue.enqueueNDRangeKernel(k.cg_start_finish, cl::NullRange, single, single);
-
-  set_arguments(k.cg_multiply, n, system_row_start_, system_column_, system_value_, p_, q_, cg_state_, partials_,
-                scratch);
-  for (cl::Kernel* finish : {&k.cg_alpha, &k.cg_beta}) set_arguments(*finish, groups, partials_, cg_state_, final_scratch);
-  set_arguments(k.cg_update, n, inverse_diagonal_, p_, q_, x, r_, z_, cg_state_, partials_, scratch);
-  set_arguments(k.cg_direction, n, z_, p_, cg_state_);
-
-  PhysarumCgState state{};
-  queue.enqueueReadBuffer(cg_state_.buffer, CL_TRUE, 0, sizeof state, &state);
-  int enqueued = 0;
-  while (state.status == PHYSARUM_CG_RUNNING && enqueued < options_.cg_max_iterations) {
-    const int batch = std::min(options_.cg_check_interval, options_.cg_max_iterations - enqueued);
-    for (int it = 0; it < batch; ++it) {
-      queue.enqueueNDRangeKernel(k.cg_multiply, cl::NullRange, global, local);
-      queue.enqueueNDRangeKernel(k.cg_alpha, cl::NullRange, single, single);
-      queue.enqueueNDRangeKernel(k.cg_update, cl::NullRange, global, local);
-      queue.enqueueNDRangeKernel(k.cg_beta, cl::NullRange, single, single);
-      queue.enqueueNDRangeKernel(k.cg_direction, cl::NullRange, global, local);
-    }
-    enqueued += batch;
-    queue.enqueueReadBuffer(cg_state_.buffer, CL_TRUE, 0, sizeof state, &state);
-  }
-  last_solve_.iterations = state.iterations;
-  last_solve_.relative_residual = state.bb > 0.0f ? std::sqrt(double(state.rr) / double(state.bb)) : 0.0;
-  last_solve_.converged = state.status == PHYSARUM_CG_CONVERGED;
-  // A solve that stalls just above the tolerance (float rounding) still gives a usable field; one that
-  // ends far from it does not, and must not pass silently.
-  if (!last_solve_.converged && !(last_solve_.relative_residual <= 1e3 * tolerance))
-    throw DeviceError("opencl pheromone: backward Euler conjugate gradients stopped after " +
-                      std::to_string(state.iterations) + " iterations with relative residual " +
-                      std::to_string(last_solve_.relative_residual) + " (tolerance " + std::to_string(tolerance) +
-                      (state.status == PHYSARUM_CG_BREAKDOWN ? ", breakdown: p.Sp <= 0" : "") + ")");
+  // b = B u, then S x = b with x = u (the previous field: a good first guess, and the solution is
+  // written in place).
+  set_arguments(kernels_->csr_multiply, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_,
+                rhs_value_, u_, solver_->right_hand_side());
+  compute_.queue.enqueueNDRangeKernel(kernels_->csr_multiply, cl::NullRange, cl::NDRange(group_count_ * group_),
+                                      cl::NDRange(group_));
+  last_solve_ = solver_->solve(u_);
 }
 
 // ---- summaries ----
@@ -380,8 +244,10 @@ FieldStatistics OpenCLPheromone::statistics(double U) const { return statistics_
 
 std::vector<std::string> OpenCLPheromone::damaged_canaries() const {
   std::vector<std::string> damaged = statistics_->damaged_canaries();
-  for (const DeviceBuffer* b : {&u_, &scratch_, &amount_, &b_, &r_, &z_, &p_, &q_, &partials_, &cg_state_})
+  for (const DeviceBuffer* b : {&u_, &scratch_, &amount_})
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
+  if (solver_)
+    for (const std::string& name : solver_->damaged_canaries()) damaged.push_back(name);
   return damaged;
 }
 
