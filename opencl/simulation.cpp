@@ -1,6 +1,9 @@
 #include "opencl/simulation.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/agent_order.hpp"
+#include "opencl/agent_parameters.hpp"
+#include "opencl/deposit_scale.hpp"
 #include "opencl/device_tuning.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/kernel_arguments.hpp"
@@ -11,7 +14,6 @@
 #include "common/random_streams.hpp"
 #include "common/trace.hpp"
 #include "reference/sensing_steering.hpp"
-#include "reference/turnover.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,13 +21,11 @@
 namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
-  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step, collect_deposits, bin_counts, bin_offsets,
-      scatter;
+  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step, collect_deposits;
 };
 
 namespace {
 
-static_assert(sizeof(PhysarumAgentParameters) == 32, "PhysarumAgentParameters: eight floats");
 static_assert(sizeof(PhysarumStepConstants) == 64, "PhysarumStepConstants: sixteen 4-byte fields");
 // The bounds the kernels share with the reference must be the reference's.
 static_assert(PHYSARUM_MAX_TRACE_STEPS == kMaxTraceSteps);
@@ -36,19 +36,6 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_RESPAWN_PLACEMENT == static_cast<unsigned>(RandomPurpose::RespawnPlacement) &&
               PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
-
-PhysarumAgentParameters parameters_of_vertex(const VertexParameters& p, const std::vector<double>& hazard, size_t i) {
-  PhysarumAgentParameters r;
-  r.sensor_distance = static_cast<float>(p.sensor_distance[i]);
-  r.sensor_angle = static_cast<float>(p.sensor_angle[i]);
-  r.move_rate = static_cast<float>(p.move_rate[i]);
-  r.turn_rate = static_cast<float>(p.turn_rate[i]);
-  r.turn_frequency = static_cast<float>(p.turn_frequency[i]);
-  r.deposit_rate = static_cast<float>(p.deposit_rate[i]);
-  r.hazard_rate = static_cast<float>(hazard[i]);
-  r.activation_time = static_cast<float>(p.activation_time[i]);
-  return r;
-}
 
 }  // namespace
 
@@ -87,33 +74,11 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     *field = to_device_order(*field, vertex_order_);
 
   // ---- parameters per vertex, and whether they are all one value ----
-  const std::vector<double> hazard = hazard_rate_per_vertex(device_params.mean_lifetime);
-  std::vector<PhysarumAgentParameters> vertex_parameters(nv);
-  for (size_t i = 0; i < nv; ++i) vertex_parameters[i] = parameters_of_vertex(device_params, hazard, i);
-  bool uniform = true;
-  for (const std::vector<double>* field : {&params.sensor_distance, &params.sensor_angle, &params.move_rate,
-                                           &params.turn_rate, &params.turn_frequency, &params.deposit_rate,
-                                           &params.mean_lifetime, &params.activation_time})
-    uniform = uniform && is_uniform(*field);
+  const PackedAgentParameters agent_parameters = pack_agent_parameters(device_params);
 
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
   fixed_point_ = compute.device.int64_atomics;
-  if (fixed_point_) {
-    double max_rate = 0.0, min_positive_rate = INFINITY;
-    for (double r : params.deposit_rate) {
-      max_rate = std::max(max_rate, r);
-      if (r > 0.0) min_positive_rate = std::min(min_positive_rate, r);
-    }
-    const double worst_step_total = std::max(1, agent_count) * max_rate * settings.time_step;
-    const int exponent = worst_step_total > 0.0 ? std::min(60, static_cast<int>(std::floor(62.0 - std::log2(worst_step_total))))
-                                                : 40;
-    deposit_scale_ = std::ldexp(1.0, exponent);
-    if (std::isfinite(min_positive_rate) && min_positive_rate * settings.time_step * deposit_scale_ < 0x1p20)
-      throw InputError("opencl simulation: " + std::to_string(agent_count) + " agents depositing up to " +
-                       std::to_string(max_rate) + " per second leave too little fixed-point resolution for the "
-                       "smallest deposit rate " + std::to_string(min_positive_rate) +
-                       " (64-bit deposits would round at more than 1e-6); reduce the spread of deposit rates");
-  }
+  if (fixed_point_) deposit_scale_ = fixed_point_deposit_scale(params.deposit_rate, agent_count, settings.time_step);
 
   constants_.dt = static_cast<float>(settings.time_step);
   constants_.deposit_scale = static_cast<float>(deposit_scale_);
@@ -121,12 +86,13 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   constants_.step = 0;
   constants_.agent_count = agent_count;
   constants_.face_count = domain.face_count;
-  constants_.uniform_parameters = uniform ? 1 : 0;
+  constants_.uniform_parameters = agent_parameters.uniform ? 1 : 0;
   constants_.pad = 0;
-  constants_.uniform = nv > 0 ? vertex_parameters[0] : PhysarumAgentParameters{};
+  constants_.uniform = nv > 0 ? agent_parameters.per_vertex[0] : PhysarumAgentParameters{};
 
   // ---- kernels ----
   kernels_ = std::make_unique<Kernels>();
+  cl::Program agent_program;
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
@@ -144,12 +110,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
     kernels_->collect_deposits = cl::Kernel(program, "deposits_to_concentration");
-    kernels_->bin_counts = cl::Kernel(program, "agent_bin_counts");
-    kernels_->bin_offsets = cl::Kernel(program, "agent_bin_offsets");
-    kernels_->scatter = cl::Kernel(program, "agent_scatter");
-    scan_group_ = work_group_size(kernels_->bin_offsets, compute.device, 256, sizeof(cl_uint));
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
     vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
+    agent_program = program;
   } catch (const cl::Error& e) {
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
   }
@@ -174,22 +137,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   sensing_groups_ = std::min<size_t>(padded_global_size(sensing_items, sensing_group_) / sensing_group_,
                                      16 * std::max(1u, compute.device.compute_units));
 
-  // ---- sorting bins: one per device face, or per 2^shift faces, at most kMaxBins ----
-  constexpr cl_uint kMaxBins = 65536;
-  while ((static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_ > kMaxBins) ++bin_shift_;
-  bins_ = std::max<cl_uint>(1, (static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_);
-
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   faces_ = upload_random_access_buffer(compute, "face records", build_face_records(device_domain, face_order_));
   device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
-  vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
+  vertex_parameters_ = upload_buffer(compute, "vertex parameters", agent_parameters.per_vertex, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
-  std::vector<float> inverse_mass(nv);
-  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / device_domain.vertex_mass[i]);
-  inverse_mass_ = upload_buffer(compute, "inverse vertex mass", inverse_mass, kRead, false);
   deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
                               CL_MEM_READ_WRITE, true);
   group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
@@ -202,10 +157,9 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
                                    true);
   first_sensing_ = allocate_buffer(compute, "first sensing of each agent", agent_slots * sizeof(cl_uint),
                                    CL_MEM_READ_WRITE, true);
-  if (sort_interval_ > 0) {
-    sorted_agents_ = DeviceAgents::allocate(compute, agent_count);
-    bin_cursor_ = allocate_buffer(compute, "agent sort bins", bins_ * sizeof(cl_uint), CL_MEM_READ_WRITE, true);
-  }
+  if (sort_interval_ > 0)
+    agent_order_ = std::make_unique<DeviceAgentOrder>(compute, agent_program, domain.face_count, agent_count,
+                                                      agent_group_, agent_groups_);
   OpenCLPheromoneOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
   pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain, device_params, settings.integrator,
@@ -258,31 +212,16 @@ void OpenCLSimulation::enqueue_agent_step() {
 
 void OpenCLSimulation::enqueue_collect_deposits() {
   cl::Kernel& k = kernels_->collect_deposits;
-  set_arguments(k, static_cast<cl_int>(domain_.vertex_count), deposits_, inverse_mass_,
+  set_arguments(k, static_cast<cl_int>(domain_.vertex_count), deposits_, pheromone_->inverse_mass_buffer(),
                 static_cast<cl_float>(1.0 / deposit_scale_), pheromone_->concentration_buffer());
   compute_.queue.enqueueNDRangeKernel(
       k, cl::NullRange, cl::NDRange(padded_global_size(static_cast<size_t>(domain_.vertex_count), vertex_group_)),
       cl::NDRange(vertex_group_));
 }
 
-void OpenCLSimulation::enqueue_sort_by_face() {
-  if (settings_.agents == 0) return;
-  const cl::NDRange agents_global(agent_groups_ * agent_group_), agents_local(agent_group_);
-  Kernels& k = *kernels_;
-  compute_.queue.enqueueFillBuffer(bin_cursor_.buffer, cl_uint{0}, 0, bin_cursor_.payload_bytes);
-  set_arguments(k.bin_counts, static_cast<cl_int>(settings_.agents), bin_shift_, agents_.face, bin_cursor_);
-  compute_.queue.enqueueNDRangeKernel(k.bin_counts, cl::NullRange, agents_global, agents_local);
-  set_arguments(k.bin_offsets, bins_, bin_cursor_, cl::Local(scan_group_ * sizeof(cl_uint)));
-  compute_.queue.enqueueNDRangeKernel(k.bin_offsets, cl::NullRange, cl::NDRange(scan_group_), cl::NDRange(scan_group_));
-  set_arguments(k.scatter, static_cast<cl_int>(settings_.agents), bin_shift_, bin_cursor_, agents_.buffers(),
-                sorted_agents_.buffers());
-  compute_.queue.enqueueNDRangeKernel(k.scatter, cl::NullRange, agents_global, agents_local);
-  std::swap(agents_, sorted_agents_);
-}
-
 void OpenCLSimulation::step() {
   try {
-    if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) enqueue_sort_by_face();
+    if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) agent_order_->enqueue_sort(agents_);
     constants_.step = static_cast<dev_uint>(steps_taken_);
     enqueue_sensing();
     enqueue_agent_step();
@@ -363,10 +302,8 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);
   for (const DeviceBuffer* b : {&deciders_, &decider_count_, &first_sensing_}) guarded.push_back(b);
-  if (sort_interval_ > 0) {
-    for (const DeviceBuffer* b : sorted_agents_.buffers()) guarded.push_back(b);
-    guarded.push_back(&bin_cursor_);
-  }
+  if (agent_order_)
+    for (const DeviceBuffer* b : agent_order_->written_buffers()) guarded.push_back(b);
   for (const DeviceBuffer* b : guarded)
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
   return damaged;

@@ -1,0 +1,14 @@
+#pragma once
+// The fixed-point scale of the device's deposit accumulator (kernels/deposition.cl): deposits add
+// round(amount * scale) as 64-bit integers, so their sum does not depend on the order of the adds.
+#include <vector>
+
+namespace physarum::opencl {
+
+// 2^k with k the largest (at most 60) that keeps the worst case of one step, every agent's whole
+// deposit max(deposit_rate) * time_step into one vertex, at or below 2^62; 2^40 when nothing is
+// deposited. Throws InputError when even that scale leaves fewer than 2^20 units for one agent's
+// deposit of one step at the smallest positive rate (rounding would then matter at the 1e-6 level).
+double fixed_point_deposit_scale(const std::vector<double>& deposit_rate, int agent_count, double time_step);
+
+}  // namespace physarum::opencl
