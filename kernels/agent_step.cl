@@ -17,7 +17,7 @@
 #include "agent_order.cl"
 
 /* Agents per walker (1..4, a build option the host sets) and walkers per work-item
- * (PHYSARUM_MOVE_WALKERS, trace.cl): on a CPU the agents of one walker move in lockstep, one vector
+ * (PHYSARUM_MOVE_WALKERS, movement.cl): on a CPU the agents of one walker move in lockstep, one vector
  * lane each, and several walkers take turns, which overlaps their chains of face reads; a GPU
  * overlaps them across its threads instead and takes 1 and 1. Results do not depend on either. */
 #ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
@@ -27,7 +27,7 @@
 #error "PHYSARUM_AGENTS_PER_WORK_ITEM must be 1, 2, 3 or 4"
 #endif
 #if PHYSARUM_AGENTS_PER_WORK_ITEM > PHYSARUM_WALK_LANES
-#error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (trace.cl)"
+#error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (lanes.h)"
 #endif
 #define LANES PHYSARUM_AGENTS_PER_WORK_ITEM
 #define AGENTS (PHYSARUM_AGENTS_PER_WORK_ITEM * PHYSARUM_MOVE_WALKERS)

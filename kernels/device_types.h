@@ -121,7 +121,7 @@ typedef struct {
 #define PHYSARUM_SENSING_WALKERS 3
 #define PHYSARUM_SENSING_AGENTS_PER_WALKER 5 /* 15 of 16 lanes */
 
-/* Movement with vector lanes (trace.cl): walkers of 4 lanes (four agents' moves) that take turns
+/* Movement with vector lanes (movement.cl): walkers of 4 lanes (four agents' moves) that take turns
  * step by step in one work-item, for the same reason. */
 #define PHYSARUM_VECTOR_MOVE_WALKERS 3
 

@@ -8,7 +8,7 @@ namespace physarum::opencl {
 
 struct DeviceTuning {
   // Agents per move walker of one agent_step work-item (kernels/agent_step.cl), 1..4. Above 1 the
-  // walks are vector lanes (kernels/lanes.cl) and sensing walks 16 rays at once.
+  // walks are vector lanes (kernels/lanes.h) and sensing walks 16 rays at once.
   int agents_per_work_item = 1;
   // Build the agent kernels with -DPHYSARUM_CLANG_PREFETCH: clang's __builtin_prefetch instead of
   // OpenCL's prefetch().

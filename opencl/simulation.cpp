@@ -100,7 +100,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
   const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") + prefetch;
   const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
-  // Moves too: walkers of 4 lanes taking turns (trace.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
+  // Moves too: walkers of 4 lanes taking turns (movement.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
   const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
            " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") + prefetch;

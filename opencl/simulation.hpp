@@ -43,7 +43,7 @@ struct OpenCLSimulationOptions {
   // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 takes the device's tuning
   // (opencl/device_tuning.hpp: 4 on CPU devices, where agents moving in vector lanes overlap their
   // face reads, and 1 elsewhere). More than 1 also makes the
-  // walks vector lanes (kernels/trace.cl), 1 scalars, and gives each agent_step work-item
+  // walks vector lanes (kernels/lanes.h), 1 scalars, and gives each agent_step work-item
   // PHYSARUM_VECTOR_MOVE_WALKERS walkers. Changes no result.
   int agents_per_work_item = 0;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
