@@ -127,20 +127,3 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid < PHYSARUM_COUNTERS) group_counters[get_group_id(0) * PHYSARUM_COUNTERS + lid] += local_counters[lid];
 }
-
-/* The step's deposits into the field: u_i += amount_i / m_i, and the accumulator cleared for the
- * next step (mirrors ReferencePheromone::add_deposits). */
-__kernel void deposits_to_concentration(const int n, __global PhysarumDepositCell* deposits,
-                                        __global const float* inverse_mass, const float inverse_scale,
-                                        __global float* concentration) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
-#ifdef PHYSARUM_FLOAT_DEPOSITS
-  const float amount = deposits[i];
-  deposits[i] = 0.0f;
-#else
-  const float amount = convert_float(deposits[i]) * inverse_scale;
-  deposits[i] = 0;
-#endif
-  concentration[i] += amount * inverse_mass[i];
-}

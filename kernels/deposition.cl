@@ -1,7 +1,7 @@
 /* Deposition along the path (paper Eq. 4; mirrors reference/deposition.cpp). Each per-face piece of
  * a step deposits its share of r_dep dt at its midpoint, split over the face's corners by the
- * midpoint's barycentric weights, into an AMOUNT per vertex; deposits_to_concentration then divides
- * by the vertex mass and adds it to the field.
+ * midpoint's barycentric weights, into an AMOUNT per vertex; pheromone_add_deposits (pheromone.cl)
+ * then divides by the vertex mass and adds it to the field.
  *
  * Order independence: amounts accumulate as 64-bit fixed point (round(amount * scale), scale a power
  * of two chosen by the host so the largest possible per-vertex sum of one step cannot overflow), and
@@ -13,12 +13,7 @@
 #include "device_types.h"
 #include "trace.cl"
 
-#ifdef PHYSARUM_FLOAT_DEPOSITS
-typedef float PhysarumDepositCell;
-#else
-#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
-typedef long PhysarumDepositCell;
-#endif
+#include "deposit_cells.h"
 
 /* Bounded retries of the float compare-and-swap: contention on one vertex cannot reach this many
  * collisions in practice; giving up after it loses one deposit rather than hanging the device. */

@@ -2,6 +2,7 @@
  * sub-steps, and the right-hand side of Eq. 7 backward Euler, whose system conjugate_gradients.cl
  * solves. float32 throughout: not every device has fp64.
  * Every per-vertex kernel runs on a global size padded to the work-group size, hence the guards. */
+#include "deposit_cells.h"
 #include "device_types.h"
 #include "sparse_rows.h"
 
@@ -42,12 +43,22 @@ __kernel void pheromone_forward_overflow(const uint count, __global const int* r
   u_out[row[j]] += csr_row_times(j, row_start, column, value, u_in);
 }
 
-/* Deposits: an amount at a vertex raises its concentration by amount / m_i. */
-__kernel void pheromone_add_amounts(const uint n, __global const float* amount, __global const float* inverse_mass,
-                                    __global float* u) {
-  const uint i = get_global_id(0);
+/* Deposits into the field: u_i += amount_i / m_i, amount_i the accumulated cell (deposit_cells.h)
+ * over the fixed-point scale, and the accumulator cleared for the next step (mirrors
+ * ReferencePheromone::add_deposits). */
+__kernel void pheromone_add_deposits(const int n, __global PhysarumDepositCell* deposits,
+                                     __global const float* inverse_mass, const float inverse_scale,
+                                     __global float* concentration) {
+  const int i = get_global_id(0);
   if (i >= n) return;
-  u[i] += amount[i] * inverse_mass[i];
+#ifdef PHYSARUM_FLOAT_DEPOSITS
+  const float amount = deposits[i];
+  deposits[i] = 0.0f;
+#else
+  const float amount = convert_float(deposits[i]) * inverse_scale;
+  deposits[i] = 0;
+#endif
+  concentration[i] += amount * inverse_mass[i];
 }
 
 /* y = A x (the backward Euler right-hand side b = B u, and the whole step when the system is diagonal). */

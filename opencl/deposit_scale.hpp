@@ -3,7 +3,14 @@
 // round(amount * scale) as 64-bit integers, so their sum does not depend on the order of the adds.
 #include <vector>
 
+
+#include "opencl/device_selection.hpp"
+
 namespace physarum::opencl {
+
+// Deposits accumulate in 64-bit fixed point where the device has 64-bit atomics
+// (cl_khr_int64_base_atomics), in floats by compare-and-swap elsewhere (kernels/deposit_cells.h).
+inline bool fixed_point_deposits(const DeviceInfo& device) { return device.int64_atomics; }
 
 // 2^k with k the largest (at most 60) that keeps the worst case of one step, every agent's whole
 // deposit max(deposit_rate) * time_step into one vertex, at or below 2^62; 2^40 when nothing is

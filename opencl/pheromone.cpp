@@ -8,6 +8,7 @@
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
+#include "opencl/deposit_scale.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/work_group_size.hpp"
 
@@ -18,7 +19,7 @@
 namespace physarum::opencl {
 
 struct OpenCLPheromone::Kernels {
-  cl::Kernel forward_substep, forward_overflow, add_amounts, csr_multiply;
+  cl::Kernel forward_substep, forward_overflow, add_deposits, csr_multiply;
 };
 
 namespace {
@@ -75,15 +76,15 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "pheromone.cl", kernel_source("pheromone.cl"),
-                      options.build_options);
+                      options.build_options + (fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS"));
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
-    k.add_amounts = cl::Kernel(program, "pheromone_add_amounts");
+    k.add_deposits = cl::Kernel(program, "pheromone_add_deposits");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
     // One local size for every per-vertex kernel; the smallest the kernels allow.
     group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply})
+    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply})
       group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
   } catch (const cl::Error& e) {
     throw device_error("preparing the pheromone kernels (pheromone.cl) on " + compute.device.device_name, e.err());
@@ -171,13 +172,31 @@ void OpenCLPheromone::add_deposits(const std::vector<double>& amount_per_vertex)
   if (amount_per_vertex.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) +
                      " values for " + std::to_string(vertex_count_) + " vertices");
-  const std::vector<float> amount = to_float(amount_per_vertex);
-  if (!amount_.guarded) amount_ = allocate_buffer(compute_, "deposit amounts", u_.payload_bytes, CL_MEM_READ_ONLY, true);
-  compute_.queue.enqueueWriteBuffer(amount_.buffer, CL_FALSE, 0, amount_.payload_bytes, amount.data());
-  cl::Kernel& k = kernels_->add_amounts;
-  set_arguments(k, static_cast<cl_uint>(vertex_count_), amount_, inverse_mass_, u_);
-  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
-  compute_.queue.finish();  // `amount` is a host temporary the non-blocking write reads from
+  // The amounts as accumulator cells: fixed point with the largest amount at most 2^62 units, or floats.
+  const size_t n = amount_per_vertex.size();
+  double largest = 0.0;
+  for (double a : amount_per_vertex) largest = std::max(largest, std::abs(a));
+  const bool fixed_point = fixed_point_deposits(compute_.device);
+  const double scale =
+      fixed_point && largest > 0.0 ? std::ldexp(1.0, std::min(60, static_cast<int>(std::floor(62.0 - std::log2(largest)))))
+                                   : 1.0;
+  std::vector<cl_long> units(fixed_point ? n : 0);
+  std::vector<cl_float> floats(fixed_point ? 0 : n);
+  for (size_t i = 0; i < n; ++i) {
+    if (fixed_point) units[i] = std::llround(amount_per_vertex[i] * scale);
+    else floats[i] = static_cast<cl_float>(amount_per_vertex[i]);
+  }
+  amount_ = fixed_point ? upload_buffer(compute_, "deposit amounts", units, CL_MEM_READ_WRITE, true)
+                        : upload_buffer(compute_, "deposit amounts", floats, CL_MEM_READ_WRITE, true);
+  add_deposits(amount_, scale);
+  compute_.queue.finish();
+}
+
+void OpenCLPheromone::add_deposits(const DeviceBuffer& cells, double scale) {
+  set_arguments(kernels_->add_deposits, static_cast<cl_int>(vertex_count_), cells, inverse_mass_,
+                static_cast<cl_float>(1.0 / scale), u_);
+  compute_.queue.enqueueNDRangeKernel(kernels_->add_deposits, cl::NullRange, cl::NDRange(group_count_ * group_),
+                                      cl::NDRange(group_));
 }
 
 const cl::Buffer& OpenCLPheromone::concentration_buffer() const { return u_.buffer; }

@@ -46,13 +46,14 @@ class OpenCLPheromone {
   std::vector<double> concentration() const;  // blocking read-back, converted to double
   void set_concentration(const std::vector<double>& u);
   void fill(double value);
-  // An AMOUNT at a vertex raises its concentration by amount / vertex_mass.
+  // An AMOUNT at a vertex raises its concentration by amount / vertex_mass (blocking; for tests).
   void add_deposits(const std::vector<double>& amount_per_vertex);
+  // The same from the device's deposit accumulator (kernels/deposit_cells.h: fixed point of `scale`
+  // where fixed_point_deposits(device), floats elsewhere), which is cleared: enqueues one launch.
+  void add_deposits(const DeviceBuffer& cells, double scale);
   // The device buffer holding u (float, vertex_count): the same buffer for the object's lifetime,
   // so agent kernels may keep it as an argument.
   const cl::Buffer& concentration_buffer() const;
-  // 1 / vertex mass (float, vertex_count), for the kernels that turn amounts into concentrations.
-  const DeviceBuffer& inverse_mass_buffer() const { return inverse_mass_; }
 
   // ---- time ----
   // One time step: forward Euler enqueues its sub-steps back to back with no host round trip;

@@ -21,7 +21,7 @@
 namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
-  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step, collect_deposits;
+  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step;
 };
 
 namespace {
@@ -77,7 +77,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const PackedAgentParameters agent_parameters = pack_agent_parameters(device_params);
 
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
-  fixed_point_ = compute.device.int64_atomics;
+  fixed_point_ = opencl::fixed_point_deposits(compute.device);
   if (fixed_point_) deposit_scale_ = fixed_point_deposit_scale(params.deposit_rate, agent_count, settings.time_step);
 
   constants_.dt = static_cast<float>(settings.time_step);
@@ -109,9 +109,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
-    kernels_->collect_deposits = cl::Kernel(program, "deposits_to_concentration");
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
-    vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
     agent_program = program;
   } catch (const cl::Error& e) {
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
@@ -210,15 +208,6 @@ void OpenCLSimulation::enqueue_agent_step() {
                                       cl::NDRange(agent_group_));
 }
 
-void OpenCLSimulation::enqueue_collect_deposits() {
-  cl::Kernel& k = kernels_->collect_deposits;
-  set_arguments(k, static_cast<cl_int>(domain_.vertex_count), deposits_, pheromone_->inverse_mass_buffer(),
-                static_cast<cl_float>(1.0 / deposit_scale_), pheromone_->concentration_buffer());
-  compute_.queue.enqueueNDRangeKernel(
-      k, cl::NullRange, cl::NDRange(padded_global_size(static_cast<size_t>(domain_.vertex_count), vertex_group_)),
-      cl::NDRange(vertex_group_));
-}
-
 void OpenCLSimulation::step() {
   try {
     if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) agent_order_->enqueue_sort(agents_);
@@ -228,9 +217,9 @@ void OpenCLSimulation::step() {
     // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
     if (settings_.integrator == Integrator::ForwardEuler) {
       pheromone_->step();
-      enqueue_collect_deposits();
+      pheromone_->add_deposits(deposits_, deposit_scale_);
     } else {
-      enqueue_collect_deposits();
+      pheromone_->add_deposits(deposits_, deposit_scale_);
       pheromone_->step();
     }
   } catch (const cl::Error& e) {

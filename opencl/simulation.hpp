@@ -96,7 +96,6 @@ class OpenCLSimulation final : public SimulationBackend {
   struct Kernels;
   void enqueue_agent_step();
   void enqueue_sensing();
-  void enqueue_collect_deposits();
 
   ComputeContext compute_;
   const SurfaceDomain& domain_;
@@ -115,7 +114,7 @@ class OpenCLSimulation final : public SimulationBackend {
   // agent_groups_ work-groups cover one agent per work-item (initialise, sort); step_groups_ cover
   // agents_per_work_item_ per walker (agent_step); sensing_groups_ run sense_deciders, which loops
   // over the step's deciders.
-  std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1, vertex_group_ = 1;
+  std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1;
   std::size_t sensing_group_ = 1, sensing_groups_ = 1;
   int agents_per_work_item_ = 1;
   bool fixed_point_ = true;

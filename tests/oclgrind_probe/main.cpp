@@ -65,7 +65,7 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
 }
 
 // A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
-// reflecting, depositing, respawning) and deposits_to_concentration, on a closed surface and on one
+// reflecting, depositing, respawning) and pheromone_add_deposits, on a closed surface and on one
 // with a boundary, with scalar walks (one agent per work-item, as on GPUs) and with vector-lane walks
 // (four agents a walker, three walkers a work-item, as on CPUs). Several turn decisions every step
 // and a short lifetime make every branch run.
