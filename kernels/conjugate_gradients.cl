@@ -14,6 +14,13 @@
 #include "reduction.h"
 #include "sparse_rows.h"
 
+/* Whether this work-item of a one-group pass writes the state: only work-item 0 touches it (another
+ * item reading it while item 0 writes it would be a data race; the barriers order local memory
+ * only), and only while the solve runs. */
+bool updates_state(__global const PhysarumCgState* state) {
+  return get_global_id(0) == 0 && state->status == PHYSARUM_CG_RUNNING;
+}
+
 /* r = b - S x, z = D^-1 r, p = z; partials of (r.z, r.r, b.b). */
 __kernel void cg_start(const uint n, __global const int* row_start, __global const int* column,
                        __global const float* value, __global const float* inverse_diagonal,
@@ -67,9 +74,7 @@ __kernel void cg_multiply(const uint n, __global const int* row_start, __global 
 __kernel void cg_alpha(const uint count, __global const float4* partials, __global PhysarumCgState* state,
                        __local float4* scratch) {
   const float4 total = sum_partials4(partials, count, scratch);
-  // Only work-item 0 touches the state: another item reading it while item 0 writes it would be a
-  // data race (the barriers order local memory only).
-  if (get_global_id(0) != 0 || state->status != PHYSARUM_CG_RUNNING) return;
+  if (!updates_state(state)) return;
   state->pq = total.x;
   if (!(total.x > 0.0f)) state->status = PHYSARUM_CG_BREAKDOWN;
 }
@@ -99,9 +104,7 @@ __kernel void cg_update(const uint n, __global const float* inverse_diagonal, __
 __kernel void cg_beta(const uint count, __global const float4* partials, __global PhysarumCgState* state,
                       __local float4* scratch) {
   const float4 total = sum_partials4(partials, count, scratch);
-  // Only work-item 0 touches the state: another item reading it while item 0 writes it would be a
-  // data race (the barriers order local memory only).
-  if (get_global_id(0) != 0 || state->status != PHYSARUM_CG_RUNNING) return;
+  if (!updates_state(state)) return;
   state->beta = total.x / state->rz;
   state->rz = total.x;
   state->rr = total.y;

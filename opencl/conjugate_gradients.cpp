@@ -40,12 +40,9 @@ DeviceConjugateGradients::DeviceConjugateGradients(const ComputeContext& compute
     k.direction = cl::Kernel(program, "cg_direction");
     // One local size for every per-vertex kernel, so all reductions have the same number of
     // partials; the smallest the kernels allow.
-    group_ = 256;
-    for (const cl::Kernel* kernel : {&k.start, &k.multiply, &k.update, &k.direction})
-      group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
-    final_group_ = 256;
-    for (const cl::Kernel* kernel : {&k.start_finish, &k.alpha, &k.beta})
-      final_group_ = std::min(final_group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
+    group_ = common_work_group_size({&k.start, &k.multiply, &k.update, &k.direction}, compute.device, 256,
+                                    sizeof(cl_float4));
+    final_group_ = common_work_group_size({&k.start_finish, &k.alpha, &k.beta}, compute.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
     throw device_error("preparing the conjugate-gradient kernels (conjugate_gradients.cl) on " +
                            compute.device.device_name,

@@ -83,9 +83,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     k.add_deposits = cl::Kernel(program, "pheromone_add_deposits");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
     // One local size for every per-vertex kernel; the smallest the kernels allow.
-    group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply})
-      group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
+    group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply},
+                                    compute.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
     throw device_error("preparing the pheromone kernels (pheromone.cl) on " + compute.device.device_name, e.err());
   }
