@@ -25,7 +25,7 @@ DeviceAgentOrder::DeviceAgentOrder(const ComputeContext& compute, const cl::Prog
   while ((faces + (1u << bin_shift_) - 1) >> bin_shift_ > kMaxBins) ++bin_shift_;
   bins_ = std::max<cl_uint>(1, (faces + (1u << bin_shift_) - 1) >> bin_shift_);
   sorted_ = DeviceAgents::allocate(compute, agent_count);
-  bin_cursor_ = allocate_buffer(compute, "agent sort bins", bins_ * sizeof(cl_uint), CL_MEM_READ_WRITE, true);
+  bin_cursor_ = allocate_written<cl_uint>(compute, "agent sort bins", bins_);
 }
 
 void DeviceAgentOrder::enqueue_sort(DeviceAgents& agents) {

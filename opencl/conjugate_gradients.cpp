@@ -51,20 +51,19 @@ DeviceConjugateGradients::DeviceConjugateGradients(const ComputeContext& compute
   const size_t un = static_cast<size_t>(n_);
   group_count_ = padded_global_size(un, group_) / group_;
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  const size_t field_bytes = un * sizeof(float);
   row_start_ = upload_buffer(compute, "backward Euler system row starts", system.row_start, kRead, false);
   column_ = upload_buffer(compute, "backward Euler system columns", system.column, kRead, false);
   value_ = upload_buffer(compute, "backward Euler system values",
                          std::vector<float>(system.value.begin(), system.value.end()), kRead, false);
   inverse_diagonal_ = upload_buffer(compute, "Jacobi preconditioner",
                                     std::vector<float>(inverse_diagonal.begin(), inverse_diagonal.end()), kRead, false);
-  b_ = allocate_buffer(compute, "CG right-hand side", field_bytes, CL_MEM_READ_WRITE, true);
-  r_ = allocate_buffer(compute, "CG residual", field_bytes, CL_MEM_READ_WRITE, true);
-  z_ = allocate_buffer(compute, "CG preconditioned residual", field_bytes, CL_MEM_READ_WRITE, true);
-  p_ = allocate_buffer(compute, "CG direction", field_bytes, CL_MEM_READ_WRITE, true);
-  q_ = allocate_buffer(compute, "CG S times direction", field_bytes, CL_MEM_READ_WRITE, true);
-  partials_ = allocate_buffer(compute, "CG partial sums", group_count_ * sizeof(cl_float4), CL_MEM_READ_WRITE, true);
-  state_ = allocate_buffer(compute, "CG state", sizeof(PhysarumCgState), CL_MEM_READ_WRITE, true);
+  b_ = allocate_written<cl_float>(compute, "CG right-hand side", un);
+  r_ = allocate_written<cl_float>(compute, "CG residual", un);
+  z_ = allocate_written<cl_float>(compute, "CG preconditioned residual", un);
+  p_ = allocate_written<cl_float>(compute, "CG direction", un);
+  q_ = allocate_written<cl_float>(compute, "CG S times direction", un);
+  partials_ = allocate_written<cl_float4>(compute, "CG partial sums", group_count_);
+  state_ = allocate_written<PhysarumCgState>(compute, "CG state", 1);
 }
 
 const ConjugateGradientReport& DeviceConjugateGradients::solve(const DeviceBuffer& x) {

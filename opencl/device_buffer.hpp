@@ -31,6 +31,13 @@ struct DeviceBuffer {
 DeviceBuffer allocate_buffer(const ComputeContext& compute, const std::string& name, std::size_t payload_bytes,
                              cl_mem_flags flags, bool guarded);
 
+// allocate_buffer for `count` elements of T (no byte arithmetic at the call site). Guarded and
+// read-write: what kernels write.
+template <class T>
+DeviceBuffer allocate_written(const ComputeContext& compute, const std::string& name, std::size_t count) {
+  return allocate_buffer(compute, name, count * sizeof(T), CL_MEM_READ_WRITE, true);
+}
+
 // allocate_buffer + a blocking upload of `values`.
 template <class T>
 DeviceBuffer upload_buffer(const ComputeContext& compute, const std::string& name, const std::vector<T>& values,

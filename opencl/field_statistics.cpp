@@ -28,8 +28,8 @@ DeviceFieldStatistics::DeviceFieldStatistics(const ComputeContext& compute, cons
     throw device_error("preparing the statistics kernels (reduction.cl)", e.err());
   }
   group_count_ = padded_global_size(static_cast<std::size_t>(vertex_count), partial_group_) / partial_group_;
-  partials_ = allocate_buffer(compute, "statistics partial sums", group_count_ * sizeof(cl_float4), CL_MEM_READ_WRITE, true);
-  result_ = allocate_buffer(compute, "statistics result", sizeof(cl_float4), CL_MEM_READ_WRITE, true);
+  partials_ = allocate_written<cl_float4>(compute, "statistics partial sums", group_count_);
+  result_ = allocate_written<cl_float4>(compute, "statistics result", 1);
   const float below_everything = -std::numeric_limits<float>::infinity();
   total_mass_ = sums(mass_, {below_everything, below_everything, below_everything})[1];
   if (!(total_mass_ > 0.0))

@@ -92,7 +92,6 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  const size_t field_bytes = un * sizeof(float);
   if (integrator == Integrator::ForwardEuler) {
     // The sub-step matrix (common/pheromone_operators.hpp), in double, then in hybrid form with one
     // ELL row per work-item of the padded launch.
@@ -120,8 +119,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   }
   mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
-  u_ = allocate_buffer(compute, "concentration", field_bytes, CL_MEM_READ_WRITE, true);
-  scratch_ = allocate_buffer(compute, "concentration scratch", field_bytes, CL_MEM_READ_WRITE, true);
+  u_ = allocate_written<cl_float>(compute, "concentration", un);
+  scratch_ = allocate_written<cl_float>(compute, "concentration scratch", un);
   fill(0.0);
 
   if (integrator == Integrator::BackwardEuler) {

@@ -143,18 +143,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
-  deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
-                              CL_MEM_READ_WRITE, true);
-  group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
-                                    CL_MEM_READ_WRITE, true);
+  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", nv)
+                          : allocate_written<cl_float>(compute, "deposit accumulator", nv);
+  group_counters_ = allocate_written<cl_ulong>(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
   agents_ = DeviceAgents::allocate(compute, agent_count);
   const size_t agent_slots = static_cast<size_t>(std::max(agent_count, 1));
-  deciders_ = allocate_buffer(compute, "agents with a decision due", agent_slots * sizeof(cl_int), CL_MEM_READ_WRITE,
-                              true);
-  decider_count_ = allocate_buffer(compute, "count of agents with a decision due", sizeof(cl_uint), CL_MEM_READ_WRITE,
-                                   true);
-  first_sensing_ = allocate_buffer(compute, "first sensing of each agent", agent_slots * sizeof(cl_uint),
-                                   CL_MEM_READ_WRITE, true);
+  deciders_ = allocate_written<cl_int>(compute, "agents with a decision due", agent_slots);
+  decider_count_ = allocate_written<cl_uint>(compute, "count of agents with a decision due", 1);
+  first_sensing_ = allocate_written<cl_uint>(compute, "first sensing of each agent", agent_slots);
   if (sort_interval_ > 0)
     agent_order_ = std::make_unique<DeviceAgentOrder>(compute, agent_program, domain.face_count, agent_count,
                                                       agent_group_, agent_groups_);
