@@ -8,6 +8,12 @@
 
 namespace physarum::opencl {
 
+double fixed_point_scale_for(double largest_total) {
+  const int exponent =
+      largest_total > 0.0 ? std::min(60, static_cast<int>(std::floor(62.0 - std::log2(largest_total)))) : 40;
+  return std::ldexp(1.0, exponent);
+}
+
 double fixed_point_deposit_scale(const std::vector<double>& deposit_rate, int agent_count, double time_step) {
   double max_rate = 0.0, min_positive_rate = INFINITY;
   for (double r : deposit_rate) {
@@ -15,9 +21,7 @@ double fixed_point_deposit_scale(const std::vector<double>& deposit_rate, int ag
     if (r > 0.0) min_positive_rate = std::min(min_positive_rate, r);
   }
   const double worst_step_total = std::max(1, agent_count) * max_rate * time_step;
-  const int exponent =
-      worst_step_total > 0.0 ? std::min(60, static_cast<int>(std::floor(62.0 - std::log2(worst_step_total)))) : 40;
-  const double scale = std::ldexp(1.0, exponent);
+  const double scale = fixed_point_scale_for(worst_step_total);
   if (std::isfinite(min_positive_rate) && min_positive_rate * time_step * scale < 0x1p20)
     throw InputError("opencl simulation: " + std::to_string(agent_count) + " agents depositing up to " +
                      std::to_string(max_rate) + " per second leave too little fixed-point resolution for the "

@@ -12,6 +12,10 @@ namespace physarum::opencl {
 // (cl_khr_int64_base_atomics), in floats by compare-and-swap elsewhere (kernels/deposit_cells.h).
 inline bool fixed_point_deposits(const DeviceInfo& device) { return device.int64_atomics; }
 
+// 2^k with k the largest (at most 60) that keeps `largest_total` at or below 2^62 units; 2^40 when
+// largest_total is 0.
+double fixed_point_scale_for(double largest_total);
+
 // 2^k with k the largest (at most 60) that keeps the worst case of one step, every agent's whole
 // deposit max(deposit_rate) * time_step into one vertex, at or below 2^62; 2^40 when nothing is
 // deposited. Throws InputError when even that scale leaves fewer than 2^20 units for one agent's

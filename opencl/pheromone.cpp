@@ -4,12 +4,12 @@
 #include "common/forward_euler_limit.hpp"
 #include "common/pheromone_operators.hpp"
 #include "kernels/device_types.h"
+#include "opencl/deposit_scale.hpp"
+#include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
-#include "opencl/deposit_scale.hpp"
-#include "opencl/hybrid_matrix.hpp"
 #include "opencl/work_group_size.hpp"
 
 #include <algorithm>
@@ -74,9 +74,9 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   // ---- program and launch sizes ----
   kernels_ = std::make_unique<Kernels>();
   try {
-    const cl::Program program =
-        build_program(compute.context, compute.device, "pheromone.cl", kernel_source("pheromone.cl"),
-                      options.build_options + (fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS"));
+    const std::string deposit_cells = fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS";
+    const cl::Program program = build_program(compute.context, compute.device, "pheromone.cl",
+                                              kernel_source("pheromone.cl"), options.build_options + deposit_cells);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
@@ -175,9 +175,7 @@ void OpenCLPheromone::add_deposits(const std::vector<double>& amount_per_vertex)
   double largest = 0.0;
   for (double a : amount_per_vertex) largest = std::max(largest, std::abs(a));
   const bool fixed_point = fixed_point_deposits(compute_.device);
-  const double scale =
-      fixed_point && largest > 0.0 ? std::ldexp(1.0, std::min(60, static_cast<int>(std::floor(62.0 - std::log2(largest)))))
-                                   : 1.0;
+  const double scale = fixed_point ? fixed_point_scale_for(largest) : 1.0;
   std::vector<cl_long> units(fixed_point ? n : 0);
   std::vector<cl_float> floats(fixed_point ? 0 : n);
   for (size_t i = 0; i < n; ++i) {

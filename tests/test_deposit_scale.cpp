@@ -31,7 +31,8 @@ TEST(DepositScale, LargestPowerOfTwoKeepingTheWorstStepBelowTwoToThe62) {
 TEST(DepositScale, CappedAtTwoToThe60AndTwoToThe40WithoutDeposits) {
   EXPECT_EQ(fixed_point_deposit_scale({1e-9}, 1, 1e-3), 0x1p60);
   EXPECT_EQ(fixed_point_deposit_scale({0.0, 0.0}, 1000, 0.01), 0x1p40);
-  EXPECT_EQ(fixed_point_deposit_scale({1.0}, 0, 0.01), fixed_point_deposit_scale({1.0}, 1, 0.01)) << "no agents: as one";
+  EXPECT_EQ(fixed_point_deposit_scale({1.0}, 0, 0.01), fixed_point_deposit_scale({1.0}, 1, 0.01))
+      << "no agents: as one";
 }
 
 TEST(DepositScale, RefusesRatesSpreadSoFarThatTheSmallestDepositRounds) {
