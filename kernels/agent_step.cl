@@ -17,7 +17,7 @@
 #include "agent_order.cl"
 
 /* Agents per walker (1..4, a build option the host sets) and walkers per work-item
- * (PHYSARUM_MOVE_WALKERS, trace.cl): on a CPU the agents of one walker move in lockstep, one vector
+ * (PHYSARUM_MOVE_WALKERS, movement.cl): on a CPU the agents of one walker move in lockstep, one vector
  * lane each, and several walkers take turns, which overlaps their chains of face reads; a GPU
  * overlaps them across its threads instead and takes 1 and 1. Results do not depend on either. */
 #ifndef PHYSARUM_AGENTS_PER_WORK_ITEM
@@ -27,7 +27,7 @@
 #error "PHYSARUM_AGENTS_PER_WORK_ITEM must be 1, 2, 3 or 4"
 #endif
 #if PHYSARUM_AGENTS_PER_WORK_ITEM > PHYSARUM_WALK_LANES
-#error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (trace.cl)"
+#error "PHYSARUM_AGENTS_PER_WORK_ITEM exceeds PHYSARUM_WALK_LANES (lanes.h)"
 #endif
 #define LANES PHYSARUM_AGENTS_PER_WORK_ITEM
 #define AGENTS (PHYSARUM_AGENTS_PER_WORK_ITEM * PHYSARUM_MOVE_WALKERS)
@@ -126,21 +126,4 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
 
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid < PHYSARUM_COUNTERS) group_counters[get_group_id(0) * PHYSARUM_COUNTERS + lid] += local_counters[lid];
-}
-
-/* The step's deposits into the field: u_i += amount_i / m_i, and the accumulator cleared for the
- * next step (mirrors ReferencePheromone::add_deposits). */
-__kernel void deposits_to_concentration(const int n, __global PhysarumDepositCell* deposits,
-                                        __global const float* inverse_mass, const float inverse_scale,
-                                        __global float* concentration) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
-#ifdef PHYSARUM_FLOAT_DEPOSITS
-  const float amount = deposits[i];
-  deposits[i] = 0.0f;
-#else
-  const float amount = convert_float(deposits[i]) * inverse_scale;
-  deposits[i] = 0;
-#endif
-  concentration[i] += amount * inverse_mass[i];
 }

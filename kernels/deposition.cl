@@ -1,7 +1,7 @@
 /* Deposition along the path (paper Eq. 4; mirrors reference/deposition.cpp). Each per-face piece of
  * a step deposits its share of r_dep dt at its midpoint, split over the face's corners by the
- * midpoint's barycentric weights, into an AMOUNT per vertex; deposits_to_concentration then divides
- * by the vertex mass and adds it to the field.
+ * midpoint's barycentric weights, into an AMOUNT per vertex; pheromone_add_deposits (pheromone.cl)
+ * then divides by the vertex mass and adds it to the field.
  *
  * Order independence: amounts accumulate as 64-bit fixed point (round(amount * scale), scale a power
  * of two chosen by the host so the largest possible per-vertex sum of one step cannot overflow), and
@@ -11,13 +11,9 @@
 #ifndef PHYSARUM_DEPOSITION_CL
 #define PHYSARUM_DEPOSITION_CL
 #include "device_types.h"
+#include "trace.cl"
 
-#ifdef PHYSARUM_FLOAT_DEPOSITS
-typedef float PhysarumDepositCell;
-#else
-#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
-typedef long PhysarumDepositCell;
-#endif
+#include "deposit_cells.h"
 
 /* Bounded retries of the float compare-and-swap: contention on one vertex cannot reach this many
  * collisions in practice; giving up after it loses one deposit rather than hanging the device. */
@@ -60,6 +56,26 @@ void deposit_at_barycentric(__global const PhysarumFaceRecord* faces, const int 
   deposit_amount(&deposits[faces[face].vertex[0]], amount * b.x, scale);
   deposit_amount(&deposits[faces[face].vertex[1]], amount * b.y, scale);
   deposit_amount(&deposits[faces[face].vertex[2]], amount * b.z, scale);
+}
+
+/* The deposits of one step's pieces (see trace_walk_lanes): each lane's amount and point as lane
+ * vectors, one instruction for all lanes; the deposits themselves lane by lane. */
+void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
+                    const lane_float length, const lane_float walk_amount, const lane_float per_length,
+                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
+  /* Lane i deposits walk_amount[i] spread over its walk; a walk of no length all of it at its end
+   * point. */
+  const lane_int whole = !(length > 0.0f);
+  const lane_float amount = select(per_length * piece->length, walk_amount, whole);
+  const lane_float at0 = select(0.5f * (piece->start0 + piece->end0), piece->end0, whole);
+  const lane_float at1 = select(0.5f * (piece->start1 + piece->end1), piece->end1, whole);
+  const lane_float at2 = select(0.5f * (piece->start2 + piece->end2), piece->end2, whole);
+  const lane_int depositing = piece->walked & (walk_amount != 0.0f) & (whole | (piece->length > 0.0f));
+  for (int lane = 0; lane < lanes; ++lane)
+    if (int_in_lane(depositing, lane))
+      deposit_at_barycentric(faces, int_in_lane(piece->face, lane),
+                             (float3)(float_in_lane(at0, lane), float_in_lane(at1, lane), float_in_lane(at2, lane)),
+                             float_in_lane(amount, lane), deposits, deposit_scale);
 }
 
 #endif /* PHYSARUM_DEPOSITION_CL */

@@ -27,12 +27,12 @@ typedef float dev_float;
 
 /* ---- hybrid ELL + CSR matrices (pheromone.cl, opencl/hybrid_matrix.hpp) ----
  * Entries per row in the fixed-width ELL block. A row of the sub-step matrix has its vertex's degree
- * plus one entries, 7 on average on a triangle mesh; on the intrinsic Delaunay meshes we run
- * (spot, bunny, sphere, torus) 8 slots hold 96-97 % of rows whole, and the rest spill 1-3 entries
- * into the overflow part. */
+ * plus one entries, 7 on average on a triangle mesh; 8 slots hold nearly every row of the intrinsic
+ * Delaunay meshes whole, and the few longer rows spill into the overflow part (bench/README.md,
+ * "Tuning measurements"). */
 #define PHYSARUM_ELL_WIDTH 8
 
-/* ---- conjugate gradients (pheromone.cl) ----
+/* ---- conjugate gradients (conjugate_gradients.cl) ----
  * The scalars of one solve live on the device so iterations run without a host round trip; the
  * host reads this struct only every few iterations to see whether the solve has stopped. */
 #define PHYSARUM_CG_RUNNING 0
@@ -118,12 +118,12 @@ typedef struct {
 
 /* Sensing with vector lanes (sensing_steering.cl): walkers of 16 lanes (five agents' three sensor
  * traces each) that take turns step by step in one work-item, so the face reads of some are in
- * flight while the others compute. Three measured best on the 2-core test machine at 200k-800k
- * faces (two: 1.2x slower, four: no faster in cache and slower out of it, from register spills). */
+ * flight while the others compute. Three: fewer leave face-read latency exposed, more spill
+ * registers (bench/README.md, "Tuning measurements"). */
 #define PHYSARUM_SENSING_WALKERS 3
 #define PHYSARUM_SENSING_AGENTS_PER_WALKER 5 /* 15 of 16 lanes */
 
-/* Movement with vector lanes (trace.cl): walkers of 4 lanes (four agents' moves) that take turns
+/* Movement with vector lanes (movement.cl): walkers of 4 lanes (four agents' moves) that take turns
  * step by step in one work-item, for the same reason. */
 #define PHYSARUM_VECTOR_MOVE_WALKERS 3
 

@@ -1,10 +1,58 @@
 /* Movement (paper Sec. 3.2; mirrors reference/movement.cpp): each step an agent walks the geodesic
  * of length v dt along its heading, REFLECTING at boundaries, and deposits along the way (Eq. 4,
  * deposition.cl) when its deposit amount is not 0. The agents of one work-item move together, one
- * lane of one walker each (trace.cl), so their chains of face reads overlap. */
+ * lane of one walker each (trace.cl), so their chains of face reads overlap.
+ * Deposition is folded into the movement walk (the reference collects segments and deposits
+ * afterwards): a kernel cannot keep a variable-length segment list, and depositing each piece as it
+ * is walked is the same sum. */
 #ifndef PHYSARUM_MOVEMENT_CL
 #define PHYSARUM_MOVEMENT_CL
+#include "deposition.cl"
 #include "trace.cl"
+
+/* Movement walks: PHYSARUM_MOVE_WALKERS walkers of `lanes` lanes (1..4) each, one agent a lane.
+ * The walkers take turns step by step and each prefetches the faces it enters (walk_lanes_step),
+ * so one walker's face reads are in flight while the others compute: a move crosses only a few
+ * faces, and the four chains of one walker alone leave most of a face read's latency exposed. */
+#if PHYSARUM_WALK_LANES > 1
+#define PHYSARUM_MOVE_WALKERS PHYSARUM_VECTOR_MOVE_WALKERS
+#else
+#define PHYSARUM_MOVE_WALKERS 1
+#endif
+
+/* The movement walks of up to PHYSARUM_MOVE_WALKERS * lanes agents: lane i of walker h walks
+ * length[h][i] from p[h][i] along unit d[h][i] in face[h][i], reflecting at boundaries; when
+ * deposit_amount[h][i] != 0 each of its pieces deposits deposit_amount * (piece length / length)
+ * at the piece's midpoint (the whole amount at the end point when the length is 0). Lanes whose
+ * `active` is 0 do not walk. Ends in ends[h * lanes + i]. */
+inline __attribute__((always_inline)) void trace_walk_lanes(
+    __global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face, const lane_float* px,
+    const lane_float* py, const lane_float* dx, const lane_float* dy, const lane_float* length,
+    const lane_float* deposit_amount, const lane_int* active, __global PhysarumDepositCell* deposits,
+    const float deposit_scale, TraceEnd* ends) {
+  WalkLanes w[PHYSARUM_MOVE_WALKERS];
+  lane_float per_length[PHYSARUM_MOVE_WALKERS];
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
+    w[h] = walk_lanes_start(faces, lanes, face[h], px[h], py[h], dx[h], dy[h], length[h], active[h]);
+    per_length[h] = select((lane_float)(0.0f), deposit_amount[h] / w[h].remaining, w[h].remaining > 0.0f);
+  }
+  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS; ++step) {
+    lane_int walking = (lane_int)(0);
+#pragma unroll
+    for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
+      if (LANE_ANY(w[h].walking)) {
+        WalkPieces piece;
+        walk_lanes_step(faces, lanes, &w[h], 1, &piece);
+        deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale);
+      }
+      walking |= w[h].walking;
+    }
+    if (!LANE_ANY(walking)) break;
+  }
+#pragma unroll
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) walk_lane_ends(faces, &w[h], lanes, &ends[h * lanes]);
+}
 
 void move_agents(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face,
                  const lane_float* px, const lane_float* py, const lane_float* dx, const lane_float* dy,

@@ -1,5 +1,5 @@
-/* Work-group tree reduction shared by reduction.cl and pheromone.cl. A fixed local size gives a
- * fixed summation order, so the result is deterministic on a given device. */
+/* Work-group tree reduction shared by reduction.cl and conjugate_gradients.cl. A fixed local size
+ * gives a fixed summation order, so the result is deterministic on a given device. */
 #ifndef PHYSARUM_REDUCTION_H
 #define PHYSARUM_REDUCTION_H
 

@@ -272,8 +272,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
  * launching one work-item per possible block would leave most of them idle and, where a runtime
  * hands out work-groups in contiguous chunks (PoCL), all the work to the first chunk. Contiguous:
  * the list is in agent order, agents are sorted by face, so a group's traces stay in one region
- * of the surface and its face reads hit the core's own cache (1.1x over dealing blocks
- * round-robin, at 200k faces). */
+ * of the surface and its face reads hit the core's own cache (faster than dealing blocks
+ * round-robin: bench/README.md, "Tuning measurements"). */
 __kernel void sense_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                              __global const PhysarumAgentParameters* vertex_parameters,
                              __global const float* concentration, __global const int* face,

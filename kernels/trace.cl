@@ -14,127 +14,13 @@
  *     crossing the point lies on the shared edge, where they are (1 - s, s, 0) up to the corner
  *     order; only their rate along the heading needs the new face's layout, and the face record
  *     stores that layout as reciprocals (device_types.h), so it costs multiplications only.
- * Deposition is folded into the movement walk (the reference collects segments and deposits
- * afterwards): a kernel cannot keep a variable-length segment list, and depositing each piece as it
- * is walked is the same sum. */
+ * The lane layer (vector or scalar lanes) is lanes.h; the movement walks, which deposit as they go,
+ * are movement.cl, their deposits deposition.cl. */
 #ifndef PHYSARUM_TRACE_CL
 #define PHYSARUM_TRACE_CL
 #include "device_types.h"
 #include "agents.cl"
-#include "deposition.cl"
-
-/* Walk lanes. A walker advances PHYSARUM_WALK_LANES walks at once (a build option the host sets):
- * on CPUs 4 (float4) for the moves of the agents of one work-item and 16 (float16) for the sensor
- * rays of five agents (sensing_steering.cl), so one instruction does the arithmetic of several walks
- * and their face reads are in flight together; 1 on GPUs, as scalars, since a GPU's threads are its
- * lanes already and idle vector lanes would only cost instructions. The code below is written once
- * for all: masks are comparison results combined with & | ! (true is -1 in a vector, 1 in a scalar;
- * both work with select), and the helpers here hide the rest. Results are the same bits either way. */
-#ifndef PHYSARUM_WALK_LANES
-#define PHYSARUM_WALK_LANES 1
-#endif
-/* A hint to fetch the cache line at p. On CPU devices the host asks for clang's prefetch
- * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's. */
-#ifdef PHYSARUM_CLANG_PREFETCH
-#define PHYSARUM_PREFETCH(p) __builtin_prefetch(p)
-#else
-#define PHYSARUM_PREFETCH(p) prefetch((__global const float16*)(p), 1)
-#endif
-#if PHYSARUM_WALK_LANES == 4 || PHYSARUM_WALK_LANES == 16
-#if PHYSARUM_WALK_LANES == 4
-typedef float4 lane_float;
-typedef int4 lane_int;
-typedef uint4 lane_uint;
-#define CONVERT_LANE_INT convert_int4
-#define CONVERT_LANE_UINT convert_uint4
-#define LANE_INDICES ((int4)(0, 1, 2, 3))
-/* Per-lane reads of one face-record field (each lane its own face f, and its own edge e). With
- * lanes == 1 (a compile-time constant where the walk is inlined) only lane 0's face is read, so a
- * lone walk pays for one read, not four. */
-#define GATHER_FIELD(type, faces, f, field, lanes)                                                     \
-  ((lanes) == 1 ? (type)((faces)[(f).x].field)                                                         \
-                : (type)((faces)[(f).x].field, (faces)[(f).y].field, (faces)[(f).z].field, (faces)[(f).w].field))
-#define GATHER_EDGE_FIELD(type, faces, f, e, field, lanes)                                           \
-  ((lanes) == 1 ? (type)((faces)[(f).x].field[(e).x])                                                \
-                : (type)((faces)[(f).x].field[(e).x], (faces)[(f).y].field[(e).y],                   \
-                         (faces)[(f).z].field[(e).z], (faces)[(f).w].field[(e).w]))
-#define PREFETCH_FACES(faces, f)                                                                   \
-  PHYSARUM_PREFETCH(&(faces)[(f).x]); PHYSARUM_PREFETCH(&(faces)[(f).y]);                           \
-  PHYSARUM_PREFETCH(&(faces)[(f).z]); PHYSARUM_PREFETCH(&(faces)[(f).w]);
-#else
-typedef float16 lane_float;
-typedef int16 lane_int;
-typedef uint16 lane_uint;
-#define CONVERT_LANE_INT convert_int16
-#define CONVERT_LANE_UINT convert_uint16
-#define LANE_INDICES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-/* Lane i's face record (i a hexadecimal digit: .s0 .. .sf). */
-#define FACE_OF_LANE(faces, f_, i) (faces)[(f_).s##i]
-#define GATHER_FIELD(type, faces, f_, field, lanes)                             \
-  ((type)(FACE_OF_LANE(faces, f_, 0).field, FACE_OF_LANE(faces, f_, 1).field,   \
-          FACE_OF_LANE(faces, f_, 2).field, FACE_OF_LANE(faces, f_, 3).field,   \
-          FACE_OF_LANE(faces, f_, 4).field, FACE_OF_LANE(faces, f_, 5).field,   \
-          FACE_OF_LANE(faces, f_, 6).field, FACE_OF_LANE(faces, f_, 7).field,   \
-          FACE_OF_LANE(faces, f_, 8).field, FACE_OF_LANE(faces, f_, 9).field,   \
-          FACE_OF_LANE(faces, f_, a).field, FACE_OF_LANE(faces, f_, b).field,   \
-          FACE_OF_LANE(faces, f_, c).field, FACE_OF_LANE(faces, f_, d).field,   \
-          FACE_OF_LANE(faces, f_, e).field, FACE_OF_LANE(faces, f_, f).field))
-#define PREFETCH_FACES(faces, f_)                                                                  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 0)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 1));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 2)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 3));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 4)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 5));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 6)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 7));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 8)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, 9));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, a)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, b));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, c)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, d));  \
-  PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, e)); PHYSARUM_PREFETCH(&FACE_OF_LANE(faces, f_, f));
-#define GATHER_EDGE_FIELD(type, faces, f_, e_, field, lanes)                                      \
-  ((type)(FACE_OF_LANE(faces, f_, 0).field[(e_).s0], FACE_OF_LANE(faces, f_, 1).field[(e_).s1],   \
-          FACE_OF_LANE(faces, f_, 2).field[(e_).s2], FACE_OF_LANE(faces, f_, 3).field[(e_).s3],   \
-          FACE_OF_LANE(faces, f_, 4).field[(e_).s4], FACE_OF_LANE(faces, f_, 5).field[(e_).s5],   \
-          FACE_OF_LANE(faces, f_, 6).field[(e_).s6], FACE_OF_LANE(faces, f_, 7).field[(e_).s7],   \
-          FACE_OF_LANE(faces, f_, 8).field[(e_).s8], FACE_OF_LANE(faces, f_, 9).field[(e_).s9],   \
-          FACE_OF_LANE(faces, f_, a).field[(e_).sa], FACE_OF_LANE(faces, f_, b).field[(e_).sb],   \
-          FACE_OF_LANE(faces, f_, c).field[(e_).sc], FACE_OF_LANE(faces, f_, d).field[(e_).sd],   \
-          FACE_OF_LANE(faces, f_, e).field[(e_).se], FACE_OF_LANE(faces, f_, f).field[(e_).sf]))
-#endif
-#define LANE_ANY(mask) any(mask)
-/* Lane `lane` of a private vector, read through its elements in memory (the lane need not be a
- * compile-time constant). */
-float float_in_lane(const lane_float v, const int lane) { return ((const float*)&v)[lane]; }
-int int_in_lane(const lane_int v, const int lane) { return ((const int*)&v)[lane]; }
-/* v with lane `lane` set to x (lane a compile-time constant where this is inlined). */
-lane_float with_lane(const lane_float v, const int lane, const float x) {
-  return select(v, (lane_float)(x), LANE_INDICES == lane);
-}
-lane_int with_lane_int(const lane_int v, const int lane, const int x) {
-  return select(v, (lane_int)(x), LANE_INDICES == lane);
-}
-#elif PHYSARUM_WALK_LANES == 1
-typedef float lane_float;
-typedef int lane_int;
-typedef uint lane_uint;
-#define LANE_ANY(mask) ((mask) != 0)
-#define CONVERT_LANE_INT convert_int
-#define CONVERT_LANE_UINT convert_uint
-#define GATHER_FIELD(type, faces, f, field, lanes) ((faces)[(f)].field)
-#define GATHER_EDGE_FIELD(type, faces, f, e, field, lanes) ((faces)[(f)].field[(e)])
-float float_in_lane(const float v, const int lane) { return v; }
-int int_in_lane(const int v, const int lane) { return v; }
-float with_lane(const float v, const int lane, const float x) { return lane == 0 ? x : v; }
-int with_lane_int(const int v, const int lane, const int x) { return lane == 0 ? x : v; }
-#else
-#error "PHYSARUM_WALK_LANES must be 1, 4 or 16"
-#endif
-
-/* Per lane, component k (0, 1 or 2) of a three-component quantity held as three vectors. */
-lane_float pick3(const lane_int k, const lane_float v0, const lane_float v1, const lane_float v2) {
-  return select(select(v2, v1, k == 1), v0, k == 0);
-}
-
-/* (k + 1) % 3 and (k + 2) % 3 per lane, for k in 0..2. */
-lane_int next3(const lane_int k) { return select(k + 1, (lane_int)(0), k == 2); }
-lane_int previous3(const lane_int k) { return select(k - 1, (lane_int)(2), k == 0); }
+#include "lanes.h"
 
 /* Barycentric coordinates (three vectors) of the point a fraction s along edge e (corner e to
  * corner e+1). */
@@ -361,70 +247,6 @@ void walk_lane_ends(__global const PhysarumFaceRecord* faces, const WalkLanes* w
     r.face_crossings = int_in_lane(w->face_crossings, lane);
     ends[lane] = r;
   }
-}
-
-/* Movement walks: PHYSARUM_MOVE_WALKERS walkers of `lanes` lanes (1..4) each, one agent a lane.
- * The walkers take turns step by step and each prefetches the faces it enters (walk_lanes_step),
- * so one walker's face reads are in flight while the others compute: a move crosses only a few
- * faces, and the four chains of one walker alone leave most of a face read's latency exposed. */
-#if PHYSARUM_WALK_LANES > 1
-#define PHYSARUM_MOVE_WALKERS PHYSARUM_VECTOR_MOVE_WALKERS
-#else
-#define PHYSARUM_MOVE_WALKERS 1
-#endif
-
-/* The deposits of one step's pieces (see trace_walk_lanes): each lane's amount and point as lane
- * vectors, one instruction for all lanes; the deposits themselves lane by lane. */
-void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
-                    const lane_float length, const lane_float walk_amount, const lane_float per_length,
-                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
-  /* Lane i deposits walk_amount[i] spread over its walk; a walk of no length all of it at its end
-   * point. */
-  const lane_int whole = !(length > 0.0f);
-  const lane_float amount = select(per_length * piece->length, walk_amount, whole);
-  const lane_float at0 = select(0.5f * (piece->start0 + piece->end0), piece->end0, whole);
-  const lane_float at1 = select(0.5f * (piece->start1 + piece->end1), piece->end1, whole);
-  const lane_float at2 = select(0.5f * (piece->start2 + piece->end2), piece->end2, whole);
-  const lane_int depositing = piece->walked & (walk_amount != 0.0f) & (whole | (piece->length > 0.0f));
-  for (int lane = 0; lane < lanes; ++lane)
-    if (int_in_lane(depositing, lane))
-      deposit_at_barycentric(faces, int_in_lane(piece->face, lane),
-                             (float3)(float_in_lane(at0, lane), float_in_lane(at1, lane), float_in_lane(at2, lane)),
-                             float_in_lane(amount, lane), deposits, deposit_scale);
-}
-
-/* The movement walks of up to PHYSARUM_MOVE_WALKERS * lanes agents: lane i of walker h walks
- * length[h][i] from p[h][i] along unit d[h][i] in face[h][i], reflecting at boundaries; when
- * deposit_amount[h][i] != 0 each of its pieces deposits deposit_amount * (piece length / length)
- * at the piece's midpoint (the whole amount at the end point when the length is 0). Lanes whose
- * `active` is 0 do not walk. Ends in ends[h * lanes + i]. */
-inline __attribute__((always_inline)) void trace_walk_lanes(
-    __global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face, const lane_float* px,
-    const lane_float* py, const lane_float* dx, const lane_float* dy, const lane_float* length,
-    const lane_float* deposit_amount, const lane_int* active, __global PhysarumDepositCell* deposits,
-    const float deposit_scale, TraceEnd* ends) {
-  WalkLanes w[PHYSARUM_MOVE_WALKERS];
-  lane_float per_length[PHYSARUM_MOVE_WALKERS];
-#pragma unroll
-  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
-    w[h] = walk_lanes_start(faces, lanes, face[h], px[h], py[h], dx[h], dy[h], length[h], active[h]);
-    per_length[h] = select((lane_float)(0.0f), deposit_amount[h] / w[h].remaining, w[h].remaining > 0.0f);
-  }
-  for (int step = 0; step < PHYSARUM_MAX_TRACE_STEPS; ++step) {
-    lane_int walking = (lane_int)(0);
-#pragma unroll
-    for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
-      if (LANE_ANY(w[h].walking)) {
-        WalkPieces piece;
-        walk_lanes_step(faces, lanes, &w[h], 1, &piece);
-        deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale);
-      }
-      walking |= w[h].walking;
-    }
-    if (!LANE_ANY(walking)) break;
-  }
-#pragma unroll
-  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) walk_lane_ends(faces, &w[h], lanes, &ends[h * lanes]);
 }
 
 /* The three sensor walks of one agent (left, centre, right), which stop at boundaries, in lockstep:

@@ -1,5 +1,6 @@
 #include "opencl/device_buffer.hpp"
 
+#include "opencl/device_tuning.hpp"
 #include "opencl/opencl_error.hpp"
 
 #include <algorithm>
@@ -42,7 +43,8 @@ DeviceBuffer upload_random_access_buffer(const ComputeContext& compute, const st
                                          std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::size_t kHugePage = std::size_t{2} << 20;
-  if (compute.device.type == "CPU" && bytes >= kHugePage && bytes <= compute.device.max_allocation_bytes) {
+  if (tuning_for(compute.device).huge_page_random_access && bytes >= kHugePage &&
+      bytes <= compute.device.max_allocation_bytes) {
     // Fresh pages from mmap (a heap block may reuse pages already faulted in small), aligned by
     // over-allocating one huge page, and marked before the first write so they are huge from the
     // start. Where mmap or madvise fail, the ordinary buffer below serves.

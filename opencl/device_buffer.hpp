@@ -31,6 +31,13 @@ struct DeviceBuffer {
 DeviceBuffer allocate_buffer(const ComputeContext& compute, const std::string& name, std::size_t payload_bytes,
                              cl_mem_flags flags, bool guarded);
 
+// allocate_buffer for `count` elements of T (no byte arithmetic at the call site). Guarded and
+// read-write: what kernels write.
+template <class T>
+DeviceBuffer allocate_written(const ComputeContext& compute, const std::string& name, std::size_t count) {
+  return allocate_buffer(compute, name, count * sizeof(T), CL_MEM_READ_WRITE, true);
+}
+
 // allocate_buffer + a blocking upload of `values`.
 template <class T>
 DeviceBuffer upload_buffer(const ComputeContext& compute, const std::string& name, const std::vector<T>& values,
@@ -40,11 +47,12 @@ DeviceBuffer upload_buffer(const ComputeContext& compute, const std::string& nam
   return b;
 }
 
-// Read-only data that kernels read at random places (face records). On a CPU device the buffer
-// lives in host memory aligned to 2 MiB and marked for transparent huge pages (Linux madvise), so
-// random reads across tens of megabytes miss the TLB far less: the page walks of 4 KiB pages are
-// dear, in a virtual machine doubly so (12 % of the agent step at 200k faces on the 2-core test
-// machine). Other devices, or where huge pages are not offered: upload_buffer.
+// Read-only data that kernels read at random places (face records). Where the device's tuning asks
+// for it (DeviceTuning::huge_page_random_access: CPU devices) the buffer lives in host memory
+// aligned to 2 MiB and marked for transparent huge pages (Linux madvise), so random reads across
+// tens of megabytes miss the TLB far less: the page walks of 4 KiB pages are dear, in a virtual
+// machine doubly so (bench/README.md, "Tuning measurements"). Other devices, or where huge pages
+// are not offered: upload_buffer.
 DeviceBuffer upload_random_access_buffer(const ComputeContext& compute, const std::string& name, const void* data,
                                          std::size_t bytes);
 template <class T>

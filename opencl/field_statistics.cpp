@@ -1,6 +1,7 @@
 #include "opencl/field_statistics.hpp"
 
 #include "kernels/device_types.h"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -27,8 +28,8 @@ DeviceFieldStatistics::DeviceFieldStatistics(const ComputeContext& compute, cons
     throw device_error("preparing the statistics kernels (reduction.cl)", e.err());
   }
   group_count_ = padded_global_size(static_cast<std::size_t>(vertex_count), partial_group_) / partial_group_;
-  partials_ = allocate_buffer(compute, "statistics partial sums", group_count_ * sizeof(cl_float4), CL_MEM_READ_WRITE, true);
-  result_ = allocate_buffer(compute, "statistics result", sizeof(cl_float4), CL_MEM_READ_WRITE, true);
+  partials_ = allocate_written<cl_float4>(compute, "statistics partial sums", group_count_);
+  result_ = allocate_written<cl_float4>(compute, "statistics result", 1);
   const float below_everything = -std::numeric_limits<float>::infinity();
   total_mass_ = sums(mass_, {below_everything, below_everything, below_everything})[1];
   if (!(total_mass_ > 0.0))
@@ -41,18 +42,10 @@ std::array<double, 4> DeviceFieldStatistics::sums(const cl::Buffer& values, cons
   const cl_float4 t = {{thresholds[0], thresholds[1], thresholds[2], 0.0f}};
   cl_float4 out{};
   try {
-    partial_kernel_.setArg(0, n);
-    partial_kernel_.setArg(1, values);
-    partial_kernel_.setArg(2, mass_);
-    partial_kernel_.setArg(3, t);
-    partial_kernel_.setArg(4, partials_.buffer);
-    partial_kernel_.setArg(5, cl::Local(partial_group_ * sizeof(cl_float4)));
+    set_arguments(partial_kernel_, n, values, mass_, t, partials_, cl::Local(partial_group_ * sizeof(cl_float4)));
     compute_.queue.enqueueNDRangeKernel(partial_kernel_, cl::NullRange, cl::NDRange(group_count_ * partial_group_),
                                         cl::NDRange(partial_group_));
-    final_kernel_.setArg(0, groups);
-    final_kernel_.setArg(1, partials_.buffer);
-    final_kernel_.setArg(2, result_.buffer);
-    final_kernel_.setArg(3, cl::Local(final_group_ * sizeof(cl_float4)));
+    set_arguments(final_kernel_, groups, partials_, result_, cl::Local(final_group_ * sizeof(cl_float4)));
     compute_.queue.enqueueNDRangeKernel(final_kernel_, cl::NullRange, cl::NDRange(final_group_), cl::NDRange(final_group_));
     compute_.queue.enqueueReadBuffer(result_.buffer, CL_TRUE, 0, sizeof(cl_float4), &out);
   } catch (const cl::Error& e) {

@@ -1,6 +1,8 @@
 #include "opencl/memory_bandwidth.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/device_tuning.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -28,7 +30,7 @@ DeviceTriad::DeviceTriad(const ComputeContext& compute) : compute_(compute) {
                       d.device_name + " (largest allocation " + std::to_string(d.max_allocation_bytes >> 20) +
                       " MiB, memory " + std::to_string(d.global_memory_bytes >> 20) + " MiB)");
   elements_ = static_cast<std::size_t>(bytes / 16);
-  launches_ = d.type == "CPU" ? 1 : 10;
+  launches_ = tuning_for(d).triad_launches;
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "memory_bandwidth.cl", kernel_source("memory_bandwidth.cl"));
@@ -46,11 +48,7 @@ double DeviceTriad::bytes_per_second(int repeats) {
   using Clock = std::chrono::steady_clock;
   double best = 0.0;
   try {
-    kernel_.setArg(0, static_cast<cl_uint>(elements_));
-    kernel_.setArg(1, a_.buffer);
-    kernel_.setArg(2, b_.buffer);
-    kernel_.setArg(3, c_.buffer);
-    kernel_.setArg(4, kS);
+    set_arguments(kernel_, static_cast<cl_uint>(elements_), a_, b_, c_, kS);
     const cl::NDRange global(padded_global_size(elements_, group_)), local(group_);
     compute_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local);  // first touch, not timed
     compute_.queue.finish();

@@ -14,9 +14,9 @@ class DeviceTriad {
   // Throws DeviceError when the arrays do not fit the device (each within its largest allocation,
   // all three within half its memory).
   explicit DeviceTriad(const ComputeContext& compute);
-  // Bytes per second, the best of `repeats` timings of launches_ triads back to back (ten on a GPU,
-  // so its launch latency does not count; one on a CPU, where a triad takes milliseconds); 2 reads +
-  // 1 write per element, as the host's triad counts.
+  // Bytes per second, the best of `repeats` timings of launches_ triads back to back
+  // (DeviceTuning::triad_launches: ten on a GPU, so its launch latency does not count; one on a
+  // CPU, where a triad takes milliseconds); 2 reads + 1 write per element, as the host's triad counts.
   double bytes_per_second(int repeats);
   double bytes_per_triad() const { return 3.0 * static_cast<double>(elements_) * 16.0; }
   // Reads a back: true when every element is b + s c of the last triad (for the tests).

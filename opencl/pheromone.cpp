@@ -2,45 +2,32 @@
 
 #include "common/errors.hpp"
 #include "common/diffusion_decay.hpp"
+#include "common/pheromone_operators.hpp"
 #include "kernels/device_types.h"
+#include "opencl/deposit_scale.hpp"
+#include "opencl/hybrid_matrix.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
-#include "opencl/hybrid_matrix.hpp"
 #include "opencl/work_group_size.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 
 namespace physarum::opencl {
 
 struct OpenCLPheromone::Kernels {
-  cl::Kernel forward_substep, forward_overflow, add_amounts, csr_multiply;
-  cl::Kernel cg_start, cg_start_finish, cg_multiply, cg_alpha, cg_update, cg_beta, cg_direction;
+  cl::Kernel forward_substep, forward_overflow, add_deposits, csr_multiply;
 };
 
 namespace {
-
-static_assert(sizeof(PhysarumCgState) == 32, "PhysarumCgState: eight 4-byte fields on host and device");
 
 template <class Values>
 std::vector<float> to_float(const Values& v) {
   return std::vector<float>(v.begin(), v.end());
 }
-
-// A CSR matrix assembled row by row on the host, in double, converted to float when uploaded.
-struct HostCsr {
-  std::vector<int> row_start{0};
-  std::vector<int> column;
-  std::vector<double> value;
-  void add(int col, double v) {
-    column.push_back(col);
-    value.push_back(v);
-  }
-  void end_row() { row_start.push_back(static_cast<int>(column.size())); }
-};
 
 }  // namespace
 
@@ -90,30 +77,17 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   // ---- program and launch sizes ----
   kernels_ = std::make_unique<Kernels>();
   try {
-    const cl::Program program =
-        build_program(compute.context, compute.device, "pheromone.cl", kernel_source("pheromone.cl"),
-                      options.build_options);
+    const std::string deposit_cells = fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS";
+    const cl::Program program = build_program(compute.context, compute.device, "pheromone.cl",
+                                              kernel_source("pheromone.cl"), options.build_options + deposit_cells);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
-    k.add_amounts = cl::Kernel(program, "pheromone_add_amounts");
+    k.add_deposits = cl::Kernel(program, "pheromone_add_deposits");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
-    k.cg_start = cl::Kernel(program, "cg_start");
-    k.cg_start_finish = cl::Kernel(program, "cg_start_finish");
-    k.cg_multiply = cl::Kernel(program, "cg_multiply");
-    k.cg_alpha = cl::Kernel(program, "cg_alpha");
-    k.cg_update = cl::Kernel(program, "cg_update");
-    k.cg_beta = cl::Kernel(program, "cg_beta");
-    k.cg_direction = cl::Kernel(program, "cg_direction");
-    // One local size for every per-vertex kernel, so all reductions have the same number of
-    // partials; the smallest the kernels allow.
-    group_ = 256;
-    for (const cl::Kernel* kernel : {&k.forward_substep, &k.forward_overflow, &k.add_amounts, &k.csr_multiply,
-                                     &k.cg_start, &k.cg_multiply, &k.cg_update, &k.cg_direction})
-      group_ = std::min(group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
-    final_group_ = 256;
-    for (const cl::Kernel* kernel : {&k.cg_start_finish, &k.cg_alpha, &k.cg_beta})
-      final_group_ = std::min(final_group_, work_group_size(*kernel, compute.device, 256, sizeof(cl_float4)));
+    // One local size for every per-vertex kernel; the smallest the kernels allow.
+    group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply},
+                                    compute.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
     throw device_error("preparing the pheromone kernels (pheromone.cl) on " + compute.device.device_name, e.err());
   }
@@ -121,25 +95,10 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  const size_t field_bytes = un * sizeof(float);
   if (integrator == Integrator::ForwardEuler) {
-    // The sub-step matrix F = I - h (diag(r_dif / m) L + diag(r_dec)), in double, then in hybrid
-    // form with one ELL row per work-item of the padded launch.
-    CsrMatrix F;
-    F.rows = F.cols = n;
-    F.row_start.push_back(0);
-    for (int i = 0; i < n; ++i) {
-      const double keep = 1.0 - sub_step_ * params[Param::decay_rate][i];
-      bool diagonal = false;
-      for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-        const int j = L.column[k];
-        F.column.push_back(j);
-        F.value.push_back(-sub_step_ * diffuse_over_mass[i] * L.value[k] + (j == i ? keep : 0.0));
-        diagonal |= j == i;
-      }
-      if (!diagonal) F.column.push_back(i), F.value.push_back(keep);  // a Laplacian row without a diagonal entry
-      F.row_start.push_back(static_cast<int>(F.column.size()));
-    }
+    // The sub-step matrix (common/pheromone_operators.hpp), in double, then in hybrid form with one
+    // ELL row per work-item of the padded launch.
+    const CsrMatrix F = forward_substep_matrix(L, diffuse_over_mass, params[Param::decay_rate], sub_step_);
     const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(un, group_)));
     forward_stride_ = hybrid.stride;
     forward_overflow_rows_ = hybrid.overflow_rows();
@@ -163,73 +122,24 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   }
   mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
   inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
-  u_ = allocate_buffer(compute, "concentration", field_bytes, CL_MEM_READ_WRITE, true);
-  scratch_ = allocate_buffer(compute, "concentration scratch", field_bytes, CL_MEM_READ_WRITE, true);
+  u_ = allocate_written<cl_float>(compute, "concentration", un);
+  scratch_ = allocate_written<cl_float>(compute, "concentration scratch", un);
   fill(0.0);
 
   if (integrator == Integrator::BackwardEuler) {
-    // Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u. With a varying R_dif the matrix is not symmetric,
-    // and CG needs a symmetric positive definite system, so:
-    //  * a vertex with r_dif,i > 0 ("active") has its row divided by r_dif,i:
-    //      m_i (1 + dt r_dec,i) / r_dif,i u'_i + dt sum_j L_ij u'_j = m_i u_i / r_dif,i,
-    //    whose matrix diag(m (1 + dt r_dec) / r_dif) + dt L is symmetric (L is) and positive definite
-    //    (positive diagonal plus a PSD Laplacian). A uniform R_dif is the special case of one scale.
-    //  * a vertex with r_dif,i = 0 does not diffuse: u'_i = u_i / (1 + dt r_dec,i), known up front, so
-    //    its row becomes the identity and its column's terms in active rows move to the right-hand
-    //    side (-dt L_ij u_j / (1 + dt r_dec,j)). Keeping only active-active couplings keeps S symmetric.
-    // So S x = B u with S SPD (same sparsity as L) and B = the right-hand-side operator.
-    std::vector<char> active(un);
-    bool any_active = false;
-    for (size_t i = 0; i < un; ++i) any_active |= (active[i] = params[Param::diffuse_rate][i] > 0.0);
-    diagonal_only_ = !any_active;
-    HostCsr S, B;
-    std::vector<double> inverse_diagonal(un, 1.0);
-    for (int i = 0; i < n; ++i) {
-      const double m = domain.vertex_mass[i];
-      const double keep = 1.0 + time_step * params[Param::decay_rate][i];
-      if (!active[i]) {
-        S.add(i, 1.0);
-        B.add(i, 1.0 / keep);
-      } else {
-        const double r = params[Param::diffuse_rate][i];
-        double diagonal = m * keep / r;
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j == i) diagonal += time_step * L.value[k];
-        }
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j == i) S.add(i, diagonal);
-          else if (active[j]) S.add(j, time_step * L.value[k]);
-        }
-        if (std::none_of(S.column.begin() + S.row_start.back(), S.column.end(), [i](int c) { return c == i; }))
-          S.add(i, diagonal);  // a Laplacian row without a stored diagonal entry
-        inverse_diagonal[i] = 1.0 / diagonal;
-        B.add(i, m / r);
-        for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) {
-          const int j = L.column[k];
-          if (j != i && !active[j]) B.add(j, -time_step * L.value[k] / (1.0 + time_step * params[Param::decay_rate][j]));
-        }
-      }
-      S.end_row();
-      B.end_row();
-    }
-    rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", B.row_start, kRead, false);
-    rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", B.column, kRead, false);
-    rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(B.value), kRead, false);
-    if (!diagonal_only_) {
-      system_row_start_ = upload_buffer(compute, "backward Euler system row starts", S.row_start, kRead, false);
-      system_column_ = upload_buffer(compute, "backward Euler system columns", S.column, kRead, false);
-      system_value_ = upload_buffer(compute, "backward Euler system values", to_float(S.value), kRead, false);
-      inverse_diagonal_ = upload_buffer(compute, "Jacobi preconditioner", to_float(inverse_diagonal), kRead, false);
-      b_ = allocate_buffer(compute, "CG right-hand side", field_bytes, CL_MEM_READ_WRITE, true);
-      r_ = allocate_buffer(compute, "CG residual", field_bytes, CL_MEM_READ_WRITE, true);
-      z_ = allocate_buffer(compute, "CG preconditioned residual", field_bytes, CL_MEM_READ_WRITE, true);
-      p_ = allocate_buffer(compute, "CG direction", field_bytes, CL_MEM_READ_WRITE, true);
-      q_ = allocate_buffer(compute, "CG S times direction", field_bytes, CL_MEM_READ_WRITE, true);
-      partials_ = allocate_buffer(compute, "CG partial sums", group_count_ * sizeof(cl_float4), CL_MEM_READ_WRITE, true);
-      cg_state_ = allocate_buffer(compute, "CG state", sizeof(PhysarumCgState), CL_MEM_READ_WRITE, true);
-    }
+    // Eq. 7 as S u' = B u, S symmetric positive definite (common/pheromone_operators.hpp): B u on
+    // this program's csr_multiply, S by conjugate gradients.
+    const BackwardEulerSystem system =
+        backward_euler_system(L, domain.vertex_mass, params[Param::diffuse_rate], params[Param::decay_rate], time_step);
+    diagonal_only_ = system.diagonal_only;
+    rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
+    rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
+    rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
+    if (!diagonal_only_)
+      solver_ = std::make_unique<DeviceConjugateGradients>(
+          compute, system.system, system.inverse_diagonal,
+          ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
+          options.build_options);
   }
 
   statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
@@ -263,20 +173,32 @@ void OpenCLPheromone::add_deposits(const DeviceVertexData<double>& amount_per_ve
   if (amount_per_vertex.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) +
                      " values for " + std::to_string(vertex_count_) + " vertices");
-  const std::vector<float> amount = to_float(amount_per_vertex);
-  if (!amount_.guarded) amount_ = allocate_buffer(compute_, "deposit amounts", u_.payload_bytes, CL_MEM_READ_ONLY, true);
-  compute_.queue.enqueueWriteBuffer(amount_.buffer, CL_FALSE, 0, amount_.payload_bytes, amount.data());
-  cl::Kernel& k = kernels_->add_amounts;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, amount_.buffer);
-  k.setArg(2, inverse_mass_.buffer);
-  k.setArg(3, u_.buffer);
-  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
-  compute_.queue.finish();  // `amount` is a host temporary the non-blocking write reads from
+  // The amounts as accumulator cells: fixed point with the largest amount at most 2^62 units, or floats.
+  const size_t n = amount_per_vertex.size();
+  double largest = 0.0;
+  for (double a : amount_per_vertex) largest = std::max(largest, std::abs(a));
+  const bool fixed_point = fixed_point_deposits(compute_.device);
+  const double scale = fixed_point ? fixed_point_scale_for(largest) : 1.0;
+  std::vector<cl_long> units(fixed_point ? n : 0);
+  std::vector<cl_float> floats(fixed_point ? 0 : n);
+  for (size_t i = 0; i < n; ++i) {
+    if (fixed_point) units[i] = std::llround(amount_per_vertex[i] * scale);
+    else floats[i] = static_cast<cl_float>(amount_per_vertex[i]);
+  }
+  amount_ = fixed_point ? upload_buffer(compute_, "deposit amounts", units, CL_MEM_READ_WRITE, true)
+                        : upload_buffer(compute_, "deposit amounts", floats, CL_MEM_READ_WRITE, true);
+  add_deposits(amount_, scale);
+  compute_.queue.finish();
+}
+
+void OpenCLPheromone::add_deposits(const DeviceBuffer& cells, double scale) {
+  set_arguments(kernels_->add_deposits, static_cast<cl_int>(vertex_count_), cells, inverse_mass_,
+                static_cast<cl_float>(1.0 / scale), u_);
+  compute_.queue.enqueueNDRangeKernel(kernels_->add_deposits, cl::NullRange, cl::NDRange(group_count_ * group_),
+                                      cl::NDRange(group_));
 }
 
 const cl::Buffer& OpenCLPheromone::concentration_buffer() const { return u_.buffer; }
-const cl::Buffer& OpenCLPheromone::mass_buffer() const { return mass_.buffer; }
 
 // ---- time ----
 
@@ -292,18 +214,7 @@ void OpenCLPheromone::step() {
 
 void OpenCLPheromone::forward_step() {
   cl::Kernel& k = kernels_->forward_substep;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, static_cast<cl_uint>(forward_stride_));
-  k.setArg(2, forward_column_.buffer);
-  k.setArg(3, forward_value_.buffer);
-  k.setArg(4, decay_rate_.buffer);
-  k.setArg(5, static_cast<cl_float>(sub_step_));
   cl::Kernel& overflow = kernels_->forward_overflow;
-  overflow.setArg(0, static_cast<cl_uint>(forward_overflow_rows_));
-  overflow.setArg(1, forward_overflow_row_.buffer);
-  overflow.setArg(2, forward_overflow_start_.buffer);
-  overflow.setArg(3, forward_overflow_column_.buffer);
-  overflow.setArg(4, forward_overflow_value_.buffer);
   const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(forward_overflow_rows_), group_));
   // Ping-pong between u and scratch; an odd count ends in scratch and costs one device-side copy,
   // so u stays the buffer every other kernel knows. The queue is in order (compute_context.cpp), so
@@ -311,14 +222,13 @@ void OpenCLPheromone::forward_step() {
   const cl::Buffer* from = &u_.buffer;
   const cl::Buffer* to = &scratch_.buffer;
   for (int s = 0; s < sub_steps_; ++s) {
-    k.setArg(6, *from);
-    k.setArg(7, *to);
-    k.setArg(8, static_cast<cl_uint>(s));
+    set_arguments(k, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(forward_stride_), forward_column_,
+                  forward_value_, decay_rate_, static_cast<cl_float>(sub_step_), *from, *to, static_cast<cl_uint>(s));
     compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(static_cast<size_t>(forward_stride_)),
                                         cl::NDRange(group_));
     if (forward_overflow_rows_ > 0) {
-      overflow.setArg(5, *from);
-      overflow.setArg(6, *to);
+      set_arguments(overflow, static_cast<cl_uint>(forward_overflow_rows_), forward_overflow_row_,
+                    forward_overflow_start_, forward_overflow_column_, forward_overflow_value_, *from, *to);
       compute_.queue.enqueueNDRangeKernel(overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
     }
     std::swap(from, to);
@@ -328,101 +238,20 @@ void OpenCLPheromone::forward_step() {
 
 void OpenCLPheromone::diagonal_step() {
   cl::Kernel& k = kernels_->csr_multiply;
-  k.setArg(0, static_cast<cl_uint>(vertex_count_));
-  k.setArg(1, rhs_row_start_.buffer);
-  k.setArg(2, rhs_column_.buffer);
-  k.setArg(3, rhs_value_.buffer);
-  k.setArg(4, u_.buffer);
-  k.setArg(5, scratch_.buffer);
+  set_arguments(k, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_, rhs_value_, u_, scratch_);
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
   compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
   last_solve_ = {};
 }
 
 void OpenCLPheromone::backward_step() {
-  Kernels& k = *kernels_;
-  const cl_uint n = static_cast<cl_uint>(vertex_count_);
-  const cl_uint groups = static_cast<cl_uint>(group_count_);
-  const cl::NDRange global(group_count_ * group_), local(group_), single(final_group_);
-  const cl::LocalSpaceArg scratch = cl::Local(group_ * sizeof(cl_float4));
-  const cl::LocalSpaceArg final_scratch = cl::Local(final_group_ * sizeof(cl_float4));
-  cl::CommandQueue& queue = compute_.queue;
-
-  // b = B u
-  k.csr_multiply.setArg(0, n);
-  k.csr_multiply.setArg(1, rhs_row_start_.buffer);
-  k.csr_multiply.setArg(2, rhs_column_.buffer);
-  k.csr_multiply.setArg(3, rhs_value_.buffer);
-  k.csr_multiply.setArg(4, u_.buffer);
-  k.csr_multiply.setArg(5, b_.buffer);
-  queue.enqueueNDRangeKernel(k.csr_multiply, cl::NullRange, global, local);
-
-  // x = u (the previous field: a good first guess, and the solution is written in place).
-  const cl::Buffer& x = u_.buffer;
-  int arg = 0;
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&system_row_start_.buffer, &system_column_.buffer, &system_value_.buffer,
-                                   &inverse_diagonal_.buffer, &b_.buffer, &x, &r_.buffer, &z_.buffer, &p_.buffer,
-                                   &partials_.buffer})
-    k.cg_start.setArg(++arg, *buffer);
-  k.cg_start.setArg(0, n);
-  k.cg_start.setArg(11, scratch);
-  queue.enqueueNDRangeKernel(k.cg_start, cl::NullRange, global, local);
-  const double tolerance = options_.cg_relative_tolerance;
-  k.cg_start_finish.setArg(0, groups);
-  k.cg_start_finish.setArg(1, partials_.buffer);
-  k.cg_start_finish.setArg(2, static_cast<cl_float>(tolerance * tolerance));
-  k.cg_start_finish.setArg(3, cg_state_.buffer);
-  k.cg_start_finish.setArg(4, final_scratch);
-  queue.enqueueNDRangeKernel(k.cg_start_finish, cl::NullRange, single, single);
-
-  arg = 0;
-  k.cg_multiply.setArg(arg++, n);
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&system_row_start_.buffer, &system_column_.buffer, &system_value_.buffer, &p_.buffer,
-                                   &q_.buffer, &cg_state_.buffer, &partials_.buffer})
-    k.cg_multiply.setArg(arg++, *buffer);
-  k.cg_multiply.setArg(arg, scratch);
-  for (cl::Kernel* finish : {&k.cg_alpha, &k.cg_beta}) {
-    finish->setArg(0, groups);
-    finish->setArg(1, partials_.buffer);
-    finish->setArg(2, cg_state_.buffer);
-    finish->setArg(3, final_scratch);
-  }
-  arg = 0;
-  k.cg_update.setArg(arg++, n);
-  for (const cl::Buffer* buffer : std::initializer_list<const cl::Buffer*>{&inverse_diagonal_.buffer, &p_.buffer, &q_.buffer, &x, &r_.buffer, &z_.buffer,
-                                   &cg_state_.buffer, &partials_.buffer})
-    k.cg_update.setArg(arg++, *buffer);
-  k.cg_update.setArg(arg, scratch);
-  k.cg_direction.setArg(0, n);
-  k.cg_direction.setArg(1, z_.buffer);
-  k.cg_direction.setArg(2, p_.buffer);
-  k.cg_direction.setArg(3, cg_state_.buffer);
-
-  PhysarumCgState state{};
-  queue.enqueueReadBuffer(cg_state_.buffer, CL_TRUE, 0, sizeof state, &state);
-  int enqueued = 0;
-  while (state.status == PHYSARUM_CG_RUNNING && enqueued < options_.cg_max_iterations) {
-    const int batch = std::min(options_.cg_check_interval, options_.cg_max_iterations - enqueued);
-    for (int it = 0; it < batch; ++it) {
-      queue.enqueueNDRangeKernel(k.cg_multiply, cl::NullRange, global, local);
-      queue.enqueueNDRangeKernel(k.cg_alpha, cl::NullRange, single, single);
-      queue.enqueueNDRangeKernel(k.cg_update, cl::NullRange, global, local);
-      queue.enqueueNDRangeKernel(k.cg_beta, cl::NullRange, single, single);
-      queue.enqueueNDRangeKernel(k.cg_direction, cl::NullRange, global, local);
-    }
-    enqueued += batch;
-    queue.enqueueReadBuffer(cg_state_.buffer, CL_TRUE, 0, sizeof state, &state);
-  }
-  last_solve_.iterations = state.iterations;
-  last_solve_.relative_residual = state.bb > 0.0f ? std::sqrt(double(state.rr) / double(state.bb)) : 0.0;
-  last_solve_.converged = state.status == PHYSARUM_CG_CONVERGED;
-  // A solve that stalls just above the tolerance (float rounding) still gives a usable field; one that
-  // ends far from it does not, and must not pass silently.
-  if (!last_solve_.converged && !(last_solve_.relative_residual <= 1e3 * tolerance))
-    throw DeviceError("opencl pheromone: backward Euler conjugate gradients stopped after " +
-                      std::to_string(state.iterations) + " iterations with relative residual " +
-                      std::to_string(last_solve_.relative_residual) + " (tolerance " + std::to_string(tolerance) +
-                      (state.status == PHYSARUM_CG_BREAKDOWN ? ", breakdown: p.Sp <= 0" : "") + ")");
+  // b = B u, then S x = b with x = u (the previous field: a good first guess, and the solution is
+  // written in place).
+  set_arguments(kernels_->csr_multiply, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_,
+                rhs_value_, u_, solver_->right_hand_side());
+  compute_.queue.enqueueNDRangeKernel(kernels_->csr_multiply, cl::NullRange, cl::NDRange(group_count_ * group_),
+                                      cl::NDRange(group_));
+  last_solve_ = solver_->solve(u_);
 }
 
 // ---- summaries ----
@@ -433,8 +262,10 @@ FieldStatistics OpenCLPheromone::statistics(double U) const { return statistics_
 
 std::vector<std::string> OpenCLPheromone::damaged_canaries() const {
   std::vector<std::string> damaged = statistics_->damaged_canaries();
-  for (const DeviceBuffer* b : {&u_, &scratch_, &amount_, &b_, &r_, &z_, &p_, &q_, &partials_, &cg_state_})
+  for (const DeviceBuffer* b : {&u_, &scratch_, &amount_})
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
+  if (solver_)
+    for (const std::string& name : solver_->damaged_canaries()) damaged.push_back(name);
   return damaged;
 }
 

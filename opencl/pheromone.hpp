@@ -9,6 +9,7 @@
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
+#include "opencl/conjugate_gradients.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/field_statistics.hpp"
 
@@ -19,8 +20,8 @@
 namespace physarum::opencl {
 
 struct OpenCLPheromoneOptions {
-  // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system, see
-  // pheromone.cpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
+  // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system,
+  // common/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
   double cg_relative_tolerance = 1e-6;
   int cg_max_iterations = 1000;  // a bound, so a solve always ends
   // Iterations enqueued between two reads of the solver state (a 32-byte read): fewer reads, but up
@@ -28,13 +29,6 @@ struct OpenCLPheromoneOptions {
   int cg_check_interval = 16;
   // Extra OpenCL build options (the differential harness plants faults with -D flags).
   std::string build_options;
-};
-
-// What the last backward-Euler solve did.
-struct ConjugateGradientReport {
-  int iterations = 0;
-  double relative_residual = 0.0;  // of the recursively updated residual, as the solver saw it
-  bool converged = true;
 };
 
 class OpenCLPheromone {
@@ -54,12 +48,14 @@ class OpenCLPheromone {
   DeviceVertexData<double> concentration() const;  // blocking read-back, converted to double
   void set_concentration(const DeviceVertexData<double>& u);
   void fill(double value);
-  // An AMOUNT at a vertex raises its concentration by amount / vertex_mass.
+  // An AMOUNT at a vertex raises its concentration by amount / vertex_mass (blocking; for tests).
   void add_deposits(const DeviceVertexData<double>& amount_per_vertex);
+  // The same from the device's deposit accumulator (kernels/deposit_cells.h: fixed point of `scale`
+  // where fixed_point_deposits(device), floats elsewhere), which is cleared: enqueues one launch.
+  void add_deposits(const DeviceBuffer& cells, double scale);
   // The device buffer holding u (float, vertex_count): the same buffer for the object's lifetime,
   // so agent kernels may keep it as an argument.
   const cl::Buffer& concentration_buffer() const;
-  const cl::Buffer& mass_buffer() const;
 
   // ---- time ----
   // One time step: forward Euler enqueues its sub-steps back to back with no host round trip;
@@ -103,8 +99,7 @@ class OpenCLPheromone {
 
   std::unique_ptr<Kernels> kernels_;
   std::size_t group_ = 1;        // local size of every per-vertex kernel
-  std::size_t final_group_ = 1;  // local size of the one-group reduction passes
-  std::size_t group_count_ = 1;  // work-groups of a per-vertex launch (= partials per reduction)
+  std::size_t group_count_ = 1;  // work-groups of a per-vertex launch
 
   // Operators and per-vertex data (read-only on the device).
   DeviceBuffer mass_, inverse_mass_;
@@ -115,11 +110,12 @@ class OpenCLPheromone {
   double forward_bytes_per_sub_step_ = 0.0;
   DeviceBuffer forward_column_, forward_value_, decay_rate_;
   DeviceBuffer forward_overflow_row_, forward_overflow_start_, forward_overflow_column_, forward_overflow_value_;
-  // Backward Euler: S x = B u, S symmetric positive definite (same sparsity as L), B mostly diagonal.
-  DeviceBuffer system_row_start_, system_column_, system_value_, inverse_diagonal_;
+  // Backward Euler: S x = B u (common/pheromone_operators.hpp); B here, S in the solver (absent when
+  // the system is diagonal).
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;
+  std::unique_ptr<DeviceConjugateGradients> solver_;
   // Written by kernels: canary-guarded.
-  DeviceBuffer u_, scratch_, amount_, b_, r_, z_, p_, q_, partials_, cg_state_;
+  DeviceBuffer u_, scratch_, amount_;
 
   std::unique_ptr<DeviceFieldStatistics> statistics_;
   ConjugateGradientReport last_solve_;

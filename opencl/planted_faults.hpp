@@ -1,7 +1,8 @@
 #pragma once
 // Deliberate bugs the differential harness plants into the OpenCL kernels to prove it can reject a
-// wrong simulation (../shared/DESIGN.md, "Power"). Each is a -D flag that exists only in the build
-// options of a harness run: a normal build's kernels never see one.
+// wrong simulation: a harness that cannot fail proves nothing, so `physarum compare --fault NAME`
+// must reject each of these. Each is a -D flag that exists only in the build options of a harness
+// run: a normal build's kernels never see one.
 #include <string>
 #include <vector>
 

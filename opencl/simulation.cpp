@@ -1,8 +1,12 @@
 #include "opencl/simulation.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/agent_order.hpp"
 #include "opencl/agent_parameters.hpp"
+#include "opencl/deposit_scale.hpp"
+#include "opencl/device_tuning.hpp"
 #include "opencl/face_records.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
@@ -13,13 +17,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 
 namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
-  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step, collect_deposits, bin_counts, bin_offsets,
-      scatter;
+  cl::Kernel initialise, collect_deciders, sense_deciders, agent_step;
 };
 
 namespace {
@@ -52,8 +54,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
     throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
                      std::to_string(options.agents_per_work_item));
-  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item
-                                                           : (compute.device.type == "CPU" ? 4 : 1);
+  const DeviceTuning tuning = tuning_for(compute.device);
+  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item : tuning.agents_per_work_item;
   const size_t nv = static_cast<size_t>(domain.vertex_count);
   const int agent_count = settings.agents;
 
@@ -66,28 +68,12 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const VertexParameters device_params = renumber_parameters(params, vertex_order_);
 
   // ---- parameters per vertex, and whether they are all one value ----
-  const PackedAgentParameters packed = pack_agent_parameters(device_params);
-  const std::vector<PhysarumAgentParameters>& vertex_parameters = packed.per_vertex;
-  const bool uniform = packed.uniform;
+  const PackedAgentParameters agent_parameters = pack_agent_parameters(device_params);
 
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
-  fixed_point_ = compute.device.int64_atomics;
-  if (fixed_point_) {
-    double max_rate = 0.0, min_positive_rate = INFINITY;
-    for (double r : params[Param::deposit_rate]) {
-      max_rate = std::max(max_rate, r);
-      if (r > 0.0) min_positive_rate = std::min(min_positive_rate, r);
-    }
-    const double worst_step_total = std::max(1, agent_count) * max_rate * settings.time_step;
-    const int exponent = worst_step_total > 0.0 ? std::min(60, static_cast<int>(std::floor(62.0 - std::log2(worst_step_total))))
-                                                : 40;
-    deposit_scale_ = std::ldexp(1.0, exponent);
-    if (std::isfinite(min_positive_rate) && min_positive_rate * settings.time_step * deposit_scale_ < 0x1p20)
-      throw InputError("opencl simulation: " + std::to_string(agent_count) + " agents depositing up to " +
-                       std::to_string(max_rate) + " per second leave too little fixed-point resolution for the "
-                       "smallest deposit rate " + std::to_string(min_positive_rate) +
-                       " (64-bit deposits would round at more than 1e-6); reduce the spread of deposit rates");
-  }
+  fixed_point_ = opencl::fixed_point_deposits(compute.device);
+  if (fixed_point_)
+    deposit_scale_ = fixed_point_deposit_scale(params[Param::deposit_rate], agent_count, settings.time_step);
 
   constants_.dt = static_cast<float>(settings.time_step);
   constants_.deposit_scale = static_cast<float>(deposit_scale_);
@@ -95,36 +81,31 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   constants_.step = 0;
   constants_.agent_count = agent_count;
   constants_.face_count = domain.face_count;
-  constants_.uniform_parameters = uniform ? 1 : 0;
+  constants_.uniform_parameters = agent_parameters.uniform ? 1 : 0;
   constants_.pad = 0;
-  constants_.uniform = nv > 0 ? vertex_parameters[0] : PhysarumAgentParameters{};
+  constants_.uniform = nv > 0 ? agent_parameters.per_vertex[0] : PhysarumAgentParameters{};
 
   // ---- kernels ----
   kernels_ = std::make_unique<Kernels>();
+  cl::Program agent_program;
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
-  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") +
-                                    (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
+  const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
+  const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") + prefetch;
   const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
-  // Moves too: walkers of 4 lanes taking turns (trace.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
+  // Moves too: walkers of 4 lanes taking turns (movement.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
   const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
-           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") +
-           (compute.device.type == "CPU" ? " -DPHYSARUM_CLANG_PREFETCH" : "");
+           " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") + prefetch;
   try {
     const cl::Program program =
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
-    kernels_->collect_deposits = cl::Kernel(program, "deposits_to_concentration");
-    kernels_->bin_counts = cl::Kernel(program, "agent_bin_counts");
-    kernels_->bin_offsets = cl::Kernel(program, "agent_bin_offsets");
-    kernels_->scatter = cl::Kernel(program, "agent_scatter");
-    scan_group_ = work_group_size(kernels_->bin_offsets, compute.device, 256, sizeof(cl_uint));
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
-    vertex_group_ = work_group_size(kernels_->collect_deposits, compute.device, 256);
+    agent_program = program;
   } catch (const cl::Error& e) {
     throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
   }
@@ -149,38 +130,25 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   sensing_groups_ = std::min<size_t>(padded_global_size(sensing_items, sensing_group_) / sensing_group_,
                                      16 * std::max(1u, compute.device.compute_units));
 
-  // ---- sorting bins: one per device face, or per 2^shift faces, at most kMaxBins ----
-  constexpr cl_uint kMaxBins = 65536;
-  while ((static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_ > kMaxBins) ++bin_shift_;
-  bins_ = std::max<cl_uint>(1, (static_cast<cl_uint>(domain.face_count) + (1u << bin_shift_) - 1) >> bin_shift_);
-
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   faces_ = upload_random_access_buffer(compute, "face records", build_face_records(device_domain, face_order_));
   device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
-  vertex_parameters_ = upload_buffer(compute, "vertex parameters", vertex_parameters, kRead, false);
+  vertex_parameters_ = upload_buffer(compute, "vertex parameters", agent_parameters.per_vertex, kRead, false);
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
-  std::vector<float> inverse_mass(nv);
-  for (size_t i = 0; i < nv; ++i) inverse_mass[i] = static_cast<float>(1.0 / device_domain.vertex_mass[i]);
-  inverse_mass_ = upload_buffer(compute, "inverse vertex mass", inverse_mass, kRead, false);
-  deposits_ = allocate_buffer(compute, "deposit accumulator", nv * (fixed_point_ ? sizeof(cl_long) : sizeof(cl_float)),
-                              CL_MEM_READ_WRITE, true);
-  group_counters_ = allocate_buffer(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS * sizeof(cl_ulong),
-                                    CL_MEM_READ_WRITE, true);
+  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", nv)
+                          : allocate_written<cl_float>(compute, "deposit accumulator", nv);
+  group_counters_ = allocate_written<cl_ulong>(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
   agents_ = DeviceAgents::allocate(compute, agent_count);
   const size_t agent_slots = static_cast<size_t>(std::max(agent_count, 1));
-  deciders_ = allocate_buffer(compute, "agents with a decision due", agent_slots * sizeof(cl_int), CL_MEM_READ_WRITE,
-                              true);
-  decider_count_ = allocate_buffer(compute, "count of agents with a decision due", sizeof(cl_uint), CL_MEM_READ_WRITE,
-                                   true);
-  first_sensing_ = allocate_buffer(compute, "first sensing of each agent", agent_slots * sizeof(cl_uint),
-                                   CL_MEM_READ_WRITE, true);
-  if (sort_interval_ > 0) {
-    sorted_agents_ = DeviceAgents::allocate(compute, agent_count);
-    bin_cursor_ = allocate_buffer(compute, "agent sort bins", bins_ * sizeof(cl_uint), CL_MEM_READ_WRITE, true);
-  }
+  deciders_ = allocate_written<cl_int>(compute, "agents with a decision due", agent_slots);
+  decider_count_ = allocate_written<cl_uint>(compute, "count of agents with a decision due", 1);
+  first_sensing_ = allocate_written<cl_uint>(compute, "first sensing of each agent", agent_slots);
+  if (sort_interval_ > 0)
+    agent_order_ = std::make_unique<DeviceAgentOrder>(compute, agent_program, domain.face_count, agent_count,
+                                                      agent_group_, agent_groups_);
   OpenCLPheromoneOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
   pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain, device_params, settings.integrator,
@@ -192,13 +160,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     compute.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
     if (agent_count > 0) {
       cl::Kernel& k = kernels_->initialise;
-      int arg = 0;
-      k.setArg(arg++, constants_);
-      for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-               &faces_.buffer, &vertex_parameters_.buffer, &alias_probability_.buffer, &alias_index_.buffer,
-               &device_face_.buffer})
-        k.setArg(arg++, *b);
-      for (const DeviceBuffer* b : agents_.buffers()) k.setArg(arg++, b->buffer);
+      set_arguments(k, constants_, faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_,
+                    agents_.buffers());
       compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                          cl::NDRange(agent_group_));
     }
@@ -214,23 +177,13 @@ void OpenCLSimulation::enqueue_sensing() {
   if (settings_.agents == 0) return;
   compute_.queue.enqueueFillBuffer(decider_count_.buffer, cl_uint{0}, 0, decider_count_.payload_bytes);
   cl::Kernel& collect = kernels_->collect_deciders;
-  int arg = 0;
-  collect.setArg(arg++, constants_);
-  for (const cl::Buffer* b : {&faces_.buffer, &vertex_parameters_.buffer, &agents_.face.buffer,
-                              &agents_.position.buffer, &agents_.time_since_decision.buffer, &deciders_.buffer,
-                              &decider_count_.buffer})
-    collect.setArg(arg++, *b);
-  collect.setArg(arg++, cl::Local(2 * sizeof(cl_uint)));
+  set_arguments(collect, constants_, faces_, vertex_parameters_, agents_.face, agents_.position,
+                agents_.time_since_decision, deciders_, decider_count_, cl::Local(2 * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
   cl::Kernel& sense = kernels_->sense_deciders;
-  arg = 0;
-  sense.setArg(arg++, constants_);
-  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &agents_.face.buffer,
-           &agents_.position.buffer, &agents_.heading.buffer, &deciders_.buffer, &decider_count_.buffer,
-           &first_sensing_.buffer})
-    sense.setArg(arg++, *b);
+  set_arguments(sense, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), agents_.face,
+                agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
   compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
                                       cl::NDRange(sensing_group_));
 }
@@ -238,70 +191,26 @@ void OpenCLSimulation::enqueue_sensing() {
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  int arg = 0;
-  k.setArg(arg++, constants_);
-  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{
-           &faces_.buffer, &vertex_parameters_.buffer, &pheromone_->concentration_buffer(), &alias_probability_.buffer,
-           &alias_index_.buffer, &device_face_.buffer, &deposits_.buffer})
-    k.setArg(arg++, *b);
-  for (const DeviceBuffer* b : {&agents_.face, &agents_.position, &agents_.heading, &agents_.age, &agents_.exposure,
-                                &agents_.exposure_threshold, &agents_.time_since_decision, &agents_.accumulated_turn,
-                                &agents_.id, &first_sensing_})
-    k.setArg(arg++, b->buffer);
-  k.setArg(arg++, group_counters_.buffer);
-  k.setArg(arg++, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
+  set_arguments(k, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), alias_probability_,
+                alias_index_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
+                agents_.exposure, agents_.exposure_threshold, agents_.time_since_decision, agents_.accumulated_turn,
+                agents_.id, first_sensing_, group_counters_, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(step_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
 }
 
-void OpenCLSimulation::enqueue_collect_deposits() {
-  cl::Kernel& k = kernels_->collect_deposits;
-  k.setArg(0, static_cast<cl_int>(domain_.vertex_count));
-  k.setArg(1, deposits_.buffer);
-  k.setArg(2, inverse_mass_.buffer);
-  k.setArg(3, static_cast<cl_float>(1.0 / deposit_scale_));
-  k.setArg(4, pheromone_->concentration_buffer());
-  compute_.queue.enqueueNDRangeKernel(
-      k, cl::NullRange, cl::NDRange(padded_global_size(static_cast<size_t>(domain_.vertex_count), vertex_group_)),
-      cl::NDRange(vertex_group_));
-}
-
-void OpenCLSimulation::enqueue_sort_by_face() {
-  if (settings_.agents == 0) return;
-  const cl::NDRange agents_global(agent_groups_ * agent_group_), agents_local(agent_group_);
-  Kernels& k = *kernels_;
-  compute_.queue.enqueueFillBuffer(bin_cursor_.buffer, cl_uint{0}, 0, bin_cursor_.payload_bytes);
-  k.bin_counts.setArg(0, static_cast<cl_int>(settings_.agents));
-  k.bin_counts.setArg(1, bin_shift_);
-  k.bin_counts.setArg(2, agents_.face.buffer);
-  k.bin_counts.setArg(3, bin_cursor_.buffer);
-  compute_.queue.enqueueNDRangeKernel(k.bin_counts, cl::NullRange, agents_global, agents_local);
-  k.bin_offsets.setArg(0, bins_);
-  k.bin_offsets.setArg(1, bin_cursor_.buffer);
-  k.bin_offsets.setArg(2, cl::Local(scan_group_ * sizeof(cl_uint)));
-  compute_.queue.enqueueNDRangeKernel(k.bin_offsets, cl::NullRange, cl::NDRange(scan_group_), cl::NDRange(scan_group_));
-  int arg = 0;
-  k.scatter.setArg(arg++, static_cast<cl_int>(settings_.agents));
-  k.scatter.setArg(arg++, bin_shift_);
-  k.scatter.setArg(arg++, bin_cursor_.buffer);
-  for (const DeviceBuffer* b : agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
-  for (const DeviceBuffer* b : sorted_agents_.buffers()) k.scatter.setArg(arg++, b->buffer);
-  compute_.queue.enqueueNDRangeKernel(k.scatter, cl::NullRange, agents_global, agents_local);
-  std::swap(agents_, sorted_agents_);
-}
-
 void OpenCLSimulation::step() {
   try {
-    if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) enqueue_sort_by_face();
+    if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) agent_order_->enqueue_sort(agents_);
     constants_.step = static_cast<dev_uint>(steps_taken_);
     enqueue_sensing();
     enqueue_agent_step();
     // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
     if (settings_.integrator == Integrator::ForwardEuler) {
       pheromone_->step();
-      enqueue_collect_deposits();
+      pheromone_->add_deposits(deposits_, deposit_scale_);
     } else {
-      enqueue_collect_deposits();
+      pheromone_->add_deposits(deposits_, deposit_scale_);
       pheromone_->step();
     }
   } catch (const cl::Error& e) {
@@ -384,10 +293,8 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);
   for (const DeviceBuffer* b : {&deciders_, &decider_count_, &first_sensing_}) guarded.push_back(b);
-  if (sort_interval_ > 0) {
-    for (const DeviceBuffer* b : sorted_agents_.buffers()) guarded.push_back(b);
-    guarded.push_back(&bin_cursor_);
-  }
+  if (agent_order_)
+    for (const DeviceBuffer* b : agent_order_->written_buffers()) guarded.push_back(b);
   for (const DeviceBuffer* b : guarded)
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);
   return damaged;

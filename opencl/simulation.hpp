@@ -13,15 +13,16 @@
 // 32-byte solver state every few CG iterations. Everything stays on the device until a read is
 // asked for (concentration, statistics, agents, counters).
 //
-// Deposits accumulate as 64-bit fixed point, scale 2^k (deposit_scale()): k is the largest that
-// keeps the worst case of one step (every agent's whole deposit into one vertex) below 2^62, and the
-// constructor refuses a scene where even that leaves fewer than 2^20 units for one agent's deposit
-// of one step (rounding would then matter at the 1e-6 level).
+// Deposits accumulate as 64-bit fixed point, scale 2^k (deposit_scale(), opencl/deposit_scale.hpp):
+// k is the largest that keeps the worst case of one step (every agent's whole deposit into one
+// vertex) below 2^62, and the constructor refuses a scene where even that leaves fewer than 2^20
+// units for one agent's deposit of one step (rounding would then matter at the 1e-6 level).
 #include "common/scene.hpp"
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 #include "kernels/device_types.h"
+#include "opencl/agent_order.hpp"
 #include "opencl/agents.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
@@ -39,9 +40,10 @@ struct OpenCLSimulationOptions {
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
-  // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 picks 4 on CPU devices, where agents
-  // moving in vector lanes overlap their face reads, and 1 elsewhere. More than 1 also makes the
-  // walks vector lanes (kernels/trace.cl), 1 scalars, and gives each agent_step work-item
+  // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 takes the device's tuning
+  // (opencl/device_tuning.hpp: 4 on CPU devices, where agents moving in vector lanes overlap their
+  // face reads, and 1 elsewhere). More than 1 also makes the
+  // walks vector lanes (kernels/lanes.h), 1 scalars, and gives each agent_step work-item
   // PHYSARUM_VECTOR_MOVE_WALKERS walkers. Changes no result.
   int agents_per_work_item = 0;
   // Extra OpenCL build options for the agent and pheromone programs (the differential harness plants
@@ -97,8 +99,6 @@ class OpenCLSimulation final : public SimulationBackend {
   OpenCLPheromone& layer(int index) const;
   void enqueue_agent_step();
   void enqueue_sensing();
-  void enqueue_collect_deposits();
-  void enqueue_sort_by_face();
 
   ComputeContext compute_;
   const SurfaceDomain& domain_;
@@ -109,17 +109,17 @@ class OpenCLSimulation final : public SimulationBackend {
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
   std::unique_ptr<OpenCLPheromone> pheromone_;
-  DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_, inverse_mass_;
-  DeviceBuffer deposits_, group_counters_, bin_cursor_;
+  DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_;
+  DeviceBuffer deposits_, group_counters_;
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)
-  DeviceAgents agents_, sorted_agents_;  // the sort scatters from the first into the second, then swaps
+  DeviceAgents agents_;
+  std::unique_ptr<DeviceAgentOrder> agent_order_;  // sorts agents_ by face (absent when sort_interval is 0)
   // agent_groups_ work-groups cover one agent per work-item (initialise, sort); step_groups_ cover
   // agents_per_work_item_ per walker (agent_step); sensing_groups_ run sense_deciders, which loops
   // over the step's deciders.
-  std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1, vertex_group_ = 1, scan_group_ = 1;
+  std::size_t agent_group_ = 1, agent_groups_ = 1, step_groups_ = 1;
   std::size_t sensing_group_ = 1, sensing_groups_ = 1;
   int agents_per_work_item_ = 1;
-  cl_uint bin_shift_ = 0, bins_ = 1;
   bool fixed_point_ = true;
   double deposit_scale_ = 1.0;
   long long steps_taken_ = 0;

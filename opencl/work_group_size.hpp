@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <initializer_list>
 
 namespace physarum::opencl {
 
@@ -22,6 +23,16 @@ inline std::size_t work_group_size(const cl::Kernel& kernel, const DeviceInfo& d
   }
   std::size_t size = 1;
   while (size * 2 <= limit) size *= 2;
+  return size;
+}
+
+// One local size that every kernel of `kernels` allows (the smallest work_group_size of them), so
+// kernels that share partial sums or buffers of per-group results launch alike.
+inline std::size_t common_work_group_size(std::initializer_list<const cl::Kernel*> kernels, const DeviceInfo& device,
+                                          std::size_t cap = 256, std::size_t local_bytes_per_item = 0) {
+  std::size_t size = cap;
+  for (const cl::Kernel* kernel : kernels)
+    size = std::min(size, work_group_size(*kernel, device, cap, local_bytes_per_item));
   return size;
 }
 

@@ -182,7 +182,7 @@ TEST(OpenCLPheromone, ForwardStepWithPaddedAndOverflowingRowsEqualsReference) {
 TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
   const int n = sphere_domain().vertex_count;
   VertexParameters mixed = varying_rates(n, 0.01, 0.5, 9);
-  // Some vertices that do not diffuse at all: their rows leave the CG system (see pheromone.cpp).
+  // Some vertices that do not diffuse at all: their rows leave the CG system (common/pheromone_operators.hpp).
   for (int i = 0; i < n; i += 7) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = 0.0;
   struct Case {
     const char* name;

@@ -17,6 +17,7 @@
 #include "common/memory_bandwidth.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
+#include "opencl/device_tuning.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/pheromone.hpp"
@@ -122,7 +123,7 @@ Scene scene_scaled_to(const SurfaceDomain& d) {
 class MemoryBandwidth {
  public:
   explicit MemoryBandwidth(const opencl::ComputeContext& compute) : device_(compute) {
-    if (compute.device.type == "CPU") host_.emplace();
+    if (opencl::tuning_for(compute.device).host_triad) host_.emplace();
   }
   double bytes_per_second(int repeats) {
     const double device = device_.bytes_per_second(repeats);

@@ -10,6 +10,7 @@
 #include "kernels/device_types.h"
 #include "opencl/compute_context.hpp"
 #include "opencl/hybrid_matrix.hpp"
+#include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
 #include "opencl/pheromone.hpp"
 #include "opencl/simulation.hpp"
@@ -64,7 +65,7 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
 }
 
 // A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
-// reflecting, depositing, respawning) and deposits_to_concentration, on a closed surface and on one
+// reflecting, depositing, respawning) and pheromone_add_deposits, on a closed surface and on one
 // with a boundary, with scalar walks (one agent per work-item, as on GPUs) and with vector-lane walks
 // (four agents a walker, three walkers a work-item, as on CPUs). Several turn decisions every step
 // and a short lifetime make every branch run.
@@ -111,10 +112,7 @@ void run_philox(const ComputeContext& compute) {
   cl::Buffer bk(compute.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(cl_uint2), keys.data());
   cl::Buffer br(compute.context, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint4));
   cl::Kernel k(p, "philox_known_answers");
-  k.setArg(0, bc);
-  k.setArg(1, bk);
-  k.setArg(2, br);
-  k.setArg(3, n);
+  set_arguments_checked(k, bc, bk, br, n);
   compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
   std::vector<cl_uint4> results(n);
   compute.queue.enqueueReadBuffer(br, CL_TRUE, 0, n * sizeof(cl_uint4), results.data());
@@ -132,8 +130,7 @@ void run_fault_demo(const ComputeContext& compute) {
   const cl_uint n = 16;
   cl::Buffer x(compute.context, CL_MEM_READ_WRITE, n * sizeof(float));
   cl::Kernel k(p, "off_by_one");
-  k.setArg(0, x);
-  k.setArg(1, n);
+  set_arguments_checked(k, x, n);
   compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
   compute.queue.finish();
   check(true, "fault demo ran (oclgrind must report an invalid write)");
