@@ -257,6 +257,115 @@ void check_obj_lines(const std::string& path, PolygonSoup& soup) {
                             "); the repeats were removed, and faces left with fewer than three corners dropped");
 }
 
+// OpenMesh's OBJ reader aborts (an assert in the library) on a face corner without a vertex index
+// ("f /1 2/2 3/3") or a face line without corners: refuse such a line before the reader sees it.
+void check_obj_face_corners(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  std::string message;
+  for_each_line(text, [&](int number, std::string_view raw) {
+    const std::string_view line = trim_left(raw);
+    if (!message.empty() || !starts_with_keyword(line, "f")) return;
+    std::istringstream words{std::string(line.substr(1))};
+    std::string word;
+    int corners = 0;
+    while (words >> word) {
+      ++corners;
+      const size_t digits = word.find_first_not_of('-') == std::string::npos ? word.size() : word.find_first_not_of('-');
+      if (digits < word.size() && std::isdigit(static_cast<unsigned char>(word[digits]))) continue;
+      message = path + ": line " + std::to_string(number) + ": face corner '" + word +
+                "' does not start with a vertex index: '" + std::string(line) + "'";
+      return;
+    }
+    if (corners == 0) message = path + ": line " + std::to_string(number) + ": face without corners: '" + std::string(line) + "'";
+  });
+  if (!message.empty()) throw InputError(message);
+}
+
+// OpenMesh's PLY reader, given a header it does not understand (an unknown keyword or type) or an
+// element count far beyond the file, reads for minutes and then runs out of memory. Check the
+// header first: known keywords and types only, and no element with more entries than bytes follow.
+void check_ply_header(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  static const std::vector<std::string> types{"char",  "uchar",  "short",  "ushort", "int",   "uint",
+                                              "float", "double", "int8",   "uint8",  "int16", "uint16",
+                                              "int32", "uint32", "float32", "float64"};
+  const auto is_type = [](const std::string& t) { return std::find(types.begin(), types.end(), t) != types.end(); };
+  size_t begin = 0;
+  std::vector<std::pair<std::string, long long>> elements;
+  std::vector<double> properties;  // per element
+  bool ascii = false;
+  for (int number = 1; begin < text.size(); ++number) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto bad = [&](const std::string& why) {
+      throw InputError(path + ": line " + std::to_string(number) + " of the PLY header: " + why + ": '" + line + "'");
+    };
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (number == 1) {
+      if (keyword != "ply") bad("the file does not start with 'ply'");
+      continue;
+    }
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
+      const double follow = static_cast<double>(text.size() - std::min(begin, text.size()));
+      double least_numbers = 0.0;  // every property one number at least (a list its length)
+      for (size_t e = 0; e < elements.size(); ++e) {
+        const auto& [name, count] = elements[e];
+        if (static_cast<double>(count) > follow)
+          throw InputError(path + ": PLY element '" + name + "' claims " + std::to_string(count) + " entries but only " +
+                           std::to_string(static_cast<long long>(follow)) + " bytes follow the header");
+        least_numbers += static_cast<double>(count) * properties[e];
+      }
+      if (ascii) {
+        // Every word of an ASCII body is a number; OpenMesh's reader spins on one that is not.
+        std::istringstream body(text.substr(std::min(begin, text.size())));
+        std::string word;
+        double numbers = 0.0;
+        while (body >> word) {
+          char* stop = nullptr;
+          std::strtod(word.c_str(), &stop);
+          if (stop == word.c_str() || *stop != '\0')
+            throw InputError(path + ": the PLY body holds '" + word + "', which is not a number");
+          ++numbers;
+        }
+        if (numbers < least_numbers)
+          throw InputError(path + ": the PLY body ends early: " + std::to_string(static_cast<long long>(numbers)) +
+                           " numbers where the header needs at least " +
+                           std::to_string(static_cast<long long>(least_numbers)));
+      }
+      return;
+    }
+    if (keyword == "format") {
+      std::string format, version;
+      if (!(words >> format >> version) ||
+          (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian"))
+        bad("unknown format");
+      ascii = format == "ascii";
+    } else if (keyword == "element") {
+      std::string name, count;
+      if (!(words >> name >> count) || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 18)
+        bad("an element needs a name and a count");
+      elements.emplace_back(name, std::stoll(count));
+      properties.push_back(0.0);
+    } else if (keyword == "property") {
+      std::string type, a, b;
+      if (!(words >> type >> a)) bad("a property needs a type and a name");
+      if (type == "list" ? !(is_type(a) && (words >> b) && is_type(b) && (words >> b)) : !is_type(type))
+        bad("unknown property type");
+      if (elements.empty()) bad("a property before any element");
+      properties.back() += 1.0;
+    } else {
+      bad("unknown header keyword");
+    }
+  }
+  throw InputError(path + ": the PLY header has no end_header line");
+}
+
 }  // namespace
 
 std::string find_non_finite_number(const std::string& path) {
@@ -286,6 +395,9 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   // Said plainly: each reader would otherwise report an empty file its own way ("no faces", "could
   // not parse"), which hides the likelier cause (an interrupted download or copy).
   if (std::filesystem::file_size(path, ec) == 0 && !ec) throw InputError(path + ": the file is empty (0 bytes)");
+
+  if (ext == ".obj") check_obj_face_corners(path);
+  if (ext == ".ply") check_ply_header(path);
 
   SoupImporter importer;
   OpenMesh::IO::Options options;
