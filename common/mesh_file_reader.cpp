@@ -342,9 +342,9 @@ void check_ply_header(const std::string& path) {
     }
     if (keyword == "format") {
       std::string format, version;
-      if (!(words >> format >> version) ||
+      if (!(words >> format >> version) || version != "1.0" ||
           (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian"))
-        bad("unknown format");
+        bad("unknown format (ascii, binary_little_endian or binary_big_endian, version 1.0)");
       ascii = format == "ascii";
     } else if (keyword == "element") {
       std::string name, count;
