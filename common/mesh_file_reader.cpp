@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <new>
 #include <optional>
 #include <sstream>
 
@@ -307,7 +308,7 @@ void check_ply_header(const std::string& path) {
     std::string keyword;
     words >> keyword;
     if (number == 1) {
-      if (keyword != "ply") bad("the file does not start with 'ply'");
+      if (keyword != "ply") return;  // not a PLY file at all: OpenMesh's reader says so
       continue;
     }
     if (keyword == "comment" || keyword == "obj_info") continue;
@@ -366,6 +367,67 @@ void check_ply_header(const std::string& path) {
   throw InputError(path + ": the PLY header has no end_header line");
 }
 
+// OpenMesh's OFF reader takes a negative corner count as a huge one and allocates until the machine
+// runs out of memory. Check an ASCII OFF's structure first: counts no larger than the file, then
+// each face line a corner count k >= 1 followed by k vertex indices. (Binary OFF: not checked.)
+void check_off_structure(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  std::vector<std::pair<int, std::string>> lines;  // (number, content) without comments and blank lines
+  for_each_line(text, [&](int number, std::string_view raw) {
+    std::string line(raw.substr(0, raw.find('#')));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.emplace_back(number, std::move(line));
+  });
+  if (lines.empty()) return;  // OpenMesh's own message
+  for (size_t i = 0; i < std::min<size_t>(lines.size(), 2); ++i)
+    for (const char c : lines[i].second)
+      if (std::iscntrl(static_cast<unsigned char>(c)) && c != '\t' && c != '\r')
+        throw InputError(path + ": line " + std::to_string(lines[i].first) +
+                         ": the OFF header holds a control character (byte " +
+                         std::to_string(static_cast<unsigned char>(c)) + ")");
+  std::istringstream header(lines[0].second);
+  std::string keyword;
+  header >> keyword;
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return;  // OpenMesh refuses it
+  std::string word;
+  const bool binary = (header >> word) && word == "BINARY";
+  if (binary) return;  // binary data follows: no lines to check
+  size_t next = 1;
+  std::vector<std::string> counts;
+  if (!word.empty()) counts.push_back(word);
+  while (header >> word) counts.push_back(word);
+  if (counts.empty() && next < lines.size()) {
+    std::istringstream second(lines[next++].second);
+    while (second >> word) counts.push_back(word);
+  }
+  const auto count_of = [&](size_t i, const char* what) -> long long {
+    if (i >= counts.size() || counts[i].empty() || counts[i].size() > 18 ||
+        counts[i].find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(path + ": the OFF header needs non-negative vertex and face counts (" + what + ")");
+    const long long n = std::stoll(counts[i]);
+    if (static_cast<double>(n) > static_cast<double>(text.size()))
+      throw InputError(path + ": the OFF header claims " + std::to_string(n) + " " + what + " in a file of " +
+                       std::to_string(text.size()) + " bytes");
+    return n;
+  };
+  const long long vertices = count_of(0, "vertices"), faces = count_of(1, "faces");
+  next += static_cast<size_t>(vertices);
+  for (long long f = 0; f < faces; ++f, ++next) {
+    if (next >= lines.size())
+      throw InputError(path + ": the OFF file ends after " + std::to_string(f) + " of its " + std::to_string(faces) +
+                       " faces");
+    std::istringstream in(lines[next].second);
+    long long k = -1;
+    std::vector<long long> corners;
+    long long index = 0;
+    const bool counted = static_cast<bool>(in >> k);
+    for (long long c = 0; counted && c < k && in >> index; ++c) corners.push_back(index);
+    // (Indices out of range are the mesh checks' to name, after reading.)
+    if (!counted || k < 1 || static_cast<long long>(corners.size()) != k)
+      throw InputError(path + ": line " + std::to_string(lines[next].first) +
+                       ": a face needs a corner count k >= 1 followed by k vertex indices: '" + lines[next].second + "'");
+  }
+}
+
 }  // namespace
 
 std::string find_non_finite_number(const std::string& path) {
@@ -398,15 +460,19 @@ PolygonSoup read_polygon_soup(const std::string& path) {
 
   if (ext == ".obj") check_obj_face_corners(path);
   if (ext == ".ply") check_ply_header(path);
+  if (ext == ".off") check_off_structure(path);
 
   SoupImporter importer;
   OpenMesh::IO::Options options;
   options += OpenMesh::IO::Options::VertexTexCoord;
   options += OpenMesh::IO::Options::FaceTexCoord;
   bool ok = false;
-  {
+  try {
     MutedOpenMeshStreams muted;
     ok = OpenMesh::IO::IOManager().read(path, importer, options);
+  } catch (const std::bad_alloc&) {
+    // The last line of defence against a corrupted count the checks above let through.
+    throw InputError(path + ": the " + ext.substr(1) + " reader ran out of memory (a corrupted element count?)");
   }
   if (!ok) {
     const std::string non_finite = find_non_finite_number(path);
