@@ -18,6 +18,7 @@
 #include <map>
 #include <new>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace physarum {
@@ -266,14 +267,17 @@ void check_obj_face_corners(const std::string& path) {
   for_each_line(text, [&](int number, std::string_view raw) {
     const std::string_view line = trim_left(raw);
     if (!message.empty() || !starts_with_keyword(line, "f")) return;
-    std::istringstream words{std::string(line.substr(1))};
-    std::string word;
     int corners = 0;
-    while (words >> word) {
+    for (size_t i = 1; i < line.size();) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      if (i == line.size()) break;
+      const size_t word = i;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
       ++corners;
-      const size_t digits = word.find_first_not_of('-') == std::string::npos ? word.size() : word.find_first_not_of('-');
-      if (digits < word.size() && std::isdigit(static_cast<unsigned char>(word[digits]))) continue;
-      message = path + ": line " + std::to_string(number) + ": face corner '" + word +
+      size_t digit = word;
+      while (digit < i && line[digit] == '-') ++digit;
+      if (digit < i && std::isdigit(static_cast<unsigned char>(line[digit]))) continue;
+      message = path + ": line " + std::to_string(number) + ": face corner '" + std::string(line.substr(word, i - word)) +
                 "' does not start with a vertex index: '" + std::string(line) + "'";
       return;
     }
@@ -387,7 +391,12 @@ void check_off_structure(const std::string& path) {
   std::istringstream header(lines[0].second);
   std::string keyword;
   header >> keyword;
-  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return;  // OpenMesh refuses it
+  // The header keywords OFF files use ([ST][C][N][4][n]OFF); OpenMesh's reader hangs on some others
+  // that start like one ("OFFX" followed by one count).
+  static const std::regex off_keyword("(ST)?C?N?4?n?OFF");
+  if (!std::regex_match(keyword, off_keyword))
+    throw InputError(path + ": line " + std::to_string(lines[0].first) + ": '" + keyword +
+                     "' is not an OFF header (OFF, COFF, NOFF, STOFF, 4OFF, ...)");
   std::string word;
   const bool binary = (header >> word) && word == "BINARY";
   if (binary) return;  // binary data follows: no lines to check

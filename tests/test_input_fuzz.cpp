@@ -1,8 +1,9 @@
 // Random byte-level corruption of small valid OBJ, OFF, PLY (ASCII and binary) and scene files,
 // loaded through the real loaders (load_mesh, load_scene): each corrupted file must load or be
 // refused with an InputError — no other exception, no crash — and each must finish within a time
-// bound (a hang or a runaway allocation from a corrupted count shows up as a slow case). Seeded, so
-// a failure names the format, the case and the bytes that reproduce it.
+// bound (a hang or a runaway allocation from a corrupted count shows up as a slow case). Each case
+// runs in a child process, so a crash or a hang is reported as that case's failure. Seeded, so a
+// failure names the format, the case and the bytes that reproduce it.
 #include "common/errors.hpp"
 #include "common/mesh_loading.hpp"
 #include "common/scene.hpp"
@@ -17,6 +18,10 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <csignal>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace physarum {
 namespace {
@@ -153,7 +158,65 @@ std::string printable(const std::string& s) {
   return out;
 }
 
-// Loads `cases` mutations of `valid` through `load`; only success or InputError may come out.
+// How one load ended, as the child process that ran it reports it.
+enum class Outcome { kLoaded, kRefused, kOtherException, kCrashed, kTimedOut };
+
+// Runs load(path) in a child process (so that an abort, a crash or a hang in a third-party reader
+// is reported as this case's failure instead of ending or stalling the suite), killed after
+// kMaxSecondsPerCase. An exception other than InputError comes back as its message.
+template <class Load>
+Outcome load_in_child(const std::string& path, Load load, std::string& message) {
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t child = ::fork();
+  if (child < 0) throw std::runtime_error("fork failed");
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    int code = 0;
+    std::string what;
+    try {
+      load(path);
+    } catch (const InputError&) {
+      code = 1;
+    } catch (const std::exception& e) {
+      code = 2;
+      what = std::string(typeid(e).name()) + ": " + e.what();
+    }
+    if (!what.empty() && ::write(pipe_fds[1], what.data(), what.size()) < 0) code = 3;
+    ::_exit(code);
+  }
+  ::close(pipe_fds[1]);
+  const auto start = std::chrono::steady_clock::now();
+  int status = 0;
+  Outcome outcome = Outcome::kTimedOut;
+  while (true) {
+    const pid_t done = ::waitpid(child, &status, WNOHANG);
+    if (done == child) {
+      if (WIFEXITED(status) && WEXITSTATUS(status) <= 2)
+        outcome = WEXITSTATUS(status) == 0 ? Outcome::kLoaded
+                  : WEXITSTATUS(status) == 1 ? Outcome::kRefused
+                                             : Outcome::kOtherException;
+      else
+        outcome = Outcome::kCrashed;
+      break;
+    }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kMaxSecondsPerCase) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      break;
+    }
+    ::usleep(200);
+  }
+  char buffer[512];
+  ssize_t n;
+  while ((n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0) message.append(buffer, static_cast<size_t>(n));
+  ::close(pipe_fds[0]);
+  if (outcome == Outcome::kCrashed)
+    message = WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status)) : "exit status " + std::to_string(WEXITSTATUS(status));
+  return outcome;
+}
+
+// Loads mutations of `valid` through `load`; only success or InputError may come out, in time.
 template <class Load>
 void fuzz(const std::string& name, const std::string& valid, const std::string& extension, std::uint32_t seed,
           Load load) {
@@ -165,18 +228,21 @@ void fuzz(const std::string& name, const std::string& valid, const std::string& 
   for (int i = 0; i < cases; ++i) {
     const std::string text = mutate(valid, rng);
     std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      load(path);
-    } catch (const InputError&) {
-      ++refused;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << name << " case " << i << ": " << typeid(e).name() << ": " << e.what()
-                    << "\n  input: " << printable(text);
+    std::string message;
+    switch (load_in_child(path, load, message)) {
+      case Outcome::kLoaded: break;
+      case Outcome::kRefused: ++refused; break;
+      case Outcome::kOtherException:
+        ADD_FAILURE() << name << " case " << i << ": not an InputError: " << message << "\n  input: " << printable(text);
+        break;
+      case Outcome::kCrashed:
+        ADD_FAILURE() << name << " case " << i << ": crashed (" << message << ")\n  input: " << printable(text);
+        break;
+      case Outcome::kTimedOut:
+        ADD_FAILURE() << name << " case " << i << ": took longer than " << kMaxSecondsPerCase
+                      << " s\n  input: " << printable(text);
+        break;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_LT(seconds, kMaxSecondsPerCase) << name << " case " << i << " took " << seconds
-                                           << " s\n  input: " << printable(text);
   }
   // The mutations must reach the parser's error paths, or the test proves nothing.
   EXPECT_GT(refused, cases / 10) << name << ": too few corrupted files were refused";
