@@ -5,8 +5,7 @@
 // steps per second, face crossings (movement + sensors) per agent step and per second.
 #include "bench/bench_backends.hpp"
 #include "opencl/compute_context.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "tools/backend_factory.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -20,9 +19,9 @@ void BM_SimulationStep(benchmark::State& state) {
   const int agents = static_cast<int>(state.range(2));
   const SurfaceDomain* domain = spot_or_skip(state, state.range(1));
   if (!domain) return;
-  std::unique_ptr<SimulationBackend> sim;
-  if (backend == kOpenCL) sim = std::make_unique<opencl::OpenCLSimulation>(compute(), *domain, bench_scene(agents));
-  else sim = std::make_unique<ReferenceSimulation>(*domain, bench_scene(agents));
+  const std::unique_ptr<SimulationBackend> sim =
+      backend == kOpenCL ? make_backend(BackendChoice::OpenCL, &compute(), *domain, bench_scene(agents))
+                         : make_backend(BackendChoice::Reference, nullptr, *domain, bench_scene(agents));
   sim->run(5);
   sim->finish();
   const SimulationCounters before = sim->counters();

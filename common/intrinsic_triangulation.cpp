@@ -1,5 +1,7 @@
 #include "common/intrinsic_triangulation.hpp"
 
+#include "common/run_feasibility.hpp"
+
 #include "common/errors.hpp"
 #include "common/intrinsic_geometry.hpp"
 #include "common/trace.hpp"
@@ -912,8 +914,8 @@ RefinementResult IntrinsicTriangulation::refine(const RefinementOptions& options
     if (area != face_area(f) || verdict(f) != Verdict::Refine || failure_of(f)) continue;
 
     if (result.insertions() >= options.max_insertions)
-      throw InputError(source_ + ": intrinsic refinement to max circumradius " + std::to_string(max_r) +
-                       (angle_threshold > 0.0 ? " and min angle " + std::to_string(options.min_angle_deg) + " degrees"
+      throw InputError(source_ + ": intrinsic refinement to max circumradius " + format_number(max_r) +
+                       (angle_threshold > 0.0 ? " and min angle " + format_number(options.min_angle_deg) + " degrees"
                                               : std::string()) +
                        " needs more than the budget of " + std::to_string(options.max_insertions) +
                        " vertex insertions (" + std::to_string(vertex_count()) +

@@ -16,7 +16,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <new>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace physarum {
@@ -257,6 +259,184 @@ void check_obj_lines(const std::string& path, PolygonSoup& soup) {
                             "); the repeats were removed, and faces left with fewer than three corners dropped");
 }
 
+// OpenMesh's OBJ reader aborts (an assert in the library) on a face corner without a vertex index
+// ("f /1 2/2 3/3") or a face line without corners: refuse such a line before the reader sees it.
+void check_obj_face_corners(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  std::string message;
+  for_each_line(text, [&](int number, std::string_view raw) {
+    const std::string_view line = trim_left(raw);
+    if (!message.empty() || !starts_with_keyword(line, "f")) return;
+    int corners = 0;
+    for (size_t i = 1; i < line.size();) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      if (i == line.size()) break;
+      const size_t word = i;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      ++corners;
+      size_t digit = word;
+      while (digit < i && line[digit] == '-') ++digit;
+      if (digit < i && std::isdigit(static_cast<unsigned char>(line[digit]))) continue;
+      message = path + ": line " + std::to_string(number) + ": face corner '" + std::string(line.substr(word, i - word)) +
+                "' does not start with a vertex index: '" + std::string(line) + "'";
+      return;
+    }
+    if (corners == 0) message = path + ": line " + std::to_string(number) + ": face without corners: '" + std::string(line) + "'";
+  });
+  if (!message.empty()) throw InputError(message);
+}
+
+// OpenMesh's PLY reader, given a header it does not understand (an unknown keyword or type) or an
+// element count far beyond the file, reads for minutes and then runs out of memory. Check the
+// header first: known keywords and types only, and no element with more entries than bytes follow.
+void check_ply_header(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  static const std::vector<std::string> types{"char",  "uchar",  "short",  "ushort", "int",   "uint",
+                                              "float", "double", "int8",   "uint8",  "int16", "uint16",
+                                              "int32", "uint32", "float32", "float64"};
+  const auto is_type = [](const std::string& t) { return std::find(types.begin(), types.end(), t) != types.end(); };
+  size_t begin = 0;
+  std::vector<std::pair<std::string, long long>> elements;
+  std::vector<double> properties;  // per element
+  bool ascii = false;
+  for (int number = 1; begin < text.size(); ++number) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto bad = [&](const std::string& why) {
+      throw InputError(path + ": line " + std::to_string(number) + " of the PLY header: " + why + ": '" + line + "'");
+    };
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (number == 1) {
+      if (keyword != "ply") return;  // not a PLY file at all: OpenMesh's reader says so
+      continue;
+    }
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
+      const double follow = static_cast<double>(text.size() - std::min(begin, text.size()));
+      double least_numbers = 0.0;  // every property one number at least (a list its length)
+      for (size_t e = 0; e < elements.size(); ++e) {
+        const auto& [name, count] = elements[e];
+        if (static_cast<double>(count) > follow)
+          throw InputError(path + ": PLY element '" + name + "' claims " + std::to_string(count) + " entries but only " +
+                           std::to_string(static_cast<long long>(follow)) + " bytes follow the header");
+        least_numbers += static_cast<double>(count) * properties[e];
+      }
+      if (ascii) {
+        // Every word of an ASCII body is a number; OpenMesh's reader spins on one that is not.
+        std::istringstream body(text.substr(std::min(begin, text.size())));
+        std::string word;
+        double numbers = 0.0;
+        while (body >> word) {
+          char* stop = nullptr;
+          std::strtod(word.c_str(), &stop);
+          if (stop == word.c_str() || *stop != '\0')
+            throw InputError(path + ": the PLY body holds '" + word + "', which is not a number");
+          ++numbers;
+        }
+        if (numbers < least_numbers)
+          throw InputError(path + ": the PLY body ends early: " + std::to_string(static_cast<long long>(numbers)) +
+                           " numbers where the header needs at least " +
+                           std::to_string(static_cast<long long>(least_numbers)));
+      }
+      return;
+    }
+    if (keyword == "format") {
+      std::string format, version;
+      if (!(words >> format >> version) || version != "1.0" ||
+          (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian"))
+        bad("unknown format (ascii, binary_little_endian or binary_big_endian, version 1.0)");
+      ascii = format == "ascii";
+    } else if (keyword == "element") {
+      std::string name, count;
+      if (!(words >> name >> count) || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 18)
+        bad("an element needs a name and a count");
+      elements.emplace_back(name, std::stoll(count));
+      properties.push_back(0.0);
+    } else if (keyword == "property") {
+      std::string type, a, b;
+      if (!(words >> type >> a)) bad("a property needs a type and a name");
+      if (type == "list" ? !(is_type(a) && (words >> b) && is_type(b) && (words >> b)) : !is_type(type))
+        bad("unknown property type");
+      if (elements.empty()) bad("a property before any element");
+      properties.back() += 1.0;
+    } else {
+      bad("unknown header keyword");
+    }
+  }
+  throw InputError(path + ": the PLY header has no end_header line");
+}
+
+// OpenMesh's OFF reader takes a negative corner count as a huge one and allocates until the machine
+// runs out of memory. Check an ASCII OFF's structure first: counts no larger than the file, then
+// each face line a corner count k >= 1 followed by k vertex indices. (Binary OFF: not checked.)
+void check_off_structure(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  std::vector<std::pair<int, std::string>> lines;  // (number, content) without comments and blank lines
+  for_each_line(text, [&](int number, std::string_view raw) {
+    std::string line(raw.substr(0, raw.find('#')));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.emplace_back(number, std::move(line));
+  });
+  if (lines.empty()) return;  // OpenMesh's own message
+  for (size_t i = 0; i < std::min<size_t>(lines.size(), 2); ++i)
+    for (const char c : lines[i].second)
+      if (std::iscntrl(static_cast<unsigned char>(c)) && c != '\t' && c != '\r')
+        throw InputError(path + ": line " + std::to_string(lines[i].first) +
+                         ": the OFF header holds a control character (byte " +
+                         std::to_string(static_cast<unsigned char>(c)) + ")");
+  std::istringstream header(lines[0].second);
+  std::string keyword;
+  header >> keyword;
+  // The header keywords OFF files use ([ST][C][N][4][n]OFF); OpenMesh's reader hangs on some others
+  // that start like one ("OFFX" followed by one count).
+  static const std::regex off_keyword("(ST)?C?N?4?n?OFF");
+  if (!std::regex_match(keyword, off_keyword))
+    throw InputError(path + ": line " + std::to_string(lines[0].first) + ": '" + keyword +
+                     "' is not an OFF header (OFF, COFF, NOFF, STOFF, 4OFF, ...)");
+  std::string word;
+  const bool binary = (header >> word) && word == "BINARY";
+  if (binary) return;  // binary data follows: no lines to check
+  size_t next = 1;
+  std::vector<std::string> counts;
+  if (!word.empty()) counts.push_back(word);
+  while (header >> word) counts.push_back(word);
+  if (counts.empty() && next < lines.size()) {
+    std::istringstream second(lines[next++].second);
+    while (second >> word) counts.push_back(word);
+  }
+  const auto count_of = [&](size_t i, const char* what) -> long long {
+    if (i >= counts.size() || counts[i].empty() || counts[i].size() > 18 ||
+        counts[i].find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(path + ": the OFF header needs non-negative vertex and face counts (" + what + ")");
+    const long long n = std::stoll(counts[i]);
+    if (static_cast<double>(n) > static_cast<double>(text.size()))
+      throw InputError(path + ": the OFF header claims " + std::to_string(n) + " " + what + " in a file of " +
+                       std::to_string(text.size()) + " bytes");
+    return n;
+  };
+  const long long vertices = count_of(0, "vertices"), faces = count_of(1, "faces");
+  next += static_cast<size_t>(vertices);
+  for (long long f = 0; f < faces; ++f, ++next) {
+    if (next >= lines.size())
+      throw InputError(path + ": the OFF file ends after " + std::to_string(f) + " of its " + std::to_string(faces) +
+                       " faces");
+    std::istringstream in(lines[next].second);
+    long long k = -1;
+    std::vector<long long> corners;
+    long long index = 0;
+    const bool counted = static_cast<bool>(in >> k);
+    for (long long c = 0; counted && c < k && in >> index; ++c) corners.push_back(index);
+    // (Indices out of range are the mesh checks' to name, after reading.)
+    if (!counted || k < 1 || static_cast<long long>(corners.size()) != k)
+      throw InputError(path + ": line " + std::to_string(lines[next].first) +
+                       ": a face needs a corner count k >= 1 followed by k vertex indices: '" + lines[next].second + "'");
+  }
+}
+
 }  // namespace
 
 std::string find_non_finite_number(const std::string& path) {
@@ -287,14 +467,21 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   // not parse"), which hides the likelier cause (an interrupted download or copy).
   if (std::filesystem::file_size(path, ec) == 0 && !ec) throw InputError(path + ": the file is empty (0 bytes)");
 
+  if (ext == ".obj") check_obj_face_corners(path);
+  if (ext == ".ply") check_ply_header(path);
+  if (ext == ".off") check_off_structure(path);
+
   SoupImporter importer;
   OpenMesh::IO::Options options;
   options += OpenMesh::IO::Options::VertexTexCoord;
   options += OpenMesh::IO::Options::FaceTexCoord;
   bool ok = false;
-  {
+  try {
     MutedOpenMeshStreams muted;
     ok = OpenMesh::IO::IOManager().read(path, importer, options);
+  } catch (const std::bad_alloc&) {
+    // The last line of defence against a corrupted count the checks above let through.
+    throw InputError(path + ": the " + ext.substr(1) + " reader ran out of memory (a corrupted element count?)");
   }
   if (!ok) {
     const std::string non_finite = find_non_finite_number(path);

@@ -4,29 +4,40 @@
 #include "common/field_transfer.hpp"
 #include "common/intrinsic_triangulation.hpp"
 #include "common/mesh_loading.hpp"
+#include "common/run_feasibility.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace physarum {
 
-SceneSurface prepare_scene_surface(const Scene& scene) {
+SurfaceSpec SurfaceSpec::of(const Scene& scene) {
+  return SurfaceSpec{scene.mesh, scene.scale_to_area, scene.max_circumradius, scene.min_angle_deg};
+}
+
+SceneSurface prepare_surface(InputMesh input, const SurfaceSpec& spec, const SurfaceNote& note) {
   SceneSurface s;
-  s.input = load_mesh(scene.mesh);
+  s.input = std::move(input);
   for (const std::string& w : s.input.warnings) s.warnings.push_back(s.input.source + ": " + w);
   s.simulated = s.input;
-  if (scene.scale_to_area) {
+  if (spec.scale_to_area) {
     const double area = compute_statistics(s.input).area;
     if (!(area > 0.0))
       throw InputError(s.input.source + ": surface area " + std::to_string(area) + " cannot be scaled");
-    const double factor = std::sqrt(*scene.scale_to_area / area);
+    const double factor = std::sqrt(*spec.scale_to_area / area);
     for (Eigen::Vector3d& p : s.simulated.positions) p *= factor;
   }
+  const InputMeshStatistics scaled = compute_statistics(s.simulated);
+  s.diameter = scaled.bounding_box_diagonal;
   IntrinsicTriangulation triangulation(s.simulated);
   triangulation.flip_to_delaunay();
-  if (scene.max_circumradius || scene.min_angle_deg > 0.0) {
+  if (spec.max_circumradius || spec.min_angle_deg > 0.0) {
     RefinementOptions refinement;
-    if (scene.max_circumradius) refinement.max_circumradius = *scene.max_circumradius;
-    refinement.min_angle_deg = scene.min_angle_deg;
+    if (spec.max_circumradius) refinement.max_circumradius = *spec.max_circumradius;
+    refinement.min_angle_deg = spec.min_angle_deg;
+    const RefinementEstimate estimate =
+        check_refinement_size(s.input.source, scaled.area, triangulation.vertex_count(), refinement);
+    if (note && estimate.vertices >= kRefinementNoteVertices) note(estimate.describe());
     triangulation.refine(refinement);
   }
   s.domain = build_surface_domain(triangulation.snapshot());
@@ -34,6 +45,14 @@ SceneSurface prepare_scene_surface(const Scene& scene) {
   // map carries fields back onto the input in its own coordinates.
   s.input_to_intrinsic = input_vertex_to_intrinsic(s.simulated, s.domain.vertex_location);
   return s;
+}
+
+SceneSurface prepare_surface(const SurfaceSpec& spec, const SurfaceNote& note) {
+  return prepare_surface(load_mesh(spec.mesh), spec, note);
+}
+
+SceneSurface prepare_scene_surface(const Scene& scene, const SurfaceNote& note) {
+  return prepare_surface(SurfaceSpec::of(scene), note);
 }
 
 }  // namespace physarum

@@ -1,17 +1,30 @@
 #pragma once
-// The surface a scene simulates on, prepared once for every command that runs a scene (run,
-// compare, bench): the input mesh as loaded, the same mesh scaled to the scene's area, its intrinsic
-// Delaunay triangulation refined as the scene asks, the surface domain, and the map that carries
-// per-vertex results back onto the input mesh.
+// The surface a simulation runs on, prepared in ONE place for everything that simulates (run,
+// compare, bench, the benchmark suites, the device check): the input mesh as loaded, the same mesh
+// scaled to the requested area, its intrinsic Delaunay triangulation refined as asked, the surface
+// domain, and the map that carries per-vertex results back onto the input mesh.
+//   load (and repair) -> scale to area -> flip to Delaunay -> refine -> SurfaceDomain
 #include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
 #include "common/scene.hpp"
 #include "common/surface_domain.hpp"
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace physarum {
+
+// What surface to build: the scene keys that describe it (../shared/DESIGN.md, "Scene files").
+struct SurfaceSpec {
+  std::string mesh;                        // file path or "shape:NAME" (load_mesh's spec)
+  std::optional<double> scale_to_area;     // rescale the input so its area is this many m^2
+  std::optional<double> max_circumradius;  // intrinsic refinement bound, in scaled units
+  double min_angle_deg = 0.0;              // refinement angle bound; 0 = none
+
+  static SurfaceSpec of(const Scene& scene);
+};
 
 struct SceneSurface {
   InputMesh input;      // as loaded (repaired), in the file's own coordinates
@@ -19,10 +32,21 @@ struct SceneSurface {
   SurfaceDomain domain;
   InputVertexData<int> input_to_intrinsic;  // intrinsic vertex sitting on each input vertex
   std::vector<std::string> warnings;    // repairs made while loading, for the command line
+  double diameter = 0.0;                // bounding-box diagonal of `simulated` (scaled units)
 };
 
-// Loads scene.mesh, scales, flips to intrinsic Delaunay and refines when the scene gives
-// max_circumradius or min_angle. Throws InputError naming the mesh on any failure.
-SceneSurface prepare_scene_surface(const Scene& scene);
+// Called with one line before a refinement estimated to be long starts (for the command line).
+using SurfaceNote = std::function<void(const std::string&)>;
+
+// Loads spec.mesh, scales, flips to intrinsic Delaunay and refines when the spec gives
+// max_circumradius or min_angle. Refuses (InputError, before refining) a bound whose estimated
+// vertex count exceeds the refinement's insertion budget. Throws InputError naming the mesh on any
+// failure.
+SceneSurface prepare_surface(const SurfaceSpec& spec, const SurfaceNote& note = {});
+// The same from a mesh built in code (spec.mesh is then only its name for messages).
+SceneSurface prepare_surface(InputMesh input, const SurfaceSpec& spec, const SurfaceNote& note = {});
+
+// prepare_surface(SurfaceSpec::of(scene)).
+SceneSurface prepare_scene_surface(const Scene& scene, const SurfaceNote& note = {});
 
 }  // namespace physarum

@@ -1,8 +1,8 @@
 #pragma once
 // The surface domain most tests simulate on: a mesh (file or shape:NAME) flipped to intrinsic
-// Delaunay, so its cotan weights are non-negative, without refinement.
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
+// Delaunay, so its cotan weights are non-negative, without scaling or refinement — through the
+// loader every command uses (common/scene_surface.hpp).
+#include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
 
 #include <string>
@@ -10,9 +10,9 @@
 namespace physarum::testing {
 
 inline SurfaceDomain delaunay_domain(const std::string& spec) {
-  IntrinsicTriangulation triangulation(load_mesh(spec));
-  triangulation.flip_to_delaunay();
-  return build_surface_domain(triangulation.snapshot());
+  SurfaceSpec surface;
+  surface.mesh = spec;
+  return prepare_surface(surface).domain;
 }
 
 }  // namespace physarum::testing

@@ -19,15 +19,15 @@ using testing::make_square_grid;
 
 Eigen::MatrixXd dense(const CsrMatrix& m) { return Eigen::MatrixXd(m.to_eigen()); }
 
-Eigen::MatrixXd diagonal(const std::vector<double>& v) {
+Eigen::MatrixXd diagonal(const IntrinsicVertexData<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).asDiagonal();
 }
 
 // Rates that vary over the mesh; every third vertex does not diffuse when `some_zero`.
-void varying_rates(const InputMesh& mesh, bool some_zero, std::vector<double>& diffuse, std::vector<double>& decay) {
+void varying_rates(const InputMesh& mesh, bool some_zero, IntrinsicVertexData<double>& diffuse, IntrinsicVertexData<double>& decay) {
   const size_t n = mesh.positions.size();
-  diffuse.resize(n);
-  decay.resize(n);
+  diffuse.assign(n, 0.0);
+  decay.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
     diffuse[i] = some_zero && i % 3 == 0 ? 0.0 : 0.001 + 0.01 * std::abs(mesh.positions[i].x());
     decay[i] = 0.2 + std::abs(mesh.positions[i].y());
@@ -37,9 +37,9 @@ void varying_rates(const InputMesh& mesh, bool some_zero, std::vector<double>& d
 TEST(PheromoneOperators, ForwardSubStepMatrixIsEquationSixOverMass) {
   const InputMesh mesh = make_square_grid(5, true, 0.2);
   const SurfaceDomain domain = make_domain(mesh);
-  std::vector<double> diffuse, decay;
+  IntrinsicVertexData<double> diffuse, decay;
   varying_rates(mesh, true, diffuse, decay);
-  std::vector<double> diffuse_over_mass(diffuse.size());
+  IntrinsicVertexData<double> diffuse_over_mass(diffuse.size());
   for (size_t i = 0; i < diffuse.size(); ++i) diffuse_over_mass[i] = diffuse[i] / domain.vertex_mass[i];
   const double h = 0.01;
   const CsrMatrix F = forward_substep_matrix(domain.laplacian, diffuse_over_mass, decay, h);
@@ -72,7 +72,7 @@ TEST(PheromoneOperators, BackwardEulerSystemIsSymmetricAndSolvesEquationSeven) {
   Eigen::VectorXd u(n);
   for (int i = 0; i < n; ++i) u[i] = uniform(rng);
   for (int variant = 0; variant < 4; ++variant) {
-    std::vector<double> diffuse, decay;
+    IntrinsicVertexData<double> diffuse, decay;
     varying_rates(mesh, variant == 1, diffuse, decay);
     if (variant == 2) diffuse.assign(diffuse.size(), 0.02);
     if (variant == 3) diffuse.assign(diffuse.size(), 0.0);

@@ -23,9 +23,10 @@
 #include "opencl/compute_context.hpp"
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
 #include "tools/comparison_plot.hpp"
+#include "tools/feasible_surface.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -84,14 +85,14 @@ struct Harness {
   std::vector<double> reference_seed(std::uint32_t seed) const {
     Scene s = scene;
     s.seed = seed;
-    ReferenceSimulation sim(surface.domain, s);
-    return metrics.measure_seed(sim);
+    const auto sim = make_backend(BackendChoice::Reference, nullptr, surface.domain, s);
+    return metrics.measure_seed(*sim);
   }
   std::vector<double> opencl_seed(std::uint32_t seed) const {
     Scene s = scene;
     s.seed = seed;
-    opencl::OpenCLSimulation sim(*compute, surface.domain, s, opencl_options);
-    return metrics.measure_seed(sim);
+    const auto sim = make_backend(BackendChoice::OpenCL, &*compute, surface.domain, s, opencl_options);
+    return metrics.measure_seed(*sim);
   }
 };
 
@@ -193,8 +194,10 @@ int run_compare(const CompareOptions& o) {
   const std::string fault_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
 
   const Scene scene = load_scene(o.scene);
-  const SceneSurface surface = prepare_scene_surface(scene);
-  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  // Each seed runs burn-in + duration: the run whose work the checks estimate.
+  const long long steps_per_seed = std::max<long long>(
+      1, std::llround((scene.comparison.burn_in + scene.comparison.duration) / scene.time_step));
+  const SceneSurface surface = prepare_feasible_surface(scene, steps_per_seed);
   const ComparisonMetrics metrics(surface, scene);
   const std::vector<MetricInfo>& info = metrics.metrics();
   const int metric_count = static_cast<int>(info.size());

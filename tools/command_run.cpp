@@ -16,10 +16,11 @@
 #include "common/scene_json.hpp"
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
+#include "common/workload.hpp"
 #include "opencl/compute_context.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
+#include "tools/feasible_surface.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -99,17 +100,13 @@ int run_run(const RunOptions& o) {
   if (o.seed) scene.seed = *o.seed;
   const long long steps = run_length_in_steps(o, scene);
 
-  const SceneSurface surface = prepare_scene_surface(scene);
-  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  const BackendChoice choice = parse_backend_choice(o.backend);
+  const SceneSurface surface = prepare_feasible_surface(scene, steps);
   const SurfaceDomain& domain = surface.domain;
   const InputMesh& input = surface.input;
-  std::unique_ptr<SimulationBackend> backend;
-  if (o.backend == "opencl") {
-    const opencl::ComputeContext compute = opencl::make_compute_context(o.device);
-    backend = std::make_unique<opencl::OpenCLSimulation>(compute, domain, scene);
-  } else {
-    backend = std::make_unique<ReferenceSimulation>(domain, scene);
-  }
+  const std::optional<opencl::ComputeContext> compute = compute_context_for(choice, o.device);
+  const std::unique_ptr<SimulationBackend> backend =
+      make_backend(choice, compute ? &*compute : nullptr, domain, scene);  // refuses what does not fit in memory
   SimulationBackend& simulation = *backend;
   const double U = uniform_steady_state(scene, domain.total_area);
 

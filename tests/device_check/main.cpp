@@ -6,7 +6,8 @@
 // spheres, and the forward step's bytes per second against the device memory's (a triad).
 //   physarum_device_check [--device SPEC]
 #include "common/field_statistics.hpp"
-#include "common/intrinsic_triangulation.hpp"
+#include "common/scene_surface.hpp"
+#include "common/workload.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/memory_bandwidth.hpp"
@@ -18,12 +19,15 @@
 #include "probe_checks.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "reference/simulation.hpp"
+#include "tools/backend_factory.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <optional>
 #include <string>
 
 namespace physarum::opencl {
@@ -33,13 +37,14 @@ using testing::check;
 
 Scene scene(int agents, Integrator integrator) { return testing::model_scene(agents, 0.01, 0.5, integrator); }
 
-SurfaceDomain refined(const InputMesh& mesh, double max_circumradius) {
-  IntrinsicTriangulation t(mesh);
-  t.flip_to_delaunay();
-  RefinementOptions r;
-  r.max_circumradius = max_circumradius;
-  t.refine(r);
-  return build_surface_domain(t.snapshot());
+// `mesh` (built in code) through the shared surface loader: scaled to `area` m^2 when given,
+// flipped to Delaunay and refined to `max_circumradius`.
+SurfaceDomain refined(const InputMesh& mesh, double max_circumradius, std::optional<double> area = std::nullopt) {
+  SurfaceSpec spec;
+  spec.mesh = mesh.source;
+  spec.scale_to_area = area;
+  spec.max_circumradius = max_circumradius;
+  return prepare_surface(mesh, spec).domain;
 }
 
 void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
@@ -115,16 +120,17 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
 void throughput_line(const ComputeContext& compute, const SurfaceDomain& domain, int agents, int agents_per_work_item) {
   OpenCLSimulationOptions options;
   options.agents_per_work_item = agents_per_work_item;
-  OpenCLSimulation sim(compute, domain, scene(agents, Integrator::ForwardEuler), options);
-  sim.run(5);
-  sim.finish();
-  const SimulationCounters before = sim.counters();
+  const std::unique_ptr<SimulationBackend> sim =
+      make_backend(BackendChoice::OpenCL, &compute, domain, scene(agents, Integrator::ForwardEuler), options);
+  sim->run(5);
+  sim->finish();
+  const SimulationCounters before = sim->counters();
   const auto t0 = std::chrono::steady_clock::now();
   const int steps = 20;
-  sim.run(steps);
-  sim.finish();
+  sim->run(steps);
+  sim->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const SimulationCounters after = sim.counters();
+  const SimulationCounters after = sim->counters();
   const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
                                                before.face_crossings - before.sensor_face_crossings);
   std::printf("throughput: %d faces, %d agents, %s agents per work-item: %.3f ms/step, %.3g agent-steps/s, %.1f "
@@ -149,21 +155,20 @@ int run(const std::string& device) {
   check(triad.result_is_correct(), "triad result");
   std::printf("memory bandwidth (triad, %.3g MB per triad): %.3g GB/s\n", triad.bytes_per_triad() / 1e6,
               bandwidth / 1e9);
-  InputMesh sphere = testing::make_icosphere(4);
-  for (Eigen::Vector3d& p : sphere.positions) p *= std::sqrt(4.0 / (4.0 * 3.14159265358979));  // 4 m^2
-  InputMesh square = testing::make_square_grid(32);
-  const SurfaceDomain sphere_domain = refined(sphere, 0.03), square_domain = refined(square, 0.03);
+  const InputMesh sphere = testing::make_icosphere(4);
+  const InputMesh square = testing::make_square_grid(32);
+  const SurfaceDomain sphere_domain = refined(sphere, 0.03, kBenchArea), square_domain = refined(square, 0.03);
   one_step(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
   one_step(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
   u_metric(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
   u_metric(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
   pheromone_forward(compute, sphere_domain, "sphere", bandwidth);
-  throughput(compute, refined(sphere, 0.015));
-  const SurfaceDomain fine_sphere = refined(sphere, 0.004);
+  throughput(compute, refined(sphere, 0.015, kBenchArea));
+  const SurfaceDomain fine_sphere = refined(sphere, 0.004, kBenchArea);
   throughput(compute, fine_sphere);
   pheromone_forward(compute, fine_sphere, "fine sphere", bandwidth);
   // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
-  const SurfaceDomain finest_sphere = refined(sphere, 0.0015);
+  const SurfaceDomain finest_sphere = refined(sphere, 0.0015, kBenchArea);
   throughput(compute, finest_sphere);
   pheromone_forward(compute, finest_sphere, "finest sphere", bandwidth);
   std::printf("%d failed\n", testing::probe_failures());

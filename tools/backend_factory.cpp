@@ -1,0 +1,79 @@
+#include "tools/backend_factory.hpp"
+
+#include "common/errors.hpp"
+#include "reference/agents.hpp"
+#include "reference/simulation.hpp"
+
+#include "opencl/opencl_api.hpp"
+
+#include <algorithm>
+
+namespace physarum {
+namespace {
+
+template <class Vector>
+constexpr double element_bytes() {
+  return static_cast<double>(sizeof(typename Vector::value_type));
+}
+
+// The reference's Agents SoA (reference/agents.hpp): one element of each array per agent.
+constexpr double kReferenceAgentBytes =
+    element_bytes<decltype(Agents::face)>() + element_bytes<decltype(Agents::position)>() +
+    element_bytes<decltype(Agents::heading)>() + element_bytes<decltype(Agents::age)>() +
+    element_bytes<decltype(Agents::exposure)>() + element_bytes<decltype(Agents::exposure_threshold)>() +
+    element_bytes<decltype(Agents::time_since_decision)>() + element_bytes<decltype(Agents::accumulated_turn)>();
+
+// The OpenCL agent buffers (opencl/agents.cpp): face, position, heading, five floats and an id per
+// agent; the simulation keeps a second, sorted copy (opencl/simulation.cpp) and one decider slot.
+constexpr double kOpenCLAgentBufferBytes = sizeof(cl_int) + 2 * sizeof(cl_float2) + 5 * sizeof(cl_float) + sizeof(cl_uint);
+constexpr double kOpenCLAgentBytes = 2 * kOpenCLAgentBufferBytes + sizeof(cl_uint);
+// The largest single agent buffer: positions or headings.
+constexpr double kOpenCLLargestAgentBuffer = sizeof(cl_float2);
+
+// Per vertex: the backends' fields and parameters (concentration, deposits, per-vertex parameters,
+// mass, the forward-Euler matrix's rows) — about 16 doubles; per face: a 64-byte device face record
+// or the reference's face arrays read in place (the domain itself is already allocated).
+constexpr double kVertexBytes = 16 * sizeof(double);
+constexpr double kFaceBytes = 64;
+
+}  // namespace
+
+std::optional<opencl::ComputeContext> compute_context_for(BackendChoice backend, const std::string& device_spec) {
+  if (backend != BackendChoice::OpenCL) return std::nullopt;
+  return opencl::make_compute_context(device_spec);
+}
+
+MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, int agents) {
+  MemoryNeed need;
+  const double n = std::max(agents, 0);
+  const double surface = kVertexBytes * domain.vertex_count + kFaceBytes * domain.face_count;
+  if (backend == BackendChoice::Reference) {
+    need.host_bytes = kReferenceAgentBytes * n + surface;
+    need.breakdown = format_number(kReferenceAgentBytes) + " B per agent x " + format_number(n) + " agents + " +
+                     format_bytes(surface) + " for the surface";
+  } else {
+    need.host_bytes = surface;
+    need.device_bytes = kOpenCLAgentBytes * n + surface;
+    need.largest_device_buffer = std::max(kOpenCLLargestAgentBuffer * n, kFaceBytes * domain.face_count);
+    need.breakdown = format_number(kOpenCLAgentBytes) + " B per agent on the device x " + format_number(n) +
+                     " agents + " + format_bytes(surface) + " for the surface";
+  }
+  return need;
+}
+
+std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
+                                                const SurfaceDomain& domain, const Scene& scene,
+                                                const opencl::OpenCLSimulationOptions& options) {
+  const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
+  if (backend == BackendChoice::Reference) {
+    check_memory(need, available_host_memory_bytes());
+    return std::make_unique<ReferenceSimulation>(domain, scene);
+  }
+  if (!compute) throw UsageError("the OpenCL backend needs a compute context");
+  check_memory(need, available_host_memory_bytes(), compute->device.describe(),
+               static_cast<double>(compute->device.global_memory_bytes),
+               static_cast<double>(compute->device.max_allocation_bytes));
+  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, scene, options);
+}
+
+}  // namespace physarum

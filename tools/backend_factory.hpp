@@ -1,0 +1,35 @@
+#pragma once
+// Choosing and building a simulation backend, in one place for the command line (run, compare,
+// bench), the benchmark suites (bench/) and the device check. It links both backends, so it cannot
+// live in common/ (which neither backend's code may reach into); it is its own small library,
+// physarum_backends (CMakeLists.txt), so that bench/ and tests/ link it without the tools' commands.
+// Before anything is allocated it estimates the memory the agents and the surface need on the host
+// and on the device and refuses (InputError) what does not fit.
+#include "common/run_feasibility.hpp"
+#include "common/scene.hpp"
+#include "common/simulation_backend.hpp"
+#include "common/surface_domain.hpp"
+#include "common/workload.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/simulation.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace physarum {
+
+// The OpenCL context a backend needs: one from `device_spec` for OpenCL, none for the reference.
+std::optional<opencl::ComputeContext> compute_context_for(BackendChoice backend, const std::string& device_spec);
+
+// Memory the backend will allocate for `agents` agents on `domain` (an estimate from the element
+// sizes of the reference's Agents SoA and of the OpenCL agent buffers; see the .cpp).
+MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, int agents);
+
+// Checks memory (check_memory against the host's available memory and, for OpenCL, the device's
+// global memory and largest allocation), then builds the backend. `compute` is required for OpenCL.
+std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
+                                                const SurfaceDomain& domain, const Scene& scene,
+                                                const opencl::OpenCLSimulationOptions& options = {});
+
+}  // namespace physarum

@@ -1,0 +1,22 @@
+#include "tools/feasible_surface.hpp"
+
+#include "common/run_feasibility.hpp"
+#include "reference/sensing_steering.hpp"
+
+#include <iostream>
+#include <string>
+
+namespace physarum::cli {
+
+SceneSurface prepare_feasible_surface(const Scene& scene, long long steps) {
+  for (const std::string& w : check_time_scales(scene, kMaxTurnDecisionsPerStep))
+    std::cerr << "physarum: warning: " << w << "\n";
+  SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
+  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  const WorkEstimate work = estimate_work(scene, surface.domain, surface.diameter, steps, kMaxTurnDecisionsPerStep);
+  std::cerr << work.describe() << "\n";
+  check_work(scene, work);
+  return surface;
+}
+
+}  // namespace physarum::cli

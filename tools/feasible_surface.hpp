@@ -1,0 +1,14 @@
+#pragma once
+// The fail-fast checks of a scene that is about to be simulated (common/run_feasibility.hpp), in the
+// order the command line runs them before writing anything: the time step against the model's
+// time scales (warnings on stderr, or InputError), the surface (refused before refining when the
+// refinement would exceed its budget, announced when it will be long), then the run's work: one
+// estimate line on stderr, and InputError when a length exceeds the surface or the work is absurd.
+#include "common/scene.hpp"
+#include "common/scene_surface.hpp"
+
+namespace physarum::cli {
+
+SceneSurface prepare_feasible_surface(const Scene& scene, long long steps);
+
+}  // namespace physarum::cli
