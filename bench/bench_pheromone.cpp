@@ -8,7 +8,7 @@
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/face_records.hpp"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 #include "reference/diffusion_decay.hpp"
 
 #include <benchmark/benchmark.h>
@@ -27,7 +27,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   double bytes_per_sub_step = 0.0;
   if (backend == kOpenCL) {
     const SurfaceDomain device_domain = opencl::in_device_vertex_order(*domain);
-    opencl::OpenCLPheromone field(compute(), device_domain, params, integrator, scene.time_step);
+    opencl::OpenCLDiffusionDecay field(compute(), device_domain, params, integrator, scene.time_step);
     field.fill(1.0);
     for (auto _ : state) {
       field.step();

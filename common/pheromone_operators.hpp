@@ -2,7 +2,7 @@
 // The operators of the pheromone PDE (Eq. 6 and Eq. 7) assembled in double from the cotan Laplacian
 // L, the lumped masses and the per-vertex rates, in the forms a sparse matrix-vector kernel wants:
 // pure functions, so they can be checked against dense Eigen equivalents (tests/test_pheromone_operators.cpp).
-// The OpenCL backend converts them to float when it uploads them (opencl/pheromone.cpp).
+// The OpenCL backend converts them to float when it uploads them (opencl/diffusion_decay.cpp).
 #include "common/csr_matrix.hpp"
 #include "common/element_data.hpp"
 

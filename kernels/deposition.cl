@@ -1,6 +1,6 @@
 /* Deposition along the path (paper Eq. 4; mirrors reference/deposition.cpp). Each per-face piece of
  * a step deposits its share of r_dep dt at its midpoint, split over the face's corners by the
- * midpoint's barycentric weights, into an AMOUNT per vertex; pheromone_add_deposits (pheromone.cl)
+ * midpoint's barycentric weights, into an AMOUNT per vertex; pheromone_add_deposits (diffusion_decay.cl)
  * then divides by the vertex mass and adds it to the field.
  *
  * Order independence: amounts accumulate as 64-bit fixed point (round(amount * scale), scale a power

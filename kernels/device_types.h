@@ -25,7 +25,7 @@ typedef float dev_float;
 #define PHYSARUM_FIELD_SUM_COMPONENTS 4
 #define PHYSARUM_COVERAGE_THRESHOLDS 3
 
-/* ---- hybrid ELL + CSR matrices (pheromone.cl, opencl/hybrid_matrix.hpp) ----
+/* ---- hybrid ELL + CSR matrices (diffusion_decay.cl, opencl/hybrid_matrix.hpp) ----
  * Entries per row in the fixed-width ELL block. A row of the sub-step matrix has its vertex's degree
  * plus one entries, 7 on average on a triangle mesh; 8 slots hold nearly every row of the intrinsic
  * Delaunay meshes whole, and the few longer rows spill into the overflow part (bench/README.md,

@@ -1,4 +1,4 @@
-/* Rows of a CSR matrix times a vector, shared by pheromone.cl and conjugate_gradients.cl. */
+/* Rows of a CSR matrix times a vector, shared by diffusion_decay.cl and conjugate_gradients.cl. */
 #ifndef PHYSARUM_SPARSE_ROWS_H
 #define PHYSARUM_SPARSE_ROWS_H
 

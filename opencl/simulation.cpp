@@ -149,10 +149,11 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   if (sort_interval_ > 0)
     agent_order_ = std::make_unique<DeviceAgentOrder>(compute, agent_program, domain.face_count, agent_count,
                                                       agent_group_, agent_groups_);
-  OpenCLPheromoneOptions pheromone_options = options.pheromone;
+  OpenCLDiffusionDecayOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
-  pheromone_ = std::make_unique<OpenCLPheromone>(compute, device_domain, device_params, settings.integrator,
-                                                 settings.time_step, pheromone_options);
+  // One dynamic layer today: the pheromone every agent deposits into and senses.
+  layers_.push_back(std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params, settings.integrator,
+                                                           settings.time_step, pheromone_options));
 
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
@@ -182,7 +183,7 @@ void OpenCLSimulation::enqueue_sensing() {
   compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
   cl::Kernel& sense = kernels_->sense_deciders;
-  set_arguments(sense, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), agents_.face,
+  set_arguments(sense, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), agents_.face,
                 agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
   compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
                                       cl::NDRange(sensing_group_));
@@ -191,7 +192,7 @@ void OpenCLSimulation::enqueue_sensing() {
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  set_arguments(k, constants_, faces_, vertex_parameters_, pheromone_->concentration_buffer(), alias_probability_,
+  set_arguments(k, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), alias_probability_,
                 alias_index_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
                 agents_.exposure, agents_.exposure_threshold, agents_.time_since_decision, agents_.accumulated_turn,
                 agents_.id, first_sensing_, group_counters_, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
@@ -205,14 +206,8 @@ void OpenCLSimulation::step() {
     constants_.step = static_cast<dev_uint>(steps_taken_);
     enqueue_sensing();
     enqueue_agent_step();
-    // The deposits are the explicit (forward) or implicit (backward) source term, as in the reference.
-    if (settings_.integrator == Integrator::ForwardEuler) {
-      pheromone_->step();
-      pheromone_->add_deposits(deposits_, deposit_scale_);
-    } else {
-      pheromone_->add_deposits(deposits_, deposit_scale_);
-      pheromone_->step();
-    }
+    // The field model puts the deposits where its scheme needs them (field_model.hpp).
+    layers_[0]->advance(deposits_, deposit_scale_);
   } catch (const cl::Error& e) {
     throw device_error("simulation step " + std::to_string(steps_taken_) + " on " + compute_.device.device_name,
                        e.err());
@@ -222,11 +217,11 @@ void OpenCLSimulation::step() {
 
 void OpenCLSimulation::finish() { compute_.queue.finish(); }
 
-OpenCLPheromone& OpenCLSimulation::layer(int index) const {
-  if (index != 0)
+OpenCLFieldLayer& OpenCLSimulation::layer(int index) const {
+  if (index < 0 || index >= layer_count())
     throw InputError("opencl simulation: no field layer " + std::to_string(index) + " (it has " +
                      std::to_string(layer_count()) + ")");
-  return *pheromone_;
+  return *layers_[static_cast<size_t>(index)];
 }
 
 IntrinsicVertexData<double> OpenCLSimulation::field_values(int index) const {
@@ -288,7 +283,9 @@ std::string OpenCLSimulation::device_name() const {
 }
 
 std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
-  std::vector<std::string> damaged = pheromone_->damaged_canaries();
+  std::vector<std::string> damaged;
+  for (const auto& layer : layers_)
+    for (const std::string& name : layer->damaged_canaries()) damaged.push_back(name);
   std::vector<const DeviceBuffer*> guarded = agents_.buffers();
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);

@@ -5,8 +5,8 @@
 //   0.   every sort_interval steps, agents are counting-sorted by face (kernels/agent_order.cl), a
 //        memory order only: results do not change
 //   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer, move + deposit, turnover
-//   4.   pheromone (opencl/pheromone.hpp) with this step's deposits: forward Euler steps the field
-//        and then adds them, backward Euler adds them and then solves, exactly as the reference
+//   4.   fields: every dynamic layer advances with this step's deposits, where its model puts
+//        them (opencl/field_model.hpp; today one diffusion-decay layer, opencl/diffusion_decay.hpp)
 //   5.   time += dt
 //
 // step() only enqueues: forward Euler runs with no host round trip at all; backward Euler reads the
@@ -26,8 +26,9 @@
 #include "opencl/agents.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
+#include "opencl/field_model.hpp"
 #include "opencl/face_records.hpp"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 
 #include <memory>
 #include <string>
@@ -36,7 +37,7 @@
 namespace physarum::opencl {
 
 struct OpenCLSimulationOptions {
-  OpenCLPheromoneOptions pheromone;
+  OpenCLDiffusionDecayOptions pheromone;
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
@@ -72,7 +73,7 @@ class OpenCLSimulation final : public SimulationBackend {
   long long steps_taken() const override { return steps_taken_; }
   // Fields in the domain's vertex order (the device keeps its own locality order). One dynamic
   // layer today: the pheromone.
-  int layer_count() const override { return 1; }
+  int layer_count() const override { return static_cast<int>(layers_.size()); }
   IntrinsicVertexData<double> field_values(int layer = 0) const override;
   void set_field(const IntrinsicVertexData<double>& domain_values, int layer = 0) override;
   void fill_field(double value, int layer = 0) override;
@@ -85,10 +86,9 @@ class OpenCLSimulation final : public SimulationBackend {
   // ---- for tests: identical states in, identical states out ----
   Agents read_agents() const;
   void write_agents(const Agents& agents);
-  // The device field itself, in the device's vertex order (face_records.hpp): for order-free uses
-  // (fill, total_amount); per-vertex values go through concentration_values / set_concentration.
-  OpenCLPheromone& pheromone() { return *pheromone_; }
-  const OpenCLPheromone& pheromone() const { return *pheromone_; }
+  // A device layer itself, in the device's vertex order (face_records.hpp): for order-free uses
+  // (fill, total_amount); per-vertex values go through field_values / set_field.
+  OpenCLFieldLayer& layer(int index) const;
   double deposit_scale() const { return deposit_scale_; }
   bool fixed_point_deposits() const { return fixed_point_; }
   // Names of device buffers a kernel wrote past (empty when every canary is intact).
@@ -96,7 +96,6 @@ class OpenCLSimulation final : public SimulationBackend {
 
  private:
   struct Kernels;
-  OpenCLPheromone& layer(int index) const;
   void enqueue_agent_step();
   void enqueue_sensing();
 
@@ -108,7 +107,7 @@ class OpenCLSimulation final : public SimulationBackend {
   VertexOrder vertex_order_;
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
-  std::unique_ptr<OpenCLPheromone> pheromone_;
+  std::vector<std::unique_ptr<OpenCLFieldLayer>> layers_;  // dynamic layers; layer 0 is sensed
   DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_;
   DeviceBuffer deposits_, group_counters_;
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)

@@ -121,7 +121,7 @@ TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
   OpenCLSimulation device(compute(), domain, scene);
   device.run(3);
   const double expected = 3 * scene.agents * scene.parameters[Param::deposit_rate] * scene.time_step;
-  EXPECT_NEAR(device.pheromone().total_amount() / expected, 1.0, 1e-5);
+  EXPECT_NEAR(device.layer(0).total_amount() / expected, 1.0, 1e-5);
   if (device.fixed_point_deposits()) {
     // Order independence: a second run gives the very same bits.
     OpenCLSimulation again(compute(), domain, scene);
@@ -187,7 +187,7 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
   OpenCLSimulation sim(compute(), domain, scene);
   const double U = uniform_steady_state(scene, domain.total_area);
-  sim.pheromone().fill(U);
+  sim.fill_field(U);
   double sum = 0.0;
   for (int s = 1; s <= last; ++s) {
     sim.step();

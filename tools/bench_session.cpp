@@ -2,7 +2,7 @@
 
 #include "opencl/face_records.hpp"
 #include "opencl/device_tuning.hpp"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "tools/backend_factory.hpp"
 #include "common/vertex_parameters.hpp"
@@ -121,7 +121,7 @@ PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, const std::
   };
   if (backend == "opencl") {
     // Numbered as a simulation numbers the device's field, so it reads memory the same way.
-    opencl::OpenCLPheromone field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
+    opencl::OpenCLDiffusionDecay field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
     const bool forward = integrator == Integrator::ForwardEuler;
     field.fill(1.0);
     t.seconds = time([&] { field.step(); }, [&] { compute_.queue.finish(); }, forward);

@@ -177,7 +177,7 @@ nlohmann::ordered_json roofline(BenchSession& bench, const nlohmann::ordered_jso
   }
   if (!pheromone.empty()) {
     // Forward Euler: each sub-step reads its matrix (hybrid ELL + CSR, 8 slots of 4 B column and
-    // 4 B value per vertex) and u once and writes u once (opencl/pheromone.hpp counts the bytes);
+    // 4 B value per vertex) and u once and writes u once (opencl/diffusion_decay.hpp counts the bytes);
     // the neighbours' u it gathers are the cache's, not memory's. Each field against the triad
     // measured beside it; the last (largest) in detail, and the spread over the fields whose
     // sub-step moves more than the device's cache holds (as its driver reports it; where that is a

@@ -11,7 +11,7 @@
 #include "opencl/face_records.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/memory_bandwidth.hpp"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
@@ -82,7 +82,7 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
   ReferenceDiffusionDecay reference(domain, params, Integrator::ForwardEuler, 1.0);
   const double dt = 2.5 * reference.stable_time_step();
   ReferenceDiffusionDecay expected(domain, params, Integrator::ForwardEuler, dt);
-  OpenCLPheromone device(compute, domain, params, Integrator::ForwardEuler, dt);
+  OpenCLDiffusionDecay device(compute, domain, params, Integrator::ForwardEuler, dt);
   // The domain is already in the device's vertex order, so one list of values serves both.
   std::vector<double> u0(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) u0[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;

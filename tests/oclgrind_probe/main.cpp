@@ -12,7 +12,7 @@
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 #include "opencl/simulation.hpp"
 #include "opencl/program_cache.hpp"
 #include "pheromone_test_meshes.hpp"
@@ -43,10 +43,10 @@ DeviceVertexData<double> ramp(int n) {
 
 void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    Integrator integrator, double dt, const std::string& label) {
-  OpenCLPheromoneOptions options;
+  OpenCLDiffusionDecayOptions options;
   options.cg_max_iterations = 64;  // oclgrind interprets every work-item: keep the solve short
   options.cg_check_interval = 8;
-  OpenCLPheromone field(compute, domain, params, integrator, dt, options);
+  OpenCLDiffusionDecay field(compute, domain, params, integrator, dt, options);
   field.set_concentration(ramp(domain.vertex_count));
   field.add_deposits(DeviceVertexData<double>(static_cast<size_t>(domain.vertex_count), 1e-3));
   for (int s = 0; s < 2; ++s) field.step();

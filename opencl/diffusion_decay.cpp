@@ -1,4 +1,4 @@
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 
 #include "common/errors.hpp"
 #include "common/diffusion_decay.hpp"
@@ -18,7 +18,7 @@
 
 namespace physarum::opencl {
 
-struct OpenCLPheromone::Kernels {
+struct OpenCLDiffusionDecay::Kernels {
   cl::Kernel forward_substep, forward_overflow, add_deposits, csr_multiply;
 };
 
@@ -31,11 +31,11 @@ std::vector<float> to_float(const Values& v) {
 
 }  // namespace
 
-OpenCLPheromone::~OpenCLPheromone() = default;
+OpenCLDiffusionDecay::~OpenCLDiffusionDecay() = default;
 
-OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDomain& domain,
+OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const SurfaceDomain& domain,
                                  const VertexParameters& params, Integrator integrator, double time_step,
-                                 const OpenCLPheromoneOptions& options)
+                                 const OpenCLDiffusionDecayOptions& options)
     : compute_(compute), options_(options), integrator_(integrator), time_step_(time_step) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
@@ -78,8 +78,8 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
   kernels_ = std::make_unique<Kernels>();
   try {
     const std::string deposit_cells = fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS";
-    const cl::Program program = build_program(compute.context, compute.device, "pheromone.cl",
-                                              kernel_source("pheromone.cl"), options.build_options + deposit_cells);
+    const cl::Program program = build_program(compute.context, compute.device, "diffusion_decay.cl",
+                                              kernel_source("diffusion_decay.cl"), options.build_options + deposit_cells);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
@@ -89,7 +89,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
     group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply},
                                     compute.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
-    throw device_error("preparing the pheromone kernels (pheromone.cl) on " + compute.device.device_name, e.err());
+    throw device_error("preparing the pheromone kernels (diffusion_decay.cl) on " + compute.device.device_name, e.err());
   }
   group_count_ = padded_global_size(un, group_) / group_;
 
@@ -147,7 +147,7 @@ OpenCLPheromone::OpenCLPheromone(const ComputeContext& compute, const SurfaceDom
 
 // ---- the field ----
 
-DeviceVertexData<double> OpenCLPheromone::concentration() const {
+DeviceVertexData<double> OpenCLDiffusionDecay::concentration() const {
   std::vector<float> u(static_cast<size_t>(vertex_count_));
   try {
     compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, u.data());
@@ -157,7 +157,7 @@ DeviceVertexData<double> OpenCLPheromone::concentration() const {
   return DeviceVertexData<double>(std::vector<double>(u.begin(), u.end()));
 }
 
-void OpenCLPheromone::set_concentration(const DeviceVertexData<double>& u) {
+void OpenCLDiffusionDecay::set_concentration(const DeviceVertexData<double>& u) {
   if (u.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: set_concentration got " + std::to_string(u.size()) + " values for " +
                      std::to_string(vertex_count_) + " vertices");
@@ -165,11 +165,11 @@ void OpenCLPheromone::set_concentration(const DeviceVertexData<double>& u) {
   compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, f.data());
 }
 
-void OpenCLPheromone::fill(double value) {
+void OpenCLDiffusionDecay::fill(double value) {
   compute_.queue.enqueueFillBuffer(u_.buffer, static_cast<float>(value), 0, u_.payload_bytes);
 }
 
-void OpenCLPheromone::add_deposits(const DeviceVertexData<double>& amount_per_vertex) {
+void OpenCLDiffusionDecay::add_deposits(const DeviceVertexData<double>& amount_per_vertex) {
   if (amount_per_vertex.size() != static_cast<size_t>(vertex_count_))
     throw InputError("opencl pheromone: add_deposits got " + std::to_string(amount_per_vertex.size()) +
                      " values for " + std::to_string(vertex_count_) + " vertices");
@@ -191,18 +191,28 @@ void OpenCLPheromone::add_deposits(const DeviceVertexData<double>& amount_per_ve
   compute_.queue.finish();
 }
 
-void OpenCLPheromone::add_deposits(const DeviceBuffer& cells, double scale) {
+void OpenCLDiffusionDecay::add_deposits(const DeviceBuffer& cells, double scale) {
   set_arguments(kernels_->add_deposits, static_cast<cl_int>(vertex_count_), cells, inverse_mass_,
                 static_cast<cl_float>(1.0 / scale), u_);
   compute_.queue.enqueueNDRangeKernel(kernels_->add_deposits, cl::NullRange, cl::NDRange(group_count_ * group_),
                                       cl::NDRange(group_));
 }
 
-const cl::Buffer& OpenCLPheromone::concentration_buffer() const { return u_.buffer; }
+void OpenCLDiffusionDecay::advance(const DeviceBuffer& cells, double scale) {
+  if (deposit_order(integrator_) == DepositOrder::AfterTransport) {
+    step();
+    add_deposits(cells, scale);
+  } else {
+    add_deposits(cells, scale);
+    step();
+  }
+}
+
+const cl::Buffer& OpenCLDiffusionDecay::concentration_buffer() const { return u_.buffer; }
 
 // ---- time ----
 
-void OpenCLPheromone::step() {
+void OpenCLDiffusionDecay::step() {
   try {
     if (integrator_ == Integrator::ForwardEuler) forward_step();
     else if (diagonal_only_) diagonal_step();
@@ -212,7 +222,7 @@ void OpenCLPheromone::step() {
   }
 }
 
-void OpenCLPheromone::forward_step() {
+void OpenCLDiffusionDecay::forward_step() {
   cl::Kernel& k = kernels_->forward_substep;
   cl::Kernel& overflow = kernels_->forward_overflow;
   const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(forward_overflow_rows_), group_));
@@ -236,7 +246,7 @@ void OpenCLPheromone::forward_step() {
   if (from != &u_.buffer) compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
 }
 
-void OpenCLPheromone::diagonal_step() {
+void OpenCLDiffusionDecay::diagonal_step() {
   cl::Kernel& k = kernels_->csr_multiply;
   set_arguments(k, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_, rhs_value_, u_, scratch_);
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
@@ -244,7 +254,7 @@ void OpenCLPheromone::diagonal_step() {
   last_solve_ = {};
 }
 
-void OpenCLPheromone::backward_step() {
+void OpenCLDiffusionDecay::backward_step() {
   // b = B u, then S x = b with x = u (the previous field: a good first guess, and the solution is
   // written in place).
   set_arguments(kernels_->csr_multiply, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_,
@@ -256,11 +266,11 @@ void OpenCLPheromone::backward_step() {
 
 // ---- summaries ----
 
-double OpenCLPheromone::total_amount() const { return statistics_->weighted_sum(u_.buffer); }
+double OpenCLDiffusionDecay::total_amount() const { return statistics_->weighted_sum(u_.buffer); }
 
-FieldStatistics OpenCLPheromone::statistics(double U) const { return statistics_->compute(u_.buffer, U); }
+FieldStatistics OpenCLDiffusionDecay::statistics(double U) const { return statistics_->compute(u_.buffer, U); }
 
-std::vector<std::string> OpenCLPheromone::damaged_canaries() const {
+std::vector<std::string> OpenCLDiffusionDecay::damaged_canaries() const {
   std::vector<std::string> damaged = statistics_->damaged_canaries();
   for (const DeviceBuffer* b : {&u_, &scratch_, &amount_})
     if (!canary_intact(compute_, *b)) damaged.push_back(b->name);

@@ -1,8 +1,9 @@
 #pragma once
-// The pheromone field of the OpenCL backend (mirrors reference/pheromone.hpp): one float per
-// intrinsic vertex on the device, advanced by the diffusion-decay PDE with the cotan Laplacian L and
-// lumped mass M (Eq. 6 forward Euler with automatic sub-steps, Eq. 7 backward Euler by conjugate
-// gradients on the device). The field stays on the device; the host reads it only on demand.
+// The diffusion-decay field model on the OpenCL device (common/diffusion_decay.hpp defines it;
+// reference/diffusion_decay.hpp is the serial counterpart): one layer of one float per intrinsic
+// vertex, advanced by Eq. 1 with the cotan Laplacian L and lumped mass M (Eq. 6 forward Euler with
+// automatic sub-steps, Eq. 7 backward Euler by conjugate gradients on the device). The field stays on
+// the device; the host reads it only on demand.
 #include "common/element_data.hpp"
 #include "common/field_statistics.hpp"
 #include "common/scene.hpp"
@@ -11,6 +12,7 @@
 #include "opencl/compute_context.hpp"
 #include "opencl/conjugate_gradients.hpp"
 #include "opencl/device_buffer.hpp"
+#include "opencl/field_model.hpp"
 #include "opencl/field_statistics.hpp"
 
 #include <memory>
@@ -19,7 +21,7 @@
 
 namespace physarum::opencl {
 
-struct OpenCLPheromoneOptions {
+struct OpenCLDiffusionDecayOptions {
   // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system,
   // common/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
   double cg_relative_tolerance = 1e-6;
@@ -31,23 +33,23 @@ struct OpenCLPheromoneOptions {
   std::string build_options;
 };
 
-class OpenCLPheromone {
+class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
  public:
-  // Uploads the operators the integrator needs (forward Euler: the sub-step matrix, see pheromone.cl;
+  // Uploads the operators the integrator needs (forward Euler: the sub-step matrix, see diffusion_decay.cl;
   // backward Euler: the symmetrised system), masses and the per-vertex rates of params, all in
-  // float with int indices; builds pheromone.cl. Throws InputError like ReferencePheromone (sizes, time step,
+  // float with int indices; builds diffusion_decay.cl. Throws InputError like ReferencePheromone (sizes, time step,
   // masses, rates) and DeviceError when a buffer exceeds the device's limits or a build fails.
-  OpenCLPheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
-                  Integrator integrator, double time_step, const OpenCLPheromoneOptions& options = {});
-  ~OpenCLPheromone();
-  OpenCLPheromone(const OpenCLPheromone&) = delete;
-  OpenCLPheromone& operator=(const OpenCLPheromone&) = delete;
+  OpenCLDiffusionDecay(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                  Integrator integrator, double time_step, const OpenCLDiffusionDecayOptions& options = {});
+  ~OpenCLDiffusionDecay();
+  OpenCLDiffusionDecay(const OpenCLDiffusionDecay&) = delete;
+  OpenCLDiffusionDecay& operator=(const OpenCLDiffusionDecay&) = delete;
 
   // ---- the field ----
   // The field in the device's vertex order (the domain this was built from is renumbered so).
-  DeviceVertexData<double> concentration() const;  // blocking read-back, converted to double
-  void set_concentration(const DeviceVertexData<double>& u);
-  void fill(double value);
+  DeviceVertexData<double> concentration() const override;  // blocking read-back, converted to double
+  void set_concentration(const DeviceVertexData<double>& u) override;
+  void fill(double value) override;
   // An AMOUNT at a vertex raises its concentration by amount / vertex_mass (blocking; for tests).
   void add_deposits(const DeviceVertexData<double>& amount_per_vertex);
   // The same from the device's deposit accumulator (kernels/deposit_cells.h: fixed point of `scale`
@@ -55,13 +57,15 @@ class OpenCLPheromone {
   void add_deposits(const DeviceBuffer& cells, double scale);
   // The device buffer holding u (float, vertex_count): the same buffer for the object's lifetime,
   // so agent kernels may keep it as an argument.
-  const cl::Buffer& concentration_buffer() const;
+  const cl::Buffer& concentration_buffer() const override;
 
   // ---- time ----
   // One time step: forward Euler enqueues its sub-steps back to back with no host round trip;
   // backward Euler runs conjugate gradients, reading only the 32-byte solver state every
   // cg_check_interval iterations. Throws DeviceError when a solve ends far from convergence.
   void step();
+  // One time step with the step's deposits, in the order the integrator needs (deposit_order).
+  void advance(const DeviceBuffer& cells, double scale) override;
   double time_step() const { return time_step_; }
   Integrator integrator() const { return integrator_; }
   double stable_time_step() const { return stable_time_step_; }  // same bound as the reference
@@ -72,13 +76,13 @@ class OpenCLPheromone {
   const ConjugateGradientReport& last_solve() const { return last_solve_; }
 
   // ---- summaries, reduced on the device ----
-  double total_amount() const;  // sum_i m_i u_i
-  FieldStatistics statistics(double U) const;
+  double total_amount() const override;  // sum_i m_i u_i
+  FieldStatistics statistics(double U) const override;
   int vertex_count() const { return vertex_count_; }
 
   // Names of the device buffers whose canary region a kernel overwrote (empty when none): the
   // out-of-bounds check of the tests.
-  std::vector<std::string> damaged_canaries() const;
+  std::vector<std::string> damaged_canaries() const override;
 
  private:
   struct Kernels;
@@ -87,7 +91,7 @@ class OpenCLPheromone {
   void diagonal_step();
 
   ComputeContext compute_;
-  OpenCLPheromoneOptions options_;
+  OpenCLDiffusionDecayOptions options_;
   Integrator integrator_;
   double time_step_;
   int vertex_count_ = 0;

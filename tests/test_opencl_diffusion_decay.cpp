@@ -8,7 +8,7 @@
 // maximum bounds the solve's error with room for float rounding.
 #include "common/errors.hpp"
 #include "kernels/device_types.h"
-#include "opencl/pheromone.hpp"
+#include "opencl/diffusion_decay.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "reference_field.hpp"
 #include "delaunay_domain.hpp"
@@ -21,7 +21,7 @@
 namespace physarum::opencl {
 namespace {
 
-// OpenCLPheromone keeps the vertex order of the domain it is given; these tests give it the domain
+// OpenCLDiffusionDecay keeps the vertex order of the domain it is given; these tests give it the domain
 // as it is, so its device order is the domain's and values change type, not order.
 DeviceVertexData<double> as_device(const IntrinsicVertexData<double>& v) { return DeviceVertexData<double>(v.values()); }
 IntrinsicVertexData<double> as_domain(const DeviceVertexData<double>& v) { return IntrinsicVertexData<double>(v.values()); }
@@ -112,7 +112,7 @@ StepPair one_step(const VertexParameters& params, Integrator integrator, double 
   testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   const double dt = dt_in_stable_steps * probe.stable_time_step();
   testing::ReferenceField reference(d, params, integrator, dt);
-  OpenCLPheromone device(compute(), d, params, integrator, dt);
+  OpenCLDiffusionDecay device(compute(), d, params, integrator, dt);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 11, 0.1, 1.0);
   reference.set_concentration(u0);
   device.set_concentration(as_device(u0));
@@ -124,13 +124,13 @@ StepPair one_step(const VertexParameters& params, Integrator integrator, double 
           device.last_solve(), device.damaged_canaries()};
 }
 
-TEST(OpenCLPheromone, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
+TEST(OpenCLDiffusionDecay, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
   // The canary checks need padding work-items: a vertex count that is not a multiple of the group size.
   EXPECT_GT(sphere_domain().vertex_count, 500);
   EXPECT_NE(sphere_domain().vertex_count % 64, 0);
 }
 
-TEST(OpenCLPheromone, ForwardStepEqualsReference) {
+TEST(OpenCLDiffusionDecay, ForwardStepEqualsReference) {
   const int n = sphere_domain().vertex_count;
   for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 3)}) {
     const StepPair r = one_step(params, Integrator::ForwardEuler, 0.7);
@@ -144,7 +144,7 @@ TEST(OpenCLPheromone, ForwardStepEqualsReference) {
   }
 }
 
-TEST(OpenCLPheromone, ForwardStepWithSubStepsEqualsReference) {
+TEST(OpenCLDiffusionDecay, ForwardStepWithSubStepsEqualsReference) {
   const int n = sphere_domain().vertex_count;
   for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 5)}) {
     // 4.5 stable steps: 5 sub-steps, an odd count, so the ping-pong ends in the scratch buffer.
@@ -161,7 +161,7 @@ TEST(OpenCLPheromone, ForwardStepWithSubStepsEqualsReference) {
   EXPECT_LE(max_difference(even.device, even.reference).first, 1e-5 * max_abs(even.reference));
 }
 
-TEST(OpenCLPheromone, ForwardStepWithPaddedAndOverflowingRowsEqualsReference) {
+TEST(OpenCLDiffusionDecay, ForwardStepWithPaddedAndOverflowingRowsEqualsReference) {
   for (const SurfaceDomain* d : {&prism_domain(), &skinny_sphere_domain()}) {
     const HybridMatrix hybrid = to_hybrid(d->laplacian, d->vertex_count);
     double overflow_weight = 0.0;
@@ -179,7 +179,7 @@ TEST(OpenCLPheromone, ForwardStepWithPaddedAndOverflowingRowsEqualsReference) {
   }
 }
 
-TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
+TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
   const int n = sphere_domain().vertex_count;
   VertexParameters mixed = varying_rates(n, 0.01, 0.5, 9);
   // Some vertices that do not diffuse at all: their rows leave the CG system (common/pheromone_operators.hpp).
@@ -204,10 +204,10 @@ TEST(OpenCLPheromone, BackwardSolveEqualsReference) {
   }
 }
 
-TEST(OpenCLPheromone, BackwardWithoutDiffusionIsTheExactDecayFactor) {
+TEST(OpenCLDiffusionDecay, BackwardWithoutDiffusionIsTheExactDecayFactor) {
   const SurfaceDomain& d = sphere_domain();
   const VertexParameters params = uniform_rates(d.vertex_count, 0.0, 0.5);
-  OpenCLPheromone device(compute(), d, params, Integrator::BackwardEuler, 0.2);
+  OpenCLDiffusionDecay device(compute(), d, params, Integrator::BackwardEuler, 0.2);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 13, 0.1, 1.0);
   device.set_concentration(as_device(u0));
   device.step();
@@ -216,14 +216,14 @@ TEST(OpenCLPheromone, BackwardWithoutDiffusionIsTheExactDecayFactor) {
   EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
 }
 
-TEST(OpenCLPheromone, DiffusionAloneConservesTheTotalAmount) {
+TEST(OpenCLDiffusionDecay, DiffusionAloneConservesTheTotalAmount) {
   const SurfaceDomain& d = sphere_domain();
   // A uniform diffuse rate: 1^T L = 0 makes sum m u invariant (a varying R_dif does not conserve it:
   // 1^T R_dif L != 0). The sphere's vertex masses differ, so a scheme that forgot M^-1 would drift.
   const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.0);
   testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
-    OpenCLPheromone device(compute(), d, params, integrator, 3.0 * probe.stable_time_step());
+    OpenCLDiffusionDecay device(compute(), d, params, integrator, 3.0 * probe.stable_time_step());
     const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 17, 0.0, 1.0);
     device.set_concentration(as_device(u0));
     const double before = device.total_amount();
@@ -242,10 +242,10 @@ TEST(OpenCLPheromone, DiffusionAloneConservesTheTotalAmount) {
   }
 }
 
-TEST(OpenCLPheromone, DecayAloneScalesByOneMinusRateTimesStep) {
+TEST(OpenCLDiffusionDecay, DecayAloneScalesByOneMinusRateTimesStep) {
   const SurfaceDomain& d = sphere_domain();
   const double rate = 0.5, dt = 0.1;
-  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::ForwardEuler, dt);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::ForwardEuler, dt);
   ASSERT_EQ(device.sub_steps(), 1);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 19, 0.1, 1.0);
   device.set_concentration(as_device(u0));
@@ -258,9 +258,9 @@ TEST(OpenCLPheromone, DecayAloneScalesByOneMinusRateTimesStep) {
   EXPECT_NEAR(device.total_amount() / before, std::pow(1.0 - rate * dt, 10), 1e-5);
 }
 
-TEST(OpenCLPheromone, DepositsRaiseConcentrationByAmountOverMass) {
+TEST(OpenCLDiffusionDecay, DepositsRaiseConcentrationByAmountOverMass) {
   const SurfaceDomain& d = sphere_domain();
-  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
   device.fill(0.25);
   const IntrinsicVertexData<double> amount = random_values(d.vertex_count, 23, 0.0, 1e-3);
   device.add_deposits(as_device(amount));
@@ -272,7 +272,7 @@ TEST(OpenCLPheromone, DepositsRaiseConcentrationByAmountOverMass) {
 
 TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
   const SurfaceDomain& d = sphere_domain();
-  OpenCLPheromone device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
   device.set_concentration(as_device(random_values(d.vertex_count, 29, 0.0, 1.0)));
   device.step();  // a field the device made, not just the one uploaded
   const IntrinsicVertexData<double> u = as_domain(device.concentration());
@@ -296,19 +296,19 @@ TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
   EXPECT_TRUE(device.damaged_canaries().empty()) << joined(device.damaged_canaries());
 }
 
-TEST(OpenCLPheromone, RejectsBadInputAndOversizedBuffers) {
+TEST(OpenCLDiffusionDecay, RejectsBadInputAndOversizedBuffers) {
   const SurfaceDomain& d = sphere_domain();
-  EXPECT_THROW(OpenCLPheromone(compute(), d, uniform_rates(d.vertex_count - 1, 0.01, 0.5), Integrator::ForwardEuler, 0.1),
+  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count - 1, 0.01, 0.5), Integrator::ForwardEuler, 0.1),
                InputError);
-  EXPECT_THROW(OpenCLPheromone(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.0),
+  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.0),
                InputError);
-  OpenCLPheromone ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+  OpenCLDiffusionDecay ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
   EXPECT_THROW(ok.set_concentration(DeviceVertexData<double>(3, 1.0)), InputError);
   // A device whose largest allocation is smaller than the sub-step matrix: a clear error, not a crash.
   ComputeContext small = compute();
   small.device.max_allocation_bytes = 1024;
   try {
-    OpenCLPheromone tiny(small, d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+    OpenCLDiffusionDecay tiny(small, d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
     FAIL() << "expected DeviceError";
   } catch (const DeviceError& e) {
     const std::string m = e.what();
