@@ -67,6 +67,8 @@ struct WorkEstimate {
 };
 // More explicit sub-steps than this per step: the diffusion alone sweeps the mesh 10^5 times a step.
 constexpr double kMaxSubStepsPerStep = 1e5;
+// More elementary operations than this (~10 s at ~1e8..1e9 a second): a run worth announcing.
+inline constexpr double kLongRunOperations = 1e10;
 // More elementary operations than this (~1e8..1e9 a second on one core): days of work.
 constexpr double kMaxOperations = 1e14;
 

@@ -1,10 +1,11 @@
 #include "tools/feasible_surface.hpp"
 
 #include "common/run_feasibility.hpp"
-#include "reference/sensing_steering.hpp"
+#include "common/agent_model.hpp"
 
 #include <iostream>
 #include <string>
+#include <unistd.h>
 
 namespace physarum::cli {
 
@@ -14,7 +15,9 @@ SceneSurface prepare_feasible_surface(const Scene& scene, long long steps) {
   SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   const WorkEstimate work = estimate_work(scene, surface.domain, surface.diameter, steps, kMaxTurnDecisionsPerStep);
-  std::cerr << work.describe() << "\n";
+  // The estimate is for a person waiting: shown on a terminal, and for a run long enough to wait for
+  // (about ten seconds of work or more) wherever stderr goes.
+  if (::isatty(STDERR_FILENO) == 1 || work.operations > kLongRunOperations) std::cerr << work.describe() << "\n";
   check_work(scene, work);
   return surface;
 }
