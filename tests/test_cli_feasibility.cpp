@@ -119,7 +119,6 @@ TEST(CliFeasibility, LongTimeStepWarnsAndRuns) {
   EXPECT_EQ(t.result.exit_code, 0) << t.result.err;
   EXPECT_NE(t.result.err.find("warning: time_step 0.1 s is longer than the turn-decision period"), std::string::npos)
       << t.result.err;
-  EXPECT_NE(t.result.err.find("physarum: estimate: "), std::string::npos) << t.result.err;
 }
 
 TEST(CliFeasibility, CompareRefusesTheSameScenes) {

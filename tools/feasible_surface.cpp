@@ -4,9 +4,13 @@
 #include "reference/sensing_steering.hpp"
 
 #include <iostream>
+#include <unistd.h>
 #include <string>
 
 namespace physarum::cli {
+
+// About ten seconds of work and more (1e9 elementary operations a second at best).
+constexpr double kLongRunOperations = 1e10;
 
 SceneSurface prepare_feasible_surface(const Scene& scene, long long steps) {
   for (const std::string& w : check_time_scales(scene, kMaxTurnDecisionsPerStep))
@@ -14,7 +18,8 @@ SceneSurface prepare_feasible_surface(const Scene& scene, long long steps) {
   SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   const WorkEstimate work = estimate_work(scene, surface.domain, surface.diameter, steps, kMaxTurnDecisionsPerStep);
-  std::cerr << work.describe() << "\n";
+  // On a terminal always; in a log only for a long run (a quiet log stays empty on a short one).
+  if (::isatty(STDERR_FILENO) == 1 || work.operations >= kLongRunOperations) std::cerr << work.describe() << "\n";
   check_work(scene, work);
   return surface;
 }
