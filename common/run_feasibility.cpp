@@ -190,8 +190,8 @@ double available_host_memory_bytes() {
                                : std::numeric_limits<double>::infinity();
 }
 
-void check_memory(const MemoryNeed& need, double host_available_bytes, const std::string& device_name,
-                  double device_global_bytes, double device_max_allocation_bytes) {
+void check_memory(const std::string& source, const MemoryNeed& need, double host_available_bytes,
+                  const std::string& device_name, double device_global_bytes, double device_max_allocation_bytes) {
   std::vector<std::string> reasons;
   if (need.host_bytes > host_available_bytes)
     reasons.push_back("needs about " + format_bytes(need.host_bytes) + " of host memory, " +
@@ -204,7 +204,7 @@ void check_memory(const MemoryNeed& need, double host_available_bytes, const std
                       device_name + " allocates at most " + format_bytes(device_max_allocation_bytes));
   if (!reasons.empty()) {
     reasons.back() += " (" + need.breakdown + "); use fewer agents or a coarser mesh";
-    refuse("", reasons);
+    refuse(source, reasons);
   }
 }
 

@@ -67,8 +67,6 @@ struct WorkEstimate {
 };
 // More explicit sub-steps than this per step: the diffusion alone sweeps the mesh 10^5 times a step.
 constexpr double kMaxSubStepsPerStep = 1e5;
-// More elementary operations than this (~10 s at ~1e8..1e9 a second): a run worth announcing.
-inline constexpr double kLongRunOperations = 1e10;
 // More elementary operations than this (~1e8..1e9 a second on one core): days of work.
 constexpr double kMaxOperations = 1e14;
 
@@ -89,7 +87,9 @@ struct MemoryNeed {
 double available_host_memory_bytes();
 // InputError when the need exceeds the available host memory, the device's global memory or its
 // largest allocation (device_global_bytes 0: no device to check).
-void check_memory(const MemoryNeed& need, double host_available_bytes, const std::string& device_name = "",
-                  double device_global_bytes = 0.0, double device_max_allocation_bytes = 0.0);
+// `source` names the scene in the message.
+void check_memory(const std::string& source, const MemoryNeed& need, double host_available_bytes,
+                  const std::string& device_name = "", double device_global_bytes = 0.0,
+                  double device_max_allocation_bytes = 0.0);
 
 }  // namespace physarum

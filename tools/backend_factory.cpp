@@ -66,11 +66,11 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
                                                 const opencl::OpenCLSimulationOptions& options) {
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
-    check_memory(need, available_host_memory_bytes());
+    check_memory(scene.source, need, available_host_memory_bytes());
     return std::make_unique<ReferenceSimulation>(domain, scene);
   }
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
-  check_memory(need, available_host_memory_bytes(), compute->device.describe(),
+  check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
   return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, scene, options);

@@ -3,7 +3,7 @@
 // order the command line runs them before writing anything: the time step against the model's
 // time scales (warnings on stderr, or InputError), the surface (refused before refining when the
 // refinement would exceed its budget, announced when it will be long), then the run's work: one
-// estimate line on stderr, and InputError when a length exceeds the surface or the work is absurd.
+// estimate line on stderr (on a terminal, or for a long run), and InputError when a length exceeds the surface or the work is absurd.
 #include "common/scene.hpp"
 #include "common/scene_surface.hpp"
 
