@@ -132,6 +132,10 @@ class IntrinsicTriangulation {
 
   // ---- mutations ----
   bool edge_is_delaunay(int h, double tolerance) const;
+  // Edges whose cotan weight is above -kDelaunayTolerance count as Delaunay when flipping and
+  // refining (cotangents are dimensionless, so an absolute tolerance is scale-free). Flipping a
+  // co-circular edge back and forth is what the tolerance prevents.
+  static constexpr double kDelaunayTolerance = 1e-10;
   bool flip_edge(int h);  // false when the flip would be invalid/degenerate
   void remap_after_rewrite(const int* old_halfedges, const int* new_halfedges, int surviving, int count);
   int insert_in_face(int face, const std::array<Eigen::Vector2d, 3>& corners, const Eigen::Vector2d& point,
