@@ -1,6 +1,6 @@
 #pragma once
-// The per-seed metrics of the differential harness (../shared/DESIGN.md, "How equivalence is
-// proven", item 4): for one run of one backend, every metric sampled at a fixed interval after the
+// The per-seed metrics of the differential harness (its long horizon: independent
+// seeds, time-averaged metrics): for one run of one backend, every metric sampled at a fixed interval after the
 // burn-in and time-averaged, so a seed contributes ONE number per metric (the seed, not the vertex,
 // is the unit of replication). All metrics are dimensionless:
 //

@@ -2,7 +2,7 @@
 // The diffusion-decay field model (paper Eq. 1): du/dt = -M^-1 R_dif L u - R_dec u + s, with the
 // cotan Laplacian L and lumped mass M of the intrinsic triangulation and the per-vertex rates of the
 // parameter table (diffuse_rate, decay_rate). Both backends implement it (reference/diffusion_decay,
-// opencl/pheromone); what they must agree on lives here: the explicit scheme's stability limit (so
+// opencl/diffusion_decay); what they must agree on lives here: the explicit scheme's stability limit (so
 // both take the same sub-steps) and where a step's deposits enter.
 #include "common/csr_matrix.hpp"
 #include "common/element_data.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// The statistical decision of the long-horizon differential harness (../shared/DESIGN.md, "How equivalence is
-// proven", items 4 and 5): two backends are run with independent seeds, each seed gives ONE number
+// The statistical decision of the long-horizon differential harness (independent seeds per
+// backend, and planted faults it must reject): two backends are run with independent seeds, each seed gives ONE number
 // per metric (a time average after burn-in), and for each metric we test whether the two arm means
 // agree within a declared margin.
 //

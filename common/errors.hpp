@@ -1,5 +1,5 @@
 #pragma once
-// The two kinds of failure the command line distinguishes (../shared/DESIGN.md): bad input data or values
+// The two kinds of failure the command line distinguishes: bad input data or values
 // (exit 1) and bad command-line usage (exit 2). Messages say what is wrong and where.
 #include <stdexcept>
 #include <string>

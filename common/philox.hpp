@@ -1,6 +1,6 @@
 #pragma once
-// Counter-based random numbers: a thin wrapper over Random123's Philox4x32-10 (../shared/DESIGN.md, "Same
-// random numbers"). The reference and the OpenCL kernels compile the very same Random123 header, so
+// Counter-based random numbers: a thin wrapper over Random123's Philox4x32-10 (both backends
+// draw the same numbers for the same agent, step and purpose). The reference and the OpenCL kernels compile the very same Random123 header, so
 // everything here is deliberately trivial: pack the words, call philox4x32, convert with exact
 // arithmetic. Any change here must be mirrored word for word in the kernel side.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Which random numbers an agent uses, and when (../shared/DESIGN.md, "Same random numbers"). Every random
+// Which random numbers an agent uses, and when (the same in both backends). Every random
 // draw of the simulation is one Philox4x32-10 block addressed by
 //
 //   key     = (seed, agent id)

@@ -16,7 +16,7 @@
 
 namespace physarum {
 
-// What surface to build: the scene keys that describe it (../shared/DESIGN.md, "Scene files").
+// What surface to build: the scene keys that describe it (common/scene_keys.hpp lists them).
 struct SurfaceSpec {
   std::string mesh;                        // file path or "shape:NAME" (load_mesh's spec)
   std::optional<double> scale_to_area;     // rescale the input so its area is this many m^2

@@ -1,6 +1,6 @@
 #pragma once
-// Per-snapshot pattern metrics for the long-horizon differential harness (../shared/DESIGN.md, "How
-// equivalence is proven", item 4). Mean and coverage (common/field_statistics.hpp) only see the
+// Per-snapshot pattern metrics for the long-horizon differential harness (its long horizon: independent
+// seeds per backend, time-averaged per-seed metrics). Mean and coverage (common/field_statistics.hpp) only see the
 // distribution of values; these see the spatial STRUCTURE of the pattern, which is what a wrong
 // sensor angle or a missing boundary reflection changes first:
 //

@@ -11,9 +11,9 @@ namespace physarum {
 
 namespace {
 
-// The rigid motion that carries halfedge i of face f onto its twin j of face g: the edge runs
-// P -> Q in f and Q -> P in g, so P lands on g's corner j+1 and Q on g's corner j.
-Rigid2 transition_across(const std::array<Eigen::Vector2d, 3>& from, int i, const std::array<Eigen::Vector2d, 3>& to,
+// The rotation that turns halfedge i of face f onto its twin j of face g: the edge runs P -> Q in f
+// and Q -> P in g, so the direction P -> Q becomes g's corner j+1 -> corner j.
+Rotation2 transition_across(const std::array<Eigen::Vector2d, 3>& from, int i, const std::array<Eigen::Vector2d, 3>& to,
                          int j) {
   const Eigen::Vector2d& p = from[i];
   const Eigen::Vector2d& q = from[(i + 1) % 3];
@@ -21,17 +21,13 @@ Rigid2 transition_across(const std::array<Eigen::Vector2d, 3>& from, int i, cons
   const Eigen::Vector2d& q_image = to[j];
   const Eigen::Vector2d u = (q - p).normalized();
   const Eigen::Vector2d v = (q_image - p_image).normalized();
-  Rigid2 r;
+  Rotation2 r;
   r.cos_angle = u.dot(v);
   r.sin_angle = u.x() * v.y() - u.y() * v.x();
   // Renormalise so the rotation stays orthogonal to rounding error.
   const double norm = std::hypot(r.cos_angle, r.sin_angle);
   r.cos_angle /= norm;
   r.sin_angle /= norm;
-  // Pin the edge midpoints together: the residual (from the two equal lengths differing in the last
-  // bits) is then split evenly between the two endpoints.
-  const Eigen::Vector2d mid = 0.5 * (p + q), mid_image = 0.5 * (p_image + q_image);
-  r.translation = mid_image - r.apply_direction(mid);
   return r;
 }
 
@@ -54,7 +50,7 @@ SurfaceDomain build_surface_domain(const IntrinsicMesh& mesh, const IntrinsicFac
   d.face_area.assign(static_cast<size_t>(nf), 0.0);
   d.face_neighbour.resize(nf);
   d.neighbour_edge.resize(nf);
-  d.edge_transition.assign(3 * static_cast<size_t>(nf), Rigid2{});
+  d.edge_transition.assign(3 * static_cast<size_t>(nf), Rotation2{});
 
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {

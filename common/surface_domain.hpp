@@ -18,15 +18,12 @@
 
 namespace physarum {
 
-// Rigid motion of the plane: p' = R(angle) p + t, stored as cos, sin and translation.
-struct Rigid2 {
+// The rotation that carries directions from one face's frame into a neighbour's: a walk that crosses
+// an edge keeps its direction by it, and rebuilds its position from the neighbour's own corners (so
+// no translation is needed).
+struct Rotation2 {
   double cos_angle = 1.0, sin_angle = 0.0;
-  Eigen::Vector2d translation = Eigen::Vector2d::Zero();
 
-  Eigen::Vector2d apply_point(const Eigen::Vector2d& p) const {
-    return {cos_angle * p.x() - sin_angle * p.y() + translation.x(),
-            sin_angle * p.x() + cos_angle * p.y() + translation.y()};
-  }
   Eigen::Vector2d apply_direction(const Eigen::Vector2d& d) const {
     return {cos_angle * d.x() - sin_angle * d.y(), sin_angle * d.x() + cos_angle * d.y()};
   }
@@ -45,9 +42,9 @@ struct SurfaceDomain {
   std::vector<std::array<int, 3>> neighbour_edge;  // index j of that edge in the neighbour (twin = 3g+j)
 
   // ---- per halfedge (3f+i) ----
-  // Maps points and directions from face f's frame into the frame of the face across edge i.
+  // Maps directions from face f's frame into the frame of the face across edge i.
   // Identity on boundary edges.
-  std::vector<Rigid2> edge_transition;
+  std::vector<Rotation2> edge_transition;
 
   // ---- per vertex ----
   IntrinsicVertexData<double> vertex_mass;            // lumped mass: one third of the incident face areas

@@ -1,4 +1,4 @@
-/* The pheromone field on the device (mirrors reference/pheromone.cpp): Eq. 6 forward Euler
+/* The pheromone field on the device (mirrors reference/diffusion_decay.cpp): Eq. 6 forward Euler
  * sub-steps, and the right-hand side of Eq. 7 backward Euler, whose system conjugate_gradients.cl
  * solves. float32 throughout: not every device has fp64.
  * Every per-vertex kernel runs on a global size padded to the work-group size, hence the guards. */
@@ -45,7 +45,7 @@ __kernel void pheromone_forward_overflow(const uint count, __global const int* r
 
 /* Deposits into the field: u_i += amount_i / m_i, amount_i the accumulated cell (deposit_cells.h)
  * over the fixed-point scale, and the accumulator cleared for the next step (mirrors
- * ReferencePheromone::add_deposits). */
+ * ReferenceDiffusionDecay::add_deposits). */
 __kernel void pheromone_add_deposits(const int n, __global PhysarumDepositCell* deposits,
                                      __global const float* inverse_mass, const float inverse_scale,
                                      __global float* concentration) {

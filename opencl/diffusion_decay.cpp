@@ -40,7 +40,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
   vertex_count_ = n;
-  // ---- the same input checks as ReferencePheromone ----
+  // ---- the same input checks as ReferenceDiffusionDecay ----
   if (!(time_step > 0.0) || !std::isfinite(time_step))
     throw InputError("opencl pheromone: time step " + std::to_string(time_step) + " must be > 0");
   if (n <= 0 || domain.vertex_mass.size() != un || domain.laplacian.rows != n || domain.laplacian.cols != n)

@@ -37,7 +37,7 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
  public:
   // Uploads the operators the integrator needs (forward Euler: the sub-step matrix, see diffusion_decay.cl;
   // backward Euler: the symmetrised system), masses and the per-vertex rates of params, all in
-  // float with int indices; builds diffusion_decay.cl. Throws InputError like ReferencePheromone (sizes, time step,
+  // float with int indices; builds diffusion_decay.cl. Throws InputError like ReferenceDiffusionDecay (sizes, time step,
   // masses, rates) and DeviceError when a buffer exceeds the device's limits or a build fails.
   OpenCLDiffusionDecay(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                   Integrator integrator, double time_step, const OpenCLDiffusionDecayOptions& options = {});

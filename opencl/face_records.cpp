@@ -123,7 +123,7 @@ std::vector<PhysarumFaceRecord> build_face_records(const SurfaceDomain& domain, 
       const int g = domain.face_neighbour[uf][i];
       r.neighbour[i] = g < 0 ? -1 : order.device_of_domain[static_cast<size_t>(g)];
       r.vertex[i] = domain.face_vertices[uf][i];
-      const Rigid2& t = domain.edge_transition[3 * uf + i];
+      const Rotation2& t = domain.edge_transition[3 * uf + i];
       r.transition_cos[i] = static_cast<float>(t.cos_angle);
       r.transition_sin[i] = static_cast<float>(t.sin_angle);
       if (g >= 0) r.neighbour_edges |= static_cast<dev_uint>(domain.neighbour_edge[uf][i] & 3) << (2 * i);

@@ -1,4 +1,4 @@
-// `physarum mesh` as a user runs it: the JSON contract of ../shared/DESIGN.md, the exit codes, and that the
+// `physarum mesh` as a user runs it: the JSON contract the README documents, the exit codes, and that the
 // refinement flags do what they say.
 #include "test_support.hpp"
 

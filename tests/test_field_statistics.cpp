@@ -1,5 +1,5 @@
 // Statistics of a per-vertex field (paper Sec. 3.2): lumped-mass mean, the analytic U of Eq. 5,
-// coverage fractions, and the stats.csv line format of ../shared/DESIGN.md.
+// coverage fractions, and the stats.csv line format the README documents.
 #include "common/field_statistics.hpp"
 
 #include "common/errors.hpp"

@@ -1,4 +1,4 @@
-// Scene files (../shared/DESIGN.md, "Scene files"): every key, every bad value named with its value and the
+// Scene files (the README's "Scene files"): every key, every bad value named with its value and the
 // allowed range, unknown keys with a suggestion, JSON errors with line and column.
 #include "common/scene.hpp"
 

@@ -1,6 +1,6 @@
 // `physarum run SCENE.json [--backend reference] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
 // grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
-// DIR/stats.csv, DIR/preview.png and DIR/run.json (../shared/DESIGN.md, "The command line").
+// DIR/stats.csv, DIR/preview.png and DIR/run.json (the README's "The command line").
 //
 // Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
 // so a bad scene exits 1 with its message and writes nothing; every file is written under a

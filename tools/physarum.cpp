@@ -1,5 +1,5 @@
 // The `physarum` command-line program: one entry point for users, tests and benchmarks.
-// Exit codes (../shared/DESIGN.md): 0 success, 1 bad input or a failed check, 2 usage error.
+// Exit codes (the README's "Exit codes"): 0 success, 1 bad input or a failed check, 2 usage error.
 #include "common/errors.hpp"
 #include "tools/commands.hpp"
 
