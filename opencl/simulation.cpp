@@ -26,7 +26,8 @@ struct OpenCLSimulation::Kernels {
 
 namespace {
 
-static_assert(sizeof(PhysarumStepConstants) == 64, "PhysarumStepConstants: sixteen 4-byte fields");
+static_assert(sizeof(PhysarumStepConstants) == 8 * 4 + sizeof(PhysarumAgentParameters),
+              "PhysarumStepConstants: eight 4-byte fields and the uniform parameter record");
 // The bounds the kernels share with the reference must be the reference's.
 static_assert(PHYSARUM_MAX_TRACE_STEPS == kMaxTraceSteps);
 static_assert(PHYSARUM_MAX_TURN_DECISIONS_PER_STEP == kMaxTurnDecisionsPerStep);
