@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopenmesh-dev libopenimageio-dev libgtest-dev libbenchmark-dev
-  librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core
+  librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core libboost-math-dev
 )
 
 missing=()
