@@ -16,10 +16,13 @@ inline const opencl::ComputeContext& compute() {
   return c;
 }
 
+// The benchmarks' resolution argument, in tenths of a millimetre, in metres.
+inline double tenths_of_mm(long tenths) { return static_cast<double>(tenths) / 10000.0; }
+
 // spot.obj scaled to 4 m^2 and refined to `max_circumradius_tenth_mm` tenths of a millimetre; nullptr
 // (and the benchmark skipped) when it is absent.
 inline const SurfaceDomain* spot_or_skip(benchmark::State& state, long max_circumradius_tenth_mm) {
-  const SurfaceDomain* domain = scaled_domain("spot.obj", static_cast<double>(max_circumradius_tenth_mm) / 10000.0);
+  const SurfaceDomain* domain = scaled_domain("spot.obj", tenths_of_mm(max_circumradius_tenth_mm));
   if (!domain) state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
   return domain;
 }

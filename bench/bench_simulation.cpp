@@ -19,9 +19,11 @@ void BM_SimulationStep(benchmark::State& state) {
   const int agents = static_cast<int>(state.range(2));
   const SurfaceDomain* domain = spot_or_skip(state, state.range(1));
   if (!domain) return;
+  const Workload workload =
+      bench_workload("spot.obj", mesh_spec("spot.obj"), tenths_of_mm(state.range(1)),
+                     bench_scene(agents), backend == kOpenCL ? BackendChoice::OpenCL : BackendChoice::Reference);
   const std::unique_ptr<SimulationBackend> sim =
-      backend == kOpenCL ? make_backend(BackendChoice::OpenCL, &compute(), *domain, bench_scene(agents))
-                         : make_backend(BackendChoice::Reference, nullptr, *domain, bench_scene(agents));
+      make_backend(workload, surfaces(), backend == kOpenCL ? &compute() : nullptr);
   sim->run(5);
   sim->finish();
   const SimulationCounters before = sim->counters();

@@ -12,17 +12,24 @@ namespace physarum::bench {
 
 using physarum::bench_scene;
 
-// The intrinsic domain of `mesh` (a shared mesh file name, or shape:NAME) scaled to 4 m^2 and
-// refined to `max_circumradius` metres; nullptr when a shared mesh is absent.
-inline const SurfaceDomain* scaled_domain(const std::string& mesh, double max_circumradius) {
+// The surfaces of this process, each built once.
+inline SurfaceCache& surfaces() {
   static SurfaceCache cache;
-  std::string spec = mesh;
-  if (mesh.rfind("shape:", 0) != 0) {
-    const std::filesystem::path path = std::filesystem::path(PHYSARUM_SHARED_MESHES) / mesh;
-    if (!std::filesystem::exists(path)) return nullptr;
-    spec = path.string();
-  }
-  return &cache.get(bench_surface(spec, max_circumradius)).domain;
+  return cache;
+}
+
+// The mesh spec of `mesh` (a shared mesh file name, or shape:NAME); "" when a shared mesh is absent.
+inline std::string mesh_spec(const std::string& mesh) {
+  if (mesh.rfind("shape:", 0) == 0) return mesh;
+  const std::filesystem::path path = std::filesystem::path(PHYSARUM_SHARED_MESHES) / mesh;
+  return std::filesystem::exists(path) ? path.string() : "";
+}
+
+// The intrinsic domain of `mesh` scaled to 4 m^2 and refined to `max_circumradius` metres; nullptr
+// when a shared mesh is absent.
+inline const SurfaceDomain* scaled_domain(const std::string& mesh, double max_circumradius) {
+  const std::string spec = mesh_spec(mesh);
+  return spec.empty() ? nullptr : &surfaces().get(bench_surface(spec, max_circumradius)).domain;
 }
 
 }  // namespace physarum::bench

@@ -21,6 +21,11 @@ SurfaceSpec bench_surface(const std::string& mesh, double max_circumradius) {
   return s;
 }
 
+Workload bench_workload(const std::string& label, const std::string& mesh, double max_circumradius, const Scene& scene,
+                        BackendChoice backend) {
+  return Workload{label, bench_surface(mesh, max_circumradius), scene, backend};
+}
+
 Scene bench_scene(int agents) { return default_scene_parameters(agents); }
 
 double agent_step_face_visits(double crossings_per_agent_step) { return crossings_per_agent_step + 1.6; }

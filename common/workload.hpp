@@ -18,7 +18,7 @@ const char* to_string(BackendChoice backend);
 
 struct Workload {
   std::string label;     // the surface as reports name it ("spot.obj", "shape:sphere")
-  SurfaceSpec surface;   // how the surface is built (prepare_surface)
+  SurfaceSpec surface;   // how the surface is built (prepare_surface, through a SurfaceCache)
   Scene scene;           // model parameters; scene.agents is the size
   BackendChoice backend = BackendChoice::Reference;
 };
@@ -27,6 +27,10 @@ struct Workload {
 // `max_circumradius` metres.
 constexpr double kBenchArea = 4.0;
 SurfaceSpec bench_surface(const std::string& mesh, double max_circumradius);
+
+// A benchmark workload: `scene` on bench_surface(mesh, max_circumradius), labelled `label`.
+Workload bench_workload(const std::string& label, const std::string& mesh, double max_circumradius, const Scene& scene,
+                        BackendChoice backend);
 
 // The default scene's parameters (tools/scenes/default.json) with `agents` agents: the model the
 // benchmarks time.

@@ -76,4 +76,10 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
   return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, scene, options);
 }
 
+std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,
+                                                const opencl::ComputeContext* compute,
+                                                const opencl::OpenCLSimulationOptions& options) {
+  return make_backend(workload.backend, compute, surfaces.get(workload.surface).domain, workload.scene, options);
+}
+
 }  // namespace physarum

@@ -32,4 +32,10 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
                                                 const SurfaceDomain& domain, const Scene& scene,
                                                 const opencl::OpenCLSimulationOptions& options = {});
 
+// The same for a workload: its surface from `surfaces` (built there once per SurfaceSpec), its scene
+// on its backend.
+std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,
+                                                const opencl::ComputeContext* compute,
+                                                const opencl::OpenCLSimulationOptions& options = {});
+
 }  // namespace physarum

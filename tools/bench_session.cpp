@@ -79,26 +79,31 @@ const SurfaceDomain* BenchSession::domain(const std::string& name, double max_ci
   return &surfaces_.get(bench_surface(spec, max_circumradius)).domain;
 }
 
-Row BenchSession::run(const std::string& sweep, const std::string& surface, const SurfaceDomain& d,
-                      const std::string& backend, const Scene& scene) {
+Workload BenchSession::workload(const std::string& name, double max_circumradius, const Scene& scene,
+                                BackendChoice backend) const {
+  return bench_workload(name, surface_spec(name), max_circumradius, scene, backend);
+}
+
+Row BenchSession::run(const std::string& sweep, const Workload& w) {
   const double min_seconds = options_.quick ? 0.15 : 0.6;
-  const int agents = scene.agents;
-  const std::unique_ptr<SimulationBackend> sim = make_backend(parse_backend_choice(backend), &compute_, d, scene);
+  const int agents = w.scene.agents;
+  const SurfaceDomain& d = surfaces_.get(w.surface).domain;
+  const std::unique_ptr<SimulationBackend> sim = make_backend(w, surfaces_, &compute_);
   const StepTiming t = time_steps(*sim, min_seconds, 3, 1000);
-  Row r{sweep, surface, backend, agents, d.face_count, d.vertex_count, t.seconds_per_step,
+  const std::string backend = to_string(w.backend);
+  Row r{sweep, w.label, backend, agents, d.face_count, d.vertex_count, t.seconds_per_step,
         agents / t.seconds_per_step, t.crossings_per_agent_step, 0.0};
   r.crossings_per_second = r.agent_steps_per_second * r.crossings_per_agent_step;
   std::printf("%-12s %-18s %-9s %9d agents %8d faces  %9.3f ms/step  %8.3g agent-steps/s  %5.1f crossings/step  "
               "%8.3g crossings/s\n",
-              sweep.c_str(), surface.c_str(), backend.c_str(), agents, d.face_count, 1e3 * t.seconds_per_step,
+              sweep.c_str(), w.label.c_str(), backend.c_str(), agents, d.face_count, 1e3 * t.seconds_per_step,
               r.agent_steps_per_second, r.crossings_per_agent_step, r.crossings_per_second);
   std::fflush(stdout);
   rows_.push_back(r);
   return r;
 }
 
-PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, const std::string& backend,
-                                             Integrator integrator) {
+PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, BackendChoice backend, Integrator integrator) {
   const Scene scene = bench_scene(0);
   const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
   PheromoneTiming t;
@@ -119,7 +124,7 @@ PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, const std::
     }
     return best;
   };
-  if (backend == "opencl") {
+  if (backend == BackendChoice::OpenCL) {
     // Numbered as a simulation numbers the device's field, so it reads memory the same way.
     opencl::OpenCLDiffusionDecay field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
     const bool forward = integrator == Integrator::ForwardEuler;

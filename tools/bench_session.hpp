@@ -88,14 +88,17 @@ class BenchSession {
   // The surface `name` scaled to 4 m^2 and refined to max_circumradius (built once); nullptr when absent.
   const SurfaceDomain* domain(const std::string& name, double max_circumradius);
 
-  // Times full steps of one workload on `d`, prints its line and keeps its row.
-  Row run(const std::string& sweep, const std::string& surface, const SurfaceDomain& d, const std::string& backend,
-          const Scene& scene);
-  PheromoneTiming pheromone_step(const SurfaceDomain& d, const std::string& backend, Integrator integrator);
+  // The workload of `scene` on the surface `name` at max_circumradius (its mesh spec resolved as
+  // domain() does; the surface must exist).
+  Workload workload(const std::string& name, double max_circumradius, const Scene& scene, BackendChoice backend) const;
+  // Times full steps of one workload, prints its line and keeps its row.
+  Row run(const std::string& sweep, const Workload& workload);
+  PheromoneTiming pheromone_step(const SurfaceDomain& d, BackendChoice backend, Integrator integrator);
 
   MemoryBandwidth& bandwidth() { return bandwidth_; }
   const std::vector<Row>& rows() const { return rows_; }
   const opencl::ComputeContext& compute() const { return compute_; }
+  SurfaceCache& surfaces() { return surfaces_; }
   const BenchOptions& options() const { return options_; }
 
  private:

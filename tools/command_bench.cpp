@@ -28,7 +28,7 @@
 namespace physarum::cli {
 namespace {
 
-const std::vector<std::string> kBackends = {"reference", "opencl"};
+const std::vector<BackendChoice> kBackends = {BackendChoice::Reference, BackendChoice::OpenCL};
 
 // spot.obj where the shared meshes are, else the built-in sphere.
 std::string spot_or_sphere(const BenchSession& bench) {
@@ -39,13 +39,12 @@ std::string spot_or_sphere(const BenchSession& bench) {
 std::string agent_sweep(BenchSession& bench) {
   const bool quick = bench.options().quick;
   const std::string agent_surface = spot_or_sphere(bench);
-  const SurfaceDomain* fixed = bench.domain(agent_surface, 0.015);
   const std::vector<int> agent_counts =
       quick ? std::vector<int>{1000, 10000, 100000} : std::vector<int>{1000, 10000, 100000, 1000000, 10000000};
   for (int n : agent_counts)
-    for (const std::string& b : kBackends) {
-      if (b == "reference" && n > 1000000) continue;  // ~5 s a step: the slope is clear without it
-      bench.run("agents", agent_surface, *fixed, b, bench_scene(n));
+    for (const BackendChoice b : kBackends) {
+      if (b == BackendChoice::Reference && n > 1000000) continue;  // ~5 s a step: the slope is clear without it
+      bench.run("agents", bench.workload(agent_surface, 0.015, bench_scene(n), b));
     }
   return agent_surface;
 }
@@ -60,16 +59,15 @@ std::string agent_sweep(BenchSession& bench) {
 void in_cache_sweep(BenchSession& bench) {
   const bool quick = bench.options().quick;
   const std::string surface = spot_or_sphere(bench);
-  const SurfaceDomain* cached = bench.domain(surface, quick ? 0.01 : 0.005);
   for (const bool doubled : {false, true}) {
     Scene scene = bench_scene(0);
     if (doubled) scene.parameters[Param::sensor_distance] *= 2.0, scene.parameters[Param::move_rate] *= 2.0;
     const std::string sweep = doubled ? "in_cache_x2" : "in_cache";
     for (const int agents : quick ? std::vector<int>{100000} : std::vector<int>{100000, 1000000})
-      for (const std::string& b : kBackends) {
-        if (b == "reference" && agents > 100000) continue;
+      for (const BackendChoice b : kBackends) {
+        if (b == BackendChoice::Reference && agents > 100000) continue;
         scene.agents = agents;
-        bench.run(sweep, surface, *cached, b, scene);
+        bench.run(sweep, bench.workload(surface, quick ? 0.01 : 0.005, scene, b));
       }
   }
 }
@@ -78,8 +76,9 @@ void in_cache_sweep(BenchSession& bench) {
 // bench.json's "pheromone_steps", printed as one line.
 nlohmann::ordered_json pheromone_entry(BenchSession& bench, const std::string& surface, const SurfaceDomain& d) {
   nlohmann::ordered_json p = {{"surface", surface}, {"faces", d.face_count}, {"vertices", d.vertex_count}};
-  for (const std::string& b : kBackends) {
-    const PheromoneTiming forward = bench.pheromone_step(d, b, Integrator::ForwardEuler);
+  for (const BackendChoice backend : kBackends) {
+    const std::string b = to_string(backend);
+    const PheromoneTiming forward = bench.pheromone_step(d, backend, Integrator::ForwardEuler);
     p[b + "_forward_seconds"] = forward.seconds;
     p["forward_sub_steps"] = forward.sub_steps;
     if (forward.bytes_per_step > 0.0) {
@@ -87,7 +86,7 @@ nlohmann::ordered_json pheromone_entry(BenchSession& bench, const std::string& s
       p["triad_bytes_per_second"] = forward.triad_bytes_per_second;
       p["opencl_forward_fraction_of_triad"] = forward.bytes_per_step / forward.seconds / forward.triad_bytes_per_second;
     }
-    p[b + "_backward_seconds"] = bench.pheromone_step(d, b, Integrator::BackwardEuler).seconds;
+    p[b + "_backward_seconds"] = bench.pheromone_step(d, backend, Integrator::BackwardEuler).seconds;
   }
   std::printf("pheromone  %-18s %8d vertices  forward (%d sub-steps): opencl %.3f ms, %.3g GB/s = %.2f of the "
               "triad beside it (%.3g GB/s), reference %.3f ms; backward: opencl %.3f ms, reference %.3f ms\n",
@@ -124,8 +123,10 @@ nlohmann::ordered_json resolution_sweep(BenchSession& bench, int resolution_agen
       // A bound coarser than the input's own edges leaves it as it is: measure that mesh once.
       if (d->face_count == previous_faces) continue;
       previous_faces = d->face_count;
-      for (const std::string& b : kBackends) bench.run("faces", surface, *d, b, bench_scene(resolution_agents));
-      for (const std::string& b : kBackends) bench.run("faces_scaled", surface, *d, b, scene_scaled_to(*d));
+      for (const BackendChoice b : kBackends)
+        bench.run("faces", bench.workload(surface, radius, bench_scene(resolution_agents), b));
+      for (const BackendChoice b : kBackends)
+        bench.run("faces_scaled", bench.workload(surface, radius, scene_scaled_to(*d), b));
       pheromone.push_back(pheromone_entry(bench, surface, *d));
     }
   }
@@ -141,7 +142,8 @@ nlohmann::ordered_json paper_case(BenchSession& bench) {
     torus = bench.domain("shape:torus", radius);
   }
   const std::unique_ptr<SimulationBackend> sim =
-      make_backend(BackendChoice::OpenCL, &bench.compute(), *torus, bench_scene(350000));
+      make_backend(bench.workload("shape:torus", radius, bench_scene(350000), BackendChoice::OpenCL), bench.surfaces(),
+                   &bench.compute());
   sim->finish();
   const Clock::time_point start = Clock::now();
   sim->run(102);

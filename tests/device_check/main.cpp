@@ -15,7 +15,6 @@
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
-#include "pheromone_test_meshes.hpp"
 #include "probe_checks.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "reference/simulation.hpp"
@@ -37,14 +36,15 @@ using testing::check;
 
 Scene scene(int agents, Integrator integrator) { return testing::model_scene(agents, 0.01, 0.5, integrator); }
 
-// `mesh` (built in code) through the shared surface loader: scaled to `area` m^2 when given,
-// flipped to Delaunay and refined to `max_circumradius`.
-SurfaceDomain refined(const InputMesh& mesh, double max_circumradius, std::optional<double> area = std::nullopt) {
+// The device check's workloads: a built-in shape (scaled to `area` m^2 when given, refined to
+// `max_circumradius`) with `agents` agents of the model scene, on the OpenCL backend.
+Workload workload(const std::string& shape, double max_circumradius, std::optional<double> area, int agents,
+                  Integrator integrator) {
   SurfaceSpec spec;
-  spec.mesh = mesh.source;
+  spec.mesh = "shape:" + shape;
   spec.scale_to_area = area;
   spec.max_circumradius = max_circumradius;
-  return prepare_surface(mesh, spec).domain;
+  return Workload{spec.mesh, spec, scene(agents, integrator), BackendChoice::OpenCL};
 }
 
 void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
@@ -117,11 +117,11 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
 }
 
 // One throughput line; agents_per_work_item 0 is the device's automatic choice.
-void throughput_line(const ComputeContext& compute, const SurfaceDomain& domain, int agents, int agents_per_work_item) {
+void throughput_line(const ComputeContext& compute, SurfaceCache& surfaces, const Workload& w,
+                     int agents_per_work_item) {
   OpenCLSimulationOptions options;
   options.agents_per_work_item = agents_per_work_item;
-  const std::unique_ptr<SimulationBackend> sim =
-      make_backend(BackendChoice::OpenCL, &compute, domain, scene(agents, Integrator::ForwardEuler), options);
+  const std::unique_ptr<SimulationBackend> sim = make_backend(w, surfaces, &compute, options);
   sim->run(5);
   sim->finish();
   const SimulationCounters before = sim->counters();
@@ -133,18 +133,23 @@ void throughput_line(const ComputeContext& compute, const SurfaceDomain& domain,
   const SimulationCounters after = sim->counters();
   const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
                                                before.face_crossings - before.sensor_face_crossings);
+  const int agents = w.scene.agents;
   std::printf("throughput: %d faces, %d agents, %s agents per work-item: %.3f ms/step, %.3g agent-steps/s, %.1f "
               "crossings/agent-step, %.3g crossings/s\n",
-              domain.face_count, agents,
+              surfaces.get(w.surface).domain.face_count, agents,
               agents_per_work_item == 0 ? "automatic" : std::to_string(agents_per_work_item).c_str(),
               1e3 * seconds / steps, agents * steps / seconds, crossings / (static_cast<double>(agents) * steps),
               crossings / seconds);
 }
 
-// Agent scaling with the automatic grouping, then 1e6 agents with each explicit grouping.
-void throughput(const ComputeContext& compute, const SurfaceDomain& domain) {
-  for (int agents : {100000, 1000000, 10000000}) throughput_line(compute, domain, agents, 0);
-  for (int grouping : {1, 4}) throughput_line(compute, domain, 1000000, grouping);
+// Agent scaling with the automatic grouping, then 1e6 agents with each explicit grouping, on the
+// sphere of 4 m^2 refined to `max_circumradius`.
+void throughput(const ComputeContext& compute, SurfaceCache& surfaces, double max_circumradius) {
+  auto sphere = [&](int agents) {
+    return workload("sphere", max_circumradius, kBenchArea, agents, Integrator::ForwardEuler);
+  };
+  for (int agents : {100000, 1000000, 10000000}) throughput_line(compute, surfaces, sphere(agents), 0);
+  for (int grouping : {1, 4}) throughput_line(compute, surfaces, sphere(1000000), grouping);
 }
 
 int run(const std::string& device) {
@@ -155,22 +160,23 @@ int run(const std::string& device) {
   check(triad.result_is_correct(), "triad result");
   std::printf("memory bandwidth (triad, %.3g MB per triad): %.3g GB/s\n", triad.bytes_per_triad() / 1e6,
               bandwidth / 1e9);
-  const InputMesh sphere = testing::make_icosphere(4);
-  const InputMesh square = testing::make_square_grid(32);
-  const SurfaceDomain sphere_domain = refined(sphere, 0.03, kBenchArea), square_domain = refined(square, 0.03);
-  one_step(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
-  one_step(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
-  u_metric(compute, sphere_domain, "sphere, forward Euler", Integrator::ForwardEuler);
-  u_metric(compute, square_domain, "square, backward Euler", Integrator::BackwardEuler);
-  pheromone_forward(compute, sphere_domain, "sphere", bandwidth);
-  throughput(compute, refined(sphere, 0.015, kBenchArea));
-  const SurfaceDomain fine_sphere = refined(sphere, 0.004, kBenchArea);
-  throughput(compute, fine_sphere);
-  pheromone_forward(compute, fine_sphere, "fine sphere", bandwidth);
+  SurfaceCache surfaces;
+  auto domain = [&](const Workload& w) -> const SurfaceDomain& { return surfaces.get(w.surface).domain; };
+  const Workload sphere = workload("sphere", 0.03, kBenchArea, 20000, Integrator::ForwardEuler);
+  const Workload square = workload("square", 0.03, std::nullopt, 20000, Integrator::BackwardEuler);
+  one_step(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
+  one_step(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
+  u_metric(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
+  u_metric(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
+  pheromone_forward(compute, domain(sphere), "sphere", bandwidth);
+  throughput(compute, surfaces, 0.015);
+  throughput(compute, surfaces, 0.004);
+  pheromone_forward(compute, domain(workload("sphere", 0.004, kBenchArea, 0, Integrator::ForwardEuler)),
+                    "fine sphere", bandwidth);
   // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
-  const SurfaceDomain finest_sphere = refined(sphere, 0.0015, kBenchArea);
-  throughput(compute, finest_sphere);
-  pheromone_forward(compute, finest_sphere, "finest sphere", bandwidth);
+  throughput(compute, surfaces, 0.0015);
+  pheromone_forward(compute, domain(workload("sphere", 0.0015, kBenchArea, 0, Integrator::ForwardEuler)),
+                    "finest sphere", bandwidth);
   std::printf("%d failed\n", testing::probe_failures());
   return testing::probe_exit_status();
 }
