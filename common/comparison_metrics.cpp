@@ -11,26 +11,41 @@
 namespace physarum {
 namespace {
 
-// Scales of the detail metrics, in sensor distances.
-constexpr double kDetailScales[] = {0.5, 1.0, 2.0};
+constexpr double kPi = 3.14159265358979323846;
+
+// Scales of the detail metrics, in sensor distances: the pattern's own scale is set by the sensor
+// distance d (an agent steers towards pheromone d ahead of it, so strands and the gaps between them
+// are a few d apart), and 1/4 .. 4 d brackets it from the strands' width to the network's cells.
+constexpr double kDetailScales[] = {0.25, 0.5, 1.0, 2.0, 4.0};
+constexpr double kCoarsestDetailScale = 4.0;
+
+std::string metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g m", v);
+  return text;
+}
 
 }  // namespace
 
-ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& scene)
+ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& scene, ArmsShare share)
     : domain_(surface.domain), settings_(scene.comparison), time_step_(scene.time_step) {
   U_ = uniform_steady_state(scene, domain_.total_area);
-  eigenpairs_ = smallest_eigenpairs(domain_, settings_.eigenpairs, true);
-  try {
-    plane_xy_ = planar_vertex_coordinates(domain_, surface.simulated);
-    flat_ = true;
-  } catch (const InputError&) {
-    flat_ = false;  // curved: the manifold harmonics are the spectrum
-  }
-
   const ComparisonSettings& c = settings_;
+  const double d = scene.parameters[Param::sensor_distance];
+  // The coarsest scale the pattern has: spectral bands above it see only how the network's cells
+  // happen to be laid out on the surface, which is metastable and differs from seed to seed by as
+  // much as a third, so no affordable number of seeds decides them.
+  const double pattern_scale = kCoarsestDetailScale * d;
+  const bool same_discretisation = share == ArmsShare::Discretisation;
+
+  // mean / U: the model's one analytic answer (Eq. 5); a backend that loses or invents mass fails
+  // here before anything else.
   metrics_.push_back({"mean_over_U", MarginKind::Absolute, c.margin_mean});
+  // Coverage above 0.5, 1 and 2 U: how the mass is distributed between strands and background,
+  // whatever the pattern's geometry; cheap, dimensionless and steady from seed to seed.
   for (const char* name : {"coverage_0.5U", "coverage_1U", "coverage_2U"})
     metrics_.push_back({name, MarginKind::Absolute, c.margin_coverage});
+
   // Harmonic bands hold equal NUMBERS of consecutive non-constant eigenpairs (not equal widths of
   // sqrt(lambda)): on a surface the mode count grows like sqrt(lambda)^2, so equal-width bands put
   // a handful of modes in the lowest band, whose power then swings by half its value from seed to
@@ -41,32 +56,56 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   // is the same from one run to the next. So band edges move up to the next gap in the spectrum,
   // and the top cluster is dropped when it reaches the last computed eigenvalue (the solver may
   // have returned only part of it).
-  const Eigen::VectorXd& lambda = eigenpairs_.values;
-  const int computed = static_cast<int>(lambda.size());
-  const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
-  const double tie = 1e-6 * lambda_max;
-  int first = 0, end = computed;
-  while (first < computed && lambda[first] <= 1e-8 * lambda_max) ++first;  // constant modes
-  while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
-  const int usable = end - first;
-  const int bands = std::min<int>(c.spectrum_bands, usable);
-  if (bands < 1) throw InputError("compare: the surface has no non-constant manifold harmonic among the " +
-                                  std::to_string(computed) + " computed");
-  harmonic_band_of_mode_.assign(static_cast<size_t>(computed), -1);
-  int band = 0;
-  for (int k = first; k < end; ++k) {
-    const bool cluster_starts = k == first || lambda[k] - lambda[k - 1] > tie;
-    while (cluster_starts && band + 1 < bands && (k - first) >= (band + 1) * usable / bands) ++band;
-    harmonic_band_of_mode_[static_cast<size_t>(k)] = band;
+  //
+  // They are in the set only where the computed eigenpairs reach the pattern's scale (the shortest
+  // wavelength 2 pi / sqrt(lambda_max) at most 4 d): there they add the distribution of the power
+  // over the scales the detail energies summarise. Below it every band lies above the pattern.
+  if (!same_discretisation) {
+    left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ");
+  } else {
+    eigenpairs_ = smallest_eigenpairs(domain_, settings_.eigenpairs, true);
+    const Eigen::VectorXd& lambda = eigenpairs_.values;
+    const int computed = static_cast<int>(lambda.size());
+    const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
+    const double shortest_wavelength = lambda_max > 0.0 ? 2.0 * kPi / std::sqrt(lambda_max) : INFINITY;
+    if (shortest_wavelength > pattern_scale) {
+      // Weyl's law, N(lambda) ~ area lambda / (4 pi), at lambda = (2 pi / pattern_scale)^2.
+      const double needed = kPi * domain_.total_area / (pattern_scale * pattern_scale);
+      left_out_.push_back("harmonic bands: the " + std::to_string(computed) + " eigenpairs reach wavelengths of " +
+                          metres(shortest_wavelength) + ", coarser than the pattern's scale 4 d = " +
+                          metres(pattern_scale) + " (compare_eigenpairs of about " +
+                          std::to_string(static_cast<long long>(std::ceil(needed))) + " would reach it)");
+    } else {
+      const double tie = 1e-6 * lambda_max;
+      int first = 0, end = computed;
+      while (first < computed && lambda[first] <= 1e-8 * lambda_max) ++first;  // constant modes
+      while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
+      const int usable = end - first;
+      const int bands = std::min<int>(c.spectrum_bands, usable);
+      if (bands < 1)
+        throw InputError("compare: the surface has no non-constant manifold harmonic among the " +
+                         std::to_string(computed) + " computed");
+      harmonic_band_of_mode_.assign(static_cast<size_t>(computed), -1);
+      int band = 0;
+      for (int k = first; k < end; ++k) {
+        const bool cluster_starts = k == first || lambda[k] - lambda[k - 1] > tie;
+        while (cluster_starts && band + 1 < bands && (k - first) >= (band + 1) * usable / bands) ++band;
+        harmonic_band_of_mode_[static_cast<size_t>(k)] = band;
+      }
+      for (int b = 1; b <= bands; ++b)
+        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+      harmonic_bands_ = bands;
+    }
   }
-  for (int b = 1; b <= bands; ++b)
-    metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
-  harmonic_bands_ = bands;
-  // Detail energies at 0.5, 1 and 2 sensor distances (scene value; maps would use their mean).
+
+  // Detail energies at 1/4 .. 4 sensor distances (scene value; maps would use their mean): they see
+  // the pattern at its own scale on any surface, with any number of eigenpairs, and average over
+  // many of the pattern's cells, so they vary little from seed to seed. They are continuum
+  // quantities, comparable between two triangulations of one surface.
   const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
   for (double multiple : kDetailScales) {
-    const double scale = multiple * scene.parameters[Param::sensor_distance];
-    const double t = (scale / (2.0 * 3.14159265358979323846)) * (scale / (2.0 * 3.14159265358979323846));
+    const double scale = multiple * d;
+    const double t = (scale / (2.0 * kPi)) * (scale / (2.0 * kPi));
     Eigen::SparseMatrix<double> S = t * L;
     for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
     auto solver = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(S);
@@ -76,10 +115,39 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
     std::snprintf(name, sizeof name, "detail_%gd", multiple);
     metrics_.push_back({name, MarginKind::Relative, c.margin_detail});
   }
-  if (flat_)
-    for (int b = 1; b <= c.spectrum_bands; ++b)
-      metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
-  metrics_.push_back({"agent_density", MarginKind::Relative, c.margin_density});
+
+  // Radial bands on flat domains: the power spectrum on a grid independent of the triangulation.
+  // In the set under the same rule as the harmonic bands: only when the grid resolves the pattern's
+  // scale (side / (grid / 2) at most 4 d).
+  try {
+    plane_xy_ = planar_vertex_coordinates(domain_, surface.simulated);
+    flat_ = true;
+  } catch (const InputError&) {
+    flat_ = false;  // curved: the manifold harmonics are the spectrum
+  }
+  if (flat_) {
+    Eigen::Vector2d low = plane_xy_.front(), high = plane_xy_.front();
+    for (const Eigen::Vector2d& p : plane_xy_) low = low.cwiseMin(p), high = high.cwiseMax(p);
+    const double finest = (high - low).maxCoeff() / (grid_size_ / 2);
+    if (finest > pattern_scale) {
+      left_out_.push_back("radial bands: the " + std::to_string(grid_size_) + "-cell grid resolves " +
+                          metres(finest) + ", coarser than the pattern's scale 4 d = " + metres(pattern_scale));
+    } else {
+      radial_bands_ = c.spectrum_bands;
+      for (int b = 1; b <= radial_bands_; ++b)
+        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+    }
+  }
+
+  // Agent-density dispersion: whether the agents cluster on the strands as they should. It is the
+  // one metric of the agents rather than the field, so a fault that moves agents without yet
+  // changing the field shows here first. Its shot-noise floor (F - 1) / N depends on the faces and
+  // the agent count, so it compares arms on one discretisation only.
+  agent_density_ = same_discretisation;
+  if (agent_density_)
+    metrics_.push_back({"agent_density", MarginKind::Relative, c.margin_density});
+  else
+    left_out_.push_back("agent_density: its shot-noise floor (F - 1) / N differs between the arms' discretisations");
 }
 
 std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) const {
@@ -92,13 +160,15 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) co
   const IntrinsicVertexData<double> field = sim.field_values();
   // Band power: sum of c_k^2 over the band's modes / (area * mean^2), dimensionless (as in
   // spectral_metrics.hpp).
-  const Eigen::VectorXd c = manifold_harmonic_coefficients(eigenpairs_, domain_.vertex_mass, field);
   const double mean = stats.mean;
-  std::vector<double> power(static_cast<size_t>(harmonic_bands_), 0.0);
-  for (int k = 0; k < c.size(); ++k)
-    if (harmonic_band_of_mode_[static_cast<size_t>(k)] >= 0)
-      power[static_cast<size_t>(harmonic_band_of_mode_[static_cast<size_t>(k)])] += c[k] * c[k];
-  for (double p : power) m.push_back(mean > 0.0 ? p / (domain_.total_area * mean * mean) : 0.0);
+  if (harmonic_bands_ > 0) {
+    const Eigen::VectorXd c = manifold_harmonic_coefficients(eigenpairs_, domain_.vertex_mass, field);
+    std::vector<double> power(static_cast<size_t>(harmonic_bands_), 0.0);
+    for (int k = 0; k < c.size(); ++k)
+      if (harmonic_band_of_mode_[static_cast<size_t>(k)] >= 0)
+        power[static_cast<size_t>(harmonic_band_of_mode_[static_cast<size_t>(k)])] += c[k] * c[k];
+    for (double p : power) m.push_back(mean > 0.0 ? p / (domain_.total_area * mean * mean) : 0.0);
+  }
 
   {
     Eigen::VectorXd u(domain_.vertex_count), mu(domain_.vertex_count);
@@ -114,19 +184,19 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) co
     }
   }
 
-  if (flat_) {
+  if (radial_bands_ > 0) {
     // Radii 1 .. grid/2 (whole annuli) in equal bands; radius 0 is the mean, left out.
     const RadialSpectrum spectrum = radial_power_spectrum(plane_xy_, domain_.face_vertices, field, grid_size_);
     const int top = grid_size_ / 2;
-    std::vector<double> band(static_cast<size_t>(settings_.spectrum_bands), 0.0);
+    std::vector<double> band(static_cast<size_t>(radial_bands_), 0.0);
     for (int r = 1; r <= top; ++r) {
-      const int b = std::min(settings_.spectrum_bands - 1, (r - 1) * settings_.spectrum_bands / top);
+      const int b = std::min(radial_bands_ - 1, (r - 1) * radial_bands_ / top);
       band[static_cast<size_t>(b)] += spectrum.power[static_cast<size_t>(r)] * spectrum.count[static_cast<size_t>(r)];
     }
     for (double p : band) m.push_back(p);
   }
 
-  m.push_back(agent_density_dispersion(sim.agent_faces(), domain_.face_area).dispersion);
+  if (agent_density_) m.push_back(agent_density_dispersion(sim.agent_faces(), domain_.face_area).dispersion);
   return m;
 }
 

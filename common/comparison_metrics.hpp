@@ -1,21 +1,21 @@
 #pragma once
-// The per-seed metrics of the differential harness (its long horizon: independent
-// seeds, time-averaged metrics): for one run of one backend, every metric sampled at a fixed interval after the
-// burn-in and time-averaged, so a seed contributes ONE number per metric (the seed, not the vertex,
-// is the unit of replication). All metrics are dimensionless:
+// The per-seed metrics of the differential harness (its long horizon: independent seeds,
+// time-averaged metrics): for one run of one backend, every metric sampled at a fixed interval after
+// the burn-in and time-averaged, so a seed contributes ONE number per metric (the seed, not the
+// vertex, is the unit of replication). All metrics are dimensionless.
+//
+// The default set is chosen from the scene's own scales, so that a scene nobody tuned can be decided
+// (why each metric is in it is said where it is added, comparison_metrics.cpp):
 //
 //   mean_over_U          area-weighted mean concentration / U of Eq. 5
 //   coverage_{0.5,1,2}U  area fraction above 0.5 U, U, 2 U
-//   harmonic_band_k      manifold-harmonic band powers, k = 1..bands (bands of equal mode count)
-//   radial_band_k        radially averaged FFT power in bands of radius (flat domains only)
-//   detail_{0.5,1,2}d    high-pass energy at the scale of half, one and two sensor distances d:
-//                        the energy of u - G u, G the diffusion smoother (M + t L)^-1 M with
-//                        t = (scale / 2 pi)^2, over area * mean^2. Unlike the harmonic bands,
-//                        which only reach the low frequencies a few hundred eigenpairs cover,
-//                        these see the pattern's own scale (set by the sensor distance) on any
-//                        surface, and average over many pattern cells, so they vary little from
-//                        seed to seed.
-//   agent_density        dispersion of the agent density over faces
+//   detail_{m}d          high-pass energy at m = 1/4, 1/2, 1, 2, 4 sensor distances d: the energy of
+//                        u - G u, G the diffusion smoother (M + t L)^-1 M with t = (m d / 2 pi)^2,
+//                        over area * mean^2
+//   harmonic_band_k      manifold-harmonic band powers, k = 1..bands (bands of equal mode count), only
+//                        where the computed eigenpairs reach the pattern's scale
+//   radial_band_k        radially averaged FFT power in bands of radius (flat domains, likewise)
+//   agent_density        dispersion of the agent density over faces (both arms on one discretisation)
 //
 // Each metric has a margin kind: absolute (mean / U, whose value is 1 whatever the scene, and the
 // coverage fractions, whose margin is a share of the surface's area: a relative margin would make
@@ -42,13 +42,20 @@ struct MetricInfo {
   double margin = 0.0;  // absolute, or the fraction of the reference mean
 };
 
+// Which arms the metrics will compare. Metrics tied to one discretisation (the manifold-harmonic
+// basis of one triangulation, the agent density per face with its shot-noise floor (F - 1) / N) mean
+// the same thing in both arms only when both run on the same surface with the same agent count.
+enum class ArmsShare { Discretisation, ContinuumOnly };
+
 class ComparisonMetrics {
  public:
   // Computes the eigenpairs for the band powers (scene.comparison.eigenpairs) and, when the surface
   // is flat, the vertices' plane coordinates for the radial spectrum.
-  ComparisonMetrics(const SceneSurface& surface, const Scene& scene);
+  ComparisonMetrics(const SceneSurface& surface, const Scene& scene, ArmsShare share = ArmsShare::Discretisation);
 
   const std::vector<MetricInfo>& metrics() const { return metrics_; }
+  // Why metrics of the documented set were left out on this scene (one sentence each).
+  const std::vector<std::string>& left_out() const { return left_out_; }
   bool flat() const { return flat_; }
 
   // Runs one seed of `sim` (a fresh simulation: the field is first set to U) for burn_in + duration
@@ -65,6 +72,8 @@ class ComparisonMetrics {
   double U_ = 0.0;
   Eigenpairs eigenpairs_;
   int harmonic_bands_ = 0;
+  int radial_bands_ = 0;
+  bool agent_density_ = true;
   // The diffusion smoothers of the detail metrics: (M + t L) factorised once per scale.
   std::vector<std::shared_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> smoothers_;
   std::vector<int> harmonic_band_of_mode_;  // band of each eigenpair, -1 for the constant modes
@@ -72,6 +81,7 @@ class ComparisonMetrics {
   std::vector<Eigen::Vector2d> plane_xy_;
   int grid_size_ = 64;
   std::vector<MetricInfo> metrics_;
+  std::vector<std::string> left_out_;
 };
 
 }  // namespace physarum

@@ -135,13 +135,15 @@ json parse_scene_text(const std::string& text, const std::string& path) {
 
 }  // namespace
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the scene file");
   std::stringstream buffer;
   buffer << file.rdbuf();
   if (file.bad()) throw InputError(path + ": cannot read the scene file");
-  const json j = parse_scene_text(buffer.str(), path);
+  json j = parse_scene_text(buffer.str(), path);
+  if (!overrides.is_object()) throw InputError(path + ": scene overrides must be a JSON object");
+  for (auto it = overrides.begin(); it != overrides.end(); ++it) j[it.key()] = it.value();
 
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (!find_scene_key(it.key()))
@@ -195,7 +197,7 @@ Scene load_scene(const std::string& path) {
   c.burn_in = read.number("compare_burn_in").value_or(c.burn_in);
   c.duration = read.number("compare_duration").value_or(c.duration);
   c.sample_interval = read.number("compare_sample_interval").value_or(c.sample_interval);
-  c.seeds = static_cast<int>(read.integer("compare_seeds").value_or(c.seeds));
+  c.max_seeds = static_cast<int>(read.integer("compare_seeds").value_or(c.max_seeds));
   c.margin_mean = read.number("compare_margin_mean").value_or(c.margin_mean);
   c.margin_coverage = read.number("compare_margin_coverage").value_or(c.margin_coverage);
   c.margin_spectrum = read.number("compare_margin_spectrum").value_or(c.margin_spectrum);

@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace physarum {
 
 enum class Integrator { ForwardEuler, BackwardEuler };
@@ -22,7 +24,7 @@ struct ComparisonSettings {
   double burn_in = 2.0;           // s simulated and discarded at the start of every seed
   double duration = 3.0;          // s simulated and averaged after the burn-in
   double sample_interval = 0.1;   // s between two samples of the metrics
-  int seeds = 0;                  // seeds per arm; 0 = from the power calculation
+  int max_seeds = 64;             // seeds per arm at most: the sequential test's budget
   double margin_mean = 0.03;      // on mean / U
   double margin_coverage = 0.02;  // on each coverage fraction (a fraction of the surface's area)
   double margin_spectrum = 0.3;   // relative, on each spectral band power (harmonic and radial)
@@ -56,7 +58,9 @@ struct Scene {
 };
 
 // Parses and validates a scene file. A relative "mesh" path is resolved against the scene file's folder.
-Scene load_scene(const std::string& path);
+// `overrides` (a JSON object of scene keys) replaces or adds keys of the file before it is read, with
+// the same checks (the harness's --arm key=value).
+Scene load_scene(const std::string& path, const nlohmann::json& overrides = nlohmann::json::object());
 
 // Validates a scene built in code (the same checks as load_scene).
 void validate_scene(const Scene& scene);

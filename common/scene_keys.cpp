@@ -56,7 +56,7 @@ std::vector<SceneKey> build_keys() {
       setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed"),
       setting("compare_sample_interval", K::Number, false, kPositive, "s", shown(c.sample_interval), "compare: between two samples"),
       setting("compare_seeds", K::Integer, false, ValueRange{2.0, false, 10000.0, false}, "",
-              "from the power calculation", "compare: seeds per arm"),
+              std::to_string(c.max_seeds), "compare: most seeds per arm (the sequential test stops when it can)"),
       setting("compare_margin_mean", K::Number, false, kPositive, "", shown(c.margin_mean), "compare: margin on mean / U"),
       setting("compare_margin_coverage", K::Number, false, kPositive, "", shown(c.margin_coverage),
               "compare: margin on each coverage fraction"),

@@ -53,13 +53,14 @@ Verdict compare(const std::string& scene, const std::string& extra) {
   return v;
 }
 
+// The metrics not judged equivalent, with their verdicts.
 std::string failing_metrics(const nlohmann::json& verdict) {
   std::string names;
   if (!verdict.contains("metrics")) return names;
   for (const auto& m : verdict["metrics"])
-    if (!m["pass"].get<bool>()) {
+    if (m["verdict"] != "equivalent") {
       names += ' ';
-      names += m["name"].get<std::string>();
+      names += m["name"].get<std::string>() + " (" + m["verdict"].get<std::string>() + ")";
     }
   return names;
 }
@@ -77,15 +78,17 @@ TEST_P(EquivalentScene, OpenCLIsEquivalentToTheReference) {
   EXPECT_FALSE(v.json["drift"]["drift"].get<bool>()) << "the stored reference statistics drifted";
   // The documented keys, and the outputs of --out.
   for (const char* key : {"equivalent", "seeds", "metrics"}) EXPECT_TRUE(v.json.contains(key)) << key;
+  EXPECT_EQ(v.json["verdict"], "equivalent");
   EXPECT_EQ(v.json["seeds"]["reference"].get<int>(), 100);
-  EXPECT_GE(v.json["seeds"]["opencl"].get<int>(), 4);
+  EXPECT_GE(v.json["seeds"]["opencl"].get<int>(), 8);
   for (const auto& m : v.json["metrics"])
-    for (const char* key : {"name", "reference_mean", "opencl_mean", "margin", "p_value", "pass"})
+    for (const char* key : {"name", "verdict", "reference_mean", "opencl_mean", "margin", "confidence_interval",
+                            "p_value", "achieved_power", "pass"})
       EXPECT_TRUE(m.contains(key)) << key;
   for (const char* file : {"verdict.json", "seed_metrics.csv", "spectra.png"})
     EXPECT_TRUE(std::filesystem::exists(out.path / file)) << file;
-  std::cout << scene << ": " << v.json["seeds"]["opencl"] << " OpenCL seeds (power calculation asked for "
-            << v.json["power_calculation"]["seeds_needed"] << ")\n";
+  std::cout << scene << ": equivalent after " << v.json["seeds"]["opencl"] << " OpenCL seeds, "
+            << v.json["sequential"]["looks"] << " looks\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(CompareHarness, EquivalentScene,
@@ -106,7 +109,8 @@ TEST_P(PlantedFault, IsRejected) {
   if (!scene_available(c.scene)) GTEST_SKIP() << "shared/meshes/spot.obj is absent";
   const Verdict v = compare(c.scene, "--fault " + c.fault + " --reference-seeds 2");
   ASSERT_TRUE(v.json.is_object()) << v.run.err << v.run.out;
-  EXPECT_EQ(v.run.exit_code, 1) << c.fault << " on " << c.scene << " slipped through";
+  EXPECT_EQ(v.run.exit_code, 3) << c.fault << " on " << c.scene << " was judged " << v.json["verdict"];
+  EXPECT_EQ(v.json["verdict"], "different");
   EXPECT_FALSE(v.json["equivalent"].get<bool>());
   EXPECT_EQ(v.json["fault"], c.fault);
   std::cout << c.fault << " on " << c.scene << ": rejected by" << failing_metrics(v.json) << "\n";
@@ -131,7 +135,9 @@ INSTANTIATE_TEST_SUITE_P(CompareHarness, PlantedFault,
 
 TEST(CompareHarness, UsageErrorsExitTwo) {
   EXPECT_EQ(run_physarum("compare '" + scene_path("square") + "' --fault no-such-fault").exit_code, 2);
-  EXPECT_EQ(run_physarum("compare '" + scene_path("square") + "' --seeds 1").exit_code, 2);
+  EXPECT_EQ(run_physarum("compare '" + scene_path("square") + "' --max-seeds 1").exit_code, 2);
+  EXPECT_EQ(run_physarum("compare '" + scene_path("square") + "' --arm agents=100").exit_code, 2);
+  EXPECT_EQ(run_physarum("compare '" + scene_path("square") + "' --arm agents --arm agents=100").exit_code, 2);
   EXPECT_EQ(run_physarum("compare").exit_code, 2);
 }
 

@@ -1,43 +1,51 @@
-// `physarum compare SCENE.json [--device SPEC] [--seeds N] [--fault NAME] [--out DIR]
-//                              [--reference-stats FILE] [--reference-seeds N] [--store-reference FILE]`:
-// the differential harness. Runs independent seeds of the reference and the OpenCL backend on one
-// scene, time-averages dimensionless pattern metrics per seed after a burn-in
-// (common/comparison_metrics.hpp) and decides, metric by metric, whether the two backends are
-// equivalent: Welch two one-sided tests (TOST) against the scene's margins, each at the Sidak level
-// that keeps the family-wise error at 5 %. Exit 0 when every metric is equivalent, 1 when not (or on
-// bad input), 2 on usage errors.
+// `physarum compare SCENE.json [--arm K=V[,K=V...] --arm K=V[,...]] [--max-seeds N] [--jobs N]
+//                              [--device SPEC] [--fault NAME] [--out DIR]
+//                              [--reference-stats FILE] [--reference-seeds N] [--store-reference FILE --seeds N]`:
+// the differential harness. Runs independent seeds of two arms (by default the OpenCL backend and
+// the reference on one scene; with --arm, one scene under two settings or discretisations,
+// tools/comparison_arms.hpp), time-averages dimensionless pattern metrics per seed after a burn-in
+// (common/comparison_metrics.hpp) and decides, metric by metric, whether the arms agree within the
+// scene's declared margins.
+//
+// Seeds run in batches of kBatch per arm, on every core and device at once (tools/seed_runner.hpp);
+// after each batch a group-sequential test (common/sequential_equivalence.hpp: O'Brien-Fleming alpha
+// spending over the looks, Sidak over the metrics) says, for each metric still open, equivalent (its
+// confidence interval lies inside the margin), different (it lies entirely outside) or undecided.
+// The run stops as soon as one metric is different or all are equivalent, and at --max-seeds it
+// says inconclusive, naming the metrics that lack power and the seeds per arm that would settle
+// them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
+// statistics, 2 on usage errors.
 //
 // Stored reference statistics: `--store-reference FILE --seeds 100` runs only the reference and
 // writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
 // runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
 // (a two-sided t test per metric at the Sidak level, see drift_p_value; drift is an error, exit 1).
-//
-// Seeds per arm: --seeds, else compare_seeds in the scene, else the power calculation below.
 #include "common/atomic_write.hpp"
 #include "common/comparison_metrics.hpp"
 #include "common/equivalence_test.hpp"
 #include "common/errors.hpp"
 #include "common/scene.hpp"
 #include "common/scene_json.hpp"
-#include "common/scene_surface.hpp"
-#include "opencl/compute_context.hpp"
+#include "common/sequential_equivalence.hpp"
 #include "opencl/planted_faults.hpp"
-#include "opencl/simulation.hpp"
-#include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
+#include "tools/comparison_arms.hpp"
 #include "tools/comparison_plot.hpp"
-#include "tools/feasible_surface.hpp"
+#include "tools/seed_runner.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 #include <unistd.h>
 
@@ -47,22 +55,23 @@ namespace {
 struct CompareOptions {
   std::string scene;
   std::string device;
-  std::optional<int> seeds;
+  std::vector<std::string> arms;
+  std::optional<int> max_seeds;
+  int jobs = 0;  // 0: the cores
   std::string fault;
   std::string out;
   std::string reference_stats;
   int reference_seeds = 3;
   std::string store_reference;
+  int store_seeds = 100;
 };
 
-constexpr double kFamilyAlpha = 0.05;  // family-wise error of the whole verdict
-// Power of the whole verdict when the backends are truly equal: every metric must pass, so each
-// TOST gets power 1 - (1 - kFamilyPower) / metrics (a union bound over the metrics' misses).
-constexpr double kFamilyPower = 0.9;
-constexpr int kPilotSeeds = 6;         // reference seeds run to estimate the spread when nothing is stored
-constexpr int kMinSeeds = 4, kMaxSeeds = 100;
-// Seeds of the two arms never overlap: the reference uses scene.seed + kReferenceSeedOffset + i.
-constexpr std::uint32_t kReferenceSeedOffset = 100000;
+constexpr double kFamilyAlpha = 0.05;  // each kind of false verdict (equivalent, different) at most this often
+// Seeds per arm between two looks: enough that the first look has a usable spread, few enough that
+// an easy verdict comes after a handful of batches.
+constexpr int kBatch = 8;
+// The analytic check's name: the first arm's mean / U against Eq. 5's exact 1.
+constexpr const char* kAnalyticMetric = "mean_over_U_vs_analytic";
 
 using Matrix = std::vector<std::vector<double>>;  // [seed][metric]
 
@@ -71,54 +80,6 @@ std::vector<double> column(const Matrix& m, size_t j) {
   c.reserve(m.size());
   for (const auto& row : m) c.push_back(row[j]);
   return c;
-}
-
-// ---- running the arms ----
-
-struct Harness {
-  const Scene& scene;
-  const SceneSurface& surface;
-  const ComparisonMetrics& metrics;
-  std::optional<opencl::ComputeContext> compute;
-  opencl::OpenCLSimulationOptions opencl_options;
-
-  std::vector<double> reference_seed(std::uint32_t seed) const {
-    Scene s = scene;
-    s.seed = seed;
-    const auto sim = make_backend(BackendChoice::Reference, nullptr, surface.domain, s);
-    return metrics.measure_seed(*sim);
-  }
-  std::vector<double> opencl_seed(std::uint32_t seed) const {
-    Scene s = scene;
-    s.seed = seed;
-    const auto sim = make_backend(BackendChoice::OpenCL, &*compute, surface.domain, s, opencl_options);
-    return metrics.measure_seed(*sim);
-  }
-};
-
-// Progress on stderr, only when it is a terminal (quiet in logs and tests).
-void progress(const std::string& what, int done, int total) {
-  if (::isatty(STDERR_FILENO) != 1) return;
-  std::cerr << "\rphysarum compare: " << what << " seed " << done << "/" << total << "   " << std::flush;
-  if (done == total) std::cerr << "\n";
-}
-
-Matrix run_reference_seeds(const Harness& h, int first, int count) {
-  Matrix m;
-  for (int i = 0; i < count; ++i) {
-    m.push_back(h.reference_seed(h.scene.seed + kReferenceSeedOffset + static_cast<std::uint32_t>(first + i)));
-    progress("reference", i + 1, count);
-  }
-  return m;
-}
-
-Matrix run_opencl_seeds(const Harness& h, int count) {
-  Matrix m;
-  for (int i = 0; i < count; ++i) {
-    m.push_back(h.opencl_seed(h.scene.seed + static_cast<std::uint32_t>(i)));
-    progress("opencl", i + 1, count);
-  }
-  return m;
 }
 
 // ---- stored reference statistics ----
@@ -184,132 +145,228 @@ double drift_p_value(const std::vector<double>& fresh, const std::vector<double>
   return 2.0 * (1.0 - student_t_cdf(std::abs(f.mean - s.mean) / se, s.n - 1));
 }
 
-// ---- the verdict ----
+// ---- running and judging ----
+
+// Progress on stderr, only when it is a terminal (quiet in logs and tests).
+bool show_progress() { return ::isatty(STDERR_FILENO) == 1; }
+
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 90) std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  return text;
+}
+
+// Runs the tasks and appends each arm's results to its matrix.
+void run_batch(const std::vector<Arm>& arms, const std::vector<SeedTask>& tasks, int jobs, std::vector<Matrix*> into,
+               const std::string& what) {
+  const auto results = run_seed_tasks(arms, tasks, jobs, [&](int done) {
+    if (show_progress())
+      std::cerr << "\rphysarum compare: " << what << ": seed " << done << "/" << tasks.size() << "   " << std::flush;
+  });
+  for (size_t t = 0; t < tasks.size(); ++t) into[static_cast<size_t>(tasks[t].arm)]->push_back(results[t]);
+}
+
+std::vector<SeedTask> tasks_for(int arm, int first, int end) {
+  std::vector<SeedTask> tasks;
+  for (int i = first; i < end; ++i) tasks.push_back({arm, i});
+  return tasks;
+}
+
+// The arms' per-metric summaries and the margins (absolute, or relative to the second arm's mean),
+// with the analytic row appended when it is judged.
+struct Look {
+  std::vector<SampleSummary> a, b;
+  std::vector<double> margins;
+};
+
+Look summarise(const std::vector<MetricInfo>& info, const Matrix& a, const Matrix& b, bool analytic) {
+  Look look;
+  for (size_t j = 0; j < info.size(); ++j) {
+    look.a.push_back(summarize_samples(column(a, j)));
+    look.b.push_back(summarize_samples(column(b, j)));
+    const double scale = info[j].kind == MarginKind::Absolute ? 1.0 : std::abs(look.b.back().mean);
+    look.margins.push_back(info[j].margin * scale);
+  }
+  if (analytic) {
+    // The first arm's mean / U against Eq. 5's exact value 1 (a one-sample test: no spread on that side).
+    look.a.push_back(look.a[0]);
+    look.b.push_back(SampleSummary{look.a[0].n, 1.0, 0.0});
+    look.margins.push_back(look.margins[0]);
+  }
+  return look;
+}
+
+std::string progress_summary(const SequentialEquivalence& test, const std::vector<std::string>& names) {
+  int equivalent = 0, different = 0;
+  std::string open;
+  for (size_t j = 0; j < test.metrics().size(); ++j) {
+    const Verdict v = test.metrics()[j].verdict;
+    if (v == Verdict::Equivalent) ++equivalent;
+    else if (v == Verdict::Different) ++different;
+    else open += (open.empty() ? "" : ", ") + names[j];
+  }
+  return std::to_string(equivalent) + " equivalent, " + std::to_string(different) + " different" +
+         (open.empty() ? "" : ", open: " + open);
+}
+
+nlohmann::ordered_json metric_row(const std::string& name, const MetricInfo* info, const MetricLook& m,
+                                  const std::string& label_a, const std::string& label_b) {
+  nlohmann::ordered_json row;
+  row["name"] = name;
+  row["verdict"] = to_string(m.verdict);
+  row["pass"] = m.verdict == Verdict::Equivalent;
+  row[label_a + "_mean"] = m.a.mean;
+  row[label_b + "_mean"] = m.b.mean;
+  row[label_a + "_sd"] = m.a.sd;
+  row[label_b + "_sd"] = m.b.sd;
+  row["margin"] = m.margin;
+  row["margin_kind"] = !info || info->kind == MarginKind::Absolute ? "absolute" : "relative";
+  row["difference"] = m.difference;
+  row["confidence_interval"] = {m.ci_low, m.ci_high};
+  row["level"] = m.level;
+  row["decided_at_look"] = m.decided_at_look;
+  row["p_value"] = m.p_equivalent;
+  row["p_different"] = m.p_different;
+  row["achieved_power"] = m.achieved_power;
+  if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
+    row["seeds_per_arm_to_settle"] = m.seeds_to_settle;
+  return row;
+}
+
+int exit_code(Verdict v) {
+  switch (v) {
+    case Verdict::Equivalent: return 0;
+    case Verdict::Different: return 3;
+    default: return 4;
+  }
+}
 
 int run_compare(const CompareOptions& o) {
-  if (o.seeds && *o.seeds < 2) throw UsageError("--seeds must be >= 2");
+  if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds must be >= 2");
+  if (o.store_seeds < 2) throw UsageError("--seeds must be >= 2");
   if (o.reference_seeds < 2) throw UsageError("--reference-seeds must be >= 2");
-  if (!o.store_reference.empty() && (!o.reference_stats.empty() || !o.fault.empty()))
-    throw UsageError("--store-reference runs only the reference: it takes neither --reference-stats nor --fault");
-  const std::string fault_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
+  if (o.jobs < 0) throw UsageError("--jobs must be >= 1");
+  if (!o.store_reference.empty() && (!o.reference_stats.empty() || !o.fault.empty() || !o.arms.empty()))
+    throw UsageError("--store-reference runs only the reference: it takes neither --reference-stats, --fault nor --arm");
+  if (!o.reference_stats.empty() && !o.arms.empty())
+    throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
+  const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
-  const Scene scene = load_scene(o.scene);
-  // Each seed runs burn-in + duration: the run whose work the checks estimate.
-  const long long steps_per_seed = std::max<long long>(
-      1, std::llround((scene.comparison.burn_in + scene.comparison.duration) / scene.time_step));
-  const SceneSurface surface = prepare_feasible_surface(scene, steps_per_seed);
-  const ComparisonMetrics metrics(surface, scene);
-  const std::vector<MetricInfo>& info = metrics.metrics();
-  const int metric_count = static_cast<int>(info.size());
-  Harness h{scene, surface, metrics, std::nullopt, {}};
+  ArmsRequest request;
+  request.scene_path = o.scene;
+  for (const std::string& a : o.arms) request.arms.push_back(parse_arm(a));
+  request.device = o.device;
+  request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
+  request.reference_only = !o.store_reference.empty();
+  const std::vector<Arm> arms = make_arms(request);
 
   if (!o.store_reference.empty()) {
-    const int n = o.seeds.value_or(100);
-    store_reference(o.store_reference, scene, metrics, run_reference_seeds(h, 0, n));
-    std::cout << "physarum compare: stored " << n << " reference seeds of " << o.scene << " in " << o.store_reference
-              << "\n";
+    Matrix values;
+    run_batch(arms, tasks_for(0, 0, o.store_seeds), jobs, {&values}, "reference");
+    if (show_progress()) std::cerr << "\n";
+    store_reference(o.store_reference, arms[0].scene, *arms[0].metrics, values);
+    std::cout << "physarum compare: stored " << o.store_seeds << " reference seeds of " << o.scene << " in "
+              << o.store_reference << "\n";
     return 0;
   }
 
-  h.compute = opencl::make_compute_context(o.device);
-  h.opencl_options.build_options = fault_option;
-  const double alpha = sidak_alpha(kFamilyAlpha, metric_count);
+  const Arm &A = arms[0], &B = arms[1];
+  const std::vector<MetricInfo>& info = A.metrics->metrics();
+  const bool backends = o.arms.empty();  // the two backends on one scene: the analytic row is judged too
+  std::vector<std::string> names = metric_names(*A.metrics);
+  if (backends) names.push_back(kAnalyticMetric);
+  const int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
+  SequentialEquivalence test(static_cast<int>(names.size()), kFamilyAlpha, max_seeds);
 
-  // ---- the reference arm: stored, or run here (a pilot first, to size both arms) ----
+  // ---- the second arm: stored, or run here batch by batch beside the first ----
   const bool stored = !o.reference_stats.empty();
-  Matrix reference = stored ? load_reference(o.reference_stats, scene, metrics) : run_reference_seeds(h, 0, kPilotSeeds);
+  Matrix a_values, b_values, fresh_reference;
+  if (stored) b_values = load_reference(o.reference_stats, B.scene, *B.metrics);
 
-  // ---- seeds per arm ----
-  // Power calculation: for each metric, the smallest n per arm at which a Welch TOST at level alpha
-  // (Sidak) has power `power` when the backends are truly equal, given the reference arm's measured
-  // seed-to-seed standard deviation and the metric's margin (tost_seeds_per_arm); the largest over
-  // the metrics, clamped to [kMinSeeds, kMaxSeeds].
-  const double power = 1.0 - (1.0 - kFamilyPower) / metric_count;
-  std::vector<double> margins(info.size());
-  int needed = kMinSeeds;
-  for (size_t j = 0; j < info.size(); ++j) {
-    const SampleSummary r = summarize_samples(column(reference, j));
-    margins[j] = info[j].kind == MarginKind::Absolute ? info[j].margin : info[j].margin * std::abs(r.mean);
-    if (margins[j] > 0.0) needed = std::max(needed, tost_seeds_per_arm(r.sd, margins[j], alpha, power));
+  const auto start = std::chrono::steady_clock::now();
+  Verdict verdict = Verdict::Continue;
+  while (verdict == Verdict::Continue) {
+    const int n = static_cast<int>(a_values.size());
+    const int end = std::min(n + kBatch, max_seeds);
+    std::vector<SeedTask> tasks = tasks_for(0, n, end);
+    Matrix fresh_batch;
+    if (!stored) {
+      const std::vector<SeedTask> more = tasks_for(1, n, end);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    } else if (n == 0) {
+      // Fresh reference seeds the stored file does not hold (it used indices 0 .. stored - 1).
+      const int first = static_cast<int>(b_values.size());
+      const std::vector<SeedTask> more = tasks_for(1, first, first + o.reference_seeds);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    }
+    run_batch(arms, tasks, jobs, {&a_values, stored ? &fresh_reference : &b_values},
+              "look " + std::to_string(test.looks() + 1));
+    const Look look = summarise(info, a_values, b_values, backends);
+    verdict = test.look(look.a, look.b, look.margins);
+    if (show_progress()) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const int done = static_cast<int>(a_values.size());
+      std::cerr << "\rphysarum compare: look " << test.looks() << ", " << done << "/" << max_seeds
+                << " seeds per arm: " << to_string(verdict) << " (" << progress_summary(test, names) << ")";
+      if (verdict == Verdict::Continue)
+        std::cerr << ", at most " << duration_text(elapsed / done * (max_seeds - done)) << " more";
+      std::cerr << "\n";
+    }
   }
-  const bool clamped = needed > kMaxSeeds;
-  const int from_power = std::min(needed, kMaxSeeds);
-  const int seeds = o.seeds ? *o.seeds : (scene.comparison.seeds > 0 ? scene.comparison.seeds : from_power);
 
-  // ---- run ----
-  Matrix fresh_reference;
-  if (stored) {
-    // Seeds the stored file does not hold (it used indices 0 .. stored - 1).
-    fresh_reference = run_reference_seeds(h, static_cast<int>(reference.size()), o.reference_seeds);
-  } else if (static_cast<int>(reference.size()) < seeds) {
-    Matrix more = run_reference_seeds(h, static_cast<int>(reference.size()), seeds - static_cast<int>(reference.size()));
-    reference.insert(reference.end(), more.begin(), more.end());
-  }
-  const Matrix device = run_opencl_seeds(h, seeds);
-
-  // ---- decide ----
-  nlohmann::ordered_json verdict;
-  bool equivalent = true;
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  for (size_t j = 0; j < info.size(); ++j) {
-    const std::vector<double> r = column(reference, j), d = column(device, j);
-    const TostResult t = welch_tost(d, r, margins[j], alpha);
-    equivalent = equivalent && t.equivalent;
-    nlohmann::ordered_json row;
-    row["name"] = info[j].name;
-    row["reference_mean"] = t.b.mean;
-    row["opencl_mean"] = t.a.mean;
-    row["reference_sd"] = t.b.sd;
-    row["opencl_sd"] = t.a.sd;
-    row["margin"] = margins[j];
-    row["margin_kind"] = info[j].kind == MarginKind::Absolute ? "absolute" : "relative";
-    row["difference"] = t.difference;
-    row["p_lower"] = t.p_lower;
-    row["p_upper"] = t.p_upper;
-    row["p_value"] = t.p;
-    row["pass"] = t.equivalent;
-    rows.push_back(row);
-  }
-  // The analytic check: the OpenCL arm's mean concentration against U of Eq. 5 (a one-sample TOST,
-  // the reference value 1 known exactly).
-  {
-    const std::vector<double> d = column(device, 0);
-    const SampleSummary a = summarize_samples(d);
-    const TostResult t = welch_tost(a, SampleSummary{a.n, 1.0, 0.0}, margins[0], alpha);
-    equivalent = equivalent && t.equivalent;
-    rows.push_back({{"name", "mean_over_U_vs_analytic"}, {"reference_mean", 1.0}, {"opencl_mean", a.mean},
-                    {"reference_sd", 0.0}, {"opencl_sd", a.sd}, {"margin", margins[0]}, {"margin_kind", "absolute"},
-                    {"difference", t.difference}, {"p_lower", t.p_lower}, {"p_upper", t.p_upper}, {"p_value", t.p},
-                    {"pass", t.equivalent}});
+  // ---- report ----
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array(), unsettled = nlohmann::ordered_json::array();
+  for (size_t j = 0; j < names.size(); ++j) {
+    const MetricLook& m = test.metrics()[j];
+    rows.push_back(metric_row(names[j], j < info.size() ? &info[j] : nullptr, m, A.label, B.label));
+    if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
+      unsettled.push_back({{"name", names[j]}, {"seeds_per_arm_to_settle", m.seeds_to_settle},
+                           {"achieved_power", m.achieved_power}});
   }
 
   // Drift of stored statistics: fresh reference seeds against the stored ones.
   bool drift = false;
   nlohmann::ordered_json drift_rows = nlohmann::ordered_json::array();
   if (stored) {
+    const double alpha = sidak_alpha(kFamilyAlpha, static_cast<int>(info.size()));
     for (size_t j = 0; j < info.size(); ++j) {
-      const double p = drift_p_value(column(fresh_reference, j), column(reference, j));
+      const double p = drift_p_value(column(fresh_reference, j), column(b_values, j));
       drift = drift || p < alpha;
       drift_rows.push_back({{"name", info[j].name}, {"p_value", p}, {"drift", p < alpha}});
     }
   }
 
-  verdict["equivalent"] = equivalent && !drift;
-  verdict["seeds"] = {{"reference", reference.size()}, {"opencl", device.size()}};
-  verdict["scene"] = o.scene;
-  verdict["device"] = h.compute->device.describe();
-  verdict["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
-  verdict["family_alpha"] = kFamilyAlpha;
-  verdict["alpha_per_metric"] = alpha;
-  verdict["power_calculation"] = {{"family_power", kFamilyPower},
-                                  {"power_per_metric", power},
-                                  {"seeds_needed", needed},
-                                  {"clamped_to", clamped ? nlohmann::ordered_json(kMaxSeeds) : nlohmann::ordered_json()},
-                                  {"seeds_used", seeds}};
-  verdict["reference_source"] = stored ? o.reference_stats : "run here";
-  if (stored) verdict["drift"] = {{"fresh_reference_seeds", fresh_reference.size()}, {"drift", drift}, {"metrics", drift_rows}};
-  verdict["metrics"] = rows;
-  const std::string text = verdict.dump(2) + "\n";
+  nlohmann::ordered_json report;
+  report["verdict"] = to_string(verdict);
+  report["equivalent"] = verdict == Verdict::Equivalent && !drift;
+  report["scene"] = o.scene;
+  nlohmann::ordered_json arm_list = nlohmann::ordered_json::array();
+  for (const Arm& arm : arms)
+    arm_list.push_back({{"label", arm.label},
+                        {"backend", to_string(arm.backend)},
+                        {"device", arm.compute ? arm.compute->device.describe() : "host"},
+                        {"faces", arm.surface->domain.face_count},
+                        {"agents", arm.scene.agents},
+                        {"time_step", arm.scene.time_step}});
+  report["arms"] = arm_list;
+  report["seeds"] = {{A.label, a_values.size()}, {B.label, b_values.size()}};
+  report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
+  report["sequential"] = {{"family_alpha", kFamilyAlpha},
+                          {"alpha_spending", "O'Brien-Fleming (Lan-DeMets), union bound over the looks"},
+                          {"batch", kBatch},
+                          {"max_seeds", max_seeds},
+                          {"looks", test.looks()},
+                          {"alpha_spent", test.alpha_spent()}};
+  // How this run went (the rest of the report is the same whatever the threads and the machine's load).
+  report["run"] = {{"jobs", jobs},
+                   {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+  report["left_out"] = A.metrics->left_out();
+  if (!unsettled.empty()) report["unsettled"] = unsettled;
+  report["reference_source"] = stored ? o.reference_stats : "run here";
+  if (stored) report["drift"] = {{"fresh_reference_seeds", fresh_reference.size()}, {"drift", drift}, {"metrics", drift_rows}};
+  report["metrics"] = rows;
+  const std::string text = report.dump(2) + "\n";
   std::cout << text;
 
   if (!o.out.empty()) {
@@ -317,23 +374,23 @@ int run_compare(const CompareOptions& o) {
     const std::filesystem::path out(o.out);
     write_text_file_atomically((out / "verdict.json").string(), text);
     std::ostringstream csv;
-    csv << "backend,seed_index";
+    csv << "arm,seed_index";
     for (const MetricInfo& m : info) csv << "," << m.name;
     csv << "\n";
     csv.precision(17);
-    for (const auto& [name, matrix] : {std::pair<const char*, const Matrix*>{"reference", &reference}, {"opencl", &device}})
+    for (const auto& [label, matrix] : {std::pair<std::string, const Matrix*>{B.label, &b_values}, {A.label, &a_values}})
       for (size_t i = 0; i < matrix->size(); ++i) {
-        csv << name << "," << i;
+        csv << label << "," << i;
         for (double v : (*matrix)[i]) csv << "," << v;
         csv << "\n";
       }
     write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
-    write_comparison_plot((out / "spectra.png").string(), metric_names(metrics), reference, device);
+    write_comparison_plot((out / "spectra.png").string(), metric_names(*A.metrics), b_values, a_values);
   }
   if (drift)
     throw InputError(o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "
                      "above); the reference changed: regenerate the file with --store-reference");
-  return equivalent ? 0 : 1;
+  return exit_code(verdict);
 }
 
 }  // namespace
@@ -342,12 +399,19 @@ Command add_compare_command(CLI::App& parent) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App* app = parent.add_subcommand(
       "compare",
-      "Differential harness: decide whether the OpenCL backend simulates the same thing as the reference "
-      "(prints a JSON verdict; exit 0 equivalent, 1 not, 2 usage error)");
+      "Differential harness: decide whether two arms (the OpenCL backend and the reference, or one scene under two "
+      "--arm settings) simulate the same thing (prints a JSON verdict; exit 0 equivalent, 3 different, "
+      "4 inconclusive, 1 bad input, 2 usage error)");
   app->add_option("scene", options->scene, "Scene file (JSON); compare_* keys set the run length and margins")
       ->required();
+  app->add_option("--arm", options->arms,
+                  "An arm as scene overrides, key=value[,key=value...] (plus backend=reference|opencl, "
+                  "device=SPEC); give it twice. Default: OpenCL against the reference");
+  app->add_option("--max-seeds", options->max_seeds,
+                  "Seeds per arm at most (default: compare_seeds of the scene, else 64); the sequential test stops "
+                  "earlier when it can");
+  app->add_option("--jobs", options->jobs, "Worker threads for reference seeds (default: the cores)");
   app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
-  app->add_option("--seeds", options->seeds, "Seeds per arm (default: from the power calculation)");
   std::string faults;
   for (const opencl::PlantedFault& f : opencl::planted_faults()) faults += std::string("\n  ") + f.name + ": " + f.what;
   app->add_option("--fault", options->fault, "Plant a deliberate bug in the OpenCL kernels:" + faults);
@@ -358,7 +422,8 @@ Command add_compare_command(CLI::App& parent) {
                   "Fresh reference seeds run against --reference-stats to detect drift")
       ->capture_default_str();
   app->add_option("--store-reference", options->store_reference,
-                  "Run only the reference (--seeds, default 100) and store its per-seed metrics in this file");
+                  "Run only the reference (--seeds of them) and store its per-seed metrics in this file");
+  app->add_option("--seeds", options->store_seeds, "Seeds --store-reference runs")->capture_default_str();
   return Command{app, [options] { return run_compare(*options); }};
 }
 

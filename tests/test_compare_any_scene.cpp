@@ -1,0 +1,150 @@
+// The differential harness on scenes nobody tuned it for: shipped scenes with no compare_* keys,
+// run at the default settings (metrics from the scene's own scales, sequential seeds up to the
+// default budget), must be judged equivalent; the same machinery between two arms of one scene
+// (--arm) decides the paper's resolution claims; and the number of worker threads does not change
+// a verdict.
+//
+// In CI: the three new scenes' equivalence verdicts, the --jobs check and the usage errors.
+// Labelled `validation` (ctest -L validation; suites named Validation*): the planted faults on the
+// new scenes and the resolution and time-step studies, which take ~20 minutes here.
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+#include <string>
+
+namespace physarum::testing {
+namespace {
+
+std::string scene_path(const std::string& name) { return std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/" + name + ".json"; }
+
+struct Verdict {
+  CommandResult run;
+  nlohmann::json json;
+};
+
+Verdict compare(const std::string& scene, const std::string& extra) {
+  Verdict v;
+  v.run = run_physarum("compare '" + scene_path(scene) + "' " + extra);
+  try {
+    v.json = nlohmann::json::parse(v.run.out);
+  } catch (const nlohmann::json::exception&) {
+    v.json = nlohmann::json();
+  }
+  return v;
+}
+
+std::string summary(const Verdict& v) {
+  if (!v.json.is_object()) return "no verdict: " + v.run.err;
+  std::string s = v.json["verdict"].get<std::string>() + " after " + v.json["seeds"].dump() + " seeds;";
+  for (const auto& m : v.json["metrics"])
+    if (m["verdict"] != "equivalent") s += " " + m["name"].get<std::string>() + " (" + m["verdict"].get<std::string>() + ")";
+  return s;
+}
+
+// ---- new scenes at default settings: equivalent ----
+
+class NewScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(NewScene, IsJudgedEquivalentAtDefaultSettings) {
+  const Verdict v = compare(GetParam(), "");
+  ASSERT_TRUE(v.json.is_object()) << v.run.err;
+  std::cout << GetParam() << ": " << summary(v) << ", " << v.json["run"]["seconds"] << " s\n";
+  EXPECT_EQ(v.run.exit_code, 0) << summary(v);
+  EXPECT_EQ(v.json["verdict"], "equivalent");
+  for (const char* key : {"arms", "seeds", "sequential", "left_out", "metrics"}) EXPECT_TRUE(v.json.contains(key)) << key;
+}
+
+INSTANTIATE_TEST_SUITE_P(CompareAnyScene, NewScene, ::testing::Values("default", "repulsion", "torus_backward"),
+                         [](const auto& info) { return info.param; });
+
+// The default scene's 48 eigenpairs reach wavelengths far above its pattern (sensor distance 5 cm):
+// the harmonic bands are left out, and the verdict says why.
+TEST(CompareAnyScene, SpectralBandsAboveThePatternAreLeftOutWithAReason) {
+  const Verdict v = compare("default", "--max-seeds 8");
+  ASSERT_TRUE(v.json.is_object()) << v.run.err;
+  bool harmonic = false;
+  for (const auto& m : v.json["metrics"]) harmonic = harmonic || m["name"].get<std::string>().rfind("harmonic", 0) == 0;
+  EXPECT_FALSE(harmonic);
+  ASSERT_EQ(v.json["left_out"].size(), 1u);
+  EXPECT_NE(v.json["left_out"][0].get<std::string>().find("compare_eigenpairs"), std::string::npos);
+}
+
+// ---- every core: the same verdict with one worker and with two ----
+
+TEST(CompareAnyScene, OneAndTwoJobsGiveTheSameVerdict) {
+  const Verdict one = compare("repulsion", "--max-seeds 16 --jobs 1");
+  const Verdict two = compare("repulsion", "--max-seeds 16 --jobs 2");
+  ASSERT_TRUE(one.json.is_object() && two.json.is_object()) << one.run.err << two.run.err;
+  nlohmann::json a = one.json, b = two.json;
+  EXPECT_EQ(a["run"]["jobs"], 1);
+  EXPECT_EQ(b["run"]["jobs"], 2);
+  a.erase("run");  // wall time and thread count: the only parts that may differ
+  b.erase("run");
+  EXPECT_EQ(a.dump(), b.dump());
+  std::cout << "--jobs 1: " << one.json["run"]["seconds"] << " s, --jobs 2: " << two.json["run"]["seconds"] << " s\n";
+}
+
+TEST(CompareAnyScene, ArmsAreCheckedBeforeAnythingRuns) {
+  EXPECT_EQ(compare("repulsion", "--arm agents=100").run.exit_code, 2);
+  EXPECT_EQ(compare("repulsion", "--arm agents=100 --arm backend=cuda").run.exit_code, 2);
+  const Verdict unknown = compare("repulsion", "--arm agnets=100 --arm agents=200");
+  EXPECT_EQ(unknown.run.exit_code, 1);
+  EXPECT_NE(unknown.run.err.find("agnets"), std::string::npos) << unknown.run.err;
+  EXPECT_EQ(compare("repulsion", "--arm agents=100 --arm agents=200 --reference-stats x.json").run.exit_code, 2);
+}
+
+// ---- validation: planted faults on the new scenes ----
+
+class ValidationFaultsOnNewScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ValidationFaultsOnNewScene, HalfAreDifferentAndNoneEquivalent) {
+  int different = 0, total = 0;
+  for (const char* fault :
+       {"sensor-angle", "deposit-endpoint", "no-decay-substep", "uniform-face", "turn-every-step", "no-reflect"}) {
+    const Verdict v = compare(GetParam(), std::string("--fault ") + fault);
+    ASSERT_TRUE(v.json.is_object()) << fault << ": " << v.run.err;
+    std::cout << GetParam() << " with " << fault << ": " << summary(v) << "\n";
+    EXPECT_NE(v.json["verdict"], "equivalent") << fault << " slipped through on " << GetParam();
+    different += v.json["verdict"] == "different";
+    ++total;
+  }
+  EXPECT_GE(2 * different, total) << different << " of " << total << " faults judged different";
+}
+
+INSTANTIATE_TEST_SUITE_P(CompareAnyScene, ValidationFaultsOnNewScene,
+                         ::testing::Values("default", "repulsion", "torus_backward"),
+                         [](const auto& info) { return info.param; });
+
+// ---- validation: the paper's convergence claims (Fig. 10b, 10d) as verdicts ----
+
+// resolved.json resolves its diffusion length (sqrt(D / r_dec) = 0.07 m) and its sensor distance
+// (0.12 m) at max_circumradius 0.03 and finer.
+TEST(ValidationConvergence, TwoFineTriangulationsAreEquivalentAndACoarseOneIsNot) {
+  const Verdict fine = compare("resolved", "--arm max_circumradius=0.03 --arm max_circumradius=0.02");
+  ASSERT_TRUE(fine.json.is_object()) << fine.run.err;
+  std::cout << "0.03 against 0.02: " << summary(fine) << "\n";
+  EXPECT_EQ(fine.json["verdict"], "equivalent");
+  const Verdict coarse = compare("resolved", "--arm max_circumradius=0.2 --arm max_circumradius=0.02");
+  ASSERT_TRUE(coarse.json.is_object()) << coarse.run.err;
+  std::cout << "0.2 against 0.02: " << summary(coarse) << "\n";
+  EXPECT_EQ(coarse.json["verdict"], "different");
+}
+
+TEST(ValidationConvergence, TwoSmallTimeStepsAreEquivalentAndAnAliasingOneIsNot) {
+  const Verdict small = compare("resolved", "--arm time_step=0.005 --arm time_step=0.0025");
+  ASSERT_TRUE(small.json.is_object()) << small.run.err;
+  std::cout << "0.005 against 0.0025: " << summary(small) << "\n";
+  EXPECT_EQ(small.json["verdict"], "equivalent");
+  // 0.05 s steps with 20 decisions per second: every step is a decision, and agents move 2.5 cm
+  // a step, a fifth of the sensor distance.
+  const Verdict aliased = compare("resolved", "--arm time_step=0.05 --arm time_step=0.0025");
+  ASSERT_TRUE(aliased.json.is_object()) << aliased.run.err;
+  std::cout << "0.05 against 0.0025: " << summary(aliased) << "\n";
+  EXPECT_EQ(aliased.json["verdict"], "different");
+}
+
+}  // namespace
+}  // namespace physarum::testing

@@ -1,0 +1,145 @@
+#include "tools/comparison_arms.hpp"
+
+#include "common/errors.hpp"
+#include "tools/backend_factory.hpp"
+#include "tools/feasible_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <tuple>
+
+namespace physarum::cli {
+namespace {
+
+std::string trim(const std::string& s) {
+  const size_t first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+// Steps of one seed (burn-in + duration): the run whose work the fail-fast checks estimate.
+long long steps_per_seed(const Scene& scene) {
+  return std::max<long long>(1, std::llround((scene.comparison.burn_in + scene.comparison.duration) / scene.time_step));
+}
+
+auto surface_key(const Scene& s) {
+  return std::make_tuple(s.mesh, s.scale_to_area.value_or(-1.0), s.max_circumradius.value_or(-1.0), s.min_angle_deg);
+}
+
+std::vector<std::string> names(const ComparisonMetrics& m) {
+  std::vector<std::string> n;
+  for (const MetricInfo& info : m.metrics()) n.push_back(info.name);
+  return n;
+}
+
+}  // namespace
+
+ArmSpec parse_arm(const std::string& text) {
+  ArmSpec spec;
+  spec.label = text;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    const size_t eq = item.find('=');
+    const std::string key = trim(item.substr(0, eq)), value = eq == std::string::npos ? "" : trim(item.substr(eq + 1));
+    if (eq == std::string::npos || key.empty() || value.empty())
+      throw UsageError("--arm '" + text + "': expected key=value[,key=value...], got '" + item + "'");
+    if (key == "backend") {
+      spec.backend = parse_backend_choice(value);
+    } else if (key == "device") {
+      spec.device = value;
+    } else {
+      if (spec.scene_overrides.contains(key)) throw UsageError("--arm '" + text + "': key '" + key + "' given twice");
+      nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+      spec.scene_overrides[key] = parsed.is_discarded() ? nlohmann::json(value) : parsed;
+    }
+  }
+  if (text.empty()) throw UsageError("--arm: empty (expected key=value[,key=value...])");
+  return spec;
+}
+
+std::vector<double> Arm::run_seed(int index) const {
+  Scene s = scene;
+  s.seed = seed(index);
+  const auto sim = make_backend(backend, compute ? &*compute : nullptr, surface->domain, s, options);
+  return metrics->measure_seed(*sim);
+}
+
+std::vector<Arm> make_arms(const ArmsRequest& request) {
+  if (!request.arms.empty() && request.arms.size() != 2)
+    throw UsageError("--arm: give it exactly twice (the two arms), or not at all (OpenCL against the reference)");
+  const Scene base = load_scene(request.scene_path);
+
+  // What each arm simulates.
+  std::vector<Arm> arms;
+  if (request.arms.empty()) {
+    if (!request.reference_only) {
+      Arm opencl;
+      opencl.label = "opencl";
+      opencl.backend = BackendChoice::OpenCL;
+      arms.push_back(std::move(opencl));
+    }
+    Arm reference;
+    reference.label = "reference";
+    reference.backend = BackendChoice::Reference;
+    arms.push_back(std::move(reference));
+    for (Arm& a : arms) a.scene = base;
+  } else {
+    for (const ArmSpec& spec : request.arms) {
+      nlohmann::json overrides = spec.scene_overrides;
+      // Fig. 10c: another agent count with the deposit rescaled so that U (Eq. 5) stays the same.
+      if (overrides.contains("agents") && overrides["agents"].is_number_integer() && !overrides.contains("deposit_rate")) {
+        const double agents = overrides["agents"].get<double>();
+        if (agents > 0)
+          overrides["deposit_rate"] =
+              to_file_units(parameter_spec(Param::deposit_rate), base.parameters[Param::deposit_rate]) * base.agents / agents;
+      }
+      Arm a;
+      a.label = spec.label;
+      a.backend = spec.backend.value_or(BackendChoice::OpenCL);
+      a.scene = load_scene(request.scene_path, overrides);
+      arms.push_back(std::move(a));
+    }
+  }
+  for (size_t i = 0; i < arms.size(); ++i)
+    arms[i].seed_offset = (i + 1 == arms.size() && arms.size() == 2) || request.reference_only ? kSecondArmSeedOffset : 0;
+
+  // Surfaces, built once where the arms share one.
+  for (size_t i = 0; i < arms.size(); ++i) {
+    for (size_t j = 0; j < i; ++j)
+      if (surface_key(arms[j].scene) == surface_key(arms[i].scene)) arms[i].surface = arms[j].surface;
+    if (!arms[i].surface)
+      arms[i].surface =
+          std::make_shared<const SceneSurface>(prepare_feasible_surface(arms[i].scene, steps_per_seed(arms[i].scene)));
+  }
+
+  // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
+  const bool shared = arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
+  for (size_t i = 0; i < arms.size(); ++i) {
+    if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
+        arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
+        arms[i].scene.comparison.spectrum_bands == arms[0].scene.comparison.spectrum_bands)
+      arms[i].metrics = arms[0].metrics;  // the eigenpairs and smoothers are computed once
+    else
+      arms[i].metrics = std::make_shared<const ComparisonMetrics>(
+          *arms[i].surface, arms[i].scene, shared ? ArmsShare::Discretisation : ArmsShare::ContinuumOnly);
+  }
+  if (arms.size() == 2 && names(*arms[0].metrics) != names(*arms[1].metrics))
+    throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
+                     "' measure different metric sets (their flatness or spectral reach differs); compare arms "
+                     "that differ in discretisation or settings of one surface");
+
+  // Devices.
+  for (size_t i = 0; i < arms.size(); ++i) {
+    Arm& a = arms[i];
+    if (a.backend != BackendChoice::OpenCL) continue;
+    const std::string device =
+        request.arms.empty() ? request.device : request.arms[i].device.value_or(request.device);
+    a.compute = opencl::make_compute_context(device);
+    a.options.build_options = request.fault_build_option;
+  }
+  return arms;
+}
+
+}  // namespace physarum::cli
