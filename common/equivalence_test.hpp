@@ -21,28 +21,27 @@
 // The unit of replication is the seed. Never pass the vertex values of one field as a sample: they
 // are strongly correlated, and a test on them would claim absurd precision.
 //
-// The Student t distribution is computed here from the regularized incomplete beta function
-// (continued fraction evaluated with the modified Lentz method) because Boost.Math is not among the
-// project's packages; the tests check it against closed forms (1 and 2 degrees of freedom) and
-// printed tables.
+// The Student t and normal distributions come from Boost.Math (header-only, Debian's
+// libboost-math-dev) with its default policy; Boost's errors are reported as InputError. The
+// tests check them against closed forms (1, 2 and 4 degrees of freedom) and printed tables.
 #include <vector>
 
 namespace physarum {
 
 // ---- distributions -------------------------------------------------------------------------------
 
-// I_x(a, b), the regularized incomplete beta function, for a, b > 0 and 0 <= x <= 1. Relative
-// accuracy about 1e-14 over the range the t distribution needs. Throws InputError outside the domain.
-double regularized_incomplete_beta(double a, double b, double x);
-
 // P(T <= t) for Student's t with `df` > 0 degrees of freedom (df need not be an integer; +infinity
-// gives the standard normal).
+// gives the standard normal). The lower tail is accurate to a few ulps; for t > 0 the result is
+// 1 - (upper tail), so ask for small upper tails as student_t_cdf(-t, df). Throws InputError for
+// df <= 0 or a NaN t.
 double student_t_cdf(double t, double df);
 
-// The t with P(T <= t) = p, for 0 < p < 1 (safeguarded Newton on student_t_cdf, to ~1e-12 relative).
+// The t with P(T <= t) = p, for 0 < p < 1 (Boost's quantile, to about machine precision). Throws InputError
+// for p outside (0, 1) or df <= 0.
 double student_t_quantile(double p, double df);
 
-// Standard normal CDF and quantile (the df = infinity limit; used for the normal-approximation start).
+// Standard normal CDF and quantile (the df = infinity limit; used for the normal-approximation start
+// and the alpha-spending function). The quantile needs 0 < p < 1.
 double standard_normal_cdf(double z);
 double standard_normal_quantile(double p);
 
@@ -98,8 +97,9 @@ double sidak_alpha(double family_alpha, int tests);
 //   power(n) = T_df((margin - delta)/se - t_{1-alpha,df}) + T_df((margin + delta)/se - t_{1-alpha,df}) - 1
 // with delta = |true_difference|, clipped at 0. For delta = 0 and large df this is the familiar
 //   n >= 2 sd^2 (z_{1-alpha} + z_{1-beta/2})^2 / margin^2,   beta = 1 - power.
-// tost_seeds_per_arm returns the smallest n >= 2 with power(n) >= the target, found by starting at
-// the normal-approximation n and stepping with t quantiles (power(n) increases with n).
+// tost_seeds_per_arm returns the smallest n >= 2 with power(n) >= the target, found by galloping
+// from the normal-approximation n (steps 1, 2, 4, ... up or down) to a bracket and bisecting it
+// (power(n) increases with n).
 
 // The approximate power above for n seeds per arm (n >= 2).
 double tost_power(double sd, double margin, double alpha, int n, double true_difference = 0.0);
