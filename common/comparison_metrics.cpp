@@ -18,6 +18,9 @@ constexpr double kPi = 3.14159265358979323846;
 // are a few d apart), and 1/4 .. 4 d brackets it from the strands' width to the network's cells.
 constexpr double kDetailScales[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 constexpr double kCoarsestDetailScale = 4.0;
+// Fewest manifold harmonics in one band: a band's power then varies by well under its margin from
+// seed to seed (the power of k independent modes has a relative spread of about sqrt(2 / k)).
+constexpr int kMinModesPerBand = 16;
 
 std::string metres(double v) {
   char text[32];
@@ -57,9 +60,12 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   // and the top cluster is dropped when it reaches the last computed eigenvalue (the solver may
   // have returned only part of it).
   //
-  // They are in the set only where the computed eigenpairs reach the pattern's scale (the shortest
-  // wavelength 2 pi / sqrt(lambda_max) at most 4 d): there they add the distribution of the power
-  // over the scales the detail energies summarise. Below it every band lies above the pattern.
+  // Only the modes at the pattern's scale or finer (wavelength 2 pi / sqrt(lambda) at most 4 d)
+  // are used, in bands of at least kMinModesPerBand modes: there they add how the power is spread
+  // over the scales the detail energies summarise. Modes above the pattern's scale see only how its
+  // cells happen to be laid out on the surface, which is metastable and differs from seed to seed
+  // by as much as a third, and a band of a few modes swings as much: no affordable number of seeds
+  // decides either. Without enough such modes among the computed eigenpairs, no bands.
   if (!same_discretisation) {
     left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ");
   } else {
@@ -67,24 +73,24 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
     const Eigen::VectorXd& lambda = eigenpairs_.values;
     const int computed = static_cast<int>(lambda.size());
     const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
-    const double shortest_wavelength = lambda_max > 0.0 ? 2.0 * kPi / std::sqrt(lambda_max) : INFINITY;
-    if (shortest_wavelength > pattern_scale) {
-      // Weyl's law, N(lambda) ~ area lambda / (4 pi), at lambda = (2 pi / pattern_scale)^2.
-      const double needed = kPi * domain_.total_area / (pattern_scale * pattern_scale);
-      left_out_.push_back("harmonic bands: the " + std::to_string(computed) + " eigenpairs reach wavelengths of " +
-                          metres(shortest_wavelength) + ", coarser than the pattern's scale 4 d = " +
-                          metres(pattern_scale) + " (compare_eigenpairs of about " +
-                          std::to_string(static_cast<long long>(std::ceil(needed))) + " would reach it)");
+    const double lambda_pattern = (2.0 * kPi / pattern_scale) * (2.0 * kPi / pattern_scale);
+    const double tie = 1e-6 * lambda_max;
+    int first = 0, end = computed;
+    while (first < computed && (lambda[first] <= 1e-8 * lambda_max || lambda[first] < lambda_pattern)) ++first;
+    while (first > 0 && first < computed && lambda[first] - lambda[first - 1] <= tie) ++first;  // whole eigenspaces
+    while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
+    const int usable = end - first;
+    const int bands = std::min<int>(c.spectrum_bands, usable / kMinModesPerBand);
+    if (bands < 1) {
+      // Weyl's law, N(lambda) ~ area lambda / (4 pi): the modes above the pattern's scale, plus one band.
+      const double needed = domain_.total_area * lambda_pattern / (4.0 * kPi) + kMinModesPerBand + 1;
+      const double shortest = lambda_max > 0.0 ? 2.0 * kPi / std::sqrt(lambda_max) : INFINITY;
+      left_out_.push_back("harmonic bands: " + std::to_string(usable) + " of the " + std::to_string(computed) +
+                          " eigenpairs (shortest wavelength " + metres(shortest) + ") lie at the pattern's scale 4 d = " +
+                          metres(pattern_scale) + " or finer, fewer than the " + std::to_string(kMinModesPerBand) +
+                          " a band needs (compare_eigenpairs of about " +
+                          std::to_string(static_cast<long long>(std::ceil(needed))) + " would give one)");
     } else {
-      const double tie = 1e-6 * lambda_max;
-      int first = 0, end = computed;
-      while (first < computed && lambda[first] <= 1e-8 * lambda_max) ++first;  // constant modes
-      while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
-      const int usable = end - first;
-      const int bands = std::min<int>(c.spectrum_bands, usable);
-      if (bands < 1)
-        throw InputError("compare: the surface has no non-constant manifold harmonic among the " +
-                         std::to_string(computed) + " computed");
       harmonic_band_of_mode_.assign(static_cast<size_t>(computed), -1);
       int band = 0;
       for (int k = first; k < end; ++k) {

@@ -63,8 +63,9 @@ struct CompareOptions {
   std::string reference_stats;
   int reference_seeds = 3;
   std::string store_reference;
-  int store_seeds = 100;
 };
+
+constexpr int kStoredSeeds = 100;  // --store-reference without --seeds
 
 constexpr double kFamilyAlpha = 0.05;  // each kind of false verdict (equivalent, different) at most this often
 // Seeds per arm between two looks: enough that the first look has a usable spread, few enough that
@@ -243,8 +244,7 @@ int exit_code(Verdict v) {
 }
 
 int run_compare(const CompareOptions& o) {
-  if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds must be >= 2");
-  if (o.store_seeds < 2) throw UsageError("--seeds must be >= 2");
+  if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds (--seeds) must be >= 2");
   if (o.reference_seeds < 2) throw UsageError("--reference-seeds must be >= 2");
   if (o.jobs < 0) throw UsageError("--jobs must be >= 1");
   if (!o.store_reference.empty() && (!o.reference_stats.empty() || !o.fault.empty() || !o.arms.empty()))
@@ -263,10 +263,11 @@ int run_compare(const CompareOptions& o) {
 
   if (!o.store_reference.empty()) {
     Matrix values;
-    run_batch(arms, tasks_for(0, 0, o.store_seeds), jobs, {&values}, "reference");
+    const int seeds = o.max_seeds.value_or(kStoredSeeds);
+    run_batch(arms, tasks_for(0, 0, seeds), jobs, {&values}, "reference");
     if (show_progress()) std::cerr << "\n";
     store_reference(o.store_reference, arms[0].scene, *arms[0].metrics, values);
-    std::cout << "physarum compare: stored " << o.store_seeds << " reference seeds of " << o.scene << " in "
+    std::cout << "physarum compare: stored " << seeds << " reference seeds of " << o.scene << " in "
               << o.store_reference << "\n";
     return 0;
   }
@@ -276,13 +277,21 @@ int run_compare(const CompareOptions& o) {
   const bool backends = o.arms.empty();  // the two backends on one scene: the analytic row is judged too
   std::vector<std::string> names = metric_names(*A.metrics);
   if (backends) names.push_back(kAnalyticMetric);
-  const int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
-  SequentialEquivalence test(static_cast<int>(names.size()), kFamilyAlpha, max_seeds);
+  int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
 
   // ---- the second arm: stored, or run here batch by batch beside the first ----
   const bool stored = !o.reference_stats.empty();
   Matrix a_values, b_values, fresh_reference;
-  if (stored) b_values = load_reference(o.reference_stats, B.scene, *B.metrics);
+  if (stored) {
+    b_values = load_reference(o.reference_stats, B.scene, *B.metrics);
+    // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
+    if (max_seeds > static_cast<int>(b_values.size())) {
+      max_seeds = static_cast<int>(b_values.size());
+      std::cerr << "physarum compare: at most " << max_seeds << " seeds per arm, as many as " << o.reference_stats
+                << " holds\n";
+    }
+  }
+  SequentialEquivalence test(static_cast<int>(names.size()), kFamilyAlpha, max_seeds);
 
   const auto start = std::chrono::steady_clock::now();
   Verdict verdict = Verdict::Continue;
@@ -407,9 +416,9 @@ Command add_compare_command(CLI::App& parent) {
   app->add_option("--arm", options->arms,
                   "An arm as scene overrides, key=value[,key=value...] (plus backend=reference|opencl, "
                   "device=SPEC); give it twice. Default: OpenCL against the reference");
-  app->add_option("--max-seeds", options->max_seeds,
+  app->add_option("--max-seeds,--seeds", options->max_seeds,
                   "Seeds per arm at most (default: compare_seeds of the scene, else 64); the sequential test stops "
-                  "earlier when it can");
+                  "earlier when it can. With --store-reference: the seeds stored (default 100)");
   app->add_option("--jobs", options->jobs, "Worker threads for reference seeds (default: the cores)");
   app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
   std::string faults;
@@ -423,7 +432,6 @@ Command add_compare_command(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--store-reference", options->store_reference,
                   "Run only the reference (--seeds of them) and store its per-seed metrics in this file");
-  app->add_option("--seeds", options->store_seeds, "Seeds --store-reference runs")->capture_default_str();
   return Command{app, [options] { return run_compare(*options); }};
 }
 

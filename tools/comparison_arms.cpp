@@ -59,10 +59,10 @@ ArmSpec parse_arm(const std::string& text) {
   return spec;
 }
 
-std::vector<double> Arm::run_seed(int index) const {
+std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* stream) const {
   Scene s = scene;
   s.seed = seed(index);
-  const auto sim = make_backend(backend, compute ? &*compute : nullptr, surface->domain, s, options);
+  const auto sim = make_backend(backend, stream ? stream : compute ? &*compute : nullptr, surface->domain, s, options);
   return metrics->measure_seed(*sim);
 }
 

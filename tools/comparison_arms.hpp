@@ -50,8 +50,9 @@ struct Arm {
   std::uint32_t seed_offset = 0;
 
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
-  // Runs seed `index` from a fresh simulation and returns its time-averaged metrics.
-  std::vector<double> run_seed(int index) const;
+  // Runs seed `index` from a fresh simulation and returns its time-averaged metrics; an OpenCL arm
+  // runs it on `stream` (a queue of its context) when given, else on its context's own queue.
+  std::vector<double> run_seed(int index, const opencl::ComputeContext* stream = nullptr) const;
 };
 
 struct ArmsRequest {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 namespace physarum::cli {
@@ -28,12 +29,19 @@ std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, co
   int done = 0;
 
   auto work = [&](size_t queue) {
+    // An OpenCL arm's thread: a queue of its own on the arm's context.
+    std::optional<opencl::ComputeContext> stream;
     while (!failed) {
       const size_t k = next[queue]++;
       if (k >= queues[queue].size()) return;
       const size_t t = queues[queue][k];
       try {
-        results[t] = arms[static_cast<size_t>(tasks[t].arm)].run_seed(tasks[t].index);
+        const Arm& arm = arms[static_cast<size_t>(tasks[t].arm)];
+        if (queue > 0 && !stream) {
+          stream = *arm.compute;
+          stream->queue = cl::CommandQueue(stream->context, stream->device.device);
+        }
+        results[t] = arm.run_seed(tasks[t].index, stream ? &*stream : nullptr);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(mutex);
         if (!error) error = std::current_exception();
@@ -50,7 +58,8 @@ std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, co
   const size_t host_workers = std::min(static_cast<size_t>(jobs), queues[0].size());
   for (size_t w = 0; w < host_workers; ++w) threads.emplace_back(work, 0);
   for (size_t q = 1; q < queues.size(); ++q)
-    if (!queues[q].empty()) threads.emplace_back(work, q);
+    for (size_t s = 0; s < std::min(static_cast<size_t>(kDeviceStreams), queues[q].size()); ++s)
+      threads.emplace_back(work, q);
   for (std::thread& t : threads) t.join();
   if (error) std::rethrow_exception(error);
   return results;

@@ -1,14 +1,18 @@
 #pragma once
 // Runs the seeds of a comparison on every core and device at once: the seeds of reference arms on a
-// pool of `jobs` worker threads, the seeds of each OpenCL arm on a thread of its own that feeds its
-// device, all at the same time. Every result is stored at its task's place, so what comes back does
-// not depend on which thread finished first: `--jobs 1` and `--jobs 8` give the same numbers.
+// pool of `jobs` worker threads, the seeds of each OpenCL arm on kDeviceStreams threads of their own,
+// each feeding the arm's device through a command queue of its own (a small scene's kernels do not
+// fill a device: two simulations in flight keep it busy while the host prepares the next
+// launches), all at the same time. Every result is stored at its task's place, so what comes back
+// does not depend on which thread finished first: `--jobs 1` and `--jobs 8` give the same numbers.
 #include "tools/comparison_arms.hpp"
 
 #include <functional>
 #include <vector>
 
 namespace physarum::cli {
+
+constexpr int kDeviceStreams = 2;
 
 struct SeedTask {
   int arm = 0;
