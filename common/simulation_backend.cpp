@@ -24,6 +24,29 @@ void check_simulation_inputs(const SurfaceDomain& domain, const VertexParameters
                        std::to_string(params[Param::turn_frequency][i]) + " (must be > 0)");
 }
 
+void check_layer_index(int layer, int layer_count, const std::string& who, const std::string& what) {
+  if (layer < 0 || layer >= layer_count)
+    throw InputError(who + ": " + what + ": no field layer " + std::to_string(layer) + " (layers 0.." +
+                     std::to_string(layer_count - 1) + ")");
+}
+
+void check_layer_values(const IntrinsicVertexData<double>& values, int vertex_count, int layer,
+                        const std::string& who, const std::string& what) {
+  if (values.size() != static_cast<size_t>(vertex_count))
+    throw InputError(who + ": " + what + " of field layer " + std::to_string(layer) + " got " +
+                     std::to_string(values.size()) + " values for " + std::to_string(vertex_count) + " vertices");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw InputError(who + ": " + what + " of field layer " + std::to_string(layer) + ": the value at vertex " +
+                       std::to_string(i) + " is " + std::to_string(values[i]) + " (must be finite)");
+}
+
+void check_layer_value(double value, int layer, const std::string& who, const std::string& what) {
+  if (!std::isfinite(value))
+    throw InputError(who + ": " + what + " of field layer " + std::to_string(layer) + " with " +
+                     std::to_string(value) + " (must be finite)");
+}
+
 SimulationSettings simulation_settings(const Scene& scene) {
   SimulationSettings s;
   s.agents = scene.agents;

@@ -28,6 +28,15 @@ struct VertexParameters;
 void check_simulation_inputs(const SurfaceDomain& domain, const VertexParameters& params,
                              const SimulationSettings& settings, const std::string& who);
 
+// The checks every backend makes on a layer access (the field calls of SimulationBackend below):
+// the index is in [0, layer_count); values are one per vertex and all finite; a fill value is
+// finite. Each throws InputError whose message starts with `who` ("simulation", "opencl
+// simulation"), then `what` (the call: "set_field", "add_static_layer", ...), and names the layer.
+void check_layer_index(int layer, int layer_count, const std::string& who, const std::string& what);
+void check_layer_values(const IntrinsicVertexData<double>& values, int vertex_count, int layer,
+                        const std::string& who, const std::string& what);
+void check_layer_value(double value, int layer, const std::string& who, const std::string& what);
+
 // Running totals for throughput figures (run.json). Face crossings are the unit of work of an
 // agent step: each costs one dependent read of a face record.
 struct SimulationCounters {
@@ -56,8 +65,18 @@ class SimulationBackend {
   // call it before reading the clock.
   virtual void finish() {}
 
-  // ---- fields: the simulation's per-vertex layers, dynamic ones first (layer 0: the pheromone) ----
-  virtual int layer_count() const = 0;
+  // ---- fields: the simulation's per-vertex layers ----
+  // Layers 0 .. dynamic_layer_count()-1 are dynamic: step() advances them with their field model
+  // (layer 0: the pheromone the agents deposit into and sense). The layers after them are static:
+  // fixed maps (for the read-stimuli) that never advance and never receive deposits; they change
+  // only through set_field / fill_field. Every call below takes any layer, dynamic or static; a
+  // layer index out of range, a wrong number of values or a non-finite value throws InputError
+  // naming the layer.
+  virtual int layer_count() const = 0;  // dynamic + static
+  virtual int dynamic_layer_count() const = 0;
+  // Appends a static layer with `values` (one per intrinsic vertex) and returns its index (the
+  // static layers follow the dynamic ones, in the order they were added).
+  virtual int add_static_layer(const IntrinsicVertexData<double>& values) = 0;
   // A layer's values per intrinsic vertex (a copy; may read back from a device).
   virtual IntrinsicVertexData<double> field_values(int layer = 0) const = 0;
   virtual void set_field(const IntrinsicVertexData<double>& values, int layer = 0) = 0;

@@ -207,7 +207,8 @@ void OpenCLSimulation::step() {
     constants_.step = static_cast<dev_uint>(steps_taken_);
     enqueue_sensing();
     enqueue_agent_step();
-    // The field model puts the deposits where its scheme needs them (field_model.hpp).
+    // The field model puts the deposits where its scheme needs them (field_model.hpp). One dynamic
+    // layer today; static fields (static_fields_) never advance.
     layers_[0]->advance(deposits_, deposit_scale_);
   } catch (const cl::Error& e) {
     throw device_error("simulation step " + std::to_string(steps_taken_) + " on " + compute_.device.device_name,
@@ -218,27 +219,43 @@ void OpenCLSimulation::step() {
 
 void OpenCLSimulation::finish() { compute_.queue.finish(); }
 
-OpenCLFieldLayer& OpenCLSimulation::layer(int index) const {
-  if (index < 0 || index >= layer_count())
-    throw InputError("opencl simulation: no field layer " + std::to_string(index) + " (it has " +
-                     std::to_string(layer_count()) + ")");
-  return *layers_[static_cast<size_t>(index)];
+OpenCLField& OpenCLSimulation::checked_layer(int index, const char* what) const {
+  check_layer_index(index, layer_count(), "opencl simulation", what);
+  const size_t i = static_cast<size_t>(index);
+  if (i < layers_.size()) return *layers_[i];
+  return *static_fields_[i - layers_.size()];
+}
+
+OpenCLField& OpenCLSimulation::layer(int index) const { return checked_layer(index, "layer"); }
+
+int OpenCLSimulation::add_static_layer(const IntrinsicVertexData<double>& domain_values) {
+  const int index = layer_count();
+  check_layer_values(domain_values, domain_.vertex_count, index, "opencl simulation", "add_static_layer");
+  static_fields_.push_back(std::make_unique<OpenCLStaticField>(
+      compute_, "static field layer " + std::to_string(index), to_device_order(domain_.vertex_mass, vertex_order_),
+      to_device_order(domain_values, vertex_order_)));
+  return index;
 }
 
 IntrinsicVertexData<double> OpenCLSimulation::field_values(int index) const {
-  return to_domain_order(layer(index).concentration(), vertex_order_);
+  return to_domain_order(checked_layer(index, "field_values").concentration(), vertex_order_);
 }
 
 void OpenCLSimulation::set_field(const IntrinsicVertexData<double>& domain_values, int index) {
-  if (domain_values.size() != static_cast<size_t>(domain_.vertex_count))
-    throw InputError("opencl simulation: set_field got " + std::to_string(domain_values.size()) +
-                     " values for " + std::to_string(domain_.vertex_count) + " vertices");
-  layer(index).set_concentration(to_device_order(domain_values, vertex_order_));
+  OpenCLField& field = checked_layer(index, "set_field");
+  check_layer_values(domain_values, domain_.vertex_count, index, "opencl simulation", "set_field");
+  field.set_concentration(to_device_order(domain_values, vertex_order_));
 }
 
-void OpenCLSimulation::fill_field(double value, int index) { layer(index).fill(value); }
+void OpenCLSimulation::fill_field(double value, int index) {
+  OpenCLField& field = checked_layer(index, "fill_field");
+  check_layer_value(value, index, "opencl simulation", "fill_field");
+  field.fill(value);
+}
 
-FieldStatistics OpenCLSimulation::field_statistics(double U, int index) const { return layer(index).statistics(U); }
+FieldStatistics OpenCLSimulation::field_statistics(double U, int index) const {
+  return checked_layer(index, "field_statistics").statistics(U);
+}
 
 // The device keeps faces in its locality order (face_records.hpp); the host sees domain faces.
 std::vector<int> OpenCLSimulation::agent_faces() const {
@@ -287,6 +304,8 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   std::vector<std::string> damaged;
   for (const auto& layer : layers_)
     for (const std::string& name : layer->damaged_canaries()) damaged.push_back(name);
+  for (const auto& field : static_fields_)
+    for (const std::string& name : field->damaged_canaries()) damaged.push_back(name);
   std::vector<const DeviceBuffer*> guarded = agents_.buffers();
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);

@@ -6,7 +6,8 @@
 //        memory order only: results do not change
 //   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer, move + deposit, turnover
 //   4.   fields: every dynamic layer advances with this step's deposits, where its model puts
-//        them (opencl/field_model.hpp; today one diffusion-decay layer, opencl/diffusion_decay.hpp)
+//        them (opencl/field_model.hpp; today one diffusion-decay layer, opencl/diffusion_decay.hpp);
+//        static layers (opencl/static_field.hpp) do not take part
 //   5.   time += dt
 //
 // step() only enqueues: forward Euler runs with no host round trip at all; backward Euler reads the
@@ -26,9 +27,11 @@
 #include "opencl/agents.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
+#include "opencl/field.hpp"
 #include "opencl/field_model.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/diffusion_decay.hpp"
+#include "opencl/static_field.hpp"
 
 #include <memory>
 #include <string>
@@ -72,8 +75,10 @@ class OpenCLSimulation final : public SimulationBackend {
   double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
   long long steps_taken() const override { return steps_taken_; }
   // Fields in the domain's vertex order (the device keeps its own locality order). One dynamic
-  // layer today: the pheromone.
-  int layer_count() const override { return static_cast<int>(layers_.size()); }
+  // layer today: the pheromone; static layers after it.
+  int layer_count() const override { return static_cast<int>(layers_.size() + static_fields_.size()); }
+  int dynamic_layer_count() const override { return static_cast<int>(layers_.size()); }
+  int add_static_layer(const IntrinsicVertexData<double>& domain_values) override;
   IntrinsicVertexData<double> field_values(int layer = 0) const override;
   void set_field(const IntrinsicVertexData<double>& domain_values, int layer = 0) override;
   void fill_field(double value, int layer = 0) override;
@@ -86,18 +91,21 @@ class OpenCLSimulation final : public SimulationBackend {
   // ---- for tests: identical states in, identical states out ----
   Agents read_agents() const;
   void write_agents(const Agents& agents);
-  // A device layer itself, in the device's vertex order (face_records.hpp): for order-free uses
-  // (fill, total_amount); per-vertex values go through field_values / set_field.
-  OpenCLFieldLayer& layer(int index) const;
+  // A device layer itself (dynamic or static), in the device's vertex order (face_records.hpp):
+  // for order-free uses (fill, total_amount); per-vertex values go through field_values / set_field.
+  // Throws InputError for an index out of range.
+  OpenCLField& layer(int index) const;
   double deposit_scale() const { return deposit_scale_; }
   bool fixed_point_deposits() const { return fixed_point_; }
-  // Names of device buffers a kernel wrote past (empty when every canary is intact).
+  // Names of device buffers a kernel wrote past (empty when every canary is intact), static layers'
+  // included.
   std::vector<std::string> damaged_canaries() const;
 
  private:
   struct Kernels;
   void enqueue_agent_step();
   void enqueue_sensing();
+  OpenCLField& checked_layer(int index, const char* what) const;
 
   ComputeContext compute_;
   const SurfaceDomain& domain_;
@@ -108,6 +116,7 @@ class OpenCLSimulation final : public SimulationBackend {
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
   std::vector<std::unique_ptr<OpenCLFieldLayer>> layers_;  // dynamic layers; layer 0 is sensed
+  std::vector<std::unique_ptr<OpenCLStaticField>> static_fields_;  // layers layers_.size() and on
   DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_;
   DeviceBuffer deposits_, group_counters_;
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)

@@ -34,7 +34,7 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexPara
       agents_(initialise_agents(domain_, hazard_rate_, params_[Param::turn_frequency], params_[Param::turn_rate],
                                 settings.agents, settings.seed)),
       field_model_(domain_, params_, settings.integrator, settings.time_step),
-      layers_(1, IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)),
+      layers_(kDynamicLayers, IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)),
       deposit_amount_(static_cast<size_t>(domain.vertex_count), 0.0) {
   segments_.reserve(64);
 }
@@ -70,7 +70,9 @@ void ReferenceSimulation::step() {
   move_and_deposit();
   counters_.respawns += advance_turnover(domain_, hazard_rate_, dt, settings_.seed, step_index, agents_);
 
-  // One dynamic layer today: the pheromone every agent deposits into.
+  // One dynamic layer today: the pheromone every agent deposits into. Static layers (after the
+  // dynamic ones) never advance.
+  static_assert(kDynamicLayers == 1);
   field_model_.advance(layers_[0], deposit_amount_);
 
   counters_.agent_steps += agents_.count();
@@ -79,17 +81,37 @@ void ReferenceSimulation::step() {
   time_ = static_cast<double>(steps_taken_) * dt;
 }
 
-void ReferenceSimulation::set_field(const IntrinsicVertexData<double>& values, int layer) {
-  if (values.size() != static_cast<size_t>(domain_.vertex_count))
-    throw InputError("simulation: set_field got " + std::to_string(values.size()) + " values for " +
-                     std::to_string(domain_.vertex_count) + " vertices");
-  field(layer) = values;
+const IntrinsicVertexData<double>& ReferenceSimulation::checked_layer(int layer, const char* what) const {
+  check_layer_index(layer, layer_count(), "simulation", what);
+  return layers_[static_cast<size_t>(layer)];
 }
 
-void ReferenceSimulation::fill_field(double value, int layer) { field(layer).assign(field(layer).size(), value); }
+int ReferenceSimulation::add_static_layer(const IntrinsicVertexData<double>& values) {
+  const int layer = layer_count();
+  check_layer_values(values, domain_.vertex_count, layer, "simulation", "add_static_layer");
+  layers_.push_back(values);
+  return layer;
+}
+
+IntrinsicVertexData<double> ReferenceSimulation::field_values(int layer) const {
+  return checked_layer(layer, "field_values");
+}
+
+void ReferenceSimulation::set_field(const IntrinsicVertexData<double>& values, int layer) {
+  checked_layer(layer, "set_field");
+  check_layer_values(values, domain_.vertex_count, layer, "simulation", "set_field");
+  layers_[static_cast<size_t>(layer)] = values;
+}
+
+void ReferenceSimulation::fill_field(double value, int layer) {
+  checked_layer(layer, "fill_field");
+  check_layer_value(value, layer, "simulation", "fill_field");
+  IntrinsicVertexData<double>& f = layers_[static_cast<size_t>(layer)];
+  f.assign(f.size(), value);
+}
 
 FieldStatistics ReferenceSimulation::field_statistics(double U, int layer) const {
-  return compute_field_statistics(field(layer), domain_.vertex_mass, U);
+  return compute_field_statistics(checked_layer(layer, "field_statistics"), domain_.vertex_mass, U);
 }
 
 }  // namespace physarum

@@ -50,6 +50,8 @@ class ReferenceSimulation final : public SimulationBackend {
   const VertexParameters& parameters() const { return params_; }
   const Agents& agents() const { return agents_; }
   Agents& agents() { return agents_; }  // tests place agents by hand
+  // A layer itself (any layer; std::out_of_range past the end). The reference may be invalidated
+  // by add_static_layer.
   const IntrinsicVertexData<double>& field(int layer = 0) const { return layers_.at(static_cast<size_t>(layer)); }
   IntrinsicVertexData<double>& field(int layer = 0) { return layers_.at(static_cast<size_t>(layer)); }
   ReferenceDiffusionDecay& field_model() { return field_model_; }
@@ -58,7 +60,9 @@ class ReferenceSimulation final : public SimulationBackend {
 
   // ---- SimulationBackend ----
   int layer_count() const override { return static_cast<int>(layers_.size()); }
-  IntrinsicVertexData<double> field_values(int layer = 0) const override { return field(layer); }
+  int dynamic_layer_count() const override { return kDynamicLayers; }
+  int add_static_layer(const IntrinsicVertexData<double>& values) override;
+  IntrinsicVertexData<double> field_values(int layer = 0) const override;
   void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
   void fill_field(double value, int layer = 0) override;
   FieldStatistics field_statistics(double U, int layer = 0) const override;
@@ -70,6 +74,11 @@ class ReferenceSimulation final : public SimulationBackend {
 
  private:
   void move_and_deposit();
+  // The layer, after check_layer_index (InputError naming `what` when out of range).
+  const IntrinsicVertexData<double>& checked_layer(int layer, const char* what) const;
+
+  // One dynamic layer today: the pheromone (layer 0).
+  static constexpr int kDynamicLayers = 1;
 
   const SurfaceDomain& domain_;
   VertexParameters params_;
@@ -77,6 +86,7 @@ class ReferenceSimulation final : public SimulationBackend {
   IntrinsicVertexData<double> hazard_rate_;
   Agents agents_;
   ReferenceDiffusionDecay field_model_;
+  // The dynamic layers (kDynamicLayers of them), then the static ones in the order they were added.
   std::vector<IntrinsicVertexData<double>> layers_;
 
   double time_ = 0.0;
