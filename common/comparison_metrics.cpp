@@ -30,6 +30,10 @@ std::string metres(double v) {
 
 }  // namespace
 
+double mean_edge_length(const SurfaceDomain& domain) {
+  return std::sqrt(4.0 / std::sqrt(3.0) * domain.total_area / domain.face_count);
+}
+
 ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& scene, ArmsShare share)
     : domain_(surface.domain), settings_(scene.comparison), time_step_(scene.time_step) {
   U_ = uniform_steady_state(scene, domain_.total_area);
@@ -39,7 +43,7 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   // happen to be laid out on the surface, which is metastable and differs from seed to seed by as
   // much as a third, so no affordable number of seeds decides them.
   const double pattern_scale = kCoarsestDetailScale * d;
-  const bool same_discretisation = share == ArmsShare::Discretisation;
+  const bool same_discretisation = share.discretisation;
 
   // mean / U: the model's one analytic answer (Eq. 5); a backend that loses or invents mass fails
   // here before anything else.
@@ -111,14 +115,21 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
   for (double multiple : kDetailScales) {
     const double scale = multiple * d;
+    char name[32];
+    std::snprintf(name, sizeof name, "detail_%gd", multiple);
+    if (!same_discretisation && scale < kResolvedScaleInEdges * share.coarsest_edge_length) {
+      left_out_.push_back(std::string(name) + ": its scale " + metres(scale) + " is below " +
+                          std::to_string(static_cast<int>(kResolvedScaleInEdges)) +
+                          " edge lengths of the coarser arm's triangulation (" + metres(share.coarsest_edge_length) +
+                          " each), where the two triangulations resolve the field differently");
+      continue;
+    }
     const double t = (scale / (2.0 * kPi)) * (scale / (2.0 * kPi));
     Eigen::SparseMatrix<double> S = t * L;
     for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
     auto solver = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(S);
     if (solver->info() != Eigen::Success) throw InputError("compare: cannot factorise the diffusion smoother");
     smoothers_.push_back(solver);
-    char name[32];
-    std::snprintf(name, sizeof name, "detail_%gd", multiple);
     metrics_.push_back({name, MarginKind::Relative, c.margin_detail});
   }
 

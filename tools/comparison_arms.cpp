@@ -115,7 +115,10 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   }
 
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
-  const bool shared = arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
+  ArmsShare share;
+  share.discretisation =
+      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
+  for (const Arm& a : arms) share.coarsest_edge_length = std::max(share.coarsest_edge_length, mean_edge_length(a.surface->domain));
   for (size_t i = 0; i < arms.size(); ++i) {
     if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
         arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
@@ -123,7 +126,7 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
       arms[i].metrics = arms[0].metrics;  // the eigenpairs and smoothers are computed once
     else
       arms[i].metrics = std::make_shared<const ComparisonMetrics>(
-          *arms[i].surface, arms[i].scene, shared ? ArmsShare::Discretisation : ArmsShare::ContinuumOnly);
+          *arms[i].surface, arms[i].scene, share);
   }
   if (arms.size() == 2 && names(*arms[0].metrics) != names(*arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
