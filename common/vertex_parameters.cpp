@@ -11,8 +11,6 @@ VertexParameters VertexParameters::constant(const ParameterValues& values, int v
   return p;
 }
 
-bool VertexParameters::uniform(Param p) const { return is_uniform((*this)[p]); }
-
 bool is_uniform(const IntrinsicVertexData<double>& values) {
   return std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); });
 }

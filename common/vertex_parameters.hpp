@@ -16,9 +16,6 @@ class VertexParameters {
   const IntrinsicVertexData<double>& operator[](Param p) const { return values_[static_cast<std::size_t>(p)]; }
 
   int vertex_count() const { return static_cast<int>(values_.front().size()); }
-  // True when parameter p has one value everywhere.
-  bool uniform(Param p) const;
-
   // Every parameter constant, equal to `values`, on `vertex_count` vertices.
   static VertexParameters constant(const ParameterValues& values, int vertex_count);
 

@@ -246,7 +246,7 @@ TEST(Scene, VertexParametersAreConstantPerVertex) {
   EXPECT_EQ(p.vertex_count(), 7);
   for (const ParameterSpec& spec : kParameterTable) {
     EXPECT_EQ(p[spec.id].size(), 7u) << spec.key;
-    EXPECT_TRUE(p.uniform(spec.id)) << spec.key;
+    EXPECT_TRUE(is_uniform(p[spec.id])) << spec.key;
   }
   EXPECT_DOUBLE_EQ(p[Param::sensor_angle][3], s.parameters[Param::sensor_angle]);
   EXPECT_DOUBLE_EQ(p[Param::diffuse_rate][6], 0.0002);
