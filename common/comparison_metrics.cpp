@@ -35,8 +35,7 @@ double mean_edge_length(const SurfaceDomain& domain) {
 }
 
 ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& scene, ArmsShare share)
-    : domain_(surface.domain), settings_(scene.comparison), time_step_(scene.time_step) {
-  U_ = uniform_steady_state(scene, domain_.total_area);
+    : domain_(surface.domain), settings_(scene.comparison) {
   const ComparisonSettings& c = settings_;
   const double d = scene.parameters[Param::sensor_distance];
   // The coarsest scale the pattern has: spectral bands above it see only how the network's cells
@@ -167,11 +166,11 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
     left_out_.push_back("agent_density: its shot-noise floor (F - 1) / N differs between the arms' discretisations");
 }
 
-std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) const {
+std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim, double U) const {
   std::vector<double> m;
   m.reserve(metrics_.size());
-  const FieldStatistics stats = sim.field_statistics(U_);
-  m.push_back(stats.mean / U_);
+  const FieldStatistics stats = sim.field_statistics(U);
+  m.push_back(stats.mean / U);
   for (double coverage : stats.coverage) m.push_back(coverage);
 
   const IntrinsicVertexData<double> field = sim.field_values();
@@ -217,18 +216,23 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim) co
   return m;
 }
 
-std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim) const {
-  const auto steps_for = [&](double seconds) { return std::max<long long>(0, std::llround(seconds / time_step_)); };
-  const long long burn_in = steps_for(settings_.burn_in);
-  const long long every = std::max<long long>(1, steps_for(settings_.sample_interval));
-  const long long samples = std::max<long long>(1, steps_for(settings_.duration) / every);
+std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim, const Scene& scene) const {
+  // Run length, time step and U from the measured arm's own scene: an arm that shares these metrics
+  // with another of a different time step must still run the same SIMULATED time (with the other
+  // arm's dt it ran burn_in and duration scaled by the ratio of the steps).
+  const ComparisonSettings& run = scene.comparison;
+  const double U = uniform_steady_state(scene, domain_.total_area);
+  const auto steps_for = [&](double seconds) { return std::max<long long>(0, std::llround(seconds / scene.time_step)); };
+  const long long burn_in = steps_for(run.burn_in);
+  const long long every = std::max<long long>(1, steps_for(run.sample_interval));
+  const long long samples = std::max<long long>(1, steps_for(run.duration) / every);
   // The field starts at its analytic steady mean U, so the burn-in only has to let the pattern form.
-  sim.fill_field(U_);
+  sim.fill_field(U);
   sim.run(burn_in);
   std::vector<double> sum(metrics_.size(), 0.0);
   for (long long s = 0; s < samples; ++s) {
     sim.run(every);
-    const std::vector<double> m = snapshot(sim);
+    const std::vector<double> m = snapshot(sim, U);
     for (size_t i = 0; i < m.size(); ++i) sum[i] += m[i];
   }
   for (double& x : sum) x /= static_cast<double>(samples);

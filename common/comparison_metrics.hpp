@@ -62,7 +62,10 @@ double mean_edge_length(const SurfaceDomain& domain);
 class ComparisonMetrics {
  public:
   // Computes the eigenpairs for the band powers (scene.comparison.eigenpairs) and, when the surface
-  // is flat, the vertices' plane coordinates for the radial spectrum.
+  // is flat, the vertices' plane coordinates for the radial spectrum. `scene` sets the metric set
+  // and margins only: how long a seed runs, at what time step, and the U it is measured against
+  // belong to the scene of the arm being measured (measure_seed), so that two arms on one surface
+  // can share these (costly) metrics whatever else they differ in.
   ComparisonMetrics(const SceneSurface& surface, const Scene& scene, ArmsShare share = {});
 
   const std::vector<MetricInfo>& metrics() const { return metrics_; }
@@ -70,18 +73,18 @@ class ComparisonMetrics {
   const std::vector<std::string>& left_out() const { return left_out_; }
   bool flat() const { return flat_; }
 
-  // Runs one seed of `sim` (a fresh simulation: the field is first set to U) for burn_in + duration
-  // and returns its time-averaged metrics, in the order of metrics().
-  std::vector<double> measure_seed(SimulationBackend& sim) const;
+  // Runs one seed of `sim` (a fresh simulation of `scene`: the field is first set to the scene's U of
+  // Eq. 5) for the scene's burn_in + duration, in steps of the scene's time_step, and returns its
+  // time-averaged metrics, in the order of metrics(). `scene` must be the one `sim` simulates (the
+  // arm's own, not necessarily the one these metrics were built from).
+  std::vector<double> measure_seed(SimulationBackend& sim, const Scene& scene) const;
 
-  // The metrics of one snapshot of the simulation's current state.
-  std::vector<double> snapshot(const SimulationBackend& sim) const;
+  // The metrics of one snapshot of the simulation's current state; U is its scene's Eq. 5 value.
+  std::vector<double> snapshot(const SimulationBackend& sim, double U) const;
 
  private:
   const SurfaceDomain& domain_;
   ComparisonSettings settings_;
-  double time_step_ = 0.0;
-  double U_ = 0.0;
   Eigenpairs eigenpairs_;
   int harmonic_bands_ = 0;
   int radial_bands_ = 0;

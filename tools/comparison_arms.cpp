@@ -63,7 +63,7 @@ std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* strea
   Scene s = scene;
   s.seed = seed(index);
   const auto sim = make_backend(backend, stream ? stream : compute ? &*compute : nullptr, surface->domain, s, options);
-  return metrics->measure_seed(*sim);
+  return metrics->measure_seed(*sim, s);
 }
 
 std::vector<Arm> make_arms(const ArmsRequest& request) {
@@ -123,7 +123,8 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
         arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
         arms[i].scene.comparison.spectrum_bands == arms[0].scene.comparison.spectrum_bands)
-      arms[i].metrics = arms[0].metrics;  // the eigenpairs and smoothers are computed once
+      arms[i].metrics = arms[0].metrics;  // the eigenpairs and smoothers are computed once (run length, dt
+                                          // and U are each arm's own: measure_seed)
     else
       arms[i].metrics = std::make_shared<const ComparisonMetrics>(
           *arms[i].surface, arms[i].scene, share);
