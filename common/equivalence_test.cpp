@@ -12,20 +12,21 @@
 #include <string>
 
 namespace physarum {
-namespace {
 
-std::string num(double v) {
+std::string exact_number(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
+namespace {
+
 void check_probability(double p, const char* what) {
-  if (!(p > 0.0 && p < 1.0)) throw InputError(std::string(what) + ": probability " + num(p) + " is not in (0, 1)");
+  if (!(p > 0.0 && p < 1.0)) throw InputError(std::string(what) + ": probability " + exact_number(p) + " is not in (0, 1)");
 }
 
 void check_df(double df, const char* what) {
-  if (!(df > 0.0)) throw InputError(std::string(what) + ": degrees of freedom " + num(df) + " are not > 0");
+  if (!(df > 0.0)) throw InputError(std::string(what) + ": degrees of freedom " + exact_number(df) + " are not > 0");
 }
 
 // Runs one Boost.Math evaluation and reports its errors (domain, overflow, evaluation: under
@@ -36,8 +37,8 @@ double boost_math(const char* what, double x, double df, F&& evaluate) {
   try {
     return evaluate();
   } catch (const std::exception& e) {
-    std::string message = std::string(what) + " at " + num(x);
-    if (!std::isnan(df)) message += " with " + num(df) + " degrees of freedom";
+    std::string message = std::string(what) + " at " + exact_number(x);
+    if (!std::isnan(df)) message += " with " + exact_number(df) + " degrees of freedom";
     throw InputError(message + ": " + e.what());
   }
 }
@@ -85,7 +86,7 @@ SampleSummary summarize_samples(const std::vector<double>& values) {
   s.n = static_cast<int>(values.size());
   double sum = 0.0;
   for (double v : values) {
-    if (!std::isfinite(v)) throw InputError("equivalence test: a per-seed value is not finite (" + num(v) + ")");
+    if (!std::isfinite(v)) throw InputError("equivalence test: a per-seed value is not finite (" + exact_number(v) + ")");
     sum += v;
   }
   s.mean = sum / s.n;
@@ -102,7 +103,7 @@ TostResult welch_tost(const SampleSummary& a, const SampleSummary& b, double mar
   if (!(a.sd >= 0.0) || !(b.sd >= 0.0) || !std::isfinite(a.mean) || !std::isfinite(b.mean))
     throw InputError("equivalence test: arm summaries must have finite means and standard deviations >= 0");
   if (!(margin > 0.0) || !std::isfinite(margin))
-    throw InputError("equivalence test: margin " + num(margin) + " is not a positive number");
+    throw InputError("equivalence test: margin " + exact_number(margin) + " is not a positive number");
   check_probability(alpha, "equivalence test alpha");
 
   TostResult r;
@@ -165,11 +166,11 @@ double tost_power(double sd, double margin, double alpha, int n, double true_dif
 int tost_seeds_per_arm(double sd, double margin, double alpha, double power, double true_difference) {
   check_probability(power, "TOST sample size power");
   check_probability(alpha, "TOST sample size alpha");
-  if (!(sd >= 0.0) || !std::isfinite(sd)) throw InputError("TOST sample size: sd " + num(sd) + " is not >= 0");
+  if (!(sd >= 0.0) || !std::isfinite(sd)) throw InputError("TOST sample size: sd " + exact_number(sd) + " is not >= 0");
   const double delta = std::abs(true_difference);
   if (!(margin > delta))
-    throw InputError("TOST sample size: margin " + num(margin) + " must exceed the assumed true difference " +
-                     num(delta));
+    throw InputError("TOST sample size: margin " + exact_number(margin) + " must exceed the assumed true difference " +
+                     exact_number(delta));
   constexpr int kMaxSeeds = 1000000;
   const auto enough = [&](int n) { return tost_power(sd, margin, alpha, n, true_difference) >= power; };
   // Normal-approximation start: 2 sd^2 (z_{1-alpha} + z_{1-beta/2})^2 / (margin - delta)^2. The t
@@ -194,7 +195,7 @@ int tost_seeds_per_arm(double sd, double margin, double alpha, double power, dou
     for (int step = 1;; step *= 2) {
       if (lo >= kMaxSeeds)
         throw InputError("TOST sample size: more than " + std::to_string(kMaxSeeds) +
-                         " seeds per arm would be needed (sd " + num(sd) + ", margin " + num(margin) + ")");
+                         " seeds per arm would be needed (sd " + exact_number(sd) + ", margin " + exact_number(margin) + ")");
       const int probe = static_cast<int>(std::min<long>(kMaxSeeds, static_cast<long>(lo) + step));
       if (enough(probe)) {
         hi = probe;

@@ -24,9 +24,13 @@
 // The Student t and normal distributions come from Boost.Math (header-only, Debian's
 // libboost-math-dev) with its default policy; Boost's errors are reported as InputError. The
 // tests check them against closed forms (1, 2 and 4 degrees of freedom) and printed tables.
+#include <string>
 #include <vector>
 
 namespace physarum {
+
+// A number with all its digits, as the statistics' error messages print it.
+std::string exact_number(double v);
 
 // ---- distributions -------------------------------------------------------------------------------
 

@@ -11,15 +11,9 @@
 namespace physarum {
 namespace {
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void check_alpha(double alpha, const char* what) {
   if (!(alpha > 0.0 && alpha < 1.0))
-    throw InputError(std::string(what) + ": alpha " + num(alpha) + " is not in (0, 1)");
+    throw InputError(std::string(what) + ": alpha " + exact_number(alpha) + " is not in (0, 1)");
 }
 
 // Pooled standard deviation of the two arms (divisor na + nb - 2): the common spread the power
@@ -128,7 +122,7 @@ Verdict SequentialEquivalence::look(const std::vector<SampleSummary>& a, const s
   for (std::size_t i = 0; i < m; ++i) {
     if (!(margins[i] > 0.0) || !std::isfinite(margins[i]))
       throw InputError("sequential equivalence: the margin of metric " + std::to_string(i) + " (" +
-                       num(margins[i]) + ") is not a positive number");
+                       exact_number(margins[i]) + ") is not a positive number");
     if (a[i].n < 2 || b[i].n < 2)
       throw InputError("sequential equivalence: metric " + std::to_string(i) + " needs at least 2 seeds per arm, got " +
                        std::to_string(a[i].n) + " and " + std::to_string(b[i].n));

@@ -148,21 +148,11 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
 // ---- the field ----
 
 DeviceVertexData<double> OpenCLDiffusionDecay::concentration() const {
-  std::vector<float> u(static_cast<size_t>(vertex_count_));
-  try {
-    compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, u.data());
-  } catch (const cl::Error& e) {
-    throw device_error("reading the pheromone field back from " + compute_.device.device_name, e.err());
-  }
-  return DeviceVertexData<double>(std::vector<double>(u.begin(), u.end()));
+  return read_field_values(compute_, u_, vertex_count_, "pheromone field");
 }
 
 void OpenCLDiffusionDecay::set_concentration(const DeviceVertexData<double>& u) {
-  if (u.size() != static_cast<size_t>(vertex_count_))
-    throw InputError("opencl pheromone: set_concentration got " + std::to_string(u.size()) + " values for " +
-                     std::to_string(vertex_count_) + " vertices");
-  const std::vector<float> f = to_float(u);
-  compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, f.data());
+  write_field_values(compute_, u_, u, vertex_count_, "pheromone field");
 }
 
 void OpenCLDiffusionDecay::fill(double value) {

@@ -6,6 +6,8 @@
 // layer list (reference/simulation.hpp).
 #include "common/element_data.hpp"
 #include "common/field_statistics.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/device_buffer.hpp"
 #include "opencl/opencl_api.hpp"
 
 #include <string>
@@ -29,5 +31,12 @@ class OpenCLField {
   // Names of the device buffers whose canary region a kernel overwrote (empty when none).
   virtual std::vector<std::string> damaged_canaries() const = 0;
 };
+
+// The blocking transfers every field's values take (`name` says which field in messages): a read
+// back of `vertex_count` floats as doubles, and a write of doubles as floats, with the count checked.
+DeviceVertexData<double> read_field_values(const ComputeContext& compute, const DeviceBuffer& values, int vertex_count,
+                                           const std::string& name);
+void write_field_values(const ComputeContext& compute, const DeviceBuffer& values, const DeviceVertexData<double>& u,
+                        int vertex_count, const std::string& name);
 
 }  // namespace physarum::opencl

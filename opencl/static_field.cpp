@@ -30,25 +30,11 @@ OpenCLStaticField::OpenCLStaticField(const ComputeContext& compute, const std::s
 }
 
 DeviceVertexData<double> OpenCLStaticField::concentration() const {
-  std::vector<float> u(static_cast<size_t>(vertex_count_));
-  try {
-    compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, u.data());
-  } catch (const cl::Error& e) {
-    throw device_error("reading the " + name_ + " back from " + compute_.device.device_name, e.err());
-  }
-  return DeviceVertexData<double>(std::vector<double>(u.begin(), u.end()));
+  return read_field_values(compute_, u_, vertex_count_, name_);
 }
 
 void OpenCLStaticField::set_concentration(const DeviceVertexData<double>& u) {
-  if (u.size() != static_cast<size_t>(vertex_count_))
-    throw InputError("opencl " + name_ + ": set_concentration got " + std::to_string(u.size()) + " values for " +
-                     std::to_string(vertex_count_) + " vertices");
-  const std::vector<float> f(u.begin(), u.end());
-  try {
-    compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, u_.payload_bytes, f.data());
-  } catch (const cl::Error& e) {
-    throw device_error("writing the " + name_ + " to " + compute_.device.device_name, e.err());
-  }
+  write_field_values(compute_, u_, u, vertex_count_, name_);
 }
 
 void OpenCLStaticField::fill(double value) {
