@@ -60,7 +60,7 @@ TEST(CliFeasibility, RefinementBeyondTheInsertionBudgetIsRefusedBeforeRefining) 
 
 TEST(CliFeasibility, AgentsBeyondHostMemoryAreRefused) {
   TempDir dir;
-  const Timed t = run_default_with(dir, {{"agents", 2000000000}});
+  const Timed t = run_default_with(dir, {{"agents", 2000000000}}, "--backend reference");
   expect_refused(dir, t, {"host memory", "available", "B per agent x 2e+09 agents", "use fewer agents"});
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -68,8 +69,35 @@ TEST(OpenCLRunCommand, DeviceErrorsAreClear) {
   EXPECT_EQ(none.exit_code, 1);
   EXPECT_NE(none.err.find("no-such-device"), std::string::npos) << none.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path / "x")) << "nothing may be written when the device is missing";
-  const CommandResult wrong = run_physarum("run " + scene + " --device 0 --steps 2 --out " + quoted(dir.path / "y"));
-  EXPECT_EQ(wrong.exit_code, 2) << "--device needs --backend opencl";
+  const CommandResult wrong =
+      run_physarum("run " + scene + " --backend reference --device 0 --steps 2 --out " + quoted(dir.path / "y"));
+  EXPECT_EQ(wrong.exit_code, 2) << "--device does not go with --backend reference";
+}
+
+// --backend auto (the default) takes the OpenCL backend where a device exists and says so; with no
+// OpenCL platform at all (an ICD loader pointed at an empty vendor list) it falls back to the
+// reference, unless a device was asked for.
+TEST(OpenCLRunCommand, AutoBackendTakesTheDeviceWhereThereIsOneAndTheReferenceOtherwise) {
+  TempDir dir;
+  write_scene(dir.path / "scene.json");
+  const std::string scene = quoted(dir.path / "scene.json");
+  const CommandResult with_device = run_physarum("run " + scene + " --steps 2 --out " + quoted(dir.path / "a"));
+  ASSERT_EQ(with_device.exit_code, 0) << with_device.err;
+  nlohmann::json j = nlohmann::json::parse(slurp(dir.path / "a" / "run.json"));
+  EXPECT_EQ(j["backend"], "opencl");
+  EXPECT_EQ(j["backend_requested"], "auto");
+  EXPECT_NE(with_device.err.find("opencl backend (auto:"), std::string::npos) << with_device.err;
+
+  ::setenv("OCL_ICD_VENDORS", (dir.path / "no-vendors").c_str(), 1);
+  const CommandResult without = run_physarum("run " + scene + " --steps 2 --out " + quoted(dir.path / "b"));
+  const CommandResult asked = run_physarum("run " + scene + " --device 0 --steps 2 --out " + quoted(dir.path / "c"));
+  ::unsetenv("OCL_ICD_VENDORS");
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  j = nlohmann::json::parse(slurp(dir.path / "b" / "run.json"));
+  EXPECT_EQ(j["backend"], "reference");
+  EXPECT_NE(without.err.find("reference backend (auto: no OpenCL device"), std::string::npos) << without.err;
+  EXPECT_EQ(asked.exit_code, 1) << "a device that was asked for and is missing stays an error";
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "c"));
 }
 
 TEST(BenchCommand, QuickRunWritesItsReportCsvAndPlots) {

@@ -186,11 +186,11 @@ TEST(ReferenceRunCommand, WritesTheFourOutputsReproducibly) {
   write_scene(dir.path / "scene.json");
   const std::string scene = quoted(dir.path / "scene.json");
   const auto out1 = dir.path / "a", out2 = dir.path / "b", out3 = dir.path / "c";
-  const auto r1 = testing::run_physarum("run " + scene + " --steps 200 --out " + quoted(out1));
+  const auto r1 = testing::run_physarum("run " + scene + " --backend reference --steps 200 --out " + quoted(out1));
   ASSERT_EQ(r1.exit_code, 0) << r1.err;
   const auto r2 = testing::run_physarum("run " + scene + " --backend reference --steps 200 --out " + quoted(out2));
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
-  const auto r3 = testing::run_physarum("run " + scene + " --sim-time 2 --seed 4 --out " + quoted(out3));
+  const auto r3 = testing::run_physarum("run " + scene + " --backend reference --sim-time 2 --seed 4 --out " + quoted(out3));
   ASSERT_EQ(r3.exit_code, 0) << r3.err;
   EXPECT_TRUE(r1.err.empty()) << "stderr is not a terminal: no progress bar expected, got " << r1.err;
 

@@ -1,4 +1,4 @@
-// `physarum run SCENE.json [--backend reference] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
+// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
 // grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
 // DIR/stats.csv, DIR/preview.png and DIR/run.json (the README's "The command line").
 //
@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -40,8 +41,8 @@ namespace {
 
 struct RunOptions {
   std::string scene;
-  std::string backend = "reference";
-  std::string device;  // --device SPEC (opencl only); "" = $PHYSARUM_DEVICE or the default choice
+  std::string backend = "auto";
+  std::string device;  // --device SPEC (auto or opencl); "" = $PHYSARUM_DEVICE or the default choice
   std::optional<long long> steps;
   std::optional<double> sim_time;
   std::optional<std::uint32_t> seed;
@@ -90,8 +91,37 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_draw_{};
 };
 
+// The backend a run uses. --backend auto takes the OpenCL backend where a device exists and the
+// reference otherwise; it falls back only when nobody asked for a device (no --device, no
+// $PHYSARUM_DEVICE): a device that was asked for and is missing stays an error.
+struct AutoBackend {
+  BackendChoice backend = BackendChoice::Reference;
+  std::optional<opencl::ComputeContext> compute;
+  std::string why;  // for --backend auto: the device found, or why there is none
+};
+
+AutoBackend choose_backend(const std::string& requested, const std::string& device) {
+  AutoBackend a;
+  if (requested != "auto") {
+    a.backend = parse_backend_choice(requested);
+    a.compute = compute_context_for(a.backend, device);
+    return a;
+  }
+  const bool asked_for_a_device = !device.empty() || std::getenv("PHYSARUM_DEVICE") != nullptr;
+  try {
+    a.compute = opencl::make_compute_context(device);
+    a.backend = BackendChoice::OpenCL;
+    a.why = a.compute->device.device_name;
+  } catch (const DeviceError& e) {
+    if (asked_for_a_device) throw;
+    a.backend = BackendChoice::Reference;
+    a.why = std::string("no OpenCL device: ") + e.what();
+  }
+  return a;
+}
+
 int run_run(const RunOptions& o) {
-  if (!o.device.empty() && o.backend != "opencl") throw UsageError("--device applies to --backend opencl only");
+  if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
 
@@ -100,11 +130,13 @@ int run_run(const RunOptions& o) {
   if (o.seed) scene.seed = *o.seed;
   const long long steps = run_length_in_steps(o, scene);
 
-  const BackendChoice choice = parse_backend_choice(o.backend);
   const SceneSurface surface = prepare_feasible_surface(scene, steps);
   const SurfaceDomain& domain = surface.domain;
   const InputMesh& input = surface.input;
-  const std::optional<opencl::ComputeContext> compute = compute_context_for(choice, o.device);
+  const AutoBackend chosen = choose_backend(o.backend, o.device);
+  const BackendChoice choice = chosen.backend;
+  const std::optional<opencl::ComputeContext>& compute = chosen.compute;
+  if (o.backend == "auto") std::cerr << "physarum run: " << to_string(choice) << " backend (auto: " << chosen.why << ")\n";
   const std::unique_ptr<SimulationBackend> backend =
       make_backend(choice, compute ? &*compute : nullptr, domain, scene);  // refuses what does not fit in memory
   SimulationBackend& simulation = *backend;
@@ -150,6 +182,7 @@ int run_run(const RunOptions& o) {
   const SimulationCounters c = simulation.counters();
   nlohmann::ordered_json j;
   j["backend"] = simulation.backend_name();
+  j["backend_requested"] = o.backend;
   j["device"] = simulation.device_name();
   j["steps"] = steps;
   j["sim_time"] = simulation.time();
@@ -196,8 +229,9 @@ Command add_run_command(CLI::App& parent) {
   app->add_option("scene", options->scene,
                   "Scene file (JSON), e.g. tools/scenes/default.json, the built-in default scene (a sphere)")
       ->required();
-  app->add_option("--backend", options->backend, "Simulation backend")
-      ->check(CLI::IsMember({"reference", "opencl"}))
+  app->add_option("--backend", options->backend,
+                  "Simulation backend: auto (OpenCL where a device exists, else the reference), reference or opencl")
+      ->check(CLI::IsMember({"auto", "reference", "opencl"}))
       ->capture_default_str();
   app->add_option("--device", options->device,
                   "OpenCL device: an index from `physarum devices` or a name substring (default: $PHYSARUM_DEVICE, "
