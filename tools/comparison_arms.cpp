@@ -102,8 +102,9 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
       arms.push_back(std::move(a));
     }
   }
+  // The second arm, and the reference alone when it is stored, number their seeds as the reference arm does.
   for (size_t i = 0; i < arms.size(); ++i)
-    arms[i].seed_offset = (i + 1 == arms.size() && arms.size() == 2) || request.reference_only ? kSecondArmSeedOffset : 0;
+    arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
 
   // Surfaces, built once where the arms share one.
   for (size_t i = 0; i < arms.size(); ++i) {

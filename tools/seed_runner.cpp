@@ -13,7 +13,7 @@ namespace physarum::cli {
 std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, const std::vector<SeedTask>& tasks,
                                                 int jobs, const std::function<void(int done)>& progress) {
   if (jobs < 1) throw UsageError("--jobs must be >= 1");
-  // One queue for the host's workers, one per OpenCL arm (its device is fed by one thread).
+  // One queue for the host's workers, one per OpenCL arm (fed by kDeviceStreams threads).
   std::vector<std::vector<size_t>> queues(arms.size() + 1);
   for (size_t t = 0; t < tasks.size(); ++t) {
     const Arm& arm = arms.at(static_cast<size_t>(tasks[t].arm));
