@@ -95,6 +95,7 @@ TEST(CompareAnyScene, OneAndTwoJobsGiveTheSameVerdict) {
 TEST(CompareAnyScene, ArmsAreCheckedBeforeAnythingRuns) {
   EXPECT_EQ(compare("repulsion", "--arm agents=100").run.exit_code, 2);
   EXPECT_EQ(compare("repulsion", "--arm agents=100 --arm backend=cuda").run.exit_code, 2);
+  EXPECT_EQ(compare("repulsion", "--arm agents=100 --arm agents=100").run.exit_code, 2);
   const Verdict unknown = compare("repulsion", "--arm agnets=100 --arm agents=200");
   EXPECT_EQ(unknown.run.exit_code, 1);
   EXPECT_NE(unknown.run.err.find("agnets"), std::string::npos) << unknown.run.err;

@@ -69,6 +69,8 @@ std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* strea
 std::vector<Arm> make_arms(const ArmsRequest& request) {
   if (!request.arms.empty() && request.arms.size() != 2)
     throw UsageError("--arm: give it exactly twice (the two arms), or not at all (OpenCL against the reference)");
+  if (request.arms.size() == 2 && request.arms[0].label == request.arms[1].label)
+    throw UsageError("--arm: the two arms are the same ('" + request.arms[0].label + "')");
   const Scene base = load_scene(request.scene_path);
 
   // What each arm simulates.
