@@ -1,0 +1,30 @@
+#pragma once
+// Reading a result back: the binary PLY files physarum writes (pheromone.ply, fields_full.ply) as a
+// triangle mesh plus every per-vertex scalar property by name, so `physarum render` can re-colour a
+// finished run without simulating again. It reads any binary little-endian PLY whose vertex element
+// has scalar properties and whose face element has one list property of triangles — the layout of
+// our writers and of most tools' exports — and says clearly what it does not read.
+#include "common/input_mesh.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace physarum {
+
+struct PlyFields {
+  InputMesh mesh;  // positions from x, y, z; triangles from the face list; no UVs
+  // Every vertex property other than x, y, z, in file order, as doubles (colours too: red/green/blue
+  // come back as 0..255).
+  std::vector<std::string> property_names;
+  std::map<std::string, std::vector<double>> properties;
+
+  // The property `name`; InputError naming the file and the properties it has when absent.
+  const std::vector<double>& property(const std::string& name) const;
+};
+
+// Throws InputError naming `path` and the problem (missing file, ASCII or big-endian format, a face
+// that is not a triangle, an index out of range, a truncated body).
+PlyFields read_ply_fields(const std::string& path);
+
+}  // namespace physarum

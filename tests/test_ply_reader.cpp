@@ -1,0 +1,100 @@
+// Reading results back (common/ply_reader): what write_field_ply wrote comes back exactly (float
+// values are stored as float, so the round trip is exact for float-representable inputs), and every
+// malformed file is refused with its name and the problem.
+#include "common/errors.hpp"
+#include "common/ply_reader.hpp"
+#include "common/ply_writer.hpp"
+#include "pheromone_test_meshes.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace physarum {
+namespace {
+
+using testing::TempDir;
+
+void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+TEST(PlyReader, ReadsBackWhatTheWriterWrote) {
+  const InputMesh mesh = testing::make_icosphere(2);
+  InputVertexData<double> values(mesh.positions.size());
+  // Values that are exact in float, so the round trip must be bit-exact.
+  for (size_t v = 0; v < values.size(); ++v) values[v] = 0.25 * static_cast<double>(v % 17);
+  TempDir dir;
+  const std::string path = (dir.path / "pheromone.ply").string();
+  FieldColoring coloring;
+  coloring.high = 4.0;
+  write_field_ply(path, mesh, values, coloring);
+
+  const PlyFields ply = read_ply_fields(path);
+  ASSERT_EQ(ply.mesh.vertex_count(), mesh.vertex_count());
+  ASSERT_EQ(ply.mesh.triangles, mesh.triangles);
+  for (int v = 0; v < mesh.vertex_count(); ++v)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(ply.mesh.positions[v][c], static_cast<float>(mesh.positions[v][c]));
+  EXPECT_EQ(ply.property_names, (std::vector<std::string>{"pheromone", "red", "green", "blue"}));
+  ASSERT_EQ(ply.property("pheromone"), std::vector<double>(values.begin(), values.end()));
+  // Value 0 is the bottom of the colour range: viridis' first colour, #440154.
+  EXPECT_EQ(ply.property("red")[0], 0x44);
+  EXPECT_EQ(ply.property("blue")[0], 0x54);
+  EXPECT_THROW(
+      {
+        try {
+          (void)ply.property("age");
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("pheromone"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      InputError);
+}
+
+TEST(PlyReader, RefusesMalformedFilesNamingThem) {
+  TempDir dir;
+  const auto expect_refused = [&](const std::string& bytes, const std::string& says) {
+    const auto path = dir.path / "bad.ply";
+    write_bytes(path, bytes);
+    try {
+      (void)read_ply_fields(path.string());
+      ADD_FAILURE() << "accepted a file that should say: " << says;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+      EXPECT_NE(message.find(says), std::string::npos) << message;
+    }
+  };
+  const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string body(36, '\0');
+  std::string face = {3};
+  for (int i : {0, 1, 2}) face += std::string{static_cast<char>(i), 0, 0, 0};
+  // The well-formed file is accepted (so the refusals below are about their one defect).
+  write_bytes(dir.path / "good.ply", head + body + face);
+  EXPECT_EQ(read_ply_fields((dir.path / "good.ply").string()).mesh.triangle_count(), 1);
+
+  expect_refused(head + body + face.substr(0, 7), "truncated");
+  expect_refused(head + body + face + "x", "after the last element");
+  std::string quad = face;
+  quad[0] = 4;
+  expect_refused(head + body + quad + std::string(4, '\0'), "not a triangle");
+  std::string out_of_range = face;
+  out_of_range[9] = 7;
+  expect_refused(head + body + out_of_range, "out of range");
+  std::string ascii = head;
+  ascii.replace(ascii.find("binary_little_endian"), 20, "ascii");
+  expect_refused(ascii, "ascii");
+  expect_refused("solid x\n", "not a PLY");
+  try {
+    (void)read_ply_fields((dir.path / "missing.ply").string());
+    ADD_FAILURE() << "read a missing file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace physarum
