@@ -19,5 +19,6 @@ Command add_run_command(CLI::App& parent);
 Command add_compare_command(CLI::App& parent);
 Command add_bench_command(CLI::App& parent);
 Command add_scene_keys_command(CLI::App& parent);
+Command add_render_command(CLI::App& parent);
 
 }  // namespace physarum::cli

@@ -1,0 +1,150 @@
+// `physarum render RUN_DIR [--colormap SPEC] [--views N] [--width W] [--height H] [--out DIR]`:
+// re-colours a finished run without simulating again. The values are read back from the run's own
+// files (fields_full.ply, pheromone.ply), coloured through the chosen colour map and drawn from
+// several views; the recoloured PLY files are written beside the pictures.
+//
+// Everything is read and checked before DIR is touched, and every file is written under a
+// temporary name and renamed (as `physarum run` does), so a bad run folder writes nothing.
+#include "common/atomic_write.hpp"
+#include "common/camera_views.hpp"
+#include "common/errors.hpp"
+#include "common/ply_reader.hpp"
+#include "common/ply_writer.hpp"
+#include "common/preview_image.hpp"
+#include "tools/commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace physarum::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  std::string run_dir;
+  std::string colormap;  // "" = the run's own colour map
+  int views = 3;
+  int width = 800;
+  int height = 600;
+  std::string out;  // "" = RUN_DIR/render
+};
+
+// The parts of run.json that say how the run coloured its result.
+struct RunRecord {
+  double U = 0.0;
+};
+
+RunRecord read_run_record(const fs::path& run_dir) {
+  const fs::path path = run_dir / "run.json";
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string() + ": cannot open (is " + run_dir.string() + " a `physarum run` output folder?)");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path.string() + ": not valid JSON: " + e.what());
+  }
+  RunRecord r;
+  if (!j.contains("U") || !j["U"].is_number() || !(j["U"].get<double>() > 0.0))
+    throw InputError(path.string() + ": no positive 'U' (the uniform steady state the colours are scaled to)");
+  r.U = j["U"].get<double>();
+  return r;
+}
+
+// One result mesh of the run: its values and the file it came from.
+struct ResultFile {
+  std::string name;  // file name inside the run folder
+  PlyFields ply;
+  InputVertexData<double> values;
+};
+
+std::optional<ResultFile> read_result(const fs::path& run_dir, const std::string& name) {
+  const fs::path path = run_dir / name;
+  if (!fs::exists(path)) return std::nullopt;
+  ResultFile r{name, read_ply_fields(path.string()), {}};
+  const std::vector<double>& v = r.ply.property("pheromone");
+  r.values = InputVertexData<double>(v);
+  return r;
+}
+
+int run_render(const RenderOptions& o) {
+  const std::vector<CameraView> views = standard_views(o.views);
+  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
+    throw UsageError("--width and --height must be between 1 and 16384");
+
+  // ---- read everything first ----
+  const fs::path run_dir(o.run_dir);
+  const RunRecord run = read_run_record(run_dir);
+  const std::optional<ResultFile> full = read_result(run_dir, "fields_full.ply");
+  const std::optional<ResultFile> on_input = read_result(run_dir, "pheromone.ply");
+  if (!full && !on_input) throw InputError(run_dir.string() + ": has neither fields_full.ply nor pheromone.ply");
+  // Pictures come from the finest result there is.
+  const ResultFile& picture_source = full ? *full : *on_input;
+
+  FieldColoring coloring;
+  coloring.high = 2.0 * run.U;  // as `physarum run` colours: 0 .. 2U
+  if (!o.colormap.empty()) {
+    if (o.colormap == "viridis")
+      coloring.map = Colormap::Viridis;
+    else if (o.colormap == "magma")
+      coloring.map = Colormap::Magma;
+    else
+      throw UsageError("--colormap " + o.colormap + ": unknown colour map");
+  }
+
+  // ---- write ----
+  const fs::path out = o.out.empty() ? run_dir / "render" : fs::path(o.out);
+  create_output_folder(out.string());
+  std::string written;
+  auto note = [&](const std::string& name) { written += (written.empty() ? "" : ", ") + name; };
+  for (const ResultFile* r : {full ? &*full : nullptr, on_input ? &*on_input : nullptr}) {
+    if (!r) continue;
+    write_field_ply((out / r->name).string(), r->ply.mesh, r->values, coloring);
+    note(r->name);
+  }
+  PreviewOptions preview;
+  preview.coloring = coloring;
+  preview.width = o.width;
+  preview.height = o.height;
+  write_preview_png((out / "preview.png").string(), picture_source.ply.mesh, picture_source.values, preview);
+  note("preview.png");
+  for (const CameraView& view : views) {
+    preview.azimuth_deg = view.azimuth_deg;
+    preview.elevation_deg = view.elevation_deg;
+    const std::string name = "view_" + view.name + ".png";
+    write_preview_png((out / name).string(), picture_source.ply.mesh, picture_source.values, preview);
+    note(name);
+  }
+  std::cout << "physarum render: " << picture_source.name << " (" << picture_source.ply.mesh.vertex_count()
+            << " vertices); wrote " << out.string() << "/{" << written << "}\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& parent) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "render",
+      "Re-colour a finished run without simulating again: reads RUN_DIR/fields_full.ply (else pheromone.ply) and "
+      "RUN_DIR/run.json, and writes DIR/preview.png, one DIR/view_NAME.png per view and the re-coloured PLY files. "
+      "Example: physarum render out --colormap magma --views 3 --out out/magma");
+  app->footer("Exit codes: 0 success, 1 bad input (a missing or malformed run folder; nothing is written), 2 usage error.");
+  app->add_option("run_dir", options->run_dir, "Output folder of `physarum run`")->required();
+  app->add_option("--colormap", options->colormap, "Colour map: a name (viridis, magma) (default: the run's)");
+  app->add_option("--views", options->views,
+                  "1: the preview's three-quarter view; 3: front, side and top; other N: a turntable of N frames")
+      ->capture_default_str();
+  app->add_option("--width", options->width, "Picture width in pixels")->capture_default_str();
+  app->add_option("--height", options->height, "Picture height in pixels")->capture_default_str();
+  app->add_option("--out", options->out, "Output folder (default: RUN_DIR/render)");
+  return Command{app, [options] { return run_render(*options); }};
+}
+
+}  // namespace physarum::cli
