@@ -100,9 +100,7 @@ RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& va
   return image;
 }
 
-void write_preview_png(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
-                       const PreviewOptions& options) {
-  const RgbImage image = render_preview(mesh, values, options);
+void write_rgb_png(const std::string& path, const RgbImage& image) {
   write_file_atomically(path, [&](const std::string& temporary) {
     // The format is named explicitly: the temporary file's name does not end in .png.
     auto out = OIIO::ImageOutput::create("png");
@@ -113,6 +111,11 @@ void write_preview_png(const std::string& path, const InputMesh& mesh, const Inp
     const std::string error = written ? std::string() : out->geterror();
     if (!out->close() || !written) throw InputError(path + ": cannot write PNG: " + (error.empty() ? out->geterror() : error));
   });
+}
+
+void write_preview_png(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
+                       const PreviewOptions& options) {
+  write_rgb_png(path, render_preview(mesh, values, options));
 }
 
 }  // namespace physarum

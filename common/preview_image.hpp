@@ -32,6 +32,10 @@ struct RgbImage {
 // size outside 1..16384.
 RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options = {});
 
+// Writes an 8-bit RGB PNG at `path` (temporary file and rename); InputError naming `path` when it
+// cannot be written.
+void write_rgb_png(const std::string& path, const RgbImage& image);
+
 // Renders and writes a PNG at `path`; InputError naming `path` when it cannot be written (then no
 // file, not even a partial one, is left there).
 void write_preview_png(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,

@@ -1,6 +1,7 @@
-// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR]`:
+// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR] [--frames K]`:
 // grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
-// DIR/stats.csv, DIR/preview.png and DIR/run.json (the README's "The command line").
+// DIR/stats.csv, DIR/preview.png and DIR/run.json (the README's "The command line"); with
+// --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
 // Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
 // so a bad scene exits 1 with its message and writes nothing; every file is written under a
@@ -16,6 +17,7 @@
 #include "common/scene_json.hpp"
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
+#include "common/time_lapse.hpp"
 #include "common/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "tools/backend_factory.hpp"
@@ -47,6 +49,7 @@ struct RunOptions {
   std::optional<double> sim_time;
   std::optional<std::uint32_t> seed;
   std::string out = "out";
+  int frames = 0;  // --frames K: a time-lapse of K pictures (0 = none)
 };
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
@@ -129,6 +132,7 @@ int run_run(const RunOptions& o) {
   Scene scene = load_scene(o.scene);
   if (o.seed) scene.seed = *o.seed;
   const long long steps = run_length_in_steps(o, scene);
+  TimeLapse time_lapse(o.frames, steps);
 
   const SceneSurface surface = prepare_feasible_surface(scene, steps);
   const SurfaceDomain& domain = surface.domain;
@@ -141,6 +145,13 @@ int run_run(const RunOptions& o) {
       make_backend(choice, compute ? &*compute : nullptr, domain, scene);  // refuses what does not fit in memory
   SimulationBackend& simulation = *backend;
   const double U = uniform_steady_state(scene, domain.total_area);
+  // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
+  // of one scene (and the frames of one run) are comparable; the value itself is in the PLY property.
+  FieldColoring coloring;
+  coloring.high = 2.0 * U;
+  PreviewOptions preview;
+  preview.coloring = coloring;
+  auto picture_values = [&] { return intrinsic_to_input(surface.input_to_intrinsic, simulation.field_values()); };
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
@@ -157,10 +168,16 @@ int run_run(const RunOptions& o) {
       stats += stats_csv_row(simulation.time(), simulation.field_statistics(U)) + "\n";
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
     }
+    if (time_lapse.due(s)) {
+      simulation.finish();
+      const auto tf = std::chrono::steady_clock::now();
+      time_lapse.add(render_preview(input, picture_values(), preview));
+      stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
+    }
     progress.update(s);
   }
   simulation.finish();
-  // Throughput counts the simulation alone, not the statistics rows.
+  // Throughput counts the simulation alone, not the statistics rows or the time-lapse frames.
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - stats_seconds;
   const FieldStatistics final_stats = simulation.field_statistics(U);
 
@@ -168,16 +185,11 @@ int run_run(const RunOptions& o) {
   create_output_folder(o.out);
   const std::filesystem::path out(o.out);
 
-  const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, simulation.field_values());
-  // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
-  // of one scene are comparable (the value itself is in the PLY property).
-  FieldColoring coloring;
-  coloring.high = 2.0 * U;
+  const InputVertexData<double> on_input = picture_values();
   write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
-  PreviewOptions preview;
-  preview.coloring = coloring;
   write_preview_png((out / "preview.png").string(), input, on_input, preview);
   write_text_file_atomically((out / "stats.csv").string(), stats);
+  time_lapse.write(o.out);
 
   const SimulationCounters c = simulation.counters();
   nlohmann::ordered_json j;
@@ -241,6 +253,9 @@ Command add_run_command(CLI::App& parent) {
   steps->excludes(sim_time);
   app->add_option("--seed", options->seed, "Random seed (overrides the scene)");
   app->add_option("--out", options->out, "Output folder (created if needed)")->capture_default_str();
+  app->add_option("--frames", options->frames,
+                  "Time-lapse: K pictures evenly spaced in steps (the last at the final step), written as "
+                  "DIR/frames/frame_0001.png ... and the animated DIR/frames.gif");
   return Command{app, [options] { return run_run(*options); }};
 }
 
