@@ -230,7 +230,7 @@ Command add_run_command(CLI::App& parent) {
       "run",
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
       "pheromone), DIR/result.glb (glTF 2.0 binary of the same mesh: linear vertex colours COLOR_0, the values as "
-      "_PHEROMONE, the input's UVs as TEXCOORD_0), DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and "
+      "_PHEROMONE, the input's UVs, where it has them, as TEXCOORD_0), DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and "
       "DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
