@@ -179,7 +179,8 @@ int run_run(const RunOptions& o) {
   // result.glb carries pheromone.ply's colours (the same map over the same range).
   InputVertexData<Rgb8> colors(on_input.size());
   const double upper_end = coloring.upper(on_input);
-  for (size_t v = 0; v < on_input.size(); ++v) colors[v] = colormap_color(coloring.map, coloring.normalise(on_input[v], upper_end));
+  for (size_t v = 0; v < on_input.size(); ++v)
+    colors[v] = colormap_color(coloring.map, coloring.normalise(on_input[v], upper_end));
   const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors);
   PreviewOptions preview;
   preview.coloring = coloring;
@@ -229,9 +230,10 @@ Command add_run_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "run",
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
-      "pheromone), DIR/result.glb (glTF 2.0 binary of the same mesh: linear vertex colours COLOR_0, the values as "
-      "_PHEROMONE, the input's UVs, where it has them, as TEXCOORD_0), DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and "
-      "DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
+      "pheromone), DIR/result.glb (glTF 2.0 binary of the same mesh for any 3D viewer: linear vertex colours "
+      "COLOR_0, the values as _PHEROMONE, the input's UVs, where it has them, as TEXCOORD_0), DIR/stats.csv "
+      "(time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and DIR/run.json (parameters, device, "
+      "timings). Example: physarum run tools/scenes/default.json --out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "
