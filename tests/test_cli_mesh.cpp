@@ -79,12 +79,12 @@ TEST(CliMesh, HelpListsTheSubcommands) {
     EXPECT_NE(r.out.find("\n  " + std::string(sub) + " "), std::string::npos) << "subcommand " << sub << " in:\n" << r.out;
 }
 
-// `physarum run --help` must be usable without any file outside this repository: it names the four
+// `physarum run --help` must be usable without any file outside this repository: it names the five
 // outputs, the stats.csv columns, the default scene and the run-length rule, and points nowhere else.
 TEST(CliMesh, RunHelpIsSelfContained) {
   const auto r = run_physarum("run --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* text : {"pheromone.ply", "stats.csv", "preview.png", "run.json",
+  for (const char* text : {"pheromone.ply", "result.glb", "stats.csv", "preview.png", "run.json",
                            "time,mean,U,coverage_0.5U,coverage_1U,coverage_2U", "tools/scenes/default.json",
                            "--steps", "--sim-time", "sim_time", "--backend", "--device", "--seed", "--out"})
     EXPECT_NE(r.out.find(text), std::string::npos) << "'" << text << "' missing from:\n" << r.out;

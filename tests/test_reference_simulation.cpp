@@ -294,14 +294,14 @@ TEST(ReferenceRunCommand, PrismSceneFollowsFigure10a) {
   EXPECT_LE(s.time_step, 0.001);
 }
 
-// What a user runs first: the built-in default scene, shortened to 20 steps, writes the four outputs.
+// What a user runs first: the built-in default scene, shortened to 20 steps, writes the five outputs.
 TEST(ReferenceRunCommand, DefaultSceneRunsEndToEnd) {
   testing::TempDir dir;
   const auto scene = std::filesystem::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / "default.json";
   const auto out = dir.path / "out";
   const auto r = testing::run_physarum("run " + quoted(scene) + " --steps 20 --out " + quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* name : {"pheromone.ply", "stats.csv", "preview.png", "run.json"}) {
+  for (const char* name : {"pheromone.ply", "result.glb", "stats.csv", "preview.png", "run.json"}) {
     ASSERT_TRUE(std::filesystem::is_regular_file(out / name)) << name;
     EXPECT_GT(std::filesystem::file_size(out / name), 0u) << name;
   }

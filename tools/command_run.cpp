@@ -1,7 +1,8 @@
 // `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR] [--frames K]`:
 // grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
-// DIR/stats.csv, DIR/preview.png and DIR/run.json (the README's "The command line"); with
-// --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
+// DIR/result.glb (the same mesh and colours as glTF 2.0 binary, for any 3D viewer), DIR/stats.csv,
+// DIR/preview.png and DIR/run.json (the README's "The command line"); with --frames K also a
+// time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
 // Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
 // so a bad scene exits 1 with its message and writes nothing; every file is written under a
@@ -10,6 +11,7 @@
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/field_transfer.hpp"
+#include "common/gltf_writer.hpp"
 #include "common/input_mesh.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
@@ -187,6 +189,12 @@ int run_run(const RunOptions& o) {
 
   const InputVertexData<double> on_input = picture_values();
   write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
+  // result.glb carries pheromone.ply's colours (the same map over the same range).
+  InputVertexData<Rgb8> colors(on_input.size());
+  const double upper_end = coloring.upper(on_input);
+  for (size_t v = 0; v < on_input.size(); ++v)
+    colors[v] = colormap_color(coloring.map, coloring.normalise(on_input[v], upper_end));
+  const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors);
   write_preview_png((out / "preview.png").string(), input, on_input, preview);
   write_text_file_atomically((out / "stats.csv").string(), stats);
   time_lapse.write(o.out);
@@ -214,13 +222,16 @@ int run_run(const RunOptions& o) {
   j["intrinsic_faces"] = domain.face_count;
   j["area"] = domain.total_area;
   j["respawns"] = c.respawns;
+  // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
+  j["result_glb_vertices"] = glb.vertices;
+  j["result_glb_seam_splits"] = glb.seam_splits;
   j["scene_file"] = o.scene;
   j["parameters"] = scene_parameters_json(scene);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
             << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
-            << ", U " << U << "; wrote " << out.string() << "/{pheromone.ply, stats.csv, preview.png, run.json}\n";
+            << ", U " << U << "; wrote " << out.string() << "/{pheromone.ply, result.glb, stats.csv, preview.png, run.json}\n";
   return 0;
 }
 
@@ -231,8 +242,10 @@ Command add_run_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "run",
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
-      "pheromone), DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and "
-      "DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
+      "pheromone), DIR/result.glb (glTF 2.0 binary of the same mesh for any 3D viewer: linear vertex colours "
+      "COLOR_0, the values as _PHEROMONE, the input's UVs, where it has them, as TEXCOORD_0), DIR/stats.csv "
+      "(time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and DIR/run.json (parameters, device, "
+      "timings). Example: physarum run tools/scenes/default.json --out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs every Debian package physarum needs (idempotent, as root) and builds it in Release
-# into ./build. Safe to run again: packages already present are not reinstalled.
+# Installs every Debian package physarum needs (idempotent, as root), creates the Python environment
+# .venv that the independent reader test uses (tests/read_exports.py: trimesh, numpy, pillow at
+# pinned versions), and builds physarum in Release into ./build. Safe to run again: packages
+# already present are not reinstalled, a .venv that already holds the pinned versions is kept.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,6 +11,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopenmesh-dev libopenimageio-dev libgtest-dev libbenchmark-dev
   librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core libboost-math-dev
+  libtinygltf-dev python3-venv
 )
 
 missing=()
@@ -24,6 +27,27 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -q
   apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# The reader test's own Python (not the system's: Debian's pip refuses to install into it, and the
+# versions must be the ones the test was written against).
+python_packages=(trimesh==5.2.0 numpy==2.4.6 pillow==13.0.0)
+venv=.venv
+venv_is_current() {
+  [[ -x $venv/bin/python ]] && "$venv/bin/python" - "${python_packages[@]}" <<'PY'
+import sys
+from importlib.metadata import version, PackageNotFoundError
+try:
+    sys.exit(0 if all(version(n) == v for n, v in (p.split("==") for p in sys.argv[1:])) else 1)
+except PackageNotFoundError:
+    sys.exit(1)
+PY
+}
+if ! venv_is_current; then
+  echo "setup: creating $venv with ${python_packages[*]}"
+  python3 -m venv "$venv"
+  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "${python_packages[@]}"
+  venv_is_current || { echo "setup: $venv does not hold ${python_packages[*]} after installing" >&2; exit 1; }
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
