@@ -24,6 +24,8 @@ constexpr double kChordSlack = 1e-3;
 // The containing chord triangle is accepted when the point is within this fraction of the
 // triangle's longest edge from it; otherwise the nearest chord triangle is searched for.
 constexpr double kAcceptableDistance = 0.05;
+// UVs may wrap this many tiles away from [0, 1], no farther.
+constexpr double kFarthestTile = 10000.0;
 // How many candidates ahead their chord triangles are prefetched.
 constexpr size_t kPrefetchAhead = 8;
 
@@ -42,6 +44,11 @@ void check_uvs(const InputMesh& mesh) {
       const Eigen::Vector2d& uv = mesh.uvs[static_cast<size_t>(i)];
       if (!uv.allFinite())
         throw InputError(mesh.source + ": triangle " + std::to_string(t) + " has a texture coordinate that is not finite");
+      // Texel coordinates (UV times the size) must stay far inside int range, and wrapping a UV
+      // that far out would have lost its fraction to rounding anyway.
+      if (uv.cwiseAbs().maxCoeff() > kFarthestTile)
+        throw InputError(mesh.source + ": triangle " + std::to_string(t) + " has texture coordinate " + describe_uv(uv) +
+                         ", more than " + std::to_string(static_cast<int>(kFarthestTile)) + " tiles from [0, 1]");
       low = low.cwiseMin(uv);
       high = high.cwiseMax(uv);
     }

@@ -216,6 +216,9 @@ TEST(TextureBake, RefusesWhatCannotBeBaked) {
   InputMesh not_finite = surface.input;
   not_finite.uvs[0].y() = std::nan("");
   EXPECT_NE(message_of(not_finite, 64, 64).find("not finite"), std::string::npos);
+  InputMesh far_out = surface.input;
+  for (Eigen::Vector2d& uv : far_out.uvs) uv.x() += 1e6;
+  EXPECT_NE(message_of(far_out, 64, 64).find("tiles from [0, 1]"), std::string::npos) << message_of(far_out, 64, 64);
   EXPECT_NE(message_of(surface.input, 0, 64).find("out of range"), std::string::npos);
   EXPECT_NE(message_of(surface.input, 64, TexelLocations::kMaxSize + 1).find("out of range"), std::string::npos);
   // A real mesh without UVs, as loaded.
