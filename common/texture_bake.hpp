@@ -32,8 +32,9 @@
 // v = 1 - (r + 0.5) / H. UVs outside [0, 1] WRAP (repeat, glTF's default sampler): a triangle at
 // u in [1, 2] lands where u in [0, 1] would, and one crossing u = 1 continues on the left edge. One
 // triangle must fit in a single tile (its UVs span at most 1 in u and in v), otherwise one texel
-// would stand for several surface points: such a mesh is refused, as are UVs more than 10^4 tiles out. Overlapping charts (mirrored
-// halves sharing UVs) give each texel the last input face in file order that covers it.
+// would stand for several surface points: such a mesh is refused, as are UVs more than 10^4 tiles
+// out. Overlapping charts (mirrored halves sharing UVs) give each texel the last input face in file
+// order that covers it.
 // Work is spread over the host's cores by bands of rows; the result does not depend on how many.
 #include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
