@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace physarum {
 
@@ -25,6 +26,11 @@ struct TextureColouring {
   double upper_end = 1.0;
   std::array<std::uint8_t, 3> background = {0, 0, 0};  // texels outside every chart and its padding
 };
+
+// The 8-bit sRGB RGB pixels of channel `channel` (row-major, top row first: exactly what
+// write_texture_png writes at 8 bits), for embedding elsewhere (a glTF baseColorTexture). InputError
+// when the channel does not exist.
+std::vector<std::uint8_t> texture_rgb8(const BakedTexture& texture, std::size_t channel, const TextureColouring& colouring);
 
 // Writes channel `channel` of `texture` as an RGB PNG with `bits` (8 or 16) per channel at `path`.
 // InputError naming `path` when the channel does not exist, bits is neither 8 nor 16, or the file

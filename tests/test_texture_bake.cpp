@@ -354,6 +354,7 @@ TEST(TextureFiles, PngAndExrReadBackWithTheBakedValues) {
   ASSERT_EQ(spec_exr.nchannels, 1);
   EXPECT_EQ(spec_exr.channelnames, std::vector<std::string>{"pheromone"});
   EXPECT_EQ(spec_exr.format, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(texture_rgb8(texture, 0, colouring), bytes) << "the pixels for embedding are texture.png's";
   for (int row = 0; row < H; ++row)
     for (int x = 0; x < W; ++x) {
       const size_t p = static_cast<size_t>(row) * W + x;
