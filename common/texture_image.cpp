@@ -52,6 +52,13 @@ std::vector<Word> coloured_pixels(const BakedTexture& texture, std::size_t chann
 
 }  // namespace
 
+std::vector<std::uint8_t> texture_rgb8(const BakedTexture& texture, std::size_t channel, const TextureColouring& colouring) {
+  if (channel >= texture.channels.size())
+    throw InputError("texture: it has " + std::to_string(texture.channels.size()) + " channels, no channel " +
+                     std::to_string(channel));
+  return coloured_pixels<std::uint8_t>(texture, channel, colouring);
+}
+
 void write_texture_png(const std::string& path, const BakedTexture& texture, std::size_t channel,
                        const TextureColouring& colouring, int bits) {
   if (channel >= texture.channels.size())
