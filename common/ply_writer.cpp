@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -14,12 +15,25 @@
 namespace physarum {
 namespace {
 
-// Appends the little-endian bytes of a 4-byte value whatever the host's byte order.
+// Writes the little-endian bytes of a 4-byte value at `out` whatever the host's byte order; returns
+// the position after them.
 template <typename T>
-void append_le(std::vector<unsigned char>& out, T value) {
+unsigned char* put_le(unsigned char* out, T value) {
   static_assert(sizeof(T) == 4);
   const auto bits = std::bit_cast<std::uint32_t>(value);
-  for (int b = 0; b < 4; ++b) out.push_back(static_cast<unsigned char>((bits >> (8 * b)) & 0xFFu));
+  for (int b = 0; b < 4; ++b) *out++ = static_cast<unsigned char>((bits >> (8 * b)) & 0xFFu);
+  return out;
+}
+
+// A PLY property name this writer accepts: a non-empty word of letters, digits, '_' and '-' (no
+// whitespace, which would end the header token) that is not one of the other vertex properties.
+bool usable_property_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') return false;
+  for (const char* taken : {"x", "y", "z", "red", "green", "blue"})
+    if (name == taken) return false;
+  return true;
 }
 
 }  // namespace
@@ -37,30 +51,45 @@ double FieldColoring::normalise(double value, double upper_end) const {
   return std::clamp((value - low) / (upper_end - low), 0.0, 1.0);
 }
 
-void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
-                     const FieldColoring& coloring, const std::string& property_name) {
-  if (static_cast<int>(values.size()) != mesh.vertex_count())
-    throw InputError(path + ": cannot write " + std::to_string(values.size()) + " values onto the " +
-                     std::to_string(mesh.vertex_count()) + " vertices of " + mesh.source);
+void write_fields_ply(const std::string& path, const InputMesh& mesh, const std::vector<PlyField>& fields,
+                      const FieldColoring& coloring, const std::string& description) {
+  if (fields.empty()) throw InputError(path + ": no field to write");
+  for (size_t i = 0; i < fields.size(); ++i) {
+    const PlyField& field = fields[i];
+    if (!usable_property_name(field.name))
+      throw InputError(path + ": '" + field.name +
+                       "' cannot be a PLY property name (letters, digits, '_' and '-' only; not x, y, z, red, green, blue)");
+    for (size_t j = 0; j < i; ++j)
+      if (fields[j].name == field.name) throw InputError(path + ": field '" + field.name + "' given twice");
+    if (static_cast<int>(field.values.size()) != mesh.vertex_count())
+      throw InputError(path + ": cannot write " + std::to_string(field.values.size()) + " values of " + field.name +
+                       " onto the " + std::to_string(mesh.vertex_count()) + " vertices of " + mesh.source);
+  }
 
-  std::string header = "ply\nformat binary_little_endian 1.0\ncomment physarum: " + property_name +
-                       " per input vertex\nelement vertex " + std::to_string(mesh.vertex_count()) +
-                       "\nproperty float x\nproperty float y\nproperty float z\nproperty float " + property_name +
-                       "\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face " +
-                       std::to_string(mesh.triangle_count()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment physarum: " + description +
+                       "\nelement vertex " + std::to_string(mesh.vertex_count()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\n";
+  for (const PlyField& field : fields) header += "property float " + field.name + "\n";
+  header += "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face " +
+            std::to_string(mesh.triangle_count()) + "\nproperty list uchar int vertex_indices\nend_header\n";
 
-  std::vector<unsigned char> body;
-  body.reserve(static_cast<size_t>(mesh.vertex_count()) * 19 + static_cast<size_t>(mesh.triangle_count()) * 13);
-  const double upper_end = coloring.upper(values);
+  // The body is laid out in one buffer of known size (millions of vertices for a full-resolution
+  // result), each record written in place.
+  const size_t vertex_bytes = 12 + 4 * fields.size() + 3;
+  std::vector<unsigned char> body(static_cast<size_t>(mesh.vertex_count()) * vertex_bytes +
+                                  static_cast<size_t>(mesh.triangle_count()) * 13);
+  unsigned char* at = body.data();
+  const InputVertexData<double>& colour_values = fields.front().values;
+  const double upper_end = coloring.upper(colour_values);
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    for (int c = 0; c < 3; ++c) append_le(body, static_cast<float>(mesh.positions[v][c]));
-    append_le(body, static_cast<float>(values[v]));
-    const Rgb8 rgb = colormap_color(coloring.map, coloring.normalise(values[v], upper_end));
-    body.insert(body.end(), rgb.begin(), rgb.end());
+    for (int c = 0; c < 3; ++c) at = put_le(at, static_cast<float>(mesh.positions[v][c]));
+    for (const PlyField& field : fields) at = put_le(at, static_cast<float>(field.values[v]));
+    const Rgb8 rgb = colormap_color(coloring.map, coloring.normalise(colour_values[v], upper_end));
+    at = std::copy(rgb.begin(), rgb.end(), at);
   }
   for (const auto& t : mesh.triangles) {
-    body.push_back(3);
-    for (int c = 0; c < 3; ++c) append_le(body, static_cast<std::int32_t>(t[c]));
+    *at++ = 3;
+    for (int c = 0; c < 3; ++c) at = put_le(at, static_cast<std::int32_t>(t[c]));
   }
 
   write_file_atomically(path, [&](const std::string& temporary) {
@@ -72,6 +101,11 @@ void write_field_ply(const std::string& path, const InputMesh& mesh, const Input
     ok = (std::fclose(f) == 0) && ok;
     if (!ok) throw InputError(path + ": cannot write: " + std::strerror(saved_errno ? saved_errno : errno));
   });
+}
+
+void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
+                     const FieldColoring& coloring, const std::string& property_name) {
+  write_fields_ply(path, mesh, {PlyField{property_name, values}}, coloring, property_name + " per input vertex");
 }
 
 }  // namespace physarum

@@ -1,7 +1,9 @@
 #pragma once
-// The result as a mesh file: the INPUT mesh (its own coordinates and triangles) with one float
-// property per vertex (default name "pheromone") and a vertex colour from a perceptual colour map,
-// in binary little-endian PLY. Written through a temporary file and renamed (atomic_write.hpp).
+// The result as a mesh file: a mesh (the INPUT mesh in its own coordinates for pheromone.ply, the
+// full-resolution mesh for fields_full.ply) with one float property per vertex for each field
+// (named after it, e.g. "pheromone") and a vertex colour from a perceptual colour map applied to the
+// first field, in binary little-endian PLY. Written through a temporary file and renamed
+// (atomic_write.hpp).
 #include "common/colormap.hpp"
 #include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
@@ -24,11 +26,25 @@ struct FieldColoring {
   double normalise(double value, double upper_end) const;
 };
 
-// Writes `mesh` with `values` (one per input vertex) to `path`. Header:
-//   element vertex N: float x, y, z; float <property_name>; uchar red, green, blue
+// One named per-vertex field of a mesh being written. The values are referenced, not copied (a
+// full-resolution field can have millions), so they must outlive the write call.
+struct PlyField {
+  std::string name;  // the PLY property name: letters, digits, '_' and '-', not x/y/z/red/green/blue
+  const InputVertexData<double>& values;
+};
+
+// Writes `mesh` with `fields` (at least one; one value per mesh vertex each) to `path`. Header:
+//   comment physarum: <description>
+//   element vertex N: float x, y, z; float <name> for each field in order; uchar red, green, blue
 //   element face F: list uchar int vertex_indices
-// Throws InputError (naming path) when the sizes differ or the file cannot be written; then no file
+// The colours are fields[0] through `coloring`. Throws InputError (naming path) when a size differs,
+// a name is not a usable property name or is repeated, or the file cannot be written; then no file
 // (not even a partial one) is left at `path`.
+void write_fields_ply(const std::string& path, const InputMesh& mesh, const std::vector<PlyField>& fields,
+                      const FieldColoring& coloring, const std::string& description);
+
+// One field on the input mesh (pheromone.ply): write_fields_ply with the single field
+// `property_name` and the description "<property_name> per input vertex".
 void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
                      const FieldColoring& coloring = {}, const std::string& property_name = "pheromone");
 

@@ -7,6 +7,7 @@
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "pheromone_test_meshes.hpp"
+#include "ply_layout_parser.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -22,6 +23,8 @@
 namespace physarum {
 namespace {
 
+using testing::parse_ply;
+using testing::ParsedPly;
 using testing::TempDir;
 
 InputVertexData<double> linear_field(const InputMesh& mesh) {
@@ -58,57 +61,6 @@ TEST(Colormap, LuminanceRisesMonotonically) {
 
 // ---- PLY -----------------------------------------------------------------------------------------
 
-struct ParsedPly {
-  std::vector<std::string> header;
-  int vertices = -1, faces = -1;
-  std::vector<std::array<float, 4>> vertex;  // x y z value
-  std::vector<Rgb8> color;
-  std::vector<std::array<int, 3>> face;
-};
-
-// An independent reader for exactly the layout write_field_ply documents.
-ParsedPly parse_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ParsedPly ply;
-  const size_t end = bytes.find("end_header\n");
-  EXPECT_NE(end, std::string::npos);
-  std::stringstream header(bytes.substr(0, end));
-  for (std::string line; std::getline(header, line);) {
-    ply.header.push_back(line);
-    std::stringstream words(line);
-    std::string a, b;
-    int n = -1;
-    words >> a >> b >> n;
-    if (a == "element" && b == "vertex") ply.vertices = n;
-    if (a == "element" && b == "face") ply.faces = n;
-  }
-  size_t at = end + std::strlen("end_header\n");
-  auto take = [&](void* out, size_t size) {
-    EXPECT_LE(at + size, bytes.size());
-    std::memcpy(out, bytes.data() + at, size);  // the test machine is little-endian, like the file
-    at += size;
-  };
-  for (int v = 0; v < ply.vertices; ++v) {
-    std::array<float, 4> xyzv;
-    Rgb8 rgb;
-    take(xyzv.data(), 16);
-    take(rgb.data(), 3);
-    ply.vertex.push_back(xyzv);
-    ply.color.push_back(rgb);
-  }
-  for (int f = 0; f < ply.faces; ++f) {
-    unsigned char count = 0;
-    take(&count, 1);
-    EXPECT_EQ(count, 3);
-    std::array<int, 3> t;
-    take(t.data(), 12);
-    ply.face.push_back(t);
-  }
-  EXPECT_EQ(at, bytes.size()) << "trailing bytes after the last face";
-  return ply;
-}
-
 TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
   const InputMesh mesh = testing::make_icosphere(2);
   const InputVertexData<double> values = linear_field(mesh);
@@ -123,9 +75,11 @@ TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
   EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property uchar red"), ply.header.end());
   ASSERT_EQ(ply.vertices, mesh.vertex_count());
   ASSERT_EQ(ply.faces, mesh.triangle_count());
+  const std::vector<float> pheromone = ply.property("pheromone");
+  ASSERT_EQ(pheromone.size(), values.size());
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     for (int c = 0; c < 3; ++c) ASSERT_EQ(ply.vertex[v][c], static_cast<float>(mesh.positions[v][c]));
-    ASSERT_EQ(ply.vertex[v][3], static_cast<float>(values[v]));
+    ASSERT_EQ(pheromone[v], static_cast<float>(values[v]));
   }
   for (int f = 0; f < mesh.triangle_count(); ++f) ASSERT_EQ(ply.face[f], mesh.triangles[f]);
   // Colours span the map: the largest value gets the top colour, the smallest one near the bottom.

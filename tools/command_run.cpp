@@ -1,17 +1,26 @@
-// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR] [--frames K]`:
-// grows a pattern on a surface and writes DIR/pheromone.ply (the input mesh with the field),
-// DIR/result.glb (the same mesh and colours as glTF 2.0 binary, for any 3D viewer), DIR/stats.csv,
-// DIR/preview.png and DIR/run.json (the README's "The command line"); with --frames K also a
-// time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
+// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR]
+//  [--frames K] [--texture-size N] [--texture-margin PX] [--texture-format png|png16|exr]`:
+// grows a pattern on a surface and writes (the README's "The command line")
+//   DIR/pheromone.ply    the input mesh with the field at its vertices,
+//   DIR/fields_full.ply  the result at full resolution: every intrinsic vertex at its place on the
+//                        input surface, intrinsic connectivity, the exact values (full_resolution_mesh.hpp),
+//   DIR/preview.png      drawn from the full-resolution mesh,
+//   DIR/texture.png      the field baked onto the input's UVs with padded seams (texture_bake.hpp),
+//                        8-bit, or 16-bit with --texture-format png16; with exr also DIR/texture.exr
+//                        (raw float values); skipped, with a note, when the mesh has no UVs,
+//   DIR/result.glb       glTF 2.0 binary of the input mesh (colours, values, UVs, the texture),
+//   DIR/stats.csv and DIR/run.json;
+// with --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
-// Everything that can fail on bad input (scene, mesh, triangulation) happens before DIR is touched,
-// so a bad scene exits 1 with its message and writes nothing; every file is written under a
-// temporary name and renamed, so a reader never sees a half-written one.
+// Everything that can fail on bad input (scene, mesh, triangulation, the UV map) happens before DIR
+// is touched, so a bad scene exits 1 with its message and writes nothing; every file is written under
+// a temporary name and renamed, so a reader never sees a half-written one.
 #include "common/atomic_write.hpp"
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/field_transfer.hpp"
 #include "common/gltf_writer.hpp"
+#include "common/full_resolution_mesh.hpp"
 #include "common/input_mesh.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
@@ -19,6 +28,8 @@
 #include "common/scene_json.hpp"
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
+#include "common/texture_bake.hpp"
+#include "common/texture_image.hpp"
 #include "common/time_lapse.hpp"
 #include "common/workload.hpp"
 #include "opencl/compute_context.hpp"
@@ -52,6 +63,9 @@ struct RunOptions {
   std::optional<std::uint32_t> seed;
   std::string out = "out";
   int frames = 0;  // --frames K: a time-lapse of K pictures (0 = none)
+  int texture_size = 2048;
+  int texture_margin = 16;
+  std::string texture_format = "png";  // png (8-bit), png16, exr (texture.png and texture.exr)
 };
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
@@ -129,6 +143,10 @@ int run_run(const RunOptions& o) {
   if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
+  if (o.texture_size < 1 || o.texture_size > TexelLocations::kMaxSize)
+    throw UsageError("--texture-size " + std::to_string(o.texture_size) + " must be between 1 and " +
+                     std::to_string(TexelLocations::kMaxSize));
+  if (o.texture_margin < 0) throw UsageError("--texture-margin " + std::to_string(o.texture_margin) + " must be >= 0");
 
   // ---- everything that can reject the input, before any output exists ----
   Scene scene = load_scene(o.scene);
@@ -139,6 +157,14 @@ int run_run(const RunOptions& o) {
   const SceneSurface surface = prepare_feasible_surface(scene, steps);
   const SurfaceDomain& domain = surface.domain;
   const InputMesh& input = surface.input;
+  const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
+  // Where each texel lies on the triangulation, found now: a UV map that cannot be baked is bad
+  // input, refused before anything is simulated or written.
+  std::optional<TexelLocations> texels;
+  if (!input.uvs.empty())
+    texels = locate_texels(input, domain, o.texture_size, o.texture_size);
+  else
+    std::cerr << "physarum run: note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
   const AutoBackend chosen = choose_backend(o.backend, o.device);
   const BackendChoice choice = chosen.backend;
   const std::optional<opencl::ComputeContext>& compute = chosen.compute;
@@ -153,7 +179,9 @@ int run_run(const RunOptions& o) {
   coloring.high = 2.0 * U;
   PreviewOptions preview;
   preview.coloring = coloring;
-  auto picture_values = [&] { return intrinsic_to_input(surface.input_to_intrinsic, simulation.field_values()); };
+  // Pictures (preview and time-lapse frames) are drawn from the full-resolution mesh: every detail
+  // the simulation resolved, not only its values at the input vertices.
+  auto picture_values = [&] { return full.vertex_values(simulation.field_values()); };
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
@@ -173,7 +201,7 @@ int run_run(const RunOptions& o) {
     if (time_lapse.due(s)) {
       simulation.finish();
       const auto tf = std::chrono::steady_clock::now();
-      time_lapse.add(render_preview(input, picture_values(), preview));
+      time_lapse.add(render_preview(full.mesh, picture_values(), preview));
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
     }
     progress.update(s);
@@ -187,15 +215,36 @@ int run_run(const RunOptions& o) {
   create_output_folder(o.out);
   const std::filesystem::path out(o.out);
 
-  const InputVertexData<double> on_input = picture_values();
+  const IntrinsicVertexData<double> field = simulation.field_values();
+  const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, field);
+  const InputVertexData<double> on_full = full.vertex_values(field);
+  std::string written = "pheromone.ply, fields_full.ply";
   write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
-  // result.glb carries pheromone.ply's colours (the same map over the same range).
+  write_fields_ply((out / "fields_full.ply").string(), full.mesh, {PlyField{"pheromone", on_full}}, coloring,
+                   "pheromone per intrinsic vertex (full resolution)");
+  write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
+  std::optional<GltfTexture> glb_texture;
+  if (texels) {
+    const BakedTexture texture =
+        bake_fields(*texels, domain, {BakeField{"pheromone", field}}, BakeOptions{.margin = o.texture_margin});
+    TextureColouring colouring;
+    colouring.coloring = coloring;
+    colouring.upper_end = coloring.upper(on_full);
+    write_texture_png((out / "texture.png").string(), texture, 0, colouring, o.texture_format == "png16" ? 16 : 8);
+    written += ", texture.png";
+    glb_texture = GltfTexture{texture.width, texture.height, texture_rgb8(texture, 0, colouring)};
+    if (o.texture_format == "exr") {
+      write_texture_exr((out / "texture.exr").string(), texture);
+      written += ", texture.exr";
+    }
+  }
+  // result.glb carries pheromone.ply's colours (the same map over the same range) and the texture.
   InputVertexData<Rgb8> colors(on_input.size());
   const double upper_end = coloring.upper(on_input);
   for (size_t v = 0; v < on_input.size(); ++v)
     colors[v] = colormap_color(coloring.map, coloring.normalise(on_input[v], upper_end));
-  const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors);
-  write_preview_png((out / "preview.png").string(), input, on_input, preview);
+  const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
+  written += ", result.glb";
   write_text_file_atomically((out / "stats.csv").string(), stats);
   time_lapse.write(o.out);
 
@@ -231,7 +280,8 @@ int run_run(const RunOptions& o) {
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
             << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
-            << ", U " << U << "; wrote " << out.string() << "/{pheromone.ply, result.glb, stats.csv, preview.png, run.json}\n";
+            << ", U " << U << "; wrote " << out.string() << "/{" << written << ", preview.png, stats.csv, run.json"
+            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}\n";
   return 0;
 }
 
@@ -242,10 +292,11 @@ Command add_run_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "run",
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
-      "pheromone), DIR/result.glb (glTF 2.0 binary of the same mesh for any 3D viewer: linear vertex colours "
-      "COLOR_0, the values as _PHEROMONE, the input's UVs, where it has them, as TEXCOORD_0), DIR/stats.csv "
-      "(time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png and DIR/run.json (parameters, device, "
-      "timings). Example: physarum run tools/scenes/default.json --out out");
+      "pheromone), DIR/fields_full.ply (the result at full resolution: every intrinsic vertex on the input surface, "
+      "exact values), DIR/texture.png (the pheromone baked onto the mesh's UVs; not for meshes without UVs), "
+      "DIR/result.glb (glTF 2.0 binary of the input mesh for any 3D viewer: linear vertex colours, the values as _PHEROMONE, UVs and the baked texture where the mesh has UVs), "
+      "DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png (from the full-resolution "
+      "mesh) and DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "
@@ -269,6 +320,19 @@ Command add_run_command(CLI::App& parent) {
   app->add_option("--frames", options->frames,
                   "Time-lapse: K pictures evenly spaced in steps (the last at the final step), written as "
                   "DIR/frames/frame_0001.png ... and the animated DIR/frames.gif");
+  app->add_option("--texture-size", options->texture_size,
+                  "Side of the square texture baked onto the mesh's UVs, in texels (1.." +
+                      std::to_string(TexelLocations::kMaxSize) + ")")
+      ->capture_default_str();
+  app->add_option("--texture-margin", options->texture_margin,
+                  "Seam padding of the texture: texels outside the UV charts within this many texels of one take "
+                  "values continued from it")
+      ->capture_default_str();
+  app->add_option("--texture-format", options->texture_format,
+                  "png: texture.png, 8-bit sRGB colours; png16: texture.png with 16 bits per channel; exr: texture.png "
+                  "and texture.exr, the raw float values in a channel named pheromone")
+      ->check(CLI::IsMember({"png", "png16", "exr"}))
+      ->capture_default_str();
   return Command{app, [options] { return run_run(*options); }};
 }
 
