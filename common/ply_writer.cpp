@@ -24,19 +24,6 @@ void append_le(std::vector<unsigned char>& out, T value) {
 
 }  // namespace
 
-double FieldColoring::upper(const InputVertexData<double>& values) const {
-  if (high) return *high;
-  double top = -std::numeric_limits<double>::infinity();
-  for (double v : values)
-    if (std::isfinite(v)) top = std::max(top, v);
-  return top;
-}
-
-double FieldColoring::normalise(double value, double upper_end) const {
-  if (!(upper_end > low)) return 0.0;
-  return std::clamp((value - low) / (upper_end - low), 0.0, 1.0);
-}
-
 void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
                      const FieldColoring& coloring, const std::string& property_name) {
   if (static_cast<int>(values.size()) != mesh.vertex_count())
@@ -55,7 +42,7 @@ void write_field_ply(const std::string& path, const InputMesh& mesh, const Input
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     for (int c = 0; c < 3; ++c) append_le(body, static_cast<float>(mesh.positions[v][c]));
     append_le(body, static_cast<float>(values[v]));
-    const Rgb8 rgb = colormap_color(coloring.map, coloring.normalise(values[v], upper_end));
+    const Rgb8 rgb = coloring.color(values[v], upper_end);
     body.insert(body.end(), rgb.begin(), rgb.end());
   }
   for (const auto& t : mesh.triangles) {

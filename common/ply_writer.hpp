@@ -1,8 +1,8 @@
 #pragma once
 // The result as a mesh file: the INPUT mesh (its own coordinates and triangles) with one float
-// property per vertex (default name "pheromone") and a vertex colour from a perceptual colour map,
+// property per vertex (default name "pheromone") and a vertex colour from a colour map,
 // in binary little-endian PLY. Written through a temporary file and renamed (atomic_write.hpp).
-#include "common/colormap.hpp"
+#include "common/color_mapping.hpp"
 #include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
 
@@ -12,17 +12,8 @@
 
 namespace physarum {
 
-// How values become colours: t = (value - low) / (high - low), clamped to [0, 1].
-struct FieldColoring {
-  Colormap map = Colormap::Viridis;
-  double low = 0.0;
-  std::optional<double> high;  // default: the largest value (all `low`-coloured when that is <= low)
-
-  // The effective upper end for `values`.
-  double upper(const InputVertexData<double>& values) const;
-  // t in [0, 1] for one value, given the effective upper end.
-  double normalise(double value, double upper_end) const;
-};
+// How values become colours (levels, gamma, remap curve, colour map): common/color_mapping.hpp.
+using FieldColoring = ColorMapping;
 
 // Writes `mesh` with `values` (one per input vertex) to `path`. Header:
 //   element vertex N: float x, y, z; float <property_name>; uchar red, green, blue

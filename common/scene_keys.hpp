@@ -14,7 +14,7 @@
 
 namespace physarum {
 
-enum class KeyKind { Number, Integer, String, NumberOrNull };
+enum class KeyKind { Number, Integer, String, NumberOrNull, StringOrObject };
 
 struct SceneKey {
   std::string_view name;
