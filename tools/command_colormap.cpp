@@ -36,6 +36,10 @@ int run_colormap(const ColormapOptions& o) {
   if (out.extension() == ".png") throw UsageError("--out " + o.out + ": the colour map is JSON (use --strip for the PNG)");
   const std::string strip = o.strip.empty() ? fs::path(out).replace_extension(".png").string() : o.strip;
   if (fs::path(strip) == out) throw UsageError("--strip and --out name the same file " + o.out);
+  // `physarum colormap lichen.png --out lichen.json` would draw its strip over the exemplar itself.
+  std::error_code ec;
+  if (fs::path(strip).lexically_normal() == fs::path(o.image).lexically_normal() || fs::equivalent(strip, o.image, ec))
+    throw UsageError("the strip " + strip + " would overwrite the image " + o.image + " (give --strip)");
 
   IsomapOptions options;
   options.stops = o.stops;
