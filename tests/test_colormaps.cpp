@@ -11,6 +11,7 @@
 #include "common/ply_reader.hpp"
 #include "common/preview_image.hpp"
 #include "common/scene.hpp"
+#include "common/scene_keys.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -272,6 +273,11 @@ TEST(SceneColormapKey, NamePathAndInlineObject) {
   const Scene defaults = load_scene((plain.path / "scene.json").string());
   EXPECT_EQ(defaults.colormap.map.name(), "viridis");
   EXPECT_EQ(defaults.colormap.levels, (std::array<double, 2>{0.0, 2.0}));
+
+  // The key's documentation (README table) lists every built-in map.
+  ASSERT_NE(find_scene_key("colormap"), nullptr);
+  for (const std::string& name : ColorMap::names())
+    EXPECT_NE(find_scene_key("colormap")->allowed_text.find(name), std::string_view::npos) << name;
 
   const std::string scene = (dir.path / "scene.json").string();
   expect_input_error([&] { load(R"("virdis")"); }, {scene, "'colormap'", "virdis", "viridis"});
@@ -535,6 +541,18 @@ TEST(ColormapCommand, RunHonoursTheScenesColormap) {
       above_u += values[v] > U;
     }
     EXPECT_GT(above_u, 0) << "the run should reach the top of the levels somewhere";
+  }
+  // render --colormap MAP.json: that file's map over its own levels (here the grey ramp over 0 .. 4U).
+  std::ofstream(dir.path / "grey.json") << R"({"name": "grey", "levels": [0, 4]})";
+  ASSERT_EQ(run_physarum("render " + quoted(dir.path / "run") + " --colormap " + quoted(dir.path / "grey.json") +
+                         " --views 1 --width 64 --height 48 --out " + quoted(dir.path / "grey"))
+                .exit_code,
+            0);
+  const PlyFields grey = read_ply_fields((dir.path / "grey" / "pheromone.ply").string());
+  for (size_t v = 0; v < grey.property("pheromone").size(); ++v) {
+    const double level = std::lround(255.0 * std::clamp(grey.property("pheromone")[v] / (4.0 * U), 0.0, 1.0));
+    ASSERT_EQ(grey.property("red")[v], level) << "vertex " << v;
+    ASSERT_EQ(grey.property("blue")[v], level) << "vertex " << v;
   }
 }
 

@@ -151,8 +151,10 @@ Command add_render_command(CLI::App& parent) {
       "Example: physarum render out --colormap magma --views 3 --out out/magma");
   app->footer("Exit codes: 0 success, 1 bad input (a missing or malformed run folder; nothing is written), 2 usage error.");
   app->add_option("run_dir", options->run_dir, "Output folder of `physarum run`")->required();
-  app->add_option("--colormap", options->colormap, "Colour map: a built-in name (viridis, magma, inferno, grey, physarum, moss, ocean, ember, lichen) or a "
-                  "MAP.json file (default: the run's own, from run.json)");
+  std::string names;
+  for (const std::string& n : ColorMap::names()) names += (names.empty() ? "" : ", ") + n;
+  app->add_option("--colormap", options->colormap,
+                  "Colour map: a built-in name (" + names + ") or a MAP.json file (default: the run's own, from run.json)");
   app->add_option("--views", options->views,
                   "1: the preview's three-quarter view; 3: front, side and top; other N: a turntable of N frames")
       ->capture_default_str();
