@@ -436,6 +436,21 @@ TEST(IsomapColorMap, ShippedExemplarMapIsWhatTheExemplarGives) {
   EXPECT_LT(delta_e(again.map.sample(0.0), again.background), delta_e(again.map.sample(1.0), again.background));
 }
 
+// Every colour-map file shipped in tools/colormaps/ reads without error.
+TEST(IsomapColorMap, ShippedColourMapFilesRead) {
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "colormaps"))
+    if (e.path().extension() == ".json") {
+      EXPECT_NO_THROW(read_color_map_file(e.path().string())) << e.path();
+      ++files;
+    }
+  EXPECT_GE(files, 2);
+  // blue_rings: the ring (blue end) on a spot's flank, brown-ish at its peak, skin at zero.
+  const ColorMapping rings = read_color_map_file((fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "colormaps" / "blue_rings.json").string()).mapping(1.0);
+  EXPECT_EQ(rings.color(0.55 * 3.0, 3.0), (Rgb8{0x2F, 0x74, 0xE0}));
+  EXPECT_EQ(rings.color(0.0, 3.0), (Rgb8{0xD8, 0xB4, 0x6A}));
+}
+
 // ---- the command line ------------------------------------------------------------------------------
 
 // Writes a ramp exemplar as a PNG.
