@@ -236,15 +236,20 @@ ExemplarPixels read_exemplar_image(const std::string& path) {
   const int alpha = spec.alpha_channel;
   const int colour_channels = channels >= 3 ? 3 : 1;
   const int band = std::max(1, static_cast<int>(std::lround(0.02 * std::min(w, h))));
+  // Large photographs keep the interior pixels of a regular grid only (at most about 250k), so the
+  // colour list stays a few MB; the random sample of isomap_colormap is drawn from those.
+  const int stride = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(w) * h / 250000.0))));
   ExemplarPixels pixels;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      const bool on_border = x < band || y < band || x >= w - band || y >= h - band;
+      if (!on_border && (x % stride != 0 || y % stride != 0)) continue;
       const std::uint8_t* p = &data[(static_cast<size_t>(y) * w + x) * channels];
       if (alpha >= 0 && alpha < channels && p[alpha] < 128) continue;  // transparent: not part of the picture
       SrgbColor c{};
       for (int ch = 0; ch < 3; ++ch) c[ch] = p[colour_channels == 3 ? ch : 0] / 255.0;
       pixels.colors.push_back(c);
-      pixels.on_border.push_back(x < band || y < band || x >= w - band || y >= h - band);
+      pixels.on_border.push_back(on_border);
     }
   if (pixels.colors.empty()) throw InputError(path + ": the image has no opaque pixel");
   return pixels;

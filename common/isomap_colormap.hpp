@@ -5,7 +5,8 @@
 // parameter and a smoothing spline turns it into a colour map:
 //
 //   1. pixels: all border pixels and a fixed-seed random sample of the rest (`max_pixels`), in sRGB;
-//      fully transparent pixels are skipped.
+//      fully transparent pixels are skipped (images over 250k pixels are first thinned to a regular
+//      grid of interior pixels, to bound memory).
 //   2. merge: colours are binned on a CIELAB grid (cell size 1 Delta-E, grown until at most
 //      `max_colors` cells remain); each cell is one node with the mean colour and the pixel count.
 //   3. graph: each node joined to its `neighbours` nearest in CIELAB; separate pieces are joined by
