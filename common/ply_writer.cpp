@@ -38,19 +38,6 @@ bool usable_property_name(const std::string& name) {
 
 }  // namespace
 
-double FieldColoring::upper(const InputVertexData<double>& values) const {
-  if (high) return *high;
-  double top = -std::numeric_limits<double>::infinity();
-  for (double v : values)
-    if (std::isfinite(v)) top = std::max(top, v);
-  return top;
-}
-
-double FieldColoring::normalise(double value, double upper_end) const {
-  if (!(upper_end > low)) return 0.0;
-  return std::clamp((value - low) / (upper_end - low), 0.0, 1.0);
-}
-
 void write_fields_ply(const std::string& path, const InputMesh& mesh, const std::vector<PlyField>& fields,
                       const FieldColoring& coloring, const std::string& description) {
   if (fields.empty()) throw InputError(path + ": no field to write");
@@ -84,7 +71,7 @@ void write_fields_ply(const std::string& path, const InputMesh& mesh, const std:
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     for (int c = 0; c < 3; ++c) at = put_le(at, static_cast<float>(mesh.positions[v][c]));
     for (const PlyField& field : fields) at = put_le(at, static_cast<float>(field.values[v]));
-    const Rgb8 rgb = colormap_color(coloring.map, coloring.normalise(colour_values[v], upper_end));
+    const Rgb8 rgb = coloring.color(colour_values[v], upper_end);
     at = std::copy(rgb.begin(), rgb.end(), at);
   }
   for (const auto& t : mesh.triangles) {

@@ -1,10 +1,10 @@
 #pragma once
 // The result as a mesh file: a mesh (the INPUT mesh in its own coordinates for pheromone.ply, the
 // full-resolution mesh for fields_full.ply) with one float property per vertex for each field
-// (named after it, e.g. "pheromone") and a vertex colour from a perceptual colour map applied to the
+// (named after it, e.g. "pheromone") and a vertex colour from a colour map applied to the
 // first field, in binary little-endian PLY. Written through a temporary file and renamed
 // (atomic_write.hpp).
-#include "common/colormap.hpp"
+#include "common/color_mapping.hpp"
 #include "common/element_data.hpp"
 #include "common/input_mesh.hpp"
 
@@ -14,17 +14,8 @@
 
 namespace physarum {
 
-// How values become colours: t = (value - low) / (high - low), clamped to [0, 1].
-struct FieldColoring {
-  Colormap map = Colormap::Viridis;
-  double low = 0.0;
-  std::optional<double> high;  // default: the largest value (all `low`-coloured when that is <= low)
-
-  // The effective upper end for `values`.
-  double upper(const InputVertexData<double>& values) const;
-  // t in [0, 1] for one value, given the effective upper end.
-  double normalise(double value, double upper_end) const;
-};
+// How values become colours (levels, gamma, remap curve, colour map): common/color_mapping.hpp.
+using FieldColoring = ColorMapping;
 
 // One named per-vertex field of a mesh being written. The values are referenced, not copied (a
 // full-resolution field can have millions), so they must outlive the write call.

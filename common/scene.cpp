@@ -193,6 +193,9 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   scene.steps = read.integer("steps");
   scene.sim_time = read.number("sim_time");
 
+  if (auto it = j.find("colormap"); it != j.end() && !it->is_null())
+    scene.colormap = resolve_color_map(*it, std::filesystem::path(path).parent_path().string(), path + ": key 'colormap'");
+
   ComparisonSettings& c = scene.comparison;
   c.burn_in = read.number("compare_burn_in").value_or(c.burn_in);
   c.duration = read.number("compare_duration").value_or(c.duration);

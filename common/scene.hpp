@@ -3,6 +3,7 @@
 // paper, in SI units (angles in degrees in the file, radians here). Read from one flat JSON object
 // whose keys are listed in the README; every bad value is an InputError naming the key, the value and
 // the allowed range, and an unknown key is an error too.
+#include "common/color_map_json.hpp"
 #include "common/model_parameters.hpp"
 
 #include <cstdint>
@@ -55,6 +56,9 @@ struct Scene {
   std::optional<double> sim_time;   // s, alternative to steps
 
   ComparisonSettings comparison;
+
+  // ---- pictures ----
+  ColorMapSettings colormap;  // how pheromone.ply and preview.png are coloured (default viridis, 0 .. 2U)
 };
 
 // Parses and validates a scene file. A relative "mesh" path is resolved against the scene file's folder.

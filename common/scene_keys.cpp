@@ -51,6 +51,11 @@ std::vector<SceneKey> build_keys() {
       setting("steps", K::Integer, false, ValueRange{1.0, false, 1.0e15, false}, "", "",
               "run length in steps (at most one of steps, sim_time)"),
       setting("sim_time", K::Number, false, kPositive, "s", "", "run length in simulated seconds"),
+      setting("colormap", K::StringOrObject, false, {}, "", "\"viridis\"",
+              "colours of pheromone.ply and preview.png: levels (in multiples of U), gamma, remap curve, map "
+              "(common/color_map_json.hpp; `physarum colormap IMAGE` extracts one from a picture)",
+              "a built-in name (viridis, magma, inferno, grey, physarum, moss, ocean, ember, lichen), a path to a "
+              "MAP.json, or an inline {\"stops\", \"gamma\", \"remap\", \"levels\"} object"),
       // ---- the differential harness (ComparisonSettings, tools/scenes/compare/README.md) ----
       setting("compare_burn_in", K::Number, false, kNonNegative, "s", shown(c.burn_in), "compare: simulated and discarded per seed"),
       setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed"),
@@ -100,6 +105,8 @@ std::string allowed_column(const SceneKey& k) {
       return k.range.describe().substr(std::string("must be ").size());
     case KeyKind::NumberOrNull:
       return k.range.describe().substr(std::string("must be ").size()) + ", or null";
+    case KeyKind::StringOrObject:
+      return std::string(k.allowed_text);
   }
   return {};
 }

@@ -14,7 +14,7 @@
 
 namespace physarum {
 
-enum class KeyKind { Number, Integer, String, NumberOrNull };
+enum class KeyKind { Number, Integer, String, NumberOrNull, StringOrObject };
 
 struct SceneKey {
   std::string_view name;
@@ -29,7 +29,7 @@ struct SceneKey {
 };
 
 // In the README's order: the surface, the agents and time step, the model parameters (table order),
-// the integrator, seed and run length, the differential harness's compare_* keys.
+// the integrator, seed and run length, the colour map, the differential harness's compare_* keys.
 const std::vector<SceneKey>& scene_keys();
 
 // nullptr when `name` is no scene key.

@@ -67,7 +67,7 @@ TEST_F(RenderCommand, RecoloursWithoutChangingValues) {
   // Colours: magma at value / 2U (clamped), the range `physarum run` uses.
   const auto& values = after.property("pheromone");
   for (size_t v = 0; v < values.size(); ++v) {
-    const Rgb8 expected = colormap_color(Colormap::Magma, values[v] / (2.0 * U));
+    const Rgb8 expected = colormap_color(ColorMap::named("magma"), values[v] / (2.0 * U));
     ASSERT_EQ(after.property("red")[v], expected[0]) << "vertex " << v;
     ASSERT_EQ(after.property("green")[v], expected[1]) << "vertex " << v;
     ASSERT_EQ(after.property("blue")[v], expected[2]) << "vertex " << v;

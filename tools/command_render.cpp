@@ -7,6 +7,7 @@
 // temporary name and renamed (as `physarum run` does), so a bad run folder writes nothing.
 #include "common/atomic_write.hpp"
 #include "common/camera_views.hpp"
+#include "common/color_map_json.hpp"
 #include "common/errors.hpp"
 #include "common/ply_reader.hpp"
 #include "common/ply_writer.hpp"
@@ -15,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -38,6 +40,7 @@ struct RenderOptions {
 // The parts of run.json that say how the run coloured its result.
 struct RunRecord {
   double U = 0.0;
+  ColorMapSettings colormap;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
 };
 
 RunRecord read_run_record(const fs::path& run_dir) {
@@ -54,7 +57,26 @@ RunRecord read_run_record(const fs::path& run_dir) {
   if (!j.contains("U") || !j["U"].is_number() || !(j["U"].get<double>() > 0.0))
     throw InputError(path.string() + ": no positive 'U' (the uniform steady state the colours are scaled to)");
   r.U = j["U"].get<double>();
+  if (j.contains("colormap")) r.colormap = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
   return r;
+}
+
+// --colormap: a built-in name or a colour-map file. An unknown name is a usage error (exit 2); a
+// file that cannot be used is bad input (exit 1).
+ColorMapSettings colormap_option(const std::string& spec) {
+  const auto& names = ColorMap::names();
+  if (std::find(names.begin(), names.end(), spec) != names.end()) {
+    ColorMapSettings settings;
+    settings.map = ColorMap::named(spec);
+    return settings;
+  }
+  const fs::path path(spec);
+  if (path.extension() != ".json" && !path.has_parent_path()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw UsageError("--colormap " + spec + ": unknown colour map (built-in: " + list + "; or give a MAP.json file)");
+  }
+  return read_color_map_file(spec);
 }
 
 // One result mesh of the run: its values and the file it came from.
@@ -87,16 +109,8 @@ int run_render(const RenderOptions& o) {
   // Pictures come from the finest result there is.
   const ResultFile& picture_source = full ? *full : *on_input;
 
-  FieldColoring coloring;
-  coloring.high = 2.0 * run.U;  // as `physarum run` colours: 0 .. 2U
-  if (!o.colormap.empty()) {
-    if (o.colormap == "viridis")
-      coloring.map = Colormap::Viridis;
-    else if (o.colormap == "magma")
-      coloring.map = Colormap::Magma;
-    else
-      throw UsageError("--colormap " + o.colormap + ": unknown colour map");
-  }
+  // Levels are in multiples of U, as `physarum run` colours.
+  const FieldColoring coloring = (o.colormap.empty() ? run.colormap : colormap_option(o.colormap)).mapping(run.U);
 
   // ---- write ----
   const fs::path out = o.out.empty() ? run_dir / "render" : fs::path(o.out);
@@ -137,7 +151,10 @@ Command add_render_command(CLI::App& parent) {
       "Example: physarum render out --colormap magma --views 3 --out out/magma");
   app->footer("Exit codes: 0 success, 1 bad input (a missing or malformed run folder; nothing is written), 2 usage error.");
   app->add_option("run_dir", options->run_dir, "Output folder of `physarum run`")->required();
-  app->add_option("--colormap", options->colormap, "Colour map: a name (viridis, magma) (default: the run's)");
+  std::string names;
+  for (const std::string& n : ColorMap::names()) names += (names.empty() ? "" : ", ") + n;
+  app->add_option("--colormap", options->colormap,
+                  "Colour map: a built-in name (" + names + ") or a MAP.json file (default: the run's own, from run.json)");
   app->add_option("--views", options->views,
                   "1: the preview's three-quarter view; 3: front, side and top; other N: a turntable of N frames")
       ->capture_default_str();

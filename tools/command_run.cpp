@@ -16,6 +16,7 @@
 // is touched, so a bad scene exits 1 with its message and writes nothing; every file is written under
 // a temporary name and renamed, so a reader never sees a half-written one.
 #include "common/atomic_write.hpp"
+#include "common/color_map_json.hpp"
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/field_transfer.hpp"
@@ -173,10 +174,10 @@ int run_run(const RunOptions& o) {
       make_backend(choice, compute ? &*compute : nullptr, domain, scene);  // refuses what does not fit in memory
   SimulationBackend& simulation = *backend;
   const double U = uniform_steady_state(scene, domain.total_area);
-  // Colours span 0 .. 2U, the range the coverage columns talk about, so pictures of different runs
-  // of one scene (and the frames of one run) are comparable; the value itself is in the PLY property.
-  FieldColoring coloring;
-  coloring.high = 2.0 * U;
+  // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
+  // columns talk about), so pictures of different runs of one scene (and the frames of one run) are
+  // comparable; the value itself is in the PLY property.
+  const FieldColoring coloring = scene.colormap.mapping(U);
   PreviewOptions preview;
   preview.coloring = coloring;
   // Pictures (preview and time-lapse frames) are drawn from the full-resolution mesh: every detail
@@ -276,6 +277,8 @@ int run_run(const RunOptions& o) {
   j["result_glb_seam_splits"] = glb.seam_splits;
   j["scene_file"] = o.scene;
   j["parameters"] = scene_parameters_json(scene);
+  // The colours as used (stops, levels in multiples of U): `physarum render` re-colours with it.
+  j["colormap"] = color_map_settings_json(scene.colormap);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
