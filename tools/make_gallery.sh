@@ -1,14 +1,22 @@
 #!/usr/bin/env bash
 # The README's pictures: runs each gallery scene on the OpenCL backend and keeps its preview.png
-# under docs/gallery/ (SCENE.png). Usage: tools/make_gallery.sh [SCENE ...] (default: all of them).
+# under docs/gallery/ (SCENE.png); for spot (needs ../shared/meshes) also its baked texture and a
+# re-colouring with the colour map extracted from the shipped exemplar image.
+# Usage: tools/make_gallery.sh [SCENE ...] (default: all of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
-  ./build/physarum run "tools/scenes/$scene.json" --backend opencl --out "$work/$scene" > /dev/null
+  ./build/physarum run "tools/scenes/$scene.json" --backend opencl --texture-size 1024 --out "$work/$scene" > /dev/null
   cp "$work/$scene/preview.png" "docs/gallery/$scene.png"
   echo "docs/gallery/$scene.png"
+  if [ "$scene" = spot ]; then
+    cp "$work/spot/texture.png" docs/gallery/spot_texture.png
+    ./build/physarum render "$work/spot" --colormap tools/colormaps/lichen_from_exemplar.json --views 1 --out "$work/lichen" > /dev/null
+    cp "$work/lichen/preview.png" docs/gallery/spot_lichen.png
+    echo "docs/gallery/spot_texture.png docs/gallery/spot_lichen.png"
+  fi
 done
