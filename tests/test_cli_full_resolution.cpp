@@ -21,13 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const fs::path& p) {
-  std::string q(1, '\'');
-  q += p.string();
-  q += '\'';
-  return q;
-}
-
 // The mesh as an OBJ file with per-corner texture coordinates (v, vt, f v/vt).
 void write_obj(const fs::path& path, const InputMesh& mesh) {
   std::ofstream out(path);

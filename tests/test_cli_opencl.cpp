@@ -21,13 +21,6 @@ std::string slurp(const std::filesystem::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-std::string quoted(const std::filesystem::path& p) {
-  std::string q(1, '\'');  // built by appending: "'" + s trips a GCC 12 -Wrestrict false positive
-  q += p.string();
-  q += '\'';
-  return q;
-}
-
 void write_scene(const std::filesystem::path& path) {
   std::ofstream(path) << R"({
   "mesh": "shape:square", "scale_to_area": 2.0, "agents": 2000, "time_step": 0.01,

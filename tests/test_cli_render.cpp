@@ -18,13 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const fs::path& p) {
-  std::string q(1, '\'');
-  q += p.string();
-  q += '\'';
-  return q;
-}
-
 // A short reference run on a small square (seconds), shared by the tests below.
 class RenderCommand : public ::testing::Test {
  protected:

@@ -29,13 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const fs::path& p) {
-  std::string q(1, '\'');
-  q += p.string();
-  q += '\'';
-  return q;
-}
-
 // Expects `call` to throw InputError whose message contains every one of `parts`.
 template <typename Call>
 void expect_input_error(Call call, std::initializer_list<std::string> parts) {

@@ -30,6 +30,7 @@ using testing::model_scene;
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 using testing::delaunay_domain;
+using testing::quoted;
 
 
 // Time average of the area-weighted mean over steps [first, last] of a run whose field starts at U.
@@ -161,15 +162,6 @@ std::string slurp(const std::filesystem::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// A path in single quotes for the shell (built by appending: GCC 12's -Wrestrict misfires on
-// "'" + string at -O3).
-std::string quoted(const std::filesystem::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
 }
 
 void write_scene(const std::filesystem::path& path, const std::string& extra = "") {

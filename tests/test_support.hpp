@@ -58,6 +58,14 @@ inline CommandResult run_physarum(const std::string& args) {
   return r;
 }
 
+// A path single-quoted for run_physarum's shell command line (paths with spaces stay one argument).
+inline std::string quoted(const std::filesystem::path& p) {
+  std::string q(1, '\'');  // built by appending: "'" + s trips a GCC 12 -Wrestrict false positive
+  q += p.string();
+  q += '\'';
+  return q;
+}
+
 // A fresh empty temporary directory, removed when the object goes out of scope.
 struct TempDir {
   std::filesystem::path path;
