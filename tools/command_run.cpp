@@ -243,7 +243,7 @@ int run_run(const RunOptions& o) {
   InputVertexData<Rgb8> colors(on_input.size());
   const double upper_end = coloring.upper(on_input);
   for (size_t v = 0; v < on_input.size(); ++v)
-    colors[v] = colormap_color(coloring.map, coloring.normalise(on_input[v], upper_end));
+    colors[v] = coloring.color(on_input[v], upper_end);
   const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
   written += ", result.glb";
   write_text_file_atomically((out / "stats.csv").string(), stats);
