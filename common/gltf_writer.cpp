@@ -266,8 +266,13 @@ GltfExportSummary write_result_glb(const std::string& path, const InputMesh& mes
     tinygltf::Sampler sampler;
     sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
     sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    // A UV outside [0, 1] was baked where its wrapped value lies (texture_bake.hpp), so such a mesh
+    // needs REPEAT to find it; an atlas inside [0, 1] keeps CLAMP_TO_EDGE (see the header).
+    const bool tiled = std::any_of(mesh.uvs.begin(), mesh.uvs.end(), [](const Eigen::Vector2d& t) {
+      return t.x() < 0.0 || t.x() > 1.0 || t.y() < 0.0 || t.y() > 1.0;
+    });
+    sampler.wrapS = tiled ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = sampler.wrapS;
     model.samplers.push_back(sampler);
     tinygltf::Texture gltf_texture;
     gltf_texture.source = 0;

@@ -26,7 +26,7 @@
 // The texture is an sRGB PNG (glTF samples baseColorTexture as sRGB) embedded in the binary chunk,
 // sampled with trilinear filtering (LINEAR_MIPMAP_LINEAR, LINEAR) and CLAMP_TO_EDGE wrapping: a baked
 // atlas lies inside [0, 1]², and REPEAT would blend the opposite border of the atlas into charts
-// that touch an edge.
+// that touch an edge. A mesh whose UVs leave [0, 1] (tiled UVs, which the bake wraps) gets REPEAT.
 //
 // glTF has one UV per vertex, while the input may give a vertex different UVs on different faces (a
 // seam): such a vertex is written once per distinct UV index. The first V vertices of the file are

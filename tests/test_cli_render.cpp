@@ -9,9 +9,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 namespace physarum::testing {
 namespace {
@@ -97,6 +102,118 @@ TEST_F(RenderCommand, BadRunFolderWritesNothing) {
   ASSERT_EQ(run_.exit_code, 0) << run_.err;
   EXPECT_EQ(run_physarum("render " + quoted(run_dir()) + " --views 0 --out " + quoted(out)).exit_code, 2);
   EXPECT_EQ(run_physarum("render " + quoted(run_dir()) + " --colormap no-such-map --out " + quoted(out)).exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A square with UVs over the whole texture, so every texel lies on the surface.
+constexpr const char* kUvSquareObj = R"(v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+f 1/1 2/2 3/3
+f 1/1 3/3 4/4
+)";
+
+// A run on a mesh with UVs bakes texture.png; render bakes it again in the new colours.
+class RenderTexture : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    std::ofstream(dir_->path / "square.obj") << kUvSquareObj;
+    std::ofstream(dir_->path / "scene.json") << R"({
+  "mesh": "square.obj", "scale_to_area": 1.0, "max_circumradius": 0.04, "agents": 1000, "time_step": 0.02,
+  "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+  "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+  "mean_lifetime": 1.0, "activation_time": 0.2, "integrator": "forward", "seed": 5
+})";
+    run_ = run_physarum("run " + quoted(dir_->path / "scene.json") +
+                        " --backend reference --steps 30 --texture-size 48 --texture-format exr --out " +
+                        quoted(dir_->path / "run"));
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static fs::path run_dir() { return dir_->path / "run"; }
+  static inline TempDir* dir_ = nullptr;
+  static inline CommandResult run_;
+};
+
+std::vector<float> read_pixels(const fs::path& p, int expected_channels) {
+  auto in = OIIO::ImageInput::open(p.string());
+  if (!in || in->spec().nchannels != expected_channels) return {};
+  std::vector<float> pixels(static_cast<size_t>(in->spec().width) * in->spec().height * expected_channels);
+  return in->read_image(0, 0, 0, expected_channels, OIIO::TypeDesc::FLOAT, pixels.data()) ? pixels
+                                                                                           : std::vector<float>{};
+}
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The largest difference between two 8-bit images, in levels (read back as 0..1 floats).
+double max_level_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  double worst = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(static_cast<double>(a[i]) - b[i]) * 255.0);
+  return worst;
+}
+
+TEST_F(RenderTexture, RebakesTextureAndGlbInTheNewColours) {
+  ASSERT_EQ(run_.exit_code, 0) << run_.err;
+  const std::vector<float> run_texture = read_pixels(run_dir() / "texture.png", 3);
+  const std::vector<float> raw = read_pixels(run_dir() / "texture.exr", 1);
+  ASSERT_EQ(run_texture.size(), 48u * 48u * 3u);
+  ASSERT_EQ(raw.size(), 48u * 48u);
+
+  // The run's own colours: the same texture (the values come back from fields_full.ply as floats,
+  // so a texel on a colour step may move by one level).
+  const fs::path same = dir_->path / "same";
+  CommandResult r = run_physarum("render " + quoted(run_dir()) + " --views 1 --width 32 --height 24 --out " + quoted(same));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LE(max_level_difference(read_pixels(same / "texture.png", 3), run_texture), 1.0);
+  EXPECT_TRUE(fs::exists(same / "texture.exr"));  // the run's format is kept
+
+  // magma: every texel is magma at its raw value / 2U, the range `physarum run` colours over.
+  std::ifstream run_json(run_dir() / "run.json");
+  const double U = nlohmann::json::parse(run_json)["U"].get<double>();
+  const fs::path magma = dir_->path / "magma";
+  r = run_physarum("render " + quoted(run_dir()) + " --colormap magma --views 1 --width 32 --height 24 --out " + quoted(magma));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<float> recoloured = read_pixels(magma / "texture.png", 3);
+  ASSERT_EQ(recoloured.size(), run_texture.size());
+  EXPECT_GT(max_level_difference(recoloured, run_texture), 50.0);
+  std::vector<float> expected(recoloured.size());
+  for (size_t t = 0; t < raw.size(); ++t) {
+    const Rgb8 c = colormap_color(ColorMap::named("magma"), raw[t] / (2.0 * U));
+    for (size_t k = 0; k < 3; ++k) expected[3 * t + k] = static_cast<float>(c[k] / 255.0);
+  }
+  EXPECT_LE(max_level_difference(recoloured, expected), 1.0);
+
+  // result.glb embeds that texture: its PNG (after the JSON chunk) decodes to the same pixels.
+  const std::string glb = file_bytes(magma / "result.glb");
+  EXPECT_NE(glb, file_bytes(run_dir() / "result.glb"));
+  const size_t png_at = glb.find("\x89PNG\r\n\x1a\n");
+  ASSERT_NE(png_at, std::string::npos);
+  TempDir extracted;
+  std::ofstream(extracted.path / "embedded.png", std::ios::binary) << glb.substr(png_at);
+  EXPECT_EQ(read_pixels(extracted.path / "embedded.png", 3), recoloured);
+}
+
+// A texture needs the surface the run simulated on: a mesh file changed since then is refused,
+// naming it, and nothing is written.
+TEST_F(RenderTexture, ChangedMeshIsRefused) {
+  ASSERT_EQ(run_.exit_code, 0) << run_.err;
+  TempDir copy;
+  fs::copy(run_dir(), copy.path / "run");
+  const std::string moved = std::string(kUvSquareObj).replace(0, 7, "v 0 0 0.3");
+  std::ofstream(dir_->path / "square.obj") << moved;
+  const fs::path out = copy.path / "render";
+  const CommandResult r = run_physarum("render " + quoted(copy.path / "run") + " --out " + quoted(out));
+  std::ofstream(dir_->path / "square.obj") << kUvSquareObj;  // restore for the other tests
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("square.obj"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

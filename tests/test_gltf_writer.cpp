@@ -338,6 +338,20 @@ TEST(GltfWriter, TextureIsEmbeddedPngAndReplacesColor0) {
   EXPECT_EQ(pixels, texture.pixels);
 }
 
+// UVs beyond [0, 1] are baked where their wrapped value lies, so the sampler must repeat there;
+// an atlas inside [0, 1] keeps clamping (checked above).
+TEST(GltfWriter, TiledUvsGetARepeatingSampler) {
+  InputMesh mesh = seam_square();
+  for (Eigen::Vector2d& uv : mesh.uvs) uv.x() += 1.0;  // the same chart, one tile to the right
+  GltfTexture texture{2, 2, std::vector<std::uint8_t>(12, 128)};
+  TempDir dir;
+  const std::string path = (dir.path / "result.glb").string();
+  write_result_glb(path, mesh, some_values(mesh), some_colors(mesh), texture);
+  const tinygltf::Sampler& s = load_glb(path).model.samplers.at(0);
+  EXPECT_EQ(s.wrapS, TINYGLTF_TEXTURE_WRAP_REPEAT);
+  EXPECT_EQ(s.wrapT, TINYGLTF_TEXTURE_WRAP_REPEAT);
+}
+
 // Bad requests throw InputError naming the path and leave nothing behind.
 TEST(GltfWriter, FailuresLeaveNoFile) {
   const InputMesh sphere = testing::make_icosphere(1);

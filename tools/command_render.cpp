@@ -1,7 +1,10 @@
 // `physarum render RUN_DIR [--colormap SPEC] [--views N] [--width W] [--height H] [--out DIR]`:
 // re-colours a finished run without simulating again. The values are read back from the run's own
 // files (fields_full.ply, pheromone.ply), coloured through the chosen colour map and drawn from
-// several views; the recoloured PLY files are written beside the pictures.
+// several views; the recoloured PLY files, texture.png and result.glb are written beside the
+// pictures. The texture needs the surface itself (which intrinsic face each texel lies in): the
+// surface is rebuilt from the recipe run.json records (the input mesh and the refinement keys),
+// checked against fields_full.ply, and baked as `physarum run` bakes (tools/surface_exports.hpp).
 //
 // Everything is read and checked before DIR is touched, and every file is written under a
 // temporary name and renamed (as `physarum run` does), so a bad run folder writes nothing.
@@ -12,11 +15,15 @@
 #include "common/ply_reader.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
+#include "common/full_resolution_mesh.hpp"
+#include "common/scene_surface.hpp"
 #include "tools/commands.hpp"
+#include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -41,6 +48,8 @@ struct RenderOptions {
 struct RunRecord {
   double U = 0.0;
   ColorMapSettings colormap;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
+  std::optional<SurfaceSpec> surface;      // how to rebuild the surface (runs before it was recorded: none)
+  std::optional<TextureSettings> texture;  // how the run baked texture.png (none: the mesh has no UVs)
 };
 
 RunRecord read_run_record(const fs::path& run_dir) {
@@ -58,6 +67,8 @@ RunRecord read_run_record(const fs::path& run_dir) {
     throw InputError(path.string() + ": no positive 'U' (the uniform steady state the colours are scaled to)");
   r.U = j["U"].get<double>();
   if (j.contains("colormap")) r.colormap = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
+  if (j.contains("surface")) r.surface = surface_spec_from_json(j["surface"], path.string() + ": key 'surface'");
+  if (j.contains("texture")) r.texture = TextureSettings::from_json(j["texture"], path.string() + ": key 'texture'");
   return r;
 }
 
@@ -95,6 +106,32 @@ std::optional<ResultFile> read_result(const fs::path& run_dir, const std::string
   return r;
 }
 
+// The surface rebuilt from run.json's recipe must be the one the run simulated on: the same
+// intrinsic triangles, its vertices where fields_full.ply has them (to float precision, the PLY's).
+void check_same_triangulation(const InputMesh& rebuilt, const InputMesh& recorded, const std::string& file,
+                              const std::string& mesh) {
+  const std::string why = file + " does not match the surface rebuilt from " + mesh + " (was the mesh file changed "
+                          "since the run?): ";
+  if (rebuilt.vertex_count() != recorded.vertex_count() || rebuilt.triangle_count() != recorded.triangle_count())
+    throw InputError(why + std::to_string(recorded.vertex_count()) + " vertices and " +
+                     std::to_string(recorded.triangle_count()) + " triangles recorded, " +
+                     std::to_string(rebuilt.vertex_count()) + " and " + std::to_string(rebuilt.triangle_count()) +
+                     " rebuilt");
+  if (rebuilt.triangles != recorded.triangles) throw InputError(why + "the triangles differ");
+  double extent = 0.0;
+  for (const Eigen::Vector3d& p : rebuilt.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  for (int v = 0; v < rebuilt.vertex_count(); ++v)
+    if ((rebuilt.positions[static_cast<size_t>(v)] - recorded.positions[static_cast<size_t>(v)]).cwiseAbs().maxCoeff() >
+        1e-6 * std::max(extent, 1e-30))
+      throw InputError(why + "vertex " + std::to_string(v) + " moved");
+}
+
+// What re-baking the texture needs: the surface and where each texel lies on it.
+struct SurfaceForExports {
+  SceneSurface surface;
+  TexelLocations texels;
+};
+
 int run_render(const RenderOptions& o) {
   const std::vector<CameraView> views = standard_views(o.views);
   if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
@@ -108,6 +145,21 @@ int run_render(const RenderOptions& o) {
   if (!full && !on_input) throw InputError(run_dir.string() + ": has neither fields_full.ply nor pheromone.ply");
   // Pictures come from the finest result there is.
   const ResultFile& picture_source = full ? *full : *on_input;
+
+  // The surface, where the run baked a texture (rebuilding is the slow part; pictures do not need it).
+  std::optional<SurfaceForExports> rebuilt;
+  if (run.texture) {
+    if (!run.surface) throw InputError((run_dir / "run.json").string() + ": records a texture but not the surface to bake it on");
+    if (!full || !on_input)
+      throw InputError(run_dir.string() + ": re-baking texture.png needs both fields_full.ply and pheromone.ply");
+    SceneSurface surface = prepare_surface(*run.surface);
+    check_same_triangulation(build_full_resolution_mesh(surface.input, surface.domain).mesh, full->ply.mesh,
+                             (run_dir / full->name).string(), run.surface->mesh);
+    if (surface.input.triangles != on_input->ply.mesh.triangles)
+      throw InputError((run_dir / on_input->name).string() + " does not match the mesh " + run.surface->mesh);
+    TexelLocations texels = locate_texels(surface.input, surface.domain, run.texture->size, run.texture->size);
+    rebuilt = SurfaceForExports{std::move(surface), std::move(texels)};
+  }
 
   // Levels are in multiples of U, as `physarum run` colours.
   const FieldColoring coloring = (o.colormap.empty() ? run.colormap : colormap_option(o.colormap)).mapping(run.U);
@@ -134,6 +186,18 @@ int run_render(const RenderOptions& o) {
     const std::string name = "view_" + view.name + ".png";
     write_preview_png((out / name).string(), picture_source.ply.mesh, picture_source.values, preview);
     note(name);
+  }
+  // result.glb, and texture.png where the run baked one. Without a texture the glb needs only the
+  // input mesh, which pheromone.ply is (positions and triangles; a mesh without UVs has no more).
+  if (on_input) {
+    const InputMesh& mesh = rebuilt ? rebuilt->surface.input : on_input->ply.mesh;
+    const SurfaceDomain empty_domain;
+    const SurfaceExportsWritten exports = write_surface_exports(
+        out, mesh, rebuilt ? rebuilt->surface.domain : empty_domain,
+        rebuilt ? std::optional<TexelLocations>(std::move(rebuilt->texels)) : std::nullopt,
+        IntrinsicVertexData<double>(full ? full->values.values() : std::vector<double>{}), on_input->values, coloring,
+        run.texture.value_or(TextureSettings{}));
+    for (const std::string& name : exports.files) note(name);
   }
   std::cout << "physarum render: " << picture_source.name << " (" << picture_source.ply.mesh.vertex_count()
             << " vertices); wrote " << out.string() << "/{" << written << "}\n";

@@ -20,7 +20,6 @@
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
 #include "common/field_transfer.hpp"
-#include "common/gltf_writer.hpp"
 #include "common/full_resolution_mesh.hpp"
 #include "common/input_mesh.hpp"
 #include "common/ply_writer.hpp"
@@ -30,13 +29,13 @@
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
 #include "common/texture_bake.hpp"
-#include "common/texture_image.hpp"
 #include "common/time_lapse.hpp"
 #include "common/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
 #include "tools/feasible_surface.hpp"
+#include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -64,9 +63,7 @@ struct RunOptions {
   std::optional<std::uint32_t> seed;
   std::string out = "out";
   int frames = 0;  // --frames K: a time-lapse of K pictures (0 = none)
-  int texture_size = 2048;
-  int texture_margin = 16;
-  std::string texture_format = "png";  // png (8-bit), png16, exr (texture.png and texture.exr)
+  TextureSettings texture;  // --texture-size, --texture-margin, --texture-format
 };
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
@@ -144,10 +141,7 @@ int run_run(const RunOptions& o) {
   if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
-  if (o.texture_size < 1 || o.texture_size > TexelLocations::kMaxSize)
-    throw UsageError("--texture-size " + std::to_string(o.texture_size) + " must be between 1 and " +
-                     std::to_string(TexelLocations::kMaxSize));
-  if (o.texture_margin < 0) throw UsageError("--texture-margin " + std::to_string(o.texture_margin) + " must be >= 0");
+  o.texture.check();
 
   // ---- everything that can reject the input, before any output exists ----
   Scene scene = load_scene(o.scene);
@@ -163,7 +157,7 @@ int run_run(const RunOptions& o) {
   // input, refused before anything is simulated or written.
   std::optional<TexelLocations> texels;
   if (!input.uvs.empty())
-    texels = locate_texels(input, domain, o.texture_size, o.texture_size);
+    texels = locate_texels(input, domain, o.texture.size, o.texture.size);
   else
     std::cerr << "physarum run: note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
   const AutoBackend chosen = choose_backend(o.backend, o.device);
@@ -224,28 +218,9 @@ int run_run(const RunOptions& o) {
   write_fields_ply((out / "fields_full.ply").string(), full.mesh, {PlyField{"pheromone", on_full}}, coloring,
                    "pheromone per intrinsic vertex (full resolution)");
   write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
-  std::optional<GltfTexture> glb_texture;
-  if (texels) {
-    const BakedTexture texture =
-        bake_fields(*texels, domain, {BakeField{"pheromone", field}}, BakeOptions{.margin = o.texture_margin});
-    TextureColouring colouring;
-    colouring.coloring = coloring;
-    colouring.upper_end = coloring.upper(on_full);
-    write_texture_png((out / "texture.png").string(), texture, 0, colouring, o.texture_format == "png16" ? 16 : 8);
-    written += ", texture.png";
-    glb_texture = GltfTexture{texture.width, texture.height, texture_rgb8(texture, 0, colouring)};
-    if (o.texture_format == "exr") {
-      write_texture_exr((out / "texture.exr").string(), texture);
-      written += ", texture.exr";
-    }
-  }
-  // result.glb carries pheromone.ply's colours (the same map over the same range) and the texture.
-  InputVertexData<Rgb8> colors(on_input.size());
-  const double upper_end = coloring.upper(on_input);
-  for (size_t v = 0; v < on_input.size(); ++v)
-    colors[v] = coloring.color(on_input[v], upper_end);
-  const GltfExportSummary glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
-  written += ", result.glb";
+  const SurfaceExportsWritten exports =
+      write_surface_exports(out, input, domain, texels, field, on_input, coloring, o.texture);
+  for (const std::string& name : exports.files) written += ", " + name;
   write_text_file_atomically((out / "stats.csv").string(), stats);
   time_lapse.write(o.out);
 
@@ -273,9 +248,12 @@ int run_run(const RunOptions& o) {
   j["area"] = domain.total_area;
   j["respawns"] = c.respawns;
   // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
-  j["result_glb_vertices"] = glb.vertices;
-  j["result_glb_seam_splits"] = glb.seam_splits;
+  j["result_glb_vertices"] = exports.glb.vertices;
+  j["result_glb_seam_splits"] = exports.glb.seam_splits;
   j["scene_file"] = o.scene;
+  // What `physarum render` needs to rebuild the surface and bake the texture again.
+  j["surface"] = surface_spec_json(SurfaceSpec::of(scene));
+  if (texels) j["texture"] = o.texture.to_json();
   j["parameters"] = scene_parameters_json(scene);
   // The colours as used (stops, levels in multiples of U): `physarum render` re-colours with it.
   j["colormap"] = color_map_settings_json(scene.colormap);
@@ -323,15 +301,15 @@ Command add_run_command(CLI::App& parent) {
   app->add_option("--frames", options->frames,
                   "Time-lapse: K pictures evenly spaced in steps (the last at the final step), written as "
                   "DIR/frames/frame_0001.png ... and the animated DIR/frames.gif");
-  app->add_option("--texture-size", options->texture_size,
+  app->add_option("--texture-size", options->texture.size,
                   "Side of the square texture baked onto the mesh's UVs, in texels (1.." +
                       std::to_string(TexelLocations::kMaxSize) + ")")
       ->capture_default_str();
-  app->add_option("--texture-margin", options->texture_margin,
+  app->add_option("--texture-margin", options->texture.margin,
                   "Seam padding of the texture: texels outside the UV charts within this many texels of one take "
                   "values continued from it")
       ->capture_default_str();
-  app->add_option("--texture-format", options->texture_format,
+  app->add_option("--texture-format", options->texture.format,
                   "png: texture.png, 8-bit sRGB colours; png16: texture.png with 16 bits per channel; exr: texture.png "
                   "and texture.exr, the raw float values in a channel named pheromone")
       ->check(CLI::IsMember({"png", "png16", "exr"}))

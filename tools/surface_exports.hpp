@@ -1,0 +1,60 @@
+#pragma once
+// The outputs of a run that need the surface itself, not only the values on a mesh: the field baked
+// onto the input's UVs (texture.png, and texture.exr on request) and result.glb, which embeds that
+// texture. `physarum run` writes them after simulating; `physarum render` writes them again with
+// other colours, rebuilding the surface from what run.json records (so both go through this one
+// function and a re-coloured texture is made exactly as the run's was).
+#include "common/color_mapping.hpp"
+#include "common/element_data.hpp"
+#include "common/gltf_writer.hpp"
+#include "common/input_mesh.hpp"
+#include "common/scene_surface.hpp"
+#include "common/surface_domain.hpp"
+#include "common/texture_bake.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace physarum::cli {
+
+// --texture-size, --texture-margin, --texture-format of `physarum run`, as run.json records them.
+struct TextureSettings {
+  int size = 2048;             // texels per side
+  int margin = 16;             // seam padding in texels
+  std::string format = "png";  // png (8-bit), png16, exr (texture.png and texture.exr)
+
+  // UsageError naming the flag when a value is out of range.
+  void check() const;
+  nlohmann::ordered_json to_json() const;
+  // InputError naming `where` when a key is missing or out of range.
+  static TextureSettings from_json(const nlohmann::json& j, const std::string& where);
+};
+
+// The surface's recipe as run.json records it ("surface"): the mesh as an absolute path (or the
+// shape:NAME spec), so `physarum render` finds it from any working directory, and the scaling and
+// refinement keys. Rebuilding from it gives the same triangulation (prepare_surface is
+// deterministic); render checks that against fields_full.ply.
+nlohmann::ordered_json surface_spec_json(const SurfaceSpec& spec);
+// InputError naming `where` when a key is missing or has the wrong type.
+SurfaceSpec surface_spec_from_json(const nlohmann::json& j, const std::string& where);
+
+struct SurfaceExportsWritten {
+  std::vector<std::string> files;  // names inside the output folder, in the order written
+  GltfExportSummary glb;
+};
+
+// Writes into `out`: texture.png (and texture.exr) when `texels` are given (the input has UVs),
+// then result.glb. `field` is on the intrinsic vertices (the texture samples it), `on_input` the same
+// field on the input's vertices (result.glb's values and vertex colours); both are coloured by
+// `coloring` with the upper end of pheromone.ply's and fields_full.ply's colours.
+SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, const InputMesh& input,
+                                            const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
+                                            const IntrinsicVertexData<double>& field,
+                                            const InputVertexData<double>& on_input, const ColorMapping& coloring,
+                                            const TextureSettings& texture);
+
+}  // namespace physarum::cli
