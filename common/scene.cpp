@@ -220,13 +220,17 @@ SceneControls read_controls(const json& j, const std::string& source) {
   return c;
 }
 
-// The map `name` must exist and be of `kind`.
-void check_map_reference(const Scene& scene, const std::string& key, const std::string& name, MapKind kind) {
+// The map `name` must exist and be of `kind`. `shown_value` (optional) is shown after the key, as a
+// number's out-of-range message shows the number.
+void check_map_reference(const Scene& scene, const std::string& key, const std::string& name, MapKind kind,
+                         const std::string& shown_value = {}) {
   const MapDefinition* map = scene.maps.find(name);
   if (!map) {
     std::string known;
     for (const MapDefinition& m : scene.maps.in_dependency_order()) known += (known.empty() ? "" : ", ") + m.name;
-    fail_key(scene.source, key, "map '" + name + "' is not defined in 'maps' (" + (known.empty() ? "no maps are defined" : "defined: " + known) + ")");
+    throw InputError(where(scene.source) + ": key '" + key + "'" + (shown_value.empty() ? "" : " = " + shown_value) +
+                     ": map '" + name + "' is not defined in 'maps' (" +
+                     (known.empty() ? "no maps are defined" : "defined: " + known) + ")");
   }
   if (map->kind != kind)
     fail_key(scene.source, key, "map '" + name + "' is a " + to_string(map->kind) + " map, but a " + to_string(kind) +
@@ -405,7 +409,9 @@ void validate_scene(const Scene& scene) {
   check_range(s, "time_step", scene.time_step);
   for (const ParameterSpec& p : kParameterTable) {
     if (const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)]) {
-      check_map_reference(scene, std::string(p.key), map->map, MapKind::Scalar);
+      // The message shows the value, as a number's would: a typo'd number written as text reads as
+      // a map name, and the user sees both.
+      check_map_reference(scene, std::string(p.key), map->map, MapKind::Scalar, json(map->map).dump());
       continue;  // its values are checked per vertex when the map is evaluated
     }
     const double value = scene.parameters[p.id];
