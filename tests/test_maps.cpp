@@ -73,7 +73,7 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
        {"ramp_x", {{"axis", "x"}}}},
       s);
   const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
-  int checked_falloff_middle = 0;
+  int checked_falloff_middle = 0, checked_falloff_quarter = 0;
   for (size_t v = 0; v < p.size(); ++v) {
     const double r = (p[v] - Eigen::Vector3d(0.5, 0.5, 0.0)).norm();
     // Vertices away from the edges (rounding of the barycentrics is ~1e-16).
@@ -87,6 +87,11 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
     if (std::abs(r - 0.3125) < 1e-12) {
       EXPECT_NEAR(m.scalar_map("soft")[v], 0.5, 1e-9);
       ++checked_falloff_middle;
+    }
+    // A quarter into the falloff (the grid vertex (0.5, 7/32), r = 9/32): 1 - smoothstep(1/4) = 27/32.
+    if (std::abs(r - 0.28125) < 1e-12) {
+      EXPECT_NEAR(m.scalar_map("soft")[v], 27.0 / 32.0, 1e-9);
+      ++checked_falloff_quarter;
     }
     if (r > 0.25 + 1e-9 && r < 0.375 - 1e-9) {
       EXPECT_GT(m.scalar_map("soft")[v], 0.0);
@@ -104,6 +109,7 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
   // (0.1875 = 6/32 is a grid coordinate of the 32-cell square) and the 3-4-5 points
   // (0.5 +- 0.1875, 0.5 +- 0.25), (0.5 +- 0.25, 0.5 +- 0.1875): 12 in all.
   EXPECT_EQ(checked_falloff_middle, 12);
+  EXPECT_EQ(checked_falloff_quarter, 4);  // (0.5 +- 9/32, 0.5), (0.5, 0.5 +- 9/32)
 }
 
 TEST(Maps, AxisRampOfASphereAveragesOneHalf) {
