@@ -9,7 +9,9 @@
 #include "common/scene.hpp"
 #include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
+#include "opencl/compute_context.hpp"
 #include "test_support.hpp"
+#include "tools/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -190,6 +192,36 @@ TEST(SceneMaps, BadReferencesAreRefusedNamingTheKey) {
     ASSERT_FALSE(message.empty()) << "accepted";
     EXPECT_NE(message.find("scene.json: key '"), std::string::npos) << message;
     for (const std::string& s : c.says) EXPECT_NE(message.find(s), std::string::npos) << message;
+  }
+}
+
+// The per-vertex values reach the backend, not a summary of them: with deposit_rate 0 on the left
+// half of the square (x <= 1/2) and no diffusion, nothing is ever deposited on a vertex whose faces
+// all lie left of x = 1/2, while the right half fills; a backend given the mean deposit rate would
+// fill both halves alike.
+TEST(SceneMaps, ADepositMapReachesBothBackends) {
+  TempDir dir;
+  json j = base_scene();
+  j["agents"] = 2000;
+  j["diffuse_rate"] = 0.0;
+  j["maps"] = {{"ramp", {{"axis", "x"}}}, {"right", {{"threshold", "ramp"}, {"at", 0.5 + 1e-9}}}};
+  j["deposit_rate"] = {{"map", "right"}, {"range", {0.0, 2.0}}};
+  const Scene scene = load_scene(write_scene(dir, j));
+  const SceneSurface surface = prepare_scene_surface(scene);
+  const opencl::ComputeContext compute = opencl::make_compute_context("");
+  for (const BackendChoice backend : {BackendChoice::Reference, BackendChoice::OpenCL}) {
+    const auto sim = make_backend(backend, &compute, surface, scene);
+    sim->run(50);
+    sim->finish();
+    const IntrinsicVertexData<double> field = sim->field_values();
+    double left = 0.0, right = 0.0;
+    for (int v = 0; v < surface.domain.vertex_count; ++v) {
+      const double x = surface.input.positions[static_cast<size_t>(v)].x();  // unrefined: intrinsic = input
+      if (x < 0.45) left += field[v];
+      if (x > 0.55) right += field[v];
+    }
+    EXPECT_EQ(left, 0.0) << to_string(backend);
+    EXPECT_GT(right, 0.0) << to_string(backend);
   }
 }
 
