@@ -344,6 +344,19 @@ MapSet parse_maps(const json& maps, const std::string& folder, const std::string
     by_name.emplace(name, std::move(d));
   }
 
+  // A vector map is written as NAME_x, NAME_y, NAME_z (maps.ply): no other map may be called so.
+  for (const std::string& name : file_order) {
+    if (by_name.at(name).kind != MapKind::Vector) continue;
+    for (const char axis : {'x', 'y', 'z'}) {
+      std::string component = name;
+      component += '_';
+      component += axis;
+      if (by_name.count(component))
+        MapContext{where, folder, component}.fail("the name is taken by the component " + component +
+                                                  " of the vector map '" + name + "' (maps.ply writes both)");
+    }
+  }
+
   // Operands must name scalar maps.
   for (const std::string& name : file_order) {
     const MapContext c{where, folder, name};

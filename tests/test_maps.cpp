@@ -185,6 +185,7 @@ TEST(Maps, BadMapsAreRefusedNamingTheMap) {
       {{{"a", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}, {"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}}}},
        {"map 'a'", "two sources"}},
       {{{"red", 1}}, {"map 'red'", "PLY property"}},
+      {{{"flow", {{"direction", {1, 0, 0}}}}, {"flow_y", 1}}, {"map 'flow_y'", "component flow_y of the vector map 'flow'"}},
       {{{"a b", 1}}, {"map 'a b'", "letters, digits"}},
       {json::array(), {"key 'maps'", "must be an object"}},
   };
