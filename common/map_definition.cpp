@@ -105,20 +105,19 @@ RegionSource region_source(const json& object, const MapContext& c, std::string_
   }
   const json& shape = object.at(std::string(key));
   if (!shape.is_object()) c.fail("\"" + std::string(key) + "\" must be an object");
-  const MapContext inner{c.where, c.folder, c.name};
   if (key == "sphere") {
-    inner.only(shape, {"center", "radius"});
-    SphereRegion s{inner.point(shape, "center"), inner.number(shape, "radius")};
+    c.only(shape, {"center", "radius"});
+    SphereRegion s{c.point(shape, "center"), c.number(shape, "radius")};
     if (!(s.radius >= 0.0)) c.fail("sphere \"radius\" must be >= 0");
     r.region = s;
   } else if (key == "box") {
-    inner.only(shape, {"min", "max"});
-    BoxRegion b{inner.point(shape, "min"), inner.point(shape, "max")};
+    c.only(shape, {"min", "max"});
+    BoxRegion b{c.point(shape, "min"), c.point(shape, "max")};
     if ((b.min.array() > b.max.array()).any()) c.fail("box \"min\" must not exceed \"max\" on any axis");
     r.region = b;
   } else {
-    inner.only(shape, {"point", "normal"});
-    HalfSpaceRegion h{inner.point(shape, "point"), inner.point(shape, "normal")};
+    c.only(shape, {"point", "normal"});
+    HalfSpaceRegion h{c.point(shape, "point"), c.point(shape, "normal")};
     if (!(h.normal.norm() > 0.0)) c.fail("half_space \"normal\" must not be zero");
     h.normal.normalize();
     r.region = h;
