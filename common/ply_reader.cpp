@@ -67,17 +67,29 @@ struct Element {
   long long count = 0;
   std::vector<ScalarProperty> scalars;
   bool has_list = false;
+  size_t scalars_before_list = 0;  // scalar properties declared before the list
   PlyType list_count_type = PlyType::UInt8, list_item_type = PlyType::Int32;
 };
+
+const std::vector<double>& named_column(const std::map<std::string, std::vector<double>>& columns,
+                                        const std::vector<std::string>& names, const std::string& name,
+                                        const std::string& source, const char* element) {
+  const auto it = columns.find(name);
+  if (it != columns.end()) return it->second;
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(source + ": no " + element + " property '" + name + "' (it has: " + (known.empty() ? "none" : known) +
+                   ")");
+}
 
 }  // namespace
 
 const std::vector<double>& PlyFields::property(const std::string& name) const {
-  const auto it = properties.find(name);
-  if (it != properties.end()) return it->second;
-  std::string known;
-  for (const auto& n : property_names) known += (known.empty() ? "" : ", ") + n;
-  throw InputError(mesh.source + ": no vertex property '" + name + "' (it has: " + (known.empty() ? "none" : known) + ")");
+  return named_column(properties, property_names, name, mesh.source, "vertex");
+}
+
+const std::vector<double>& PlyFields::face_property(const std::string& name) const {
+  return named_column(face_properties, face_property_names, name, mesh.source, "face");
 }
 
 PlyFields read_ply_fields(const std::string& path) {
@@ -113,6 +125,7 @@ PlyFields read_ply_fields(const std::string& path) {
         words >> count_type >> item_type >> name;
         if (e.has_list) throw InputError(path + ": element '" + e.name + "' has more than one list property");
         e.has_list = true;
+        e.scalars_before_list = e.scalars.size();
         e.list_count_type = parse_type(count_type, path);
         e.list_item_type = parse_type(item_type, path);
       } else {
@@ -162,11 +175,28 @@ PlyFields read_ply_fields(const std::string& path) {
         }
       }
     } else if (e.name == "face") {
-      if (!e.has_list || !e.scalars.empty())
-        throw InputError(path + ": faces must have exactly one list property (vertex indices)");
+      if (!e.has_list) throw InputError(path + ": faces must have a list property (vertex indices)");
+      // Where the list sits among the scalars: the header lists it in order, but this reader keeps
+      // scalars and the list apart, so they are read in the order the header gave them.
+      std::vector<std::vector<double>*> columns;
+      for (const ScalarProperty& p : e.scalars) {
+        if (result.face_properties.count(p.name) > 0) throw InputError(path + ": face property '" + p.name + "' appears twice");
+        result.face_property_names.push_back(p.name);
+        columns.push_back(&result.face_properties[p.name]);
+        columns.back()->reserve(static_cast<size_t>(e.count));
+      }
       result.mesh.triangles.reserve(static_cast<size_t>(e.count));
       const size_t count_size = type_size(e.list_count_type), item_size = type_size(e.list_item_type);
+      auto read_scalars = [&](size_t from, size_t to) {
+        for (size_t p = from; p < to; ++p) {
+          const size_t size = type_size(e.scalars[p].type);
+          need(size);
+          columns[p]->push_back(decode(data + at, e.scalars[p].type));
+          at += size;
+        }
+      };
       for (long long f = 0; f < e.count; ++f) {
+        read_scalars(0, e.scalars_before_list);
         need(count_size);
         const double corners = decode(data + at, e.list_count_type);
         at += count_size;
@@ -182,6 +212,7 @@ PlyFields read_ply_fields(const std::string& path) {
           t[c] = static_cast<int>(index);
         }
         result.mesh.triangles.push_back(t);
+        read_scalars(e.scalars_before_list, e.scalars.size());
       }
     } else {
       throw InputError(path + ": element '" + e.name + "' is not read (only vertex and face)");

@@ -1,9 +1,11 @@
 #pragma once
-// Reading a result back: the binary PLY files physarum writes (pheromone.ply, fields_full.ply) as a
-// triangle mesh plus every per-vertex scalar property by name, so `physarum render` can re-colour a
-// finished run without simulating again. It reads any binary little-endian PLY whose vertex element
-// has scalar properties and whose face element has one list property of triangles — the layout of
-// our writers and of most tools' exports — and says clearly what it does not read.
+// Reading a result back: the binary PLY files physarum writes (pheromone.ply, fields_full.ply,
+// maps.ply) as a triangle mesh plus every per-vertex and per-face scalar property by name, so
+// `physarum render` can re-colour a finished run without simulating again and a scene's maps can be
+// painted in another tool and read as {"ply": FILE, ...}. It reads any binary little-endian PLY whose
+// vertex element has scalar properties and whose face element has one list property of triangles
+// (plus any scalar face properties) — the layout of our writers and of most tools' exports — and
+// says clearly what it does not read.
 #include "common/input_mesh.hpp"
 
 #include <map>
@@ -18,9 +20,14 @@ struct PlyFields {
   // come back as 0..255).
   std::vector<std::string> property_names;
   std::map<std::string, std::vector<double>> properties;
+  // Every scalar face property (beside the vertex-index list), in file order, one value per face.
+  std::vector<std::string> face_property_names;
+  std::map<std::string, std::vector<double>> face_properties;
 
-  // The property `name`; InputError naming the file and the properties it has when absent.
+  // The vertex property `name`; InputError naming the file and the properties it has when absent.
   const std::vector<double>& property(const std::string& name) const;
+  // The face property `name`; the same error when absent.
+  const std::vector<double>& face_property(const std::string& name) const;
 };
 
 // Throws InputError naming `path` and the problem (missing file, ASCII or big-endian format, a face

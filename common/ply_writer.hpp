@@ -34,6 +34,22 @@ struct PlyField {
 void write_fields_ply(const std::string& path, const InputMesh& mesh, const std::vector<PlyField>& fields,
                       const FieldColoring& coloring, const std::string& description);
 
+// One named per-face value of a mesh being written (one per triangle, in triangle order); referenced
+// like PlyField.
+struct PlyFaceField {
+  std::string name;  // the same rules as PlyField's names
+  const std::vector<double>& values;
+};
+
+// Properties of vertices and of faces (maps.ply: a scene's scalar maps per vertex, its vector maps'
+// components per face). As write_fields_ply, with after the face's vertex_indices one
+//   property float <name>
+// per face field, and vertex colours (from vertex_fields[0] through `coloring`) only when there is
+// a vertex field. At least one field of either kind; names are unique across both.
+void write_fields_ply(const std::string& path, const InputMesh& mesh, const std::vector<PlyField>& vertex_fields,
+                      const std::vector<PlyFaceField>& face_fields, const FieldColoring& coloring,
+                      const std::string& description);
+
 // One field on the input mesh (pheromone.ply): write_fields_ply with the single field
 // `property_name` and the description "<property_name> per input vertex".
 void write_field_ply(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,

@@ -102,6 +102,177 @@ struct Reader {
   }
 };
 
+// ---- maps and controls ------------------------------------------------------------------------------
+
+[[noreturn]] void fail_key(const std::string& source, std::string_view key, const std::string& problem) {
+  throw InputError(where(source) + ": key '" + std::string(key) + "': " + problem);
+}
+
+// A parameter given by a map: a bare map name, or {"map": NAME, "range": [lo, hi]} whose bounds are
+// in the parameter's range (so every map value in 0..1 gives an allowed value). nullopt for a
+// number (or null, or absent): the ordinary reader takes those.
+std::optional<ParameterMap> read_parameter_map(const json& object, const ParameterSpec& p, const std::string& source) {
+  const auto it = object.find(std::string(p.key));
+  if (it == object.end()) return std::nullopt;
+  if (it->is_string()) {
+    if (it->get<std::string>().empty()) fail_key(source, p.key, "an empty map name");
+    return ParameterMap{it->get<std::string>(), std::nullopt};
+  }
+  if (!it->is_object()) return std::nullopt;
+  for (auto field = it->begin(); field != it->end(); ++field)
+    if (field.key() != "map" && field.key() != "range")
+      fail_key(source, p.key, "unknown field \"" + field.key() + "\" (a parameter map is {\"map\": NAME, \"range\": [lo, hi]})");
+  const auto name = it->find("map");
+  if (name == it->end() || !name->is_string() || name->get<std::string>().empty())
+    fail_key(source, p.key, it->dump() + " needs \"map\": the name of a scalar map");
+  ParameterMap map{name->get<std::string>(), std::nullopt};
+  if (const auto range = it->find("range"); range != it->end()) {
+    if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() || !(*range)[1].is_number())
+      fail_key(source, p.key, "\"range\" = " + range->dump() + " must be two numbers [lo, hi]");
+    map.range = std::array<double, 2>{(*range)[0].get<double>(), (*range)[1].get<double>()};
+    for (const double bound : *map.range)
+      if (!p.range.contains(bound))
+        fail_key(source, p.key, "\"range\" = " + range->dump() + ": the bound " + ValueRange::number(bound) + " " +
+                                    std::string(p.unit) + " is out of range (" + p.range.describe() + ")");
+  }
+  return map;
+}
+
+// A field of one entry of a list key ("read_stimuli"[0].weight).
+std::string entry_name(std::string_view key, size_t index) { return std::string(key) + "[" + std::to_string(index) + "]"; }
+
+double finite_number(const json& entry, const char* field, const std::string& source, const std::string& key) {
+  const auto it = entry.find(field);
+  if (it == entry.end()) fail_key(source, key, std::string("missing \"") + field + "\"");
+  if (!it->is_number()) fail_key(source, key, std::string("\"") + field + "\" = " + it->dump() + " must be a number");
+  return it->get<double>();
+}
+
+std::string map_name(const json& entry, const char* field, const std::string& source, const std::string& key) {
+  const auto it = entry.find(field);
+  if (it == entry.end()) fail_key(source, key, std::string("missing \"") + field + "\" (a map name)");
+  if (!it->is_string() || it->get<std::string>().empty())
+    fail_key(source, key, std::string("\"") + field + "\" = " + it->dump() + " must be a map name");
+  return it->get<std::string>();
+}
+
+void only_fields(const json& entry, std::initializer_list<const char*> allowed, const std::string& source,
+                 const std::string& key) {
+  if (!entry.is_object()) fail_key(source, key, entry.dump() + " must be an object");
+  for (auto it = entry.begin(); it != entry.end(); ++it)
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; })) {
+      std::string list;
+      for (const char* a : allowed) list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+      fail_key(source, key, "unknown field \"" + it.key() + "\" (it takes " + list + ")");
+    }
+}
+
+// A map name or a number.
+MapOperand operand_value(const json& value, const std::string& source, const std::string& key) {
+  if (value.is_number()) return value.get<double>();
+  if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
+  fail_key(source, key, value.dump() + " must be a number or a map name");
+}
+
+SceneControls read_controls(const json& j, const std::string& source) {
+  SceneControls c;
+  for (const char* key : {"read_stimuli", "write_stimuli"}) {
+    const auto it = j.find(key);
+    if (it == j.end() || it->is_null()) continue;
+    if (!it->is_array()) fail_key(source, key, it->dump() + " must be a list of {\"map\": NAME, ...}");
+    const bool read = std::string_view(key) == "read_stimuli";
+    for (size_t i = 0; i < it->size(); ++i) {
+      const std::string name = entry_name(key, i);
+      const json& entry = (*it)[i];
+      only_fields(entry, {"map", read ? "weight" : "rate"}, source, name);
+      if (read)
+        c.read_stimuli.push_back({map_name(entry, "map", source, name), finite_number(entry, "weight", source, name)});
+      else
+        c.write_stimuli.push_back({map_name(entry, "map", source, name), finite_number(entry, "rate", source, name)});
+    }
+  }
+  if (const auto it = j.find("spawn_weight"); it != j.end() && !it->is_null())
+    c.spawn_weight = operand_value(*it, source, "spawn_weight");
+  if (const auto it = j.find("bias"); it != j.end() && !it->is_null()) {
+    only_fields(*it, {"direction", "strength", "symmetry"}, source, "bias");
+    BiasSpec b;
+    b.direction = map_name(*it, "direction", source, "bias");
+    const auto strength = it->find("strength");
+    if (strength == it->end()) fail_key(source, "bias", "missing \"strength\" (deg/s: a number or a map name)");
+    b.strength = operand_value(*strength, source, "bias");
+    if (const auto symmetry = it->find("symmetry"); symmetry != it->end()) {
+      if (!symmetry->is_number_integer()) fail_key(source, "bias", "\"symmetry\" = " + symmetry->dump() + " must be a whole number 1..8");
+      b.symmetry = symmetry->get<int>();
+    }
+    c.bias = b;
+  }
+  const Reader read{j, source};
+  if (auto heading = read.string("spawn_heading")) {
+    if (*heading == "random") c.spawn_heading = SpawnHeading::Random;
+    else if (*heading == "bias") c.spawn_heading = SpawnHeading::Bias;
+    else fail_key(source, "spawn_heading", "\"" + *heading + "\" must be \"random\" or \"bias\"");
+  }
+  if (auto boundary = read.string("boundary")) {
+    if (*boundary == "reflect") c.boundary = BoundaryBehaviour::Reflect;
+    else if (*boundary == "terminate") c.boundary = BoundaryBehaviour::Terminate;
+    else fail_key(source, "boundary", "\"" + *boundary + "\" must be \"reflect\" or \"terminate\"");
+  }
+  return c;
+}
+
+// The map `name` must exist and be of `kind`. `shown_value` (optional) is shown after the key, as a
+// number's out-of-range message shows the number.
+void check_map_reference(const Scene& scene, const std::string& key, const std::string& name, MapKind kind,
+                         const std::string& shown_value = {}) {
+  const MapDefinition* map = scene.maps.find(name);
+  if (!map) {
+    std::string known;
+    for (const MapDefinition& m : scene.maps.in_dependency_order()) known += (known.empty() ? "" : ", ") + m.name;
+    throw InputError(where(scene.source) + ": key '" + key + "'" + (shown_value.empty() ? "" : " = " + shown_value) +
+                     ": map '" + name + "' is not defined in 'maps' (" +
+                     (known.empty() ? "no maps are defined" : "defined: " + known) + ")");
+  }
+  if (map->kind != kind)
+    fail_key(scene.source, key, "map '" + name + "' is a " + to_string(map->kind) + " map, but a " + to_string(kind) +
+                                    " map is needed here");
+}
+
+void check_operand(const Scene& scene, const std::string& key, const MapOperand& operand) {
+  if (const auto* name = std::get_if<std::string>(&operand)) check_map_reference(scene, key, *name, MapKind::Scalar);
+}
+
+void validate_controls(const Scene& scene) {
+  const std::string& s = scene.source;
+  const SceneControls& c = scene.controls;
+  for (size_t i = 0; i < c.read_stimuli.size(); ++i) {
+    const std::string key = entry_name("read_stimuli", i);
+    check_map_reference(scene, key, c.read_stimuli[i].map, MapKind::Scalar);
+    if (!std::isfinite(c.read_stimuli[i].weight)) fail_key(s, key, "\"weight\" must be finite");
+  }
+  for (size_t i = 0; i < c.write_stimuli.size(); ++i) {
+    const std::string key = entry_name("write_stimuli", i);
+    check_map_reference(scene, key, c.write_stimuli[i].map, MapKind::Scalar);
+    if (!std::isfinite(c.write_stimuli[i].rate)) fail_key(s, key, "\"rate\" must be finite");
+  }
+  if (c.spawn_weight) {
+    check_operand(scene, "spawn_weight", *c.spawn_weight);
+    if (const auto* w = std::get_if<double>(&*c.spawn_weight)) {
+      if (!(*w >= 0.0) || !std::isfinite(*w)) fail_key(s, "spawn_weight", ValueRange::number(*w) + " must be >= 0");
+      if (*w == 0.0) fail_key(s, "spawn_weight", "0 everywhere: no agent could be placed (all spawn weights are zero)");
+    }
+  }
+  if (c.bias) {
+    check_map_reference(scene, "bias", c.bias->direction, MapKind::Vector);
+    check_operand(scene, "bias", c.bias->strength);
+    if (const auto* strength = std::get_if<double>(&c.bias->strength); strength && !(*strength >= 0.0 && std::isfinite(*strength)))
+      fail_key(s, "bias", "\"strength\" = " + ValueRange::number(*strength) + " deg/s must be >= 0");
+    if (c.bias->symmetry < 1 || c.bias->symmetry > 8)
+      fail_key(s, "bias", "\"symmetry\" = " + std::to_string(c.bias->symmetry) + " must be 1..8");
+  }
+  if (c.spawn_heading == SpawnHeading::Bias && !c.bias)
+    fail_key(s, "spawn_heading", "\"bias\" aligns agents with the bias direction, and the scene has no 'bias'");
+}
+
 json parse_scene_text(const std::string& text, const std::string& path) {
   // Duplicate keys are a likely copy-paste mistake and nlohmann silently keeps the last one, so the
   // parser callback watches the keys of the top-level object.
@@ -175,7 +346,17 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
 
   scene.agents = static_cast<int>(*read.integer("agents"));
   scene.time_step = *read.number("time_step");
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  if (auto it = j.find("maps"); it != j.end()) {
+    scene.maps = parse_maps(*it, folder, path);
+    scene.maps_given = *it;
+  }
   for (const ParameterSpec& p : kParameterTable) {
+    if (auto map = read_parameter_map(j, p, path)) {
+      scene.parameter_maps[static_cast<size_t>(p.id)] = *map;
+      scene.parameters[p.id] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
     // Absent: the default (optional keys only); null: +infinity (keys that allow it).
     const std::optional<double> file_value = read.number(p.key);
     const double value = file_value ? *file_value : p.default_value.value_or(kInfinity);
@@ -195,6 +376,8 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
 
   if (auto it = j.find("colormap"); it != j.end() && !it->is_null())
     scene.colormap = resolve_color_map(*it, std::filesystem::path(path).parent_path().string(), path + ": key 'colormap'");
+
+  scene.controls = read_controls(j, path);
 
   ComparisonSettings& c = scene.comparison;
   c.burn_in = read.number("compare_burn_in").value_or(c.burn_in);
@@ -225,6 +408,12 @@ void validate_scene(const Scene& scene) {
   check_range(s, "agents", scene.agents);
   check_range(s, "time_step", scene.time_step);
   for (const ParameterSpec& p : kParameterTable) {
+    if (const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)]) {
+      // The message shows the value, as a number's would: a typo'd number written as text reads as
+      // a map name, and the user sees both.
+      check_map_reference(scene, std::string(p.key), map->map, MapKind::Scalar, json(map->map).dump());
+      continue;  // its values are checked per vertex when the map is evaluated
+    }
     const double value = scene.parameters[p.id];
     if (p.null_means_infinite && value == kInfinity) continue;
     check_range(s, p.key, value / p.file_to_si);
@@ -233,6 +422,11 @@ void validate_scene(const Scene& scene) {
   if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
   if (scene.steps && scene.sim_time)
     throw InputError(where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
+  validate_controls(scene);
+}
+
+bool has_parameter_maps(const Scene& scene) {
+  return std::any_of(scene.parameter_maps.begin(), scene.parameter_maps.end(), [](const auto& m) { return m.has_value(); });
 }
 
 }  // namespace physarum

@@ -4,8 +4,11 @@
 // whose keys are listed in the README; every bad value is an InputError naming the key, the value and
 // the allowed range, and an unknown key is an error too.
 #include "common/color_map_json.hpp"
+#include "common/map_definition.hpp"
 #include "common/model_parameters.hpp"
+#include "common/scene_controls.hpp"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -45,8 +48,16 @@ struct Scene {
   double min_angle_deg = 0.0;              // optional refinement angle bound
 
   int agents = 0;  // N
-  // Every model parameter of Table 1 (common/model_parameters.hpp), in SI units.
+  // Every model parameter of Table 1 (common/model_parameters.hpp), in SI units. A parameter given
+  // by a map (parameter_maps[p] set) holds NaN here until the surface exists: its values are per
+  // vertex (common/scene_maps.hpp: vertex_parameters, and with_mean_parameters for one summary value).
   ParameterValues parameters;
+  std::array<std::optional<ParameterMap>, kParamCount> parameter_maps;
+
+  // ---- maps and controls (paper Sec. 3.3) ----
+  MapSet maps;                // the named maps ("maps"), parsed and checked, not yet evaluated
+  nlohmann::json maps_given;  // "maps" as the file gave it (null when absent), for run.json
+  SceneControls controls;
   Integrator integrator = Integrator::ForwardEuler;  // for the pheromone PDE (Eq. 6 / 7)
 
   // ---- time ----
@@ -61,12 +72,17 @@ struct Scene {
   ColorMapSettings colormap;  // how pheromone.ply and preview.png are coloured (default viridis, 0 .. 2U)
 };
 
-// Parses and validates a scene file. A relative "mesh" path is resolved against the scene file's folder.
+// Parses and validates a scene file. A relative "mesh" path, and the files the maps read, are
+// resolved against the scene file's folder.
 // `overrides` (a JSON object of scene keys) replaces or adds keys of the file before it is read, with
 // the same checks (the harness's --arm key=value).
 Scene load_scene(const std::string& path, const nlohmann::json& overrides = nlohmann::json::object());
 
-// Validates a scene built in code (the same checks as load_scene).
+// Validates a scene built in code (the same checks as load_scene): the values, and that every map a
+// parameter or control names exists in scene.maps and is of the kind needed.
 void validate_scene(const Scene& scene);
+
+// True when some model parameter is given by a map.
+bool has_parameter_maps(const Scene& scene);
 
 }  // namespace physarum

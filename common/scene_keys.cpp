@@ -10,7 +10,7 @@ namespace {
 
 SceneKey setting(std::string_view name, KeyKind kind, bool required, ValueRange range, std::string_view unit,
                  std::string default_text, std::string_view doc, std::string_view allowed_text = {}) {
-  return SceneKey{name, kind, required, range, unit, allowed_text, std::move(default_text), doc, std::nullopt};
+  return SceneKey{name, kind, required, range, unit, allowed_text, std::move(default_text), doc, std::nullopt, false};
 }
 
 SceneKey parameter_key(const ParameterSpec& p) {
@@ -22,7 +22,8 @@ SceneKey parameter_key(const ParameterSpec& p) {
                   {},
                   p.default_value ? ValueRange::number(*p.default_value) : std::string(),
                   p.doc,
-                  p.id};
+                  p.id,
+                  true};
 }
 
 std::vector<SceneKey> build_keys() {
@@ -40,8 +41,34 @@ std::vector<SceneKey> build_keys() {
       setting("agents", K::Integer, true, ValueRange{1.0, false, 2147483647.0, false}, "", "",
               "number of agents N"),
       setting("time_step", K::Number, true, kPositive, "s", "", "time step dt"),
+      setting("maps", K::Object, false, {}, "", "",
+              "named surface maps the parameters and controls below refer to (README \"Surface maps\"; "
+              "common/map_definition.hpp); coordinates are the input mesh's, before scale_to_area",
+              "{\"NAME\": SOURCE, ...}: a number, ply, texture, sphere, box, half_space, axis, map+range, invert, "
+              "threshold, clamp, sum, product, min, max (scalar); direction, ply face_property (vector)"),
   };
   for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));
+  const std::vector<SceneKey> controls = {
+      setting("read_stimuli", K::List, false, {}, "concentration", "none",
+              "static layers added to what the sensors read: sum of weight x map (weight < 0 repels)",
+              "[{\"map\": SCALAR_MAP, \"weight\": w}, ...]"),
+      setting("write_stimuli", K::List, false, {}, "amount/s", "none",
+              "pheromone added at rate x map per second, independent of the agents (rate < 0 removes; never below 0)",
+              "[{\"map\": SCALAR_MAP, \"rate\": r}, ...]"),
+      setting("spawn_weight", K::NumberOrString, false, kNonNegative, "", "uniform",
+              "multiplies face area in the (re)spawn distribution; zero-weight regions get no agents; not all zero",
+              "a scalar map name (values >= 0) or a number > 0"),
+      setting("bias", K::Object, false, {}, "deg/s", "none",
+              "directional bias (Fig. 6): agents turn toward the closest of the n-fold copies of the direction",
+              "{\"direction\": VECTOR_MAP, \"strength\": deg/s >= 0 or SCALAR_MAP, \"symmetry\": 1..8 (default 1)}"),
+      setting("spawn_heading", K::String, false, {}, "", "\"random\"",
+              "heading of (re)spawned agents: uniform, or along the bias direction (Fig. 8; needs bias)",
+              "\"random\" or \"bias\""),
+      setting("boundary", K::String, false, {}, "", "\"reflect\"",
+              "agents reaching a boundary edge are mirrored, or removed and respawned (Fig. 18's margin)",
+              "\"reflect\" or \"terminate\""),
+  };
+  keys.insert(keys.end(), controls.begin(), controls.end());
   const ComparisonSettings c;  // the harness's documented defaults, shown as they are in code
   const auto shown = [](double v) { return ValueRange::number(v); };
   const std::vector<SceneKey> rest = {
@@ -95,6 +122,10 @@ size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::string map_alternative(const SceneKey& k) {
+  return k.accepts_map ? "; or a scalar map: NAME or {\"map\": NAME, \"range\": [lo, hi]}" : "";
+}
+
 std::string allowed_column(const SceneKey& k) {
   switch (k.kind) {
     case KeyKind::String:
@@ -102,10 +133,13 @@ std::string allowed_column(const SceneKey& k) {
     case KeyKind::Integer:
       return "integer, " + k.range.describe().substr(std::string("must be ").size());
     case KeyKind::Number:
-      return k.range.describe().substr(std::string("must be ").size());
+      return k.range.describe().substr(std::string("must be ").size()) + map_alternative(k);
     case KeyKind::NumberOrNull:
-      return k.range.describe().substr(std::string("must be ").size()) + ", or null";
+      return k.range.describe().substr(std::string("must be ").size()) + ", or null" + map_alternative(k);
     case KeyKind::StringOrObject:
+    case KeyKind::Object:
+    case KeyKind::List:
+    case KeyKind::NumberOrString:
       return std::string(k.allowed_text);
   }
   return {};

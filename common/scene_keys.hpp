@@ -14,7 +14,16 @@
 
 namespace physarum {
 
-enum class KeyKind { Number, Integer, String, NumberOrNull, StringOrObject };
+enum class KeyKind {
+  Number,
+  Integer,
+  String,
+  NumberOrNull,
+  StringOrObject,
+  Object,          // a JSON object described by allowed_text ("maps", "bias")
+  List,            // a JSON list described by allowed_text ("read_stimuli", "write_stimuli")
+  NumberOrString,  // a number or a map name ("spawn_weight")
+};
 
 struct SceneKey {
   std::string_view name;
@@ -26,10 +35,13 @@ struct SceneKey {
   std::string default_text;       // what an absent optional key means ("" for none)
   std::string_view doc;
   std::optional<Param> parameter;  // set for the model parameters
+  // The model parameters may also be a scalar map's name or {"map": NAME, "range": [lo, hi]}
+  // (common/scene_controls.hpp, ParameterMap).
+  bool accepts_map = false;
 };
 
-// In the README's order: the surface, the agents and time step, the model parameters (table order),
-// the integrator, seed and run length, the colour map, the differential harness's compare_* keys.
+// In the README's order: the surface, the agents and time step, the named maps, the model parameters
+// (table order), the controls of Sec. 3.3, the integrator, seed and run length, the colour map, the differential harness's compare_* keys.
 const std::vector<SceneKey>& scene_keys();
 
 // nullptr when `name` is no scene key.

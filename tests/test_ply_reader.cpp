@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 
 namespace physarum {
@@ -93,6 +94,43 @@ TEST(PlyReader, RefusesMalformedFilesNamingThem) {
     ADD_FAILURE() << "read a missing file";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
+  }
+}
+
+// Face properties (a map's per-face vectors, other tools' per-face values): scalars declared before
+// and after the vertex-index list are read in the header's order, one value per face.
+TEST(PlyReader, ReadsFacePropertiesAroundTheIndexList) {
+  TempDir dir;
+  const std::string head =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty uchar flag\nproperty list uchar int vertex_indices\nproperty float quality\n"
+      "property double q2\nend_header\n";
+  std::string body(48, '\0');
+  auto le = [](auto value) {
+    std::string bytes(sizeof(value), '\0');
+    std::memcpy(bytes.data(), &value, sizeof(value));  // the test host is little-endian (x86-64)
+    return bytes;
+  };
+  for (int f = 0; f < 2; ++f) {
+    body += std::string(1, static_cast<char>(7 + f));  // flag
+    body += std::string(1, 3);
+    for (int i : {0, 1 + f, 2 + f}) body += le(static_cast<std::int32_t>(i));
+    body += le(0.5f + static_cast<float>(f));  // quality
+    body += le(-2.25 * (f + 1));               // q2
+  }
+  write_bytes(dir.path / "faces.ply", head + body);
+  const PlyFields ply = read_ply_fields((dir.path / "faces.ply").string());
+  EXPECT_EQ(ply.face_property_names, (std::vector<std::string>{"flag", "quality", "q2"}));
+  EXPECT_EQ(ply.face_property("flag"), (std::vector<double>{7, 8}));
+  EXPECT_EQ(ply.face_property("quality"), (std::vector<double>{0.5, 1.5}));
+  EXPECT_EQ(ply.face_property("q2"), (std::vector<double>{-2.25, -4.5}));
+  EXPECT_EQ(ply.mesh.triangles, (std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}}));
+  try {
+    (void)ply.face_property("normal_x");
+    ADD_FAILURE() << "found a face property the file does not have";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no face property 'normal_x' (it has: flag, quality, q2)"), std::string::npos)
+        << e.what();
   }
 }
 

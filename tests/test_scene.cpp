@@ -125,11 +125,21 @@ TEST(Scene, EveryOutOfRangeValueIsNamedWithItsRange) {
 }
 
 TEST(Scene, WrongTypesAreNamed) {
-  for (const char* key : {"agents", "time_step", "sensor_angle", "decay_rate", "mean_lifetime", "seed"}) {
+  for (const char* key : {"agents", "time_step", "seed"}) {
     json j = valid_scene();
     j[key] = "fast";
     const std::string message = load_error(j);
     EXPECT_NE(message.find(std::string("key '") + key + "' = \"fast\" has the wrong type (string"), std::string::npos)
+        << message;
+  }
+  // A model parameter's text is a map name (parameter maps, Sec. 3.3): without such a map the
+  // message shows the value and says so.
+  for (const char* key : {"sensor_angle", "decay_rate", "mean_lifetime"}) {
+    json j = valid_scene();
+    j[key] = "fast";
+    const std::string message = load_error(j);
+    EXPECT_NE(message.find(std::string("key '") + key + "' = \"fast\": map 'fast' is not defined in 'maps'"),
+              std::string::npos)
         << message;
   }
   json j = valid_scene();

@@ -62,24 +62,33 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 }
 
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
-                                                const SurfaceDomain& domain, const Scene& scene,
+                                                const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
+  // arrays.controls (Sec. 3.3) are evaluated and checked here with the parameters; the backends take
+  // them in their constructors once they consume them (common/simulation_controls.hpp).
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
-    return std::make_unique<ReferenceSimulation>(domain, scene);
+    return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, simulation_settings(scene));
   }
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
-  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, scene, options);
+  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, simulation_settings(scene),
+                                                    options);
+}
+
+std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
+                                                const SceneSurface& surface, const Scene& scene,
+                                                const opencl::OpenCLSimulationOptions& options) {
+  return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
 }
 
 std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,
                                                 const opencl::ComputeContext* compute,
                                                 const opencl::OpenCLSimulationOptions& options) {
-  return make_backend(workload.backend, compute, surfaces.get(workload.surface).domain, workload.scene, options);
+  return make_backend(workload.backend, compute, surfaces.get(workload.surface), workload.scene, options);
 }
 
 }  // namespace physarum

@@ -7,6 +7,8 @@
 // and on the device and refuses (InputError) what does not fit.
 #include "common/run_feasibility.hpp"
 #include "common/scene.hpp"
+#include "common/scene_maps.hpp"
+#include "common/scene_surface.hpp"
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/workload.hpp"
@@ -27,9 +29,15 @@ std::optional<opencl::ComputeContext> compute_context_for(BackendChoice backend,
 MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, int agents);
 
 // Checks memory (check_memory against the host's available memory and, for OpenCL, the device's
-// global memory and largest allocation), then builds the backend. `compute` is required for OpenCL.
+// global memory and largest allocation), then builds the backend from the scene's arrays evaluated
+// on `surface` (common/scene_maps.hpp: the per-vertex parameters; the controls are evaluated with
+// them). `compute` is required for OpenCL.
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
-                                                const SurfaceDomain& domain, const Scene& scene,
+                                                const SceneSurface& surface, const Scene& scene,
+                                                const opencl::OpenCLSimulationOptions& options = {});
+// The same with the arrays evaluated once beforehand (a harness builds one backend per seed).
+std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
+                                                const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options = {});
 
 // The same for a workload: its surface from `surfaces` (built there once per SurfaceSpec), its scene

@@ -22,10 +22,12 @@
 #include "common/field_transfer.hpp"
 #include "common/full_resolution_mesh.hpp"
 #include "common/input_mesh.hpp"
+#include "common/map_evaluation.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "common/scene.hpp"
 #include "common/scene_json.hpp"
+#include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
 #include "common/surface_domain.hpp"
 #include "common/texture_bake.hpp"
@@ -64,6 +66,7 @@ struct RunOptions {
   std::string out = "out";
   int frames = 0;  // --frames K: a time-lapse of K pictures (0 = none)
   TextureSettings texture;  // --texture-size, --texture-margin, --texture-format
+  std::string maps_out;  // --maps-out FILE: the scene's named maps on the input mesh ("" = none)
 };
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
@@ -144,13 +147,20 @@ int run_run(const RunOptions& o) {
   o.texture.check();
 
   // ---- everything that can reject the input, before any output exists ----
-  Scene scene = load_scene(o.scene);
-  if (o.seed) scene.seed = *o.seed;
-  const long long steps = run_length_in_steps(o, scene);
+  Scene given_scene = load_scene(o.scene);
+  if (o.seed) given_scene.seed = *o.seed;
+  if (!o.maps_out.empty() && given_scene.maps.empty())
+    throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
+  const long long steps = run_length_in_steps(o, given_scene);
   TimeLapse time_lapse(o.frames, steps);
 
-  const SceneSurface surface = prepare_feasible_surface(scene, steps);
+  const SceneSurface surface = prepare_feasible_surface(given_scene, steps);
   const SurfaceDomain& domain = surface.domain;
+  // The maps, evaluated once: the per-vertex parameters and controls the backend is built from, and
+  // what --maps-out writes. `scene` summarises each mapped parameter by its mean (U, run.json).
+  const EvaluatedMaps maps = evaluate_maps(given_scene.maps, surface, o.scene);
+  const SceneArrays arrays{vertex_parameters(given_scene, surface, maps), simulation_controls(given_scene, surface, maps)};
+  const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
   // Where each texel lies on the triangulation, found now: a UV map that cannot be baked is bad
@@ -165,8 +175,11 @@ int run_run(const RunOptions& o) {
   const std::optional<opencl::ComputeContext>& compute = chosen.compute;
   if (o.backend == "auto") std::cerr << "physarum run: " << to_string(choice) << " backend (auto: " << chosen.why << ")\n";
   const std::unique_ptr<SimulationBackend> backend =
-      make_backend(choice, compute ? &*compute : nullptr, domain, scene);  // refuses what does not fit in memory
+      make_backend(choice, compute ? &*compute : nullptr, domain, scene, arrays);  // refuses what does not fit in memory
   SimulationBackend& simulation = *backend;
+  // Written now, not with the results: a user checking the maps of a long run sees them at once.
+  if (!o.maps_out.empty())
+    write_maps_ply(o.maps_out, input, maps_on_input(given_scene.maps, surface, maps, o.scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
   // columns talk about), so pictures of different runs of one scene (and the frames of one run) are
@@ -262,7 +275,8 @@ int run_run(const RunOptions& o) {
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
             << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
             << ", U " << U << "; wrote " << out.string() << "/{" << written << ", preview.png, stats.csv, run.json"
-            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}\n";
+            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}"
+            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
   return 0;
 }
 
@@ -301,6 +315,9 @@ Command add_run_command(CLI::App& parent) {
   app->add_option("--frames", options->frames,
                   "Time-lapse: K pictures evenly spaced in steps (the last at the final step), written as "
                   "DIR/frames/frame_0001.png ... and the animated DIR/frames.gif");
+  app->add_option("--maps-out", options->maps_out,
+                  "Also write the scene's named maps (key 'maps') to this PLY on the input mesh: scalar maps per "
+                  "vertex, vector maps per face as NAME_x, NAME_y, NAME_z (what `physarum map` writes)");
   app->add_option("--texture-size", options->texture.size,
                   "Side of the square texture baked onto the mesh's UVs, in texels (1.." +
                       std::to_string(TexelLocations::kMaxSize) + ")")

@@ -21,5 +21,6 @@ Command add_bench_command(CLI::App& parent);
 Command add_scene_keys_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
 Command add_colormap_command(CLI::App& parent);
+Command add_map_command(CLI::App& parent);
 
 }  // namespace physarum::cli

@@ -62,7 +62,7 @@ ArmSpec parse_arm(const std::string& text) {
 std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* stream) const {
   Scene s = scene;
   s.seed = seed(index);
-  const auto sim = make_backend(backend, stream ? stream : compute ? &*compute : nullptr, surface->domain, s, options);
+  const auto sim = make_backend(backend, stream ? stream : compute ? &*compute : nullptr, surface->domain, s, arrays, options);
   return metrics->measure_seed(*sim, s);
 }
 
@@ -91,7 +91,9 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     for (const ArmSpec& spec : request.arms) {
       nlohmann::json overrides = spec.scene_overrides;
       // Fig. 10c: another agent count with the deposit rescaled so that U (Eq. 5) stays the same.
-      if (overrides.contains("agents") && overrides["agents"].is_number_integer() && !overrides.contains("deposit_rate")) {
+      // (A deposit rate given by a map is left as it is: its values are per vertex.)
+      if (overrides.contains("agents") && overrides["agents"].is_number_integer() && !overrides.contains("deposit_rate") &&
+          !base.parameter_maps[static_cast<size_t>(Param::deposit_rate)]) {
         const double agents = overrides["agents"].get<double>();
         if (agents > 0)
           overrides["deposit_rate"] =
@@ -115,6 +117,12 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     if (!arms[i].surface)
       arms[i].surface =
           std::make_shared<const SceneSurface>(prepare_feasible_surface(arms[i].scene, steps_per_seed(arms[i].scene)));
+  }
+
+  // The maps of each arm's scene on its surface, evaluated once for all its seeds.
+  for (Arm& a : arms) {
+    a.arrays = scene_arrays(a.scene, *a.surface);
+    a.scene = with_mean_parameters(a.scene, a.arrays.parameters, a.surface->domain);
   }
 
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.

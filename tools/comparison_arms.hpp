@@ -9,6 +9,7 @@
 // 100000 + i (the reference arm's numbering, which stored statistics depend on).
 #include "common/comparison_metrics.hpp"
 #include "common/scene.hpp"
+#include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
 #include "common/workload.hpp"
 #include "opencl/compute_context.hpp"
@@ -41,9 +42,12 @@ constexpr std::uint32_t kSecondArmSeedOffset = 100000;
 
 struct Arm {
   std::string label;
+  // The arm's scene; a parameter given by a map holds its mean over the surface (with_mean_parameters:
+  // what U and the metrics' length scales read), its per-vertex values are in `arrays`.
   Scene scene;
   BackendChoice backend = BackendChoice::Reference;
   std::shared_ptr<const SceneSurface> surface;
+  SceneArrays arrays;  // the scene's maps evaluated on `surface` once, for every seed
   std::shared_ptr<const ComparisonMetrics> metrics;
   std::optional<opencl::ComputeContext> compute;  // OpenCL arms
   opencl::OpenCLSimulationOptions options;        // OpenCL arms: planted faults

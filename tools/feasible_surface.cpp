@@ -2,6 +2,7 @@
 
 #include "common/agent_model.hpp"
 #include "common/run_feasibility.hpp"
+#include "common/scene_maps.hpp"
 
 #include <iostream>
 #include <string>
@@ -12,11 +13,19 @@ namespace physarum::cli {
 // About ten seconds of work and more (1e9 elementary operations a second at best).
 constexpr double kLongRunOperations = 1e10;
 
-SceneSurface prepare_feasible_surface(const Scene& scene, long long steps) {
-  for (const std::string& w : check_time_scales(scene, kMaxTurnDecisionsPerStep))
-    std::cerr << "physarum: warning: " << w << "\n";
-  SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
+SceneSurface prepare_feasible_surface(const Scene& given, long long steps) {
+  // Without parameter maps the time scales are known before the surface: checked first, as a bad
+  // time step is cheaper to refuse than a refinement is to wait for.
+  const bool mapped = has_parameter_maps(given);
+  auto check_scales = [](const Scene& scene) {
+    for (const std::string& w : check_time_scales(scene, kMaxTurnDecisionsPerStep))
+      std::cerr << "physarum: warning: " << w << "\n";
+  };
+  if (!mapped) check_scales(given);
+  SceneSurface surface = prepare_scene_surface(given, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  const Scene scene = mapped ? with_mean_parameters(given, vertex_parameters(given, surface), surface.domain) : given;
+  if (mapped) check_scales(scene);
   const WorkEstimate work = estimate_work(scene, surface.domain, surface.diameter, steps, kMaxTurnDecisionsPerStep);
   // On a terminal always; in a log only for a long run (a quiet log stays empty on a short one).
   if (::isatty(STDERR_FILENO) == 1 || work.operations >= kLongRunOperations) std::cerr << work.describe() << "\n";

@@ -9,6 +9,8 @@
 
 namespace physarum::cli {
 
+// A scene with parameter maps is checked with each mapped parameter's mean over the surface
+// (with_mean_parameters), so its time-scale checks come after the surface is built.
 SceneSurface prepare_feasible_surface(const Scene& scene, long long steps);
 
 }  // namespace physarum::cli

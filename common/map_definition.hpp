@@ -1,0 +1,143 @@
+#pragma once
+// Named surface maps (paper Sec. 3.3; the scene's "maps" key, DESIGN.md "Scene files: maps and
+// controls"): what each map IS, parsed and checked once from the scene file into a small typed tree,
+// before any surface exists, so that a bad map is refused before anything is built or written.
+// Evaluating the maps on a surface is common/map_evaluation.hpp.
+//
+// A map is SCALAR (one value per intrinsic vertex, interpolated across faces) or VECTOR (one tangent
+// vector per intrinsic face, in that face's own 2D frame). Each source below is one JSON shape:
+//   scalar sources
+//     5.0                                         a constant
+//     {"ply": FILE, "property": NAME}             a per-vertex property of a PLY on the input mesh
+//     {"texture": FILE, "channel": "r|g|b|a|luma"} an image, sampled through the input's UVs
+//     {"sphere": {"center": [x,y,z], "radius": r}, "falloff": w}     regions: 1 inside, 0 outside,
+//     {"box": {"min": [x,y,z], "max": [x,y,z]}, "falloff": w}        smooth over w outside when
+//     {"half_space": {"point": [x,y,z], "normal": [x,y,z]}, "falloff": w}   falloff is given
+//     {"axis": "x|y|z"}                           0..1 along that axis of the input's bounding box
+//   arithmetic (an OPERAND is a scalar map's name or a number)
+//     {"map": OPERAND, "range": [lo, hi]}         lo + (hi - lo) * value
+//     {"invert": OPERAND}                         1 - value
+//     {"threshold": OPERAND, "at": t}             1 where value >= t, else 0
+//     {"clamp": OPERAND, "min": a, "max": b}      value limited to [a, b] (either bound optional)
+//     {"sum": [OPERAND, ...]}, {"product": [...]}, {"min": [...]}, {"max": [...]}
+//   vector sources
+//     {"direction": [x, y, z]}                    a constant direction, projected into every face
+//     {"ply": FILE, "face_property": NAME}        per-face NAME_x, NAME_y, NAME_z of a PLY
+// Coordinates are the INPUT mesh's own (before scale_to_area). File paths are relative to the scene
+// file's folder (or absolute). Maps may name each other in any order; they are sorted so that every
+// map comes after the maps it reads, and a cycle is an error.
+//
+// Adding a source kind (the map tools: geodesic distance, Laplace, diffusion, gradient) is one row
+// of the source table in map_definition.cpp, one alternative of MapSource, and one case in
+// map_evaluation.cpp (std::visit refuses to compile while the case is missing).
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace physarum {
+
+enum class MapKind { Scalar, Vector };
+const char* to_string(MapKind kind);
+
+// A number, or the name of a scalar map.
+using MapOperand = std::variant<double, std::string>;
+
+struct ConstantSource {
+  double value = 0.0;
+};
+struct PlyVertexSource {
+  std::string path;  // resolved
+  std::string property;
+};
+enum class TextureChannel { Red, Green, Blue, Alpha, Luma };
+struct TextureSource {
+  std::string path;  // resolved
+  TextureChannel channel = TextureChannel::Red;
+};
+struct SphereRegion {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+struct BoxRegion {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();
+};
+// The side the normal points into is inside: {x : (x - point) . normal >= 0}.
+struct HalfSpaceRegion {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit length
+};
+struct RegionSource {
+  std::variant<SphereRegion, BoxRegion, HalfSpaceRegion> region;
+  double falloff = 0.0;  // 0: a sharp edge; w > 0: 1 - smoothstep(d / w) at distance d outside
+};
+struct AxisRampSource {
+  int axis = 0;  // 0 = x, 1 = y, 2 = z
+};
+struct RangeSource {
+  MapOperand operand;
+  double low = 0.0, high = 1.0;
+};
+struct InvertSource {
+  MapOperand operand;
+};
+struct ThresholdSource {
+  MapOperand operand;
+  double at = 0.5;
+};
+struct ClampSource {
+  MapOperand operand;
+  std::optional<double> low, high;
+};
+enum class CombineOperation { Sum, Product, Min, Max };
+struct CombineSource {
+  CombineOperation operation = CombineOperation::Sum;
+  std::vector<MapOperand> operands;  // at least one
+};
+struct DirectionSource {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // in input coordinates, any length
+};
+struct PlyFaceVectorSource {
+  std::string path;      // resolved
+  std::string property;  // NAME: the file has NAME_x, NAME_y, NAME_z per face
+};
+
+using MapSource = std::variant<ConstantSource, PlyVertexSource, TextureSource, RegionSource, AxisRampSource,
+                               RangeSource, InvertSource, ThresholdSource, ClampSource, CombineSource,
+                               DirectionSource, PlyFaceVectorSource>;
+
+struct MapDefinition {
+  std::string name;
+  MapKind kind = MapKind::Scalar;
+  MapSource source;
+  // The names of the maps this one reads (operands that are names), in the order given.
+  std::vector<std::string> dependencies() const;
+};
+
+// A scene's maps, every map after the maps it reads.
+class MapSet {
+ public:
+  MapSet() = default;
+  explicit MapSet(std::vector<MapDefinition> ordered) : maps_(std::move(ordered)) {}
+
+  const std::vector<MapDefinition>& in_dependency_order() const { return maps_; }
+  bool empty() const { return maps_.empty(); }
+  // nullptr when there is no map of that name.
+  const MapDefinition* find(const std::string& name) const;
+
+ private:
+  std::vector<MapDefinition> maps_;
+};
+
+// Parses the "maps" object of a scene. `folder` is the scene file's folder (relative file paths are
+// resolved against it); `where` starts every message (the scene file). InputError naming
+// "key 'maps': map 'NAME'" and the problem for: a value that is no known source (the known ones
+// are listed), a missing or malformed field, an unknown field, a file that does not exist, an
+// operand that names no map or a vector map, a map name that cannot be a PLY property, and a
+// dependency cycle (shown as a -> b -> a).
+MapSet parse_maps(const nlohmann::json& maps, const std::string& folder, const std::string& where);
+
+}  // namespace physarum
