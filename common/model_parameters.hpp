@@ -97,6 +97,13 @@ static_assert([] {
 
 constexpr const ParameterSpec& parameter_spec(Param p) { return kParameterTable[static_cast<std::size_t>(p)]; }
 
+// The values a parameter MAP may take, in file units: the parameter's own range, except that a mean
+// lifetime map may be 0 where it makes a sink (Sec. 3.3: agents there are removed at once and respawn
+// elsewhere). A constant lifetime of 0 would remove every agent every step, so the number stays > 0.
+constexpr ValueRange map_value_range(const ParameterSpec& spec) {
+  return spec.id == Param::mean_lifetime ? kNonNegative : spec.range;
+}
+
 // The agent parameters, in table order: the fields of the kernels' record, in this order.
 inline constexpr std::size_t kAgentParamCount = [] {
   std::size_t n = 0;

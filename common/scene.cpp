@@ -131,9 +131,9 @@ std::optional<ParameterMap> read_parameter_map(const json& object, const Paramet
       fail_key(source, p.key, "\"range\" = " + range->dump() + " must be two numbers [lo, hi]");
     map.range = std::array<double, 2>{(*range)[0].get<double>(), (*range)[1].get<double>()};
     for (const double bound : *map.range)
-      if (!p.range.contains(bound))
+      if (!map_value_range(p).contains(bound))
         fail_key(source, p.key, "\"range\" = " + range->dump() + ": the bound " + ValueRange::number(bound) + " " +
-                                    std::string(p.unit) + " is out of range (" + p.range.describe() + ")");
+                                    std::string(p.unit) + " is out of range (" + map_value_range(p).describe() + ")");
   }
   return map;
 }

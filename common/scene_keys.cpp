@@ -123,7 +123,12 @@ size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 std::string map_alternative(const SceneKey& k) {
-  return k.accepts_map ? "; or a scalar map: NAME or {\"map\": NAME, \"range\": [lo, hi]}" : "";
+  if (!k.accepts_map) return "";
+  std::string text = "; or a scalar map: NAME or {\"map\": NAME, \"range\": [lo, hi]}";
+  if (k.parameter && map_value_range(parameter_spec(*k.parameter)) != k.range)
+    text += " whose values " + map_value_range(parameter_spec(*k.parameter)).describe().substr(std::string("must be ").size()) +
+            " (0 = a sink)";
+  return text;
 }
 
 std::string allowed_column(const SceneKey& k) {

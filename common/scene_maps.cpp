@@ -45,10 +45,10 @@ VertexParameters vertex_parameters(const Scene& scene, const SceneSurface& surfa
     IntrinsicVertexData<double>& out = parameters[p.id];
     for (int v = 0; v < n; ++v) {
       const double file_value = map->range ? (*map->range)[0] + ((*map->range)[1] - (*map->range)[0]) * values[v] : values[v];
-      if (!p.range.contains(file_value))
+      if (!map_value_range(p).contains(file_value))
         fail_key(scene, std::string(p.key),
                  "map '" + map->map + "' gives " + ValueRange::number(file_value) + " " + std::string(p.unit) +
-                     " at intrinsic vertex " + std::to_string(v) + ", out of range (" + p.range.describe() + ")" +
+                     " at intrinsic vertex " + std::to_string(v) + ", out of range (" + map_value_range(p).describe() + ")" +
                      (map->range ? std::string(" (the map's value there is ") + ValueRange::number(values[v]) +
                                        "; a range remaps values 0..1)"
                                  : std::string()));

@@ -15,6 +15,8 @@ struct ValueRange {
   double high = std::numeric_limits<double>::infinity();
   bool high_open = false;
 
+  bool operator==(const ValueRange&) const = default;
+
   bool contains(double v) const {
     if (!std::isfinite(v)) return false;
     if (low_open ? !(v > low) : !(v >= low)) return false;

@@ -119,6 +119,28 @@ TEST(SceneMaps, ParametersTakeTheMapsValuesInFileUnits) {
   EXPECT_EQ(summary.parameters[Param::decay_rate], scene.parameters[Param::decay_rate]);
 }
 
+// A mean-lifetime map may reach 0 (a sink, Sec. 3.3), where the hazard is infinite; the constant 0
+// stays refused (it would remove every agent every step), as does 0 in a map of any other parameter
+// whose range excludes it (decay_rate, in BadReferencesAreRefusedNamingTheKey).
+TEST(SceneMaps, AMeanLifetimeMapMayMakeASink) {
+  TempDir dir;
+  json j = base_scene();
+  j["maps"] = square_maps();
+  j["mean_lifetime"] = {{"map", "ramp_x"}, {"range", {0.0, 2.0}}};  // 0 on the left edge
+  const Scene scene = load_scene(write_scene(dir, j));
+  const SceneSurface surface = prepare_scene_surface(scene);
+  const VertexParameters p = vertex_parameters(scene, surface);
+  int sinks = 0;
+  for (int v = 0; v < surface.domain.vertex_count; ++v) {
+    const double x = surface.input.positions[static_cast<size_t>(v)].x();
+    EXPECT_NEAR(p[Param::mean_lifetime][v], 2.0 * x, 1e-15);
+    sinks += p[Param::mean_lifetime][v] == 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(sinks, 0);
+  j["mean_lifetime"] = 0.0;
+  EXPECT_NE(scene_error(j).find("key 'mean_lifetime'"), std::string::npos);
+}
+
 TEST(SceneMaps, ControlsAreTheDocumentedSumsAndConversions) {
   TempDir dir;
   json j = base_scene();
