@@ -9,6 +9,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 
 namespace physarum {
 
@@ -53,6 +54,20 @@ struct SimulationControls {
   std::optional<DirectionalBias> bias;
   SpawnHeading spawn_heading = SpawnHeading::Random;
   BoundaryBehaviour boundary = BoundaryBehaviour::Reflect;
+
+  // Whether any control differs from the base model (a backend keeps its uniform fast path when not).
+  bool any() const {
+    return !read_stimulus.empty() || !write_rate.empty() || !spawn_weight.empty() || bias.has_value() ||
+           spawn_heading != SpawnHeading::Random || boundary != BoundaryBehaviour::Reflect;
+  }
 };
+
+struct SurfaceDomain;
+
+// InputError, starting with `who` and naming the control and the vertex or face, unless every
+// per-vertex array is empty or has one finite value per vertex (spawn weights also >= 0) and the
+// bias matches the domain (common/directional_bias.hpp). Whether the spawn weights leave anywhere
+// to spawn is common/spawn_distribution.hpp's check (it needs the sinks).
+void check_controls(const SurfaceDomain& domain, const SimulationControls& controls, const std::string& who);
 
 }  // namespace physarum

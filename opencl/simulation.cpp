@@ -35,7 +35,9 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_INITIAL_STATE == static_cast<unsigned>(RandomPurpose::InitialState) &&
               PHYSARUM_PURPOSE_TURN_DIRECTION == static_cast<unsigned>(RandomPurpose::TurnDirection) &&
               PHYSARUM_PURPOSE_RESPAWN_PLACEMENT == static_cast<unsigned>(RandomPurpose::RespawnPlacement) &&
-              PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState));
+              PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState) &&
+              PHYSARUM_PURPOSE_INITIAL_SPAWN_CORNER == static_cast<unsigned>(RandomPurpose::InitialSpawnCorner) &&
+              PHYSARUM_PURPOSE_RESPAWN_CORNER == static_cast<unsigned>(RandomPurpose::RespawnCorner));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
 }  // namespace
