@@ -7,10 +7,46 @@
 #define PHYSARUM_BIAS_CL
 #include "agents.cl"
 
+/* atan2 and sincos by polynomials: PoCL's built-in atan2, sincos and expm1 each cost about a fifth
+ * of the whole agent step (bench/README.md, the controls row), these a few multiplications, and both
+ * are below float rounding: atan on [0, 1] by Abramowitz & Stegun 4.4.49 (|error| < 2e-8), sine and
+ * cosine of theta / 2 (|theta| <= pi) by their Taylor series to degree 13 and 14 (< 2e-9), then the
+ * double-angle formulas. */
+float bias_atan2(const float y, const float x) {
+  const float ax = fabs(x), ay = fabs(y);
+  const float big = fmax(ax, ay);
+  const float r = big > 0.0f ? fmin(ax, ay) / big : 0.0f;
+  const float r2 = r * r;
+  float a = 0.0028662257f;
+  a = a * r2 - 0.0161657367f;
+  a = a * r2 + 0.0429096138f;
+  a = a * r2 - 0.0752896400f;
+  a = a * r2 + 0.1065626393f;
+  a = a * r2 - 0.1420889944f;
+  a = a * r2 + 0.1999355085f;
+  a = a * r2 - 0.3333314528f;
+  a = (a * r2 + 1.0f) * r;
+  if (ay > ax) a = 0.5f * M_PI_F - a;
+  if (x < 0.0f) a = M_PI_F - a;
+  return y < 0.0f ? -a : a;
+}
+
+/* sin and cos of theta, |theta| <= pi. */
+float2 bias_cos_sin(const float theta) {
+  const float h = 0.5f * theta, h2 = h * h;
+  const float s =
+      h * (1.0f + h2 * (-1.0f / 6.0f + h2 * (1.0f / 120.0f + h2 * (-1.0f / 5040.0f + h2 * (1.0f / 362880.0f +
+                                                                                         h2 * (-1.0f / 39916800.0f + h2 * (1.0f / 6227020800.0f)))))));
+  const float c =
+      1.0f + h2 * (-0.5f + h2 * (1.0f / 24.0f + h2 * (-1.0f / 720.0f + h2 * (1.0f / 40320.0f + h2 * (-1.0f / 3628800.0f +
+                                                                                                  h2 * (1.0f / 479001600.0f))))));
+  return (float2)(c * c - s * s, 2.0f * s * c);
+}
+
 /* The signed angle from the closest copy of d to the heading h, in [-pi/n, pi/n]. */
 float angle_from_closest_copy(const float2 h, const float2 d) {
   const float period = 2.0f * M_PI_F / (float)PHYSARUM_BIAS_SYMMETRY;
-  const float angle = atan2(d.x * h.y - d.y * h.x, d.x * h.x + d.y * h.y);
+  const float angle = bias_atan2(d.x * h.y - d.y * h.x, d.x * h.x + d.y * h.y);
 #ifdef PHYSARUM_FAULT_BIAS_FARTHEST_COPY
   /* planted fault: toward the copy farthest from the heading (the one nearest its opposite) */
   const float opposite = angle - M_PI_F;
@@ -42,9 +78,8 @@ float2 biased_heading(__global const PhysarumFaceRecord* faces, __global const f
                          b.z * bias_strength[faces[face].vertex[2]];
   if (!(strength > 0.0f) || (d.x == 0.0f && d.y == 0.0f)) return heading;
   const float turn = -angle_from_closest_copy(heading, d) * relaxed_fraction(strength * dt);
-  float c;
-  const float s = sincos(turn, &c);
-  return normalize((float2)(c * heading.x - s * heading.y, s * heading.x + c * heading.y));
+  const float2 r = bias_cos_sin(turn);
+  return normalize((float2)(r.x * heading.x - r.y * heading.y, r.y * heading.x + r.x * heading.y));
 }
 
 #endif /* PHYSARUM_BIAS_CL */
