@@ -54,12 +54,6 @@ struct SimulationControls {
   std::optional<DirectionalBias> bias;
   SpawnHeading spawn_heading = SpawnHeading::Random;
   BoundaryBehaviour boundary = BoundaryBehaviour::Reflect;
-
-  // Whether any control differs from the base model (a backend keeps its uniform fast path when not).
-  bool any() const {
-    return !read_stimulus.empty() || !write_rate.empty() || !spawn_weight.empty() || bias.has_value() ||
-           spawn_heading != SpawnHeading::Random || boundary != BoundaryBehaviour::Reflect;
-  }
 };
 
 struct SurfaceDomain;

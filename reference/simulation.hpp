@@ -51,6 +51,9 @@ class ReferenceSimulation final : public SimulationBackend {
                       const SimulationSettings& settings);
   // Convenience: constant parameters from a scene (agents, time_step, seed, integrator from it too).
   ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene);
+  // Not copyable: the spawn rule points into this object's own controls.
+  ReferenceSimulation(const ReferenceSimulation&) = delete;
+  ReferenceSimulation& operator=(const ReferenceSimulation&) = delete;
 
   void step() override;
 
