@@ -27,6 +27,10 @@ enum class RandomPurpose : std::uint32_t {
                          //          decision due in this step (k < 4)
   RespawnPlacement = 4,  // blocks 0, 1: as InitialPlacement
   RespawnState = 5,      // block 0: heading, exposure threshold
+  // Spawn weights only (common/spawn_distribution.hpp): the corner a weighted (re)spawn point leans
+  // toward, block 0, first uniform. Purposes of their own, so the base model's draws stay as they were.
+  InitialSpawnCorner = 6,  // counter step 0
+  RespawnCorner = 7,       // counter step n
 };
 
 inline PhiloxWords agent_random_words(std::uint32_t seed, std::uint32_t agent, std::uint32_t step, RandomPurpose purpose,

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 
 namespace physarum {
 
@@ -54,5 +55,13 @@ struct SimulationControls {
   SpawnHeading spawn_heading = SpawnHeading::Random;
   BoundaryBehaviour boundary = BoundaryBehaviour::Reflect;
 };
+
+struct SurfaceDomain;
+
+// InputError, starting with `who` and naming the control and the vertex or face, unless every
+// per-vertex array is empty or has one finite value per vertex (spawn weights also >= 0) and the
+// bias matches the domain (common/directional_bias.hpp). Whether the spawn weights leave anywhere
+// to spawn is common/spawn_distribution.hpp's check (it needs the sinks).
+void check_controls(const SurfaceDomain& domain, const SimulationControls& controls, const std::string& who);
 
 }  // namespace physarum

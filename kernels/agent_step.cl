@@ -1,15 +1,20 @@
 /* One agent step of the extended slime-mold model (mirrors the agent half of
  * reference/simulation.cpp): every agent, independently,
  *   1. steers (sensing_steering.cl) by what it sensed on the field of the previous step (sensed
- *      ahead of this kernel by sense_deciders, for the agents with a decision due),
- *   2. moves, reflecting at boundaries, depositing along its path (movement.cl, deposition.cl),
- *   3. ages and turns over (turnover.cl).
+ *      ahead of this kernel by sense_deciders, for the agents with a decision due), then turns
+ *      toward the bias direction (bias.cl, PHYSARUM_BIAS),
+ *   2. moves, reflecting at boundaries (or stopping there, PHYSARUM_BOUNDARY_TERMINATE),
+ *      depositing along its path (movement.cl, deposition.cl),
+ *   3. ages and turns over (turnover.cl): also at once in a sink face or at a terminating boundary.
+ * The controls of Sec. 3.3 are build options (opencl/simulation.cpp): a scene without them
+ * compiles none of their code, and their buffers are then one-element placeholders never read.
  * Several agents per work-item (walkers of PHYSARUM_AGENTS_PER_WORK_ITEM lanes, below). Rates are
  * read where the step starts, the hazard where it ends, as in the reference. Counters (crossings,
  * reflections, respawns) are summed per work-group in local memory and added to that group's own
  * slot, so no global atomics are spent on them. */
 #include "device_types.h"
 #include "agents.cl"
+#include "bias.cl"
 #include "deposition.cl"
 #include "movement.cl"
 #include "sensing_steering.cl"
@@ -34,8 +39,11 @@
 
 __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters,
-                         __global const float* concentration, __global const float* alias_probability,
-                         __global const int* alias_index, __global const int* device_face,
+                         __global const float* concentration, __global const float* read_stimulus,
+                         __global const float* alias_probability, __global const int* alias_index,
+                         __global const float* spawn_alias_probability, __global const int* spawn_alias_index,
+                         __global const float* spawn_weight, __global const float2* bias_direction,
+                         __global const float* bias_strength, __global const int* device_face,
                          __global PhysarumDepositCell* deposits,
                          __global int* face, __global float2* position, __global float2* heading,
                          __global float* age, __global float* exposure, __global float* exposure_threshold,
@@ -71,10 +79,14 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
 
     const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position);
     int crossings = 0;
-    sense_and_steer(faces, concentration, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position, first_sensing[a],
-                    &s[i].heading,
-                    &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
+    sense_and_steer(faces, concentration, read_stimulus, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position,
+                    first_sensing[a], &s[i].heading, &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
     sensor_crossings += (uint)crossings;
+#ifdef PHYSARUM_BIAS
+    s[i].heading = biased_heading(faces, bias_direction, bias_strength, s[i].face, s[i].position, s[i].heading, k.dt);
+#else
+    (void)bias_strength;
+#endif
 
     const int h = i / LANES, lane = i % LANES;
     active[h] = with_lane_int(active[h], lane, -1);
@@ -93,6 +105,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
   if (LANE_ANY(active[0]))
     move_agents(faces, LANES, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
 
+  const SpawnSources spawn = {alias_probability, alias_index, spawn_alias_probability, spawn_alias_index,
+                              spawn_weight, bias_direction, device_face, k.face_count};
   uint move_crossings = 0u, boundary_hits = 0u, respawns = 0u;
   for (int i = 0; i < AGENTS; ++i) {
     const int a = first + i;
@@ -104,8 +118,12 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     const float hazard = k.uniform_parameters
                              ? k.uniform.hazard_rate
                              : parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position).hazard_rate;
-    respawns += (uint)advance_turnover(faces, alias_probability, alias_index, device_face, k.face_count, hazard, k.dt,
-                                       k.seed, k.step, id[a], &s[i]);
+#ifdef PHYSARUM_BOUNDARY_TERMINATE
+    const int removed = moved[i].hit_boundary; /* the walk stopped there (movement.cl): respawn now */
+#else
+    const int removed = 0;
+#endif
+    respawns += (uint)advance_turnover(faces, &spawn, hazard, k.dt, k.seed, k.step, id[a], removed, &s[i]);
 
     face[a] = s[i].face;
     position[a] = s[i].position;

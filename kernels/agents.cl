@@ -53,8 +53,15 @@ PhysarumAgentParameters parameters_at(const PhysarumStepConstants* k, __global c
                                       __global const PhysarumAgentParameters* vertex_parameters, const int face,
                                       const float2 p) {
   if (k->uniform_parameters) return k->uniform;
+#ifdef PHYSARUM_FAULT_MAP_AT_CENTROID
+  /* planted fault: parameter maps read at the face centroid instead of interpolated at the point */
+  (void)p;
+  const float3 b = (float3)(1.0f / 3.0f);
+#else
+  const float3 b = barycentric_in_face(faces, face, p);
+#endif
   return blend_parameters(vertex_parameters[faces[face].vertex[0]], vertex_parameters[faces[face].vertex[1]],
-                          vertex_parameters[faces[face].vertex[2]], barycentric_in_face(faces, face, p));
+                          vertex_parameters[faces[face].vertex[2]], b);
 }
 
 /* ---- uniform points and headings ---- */
@@ -89,6 +96,47 @@ FacePoint sample_surface_point(__global const PhysarumFaceRecord* faces, __globa
   return p;
 }
 
+/* ---- spawn weights (common/spawn_distribution.hpp; compiled in with PHYSARUM_SPAWN_WEIGHTS) ----
+ * The face from the spawn distribution's own alias table (area x mean corner weight, zero where a
+ * face touches a sink), the point from the linear density: a corner with probability w_i / sum w,
+ * its coordinate Beta(2, 2) by the closed-form inverse CDF, the rest split uniformly. Bounded work:
+ * no rejection loop. */
+float beta22_from_uniform(const float u) { return 0.5f + sin(asin(2.0f * u - 1.0f) / 3.0f); }
+
+/* A (re)spawn point: the base model's uniform point, or (PHYSARUM_SPAWN_WEIGHTS) the weighted one.
+ * The draws are the reference's: `placement` blocks 0 and 1, and block 0 of `corner_purpose` for
+ * the corner. */
+FacePoint spawn_point(__global const PhysarumFaceRecord* faces, __global const float* alias_probability,
+                      __global const int* alias_index, __global const float* spawn_alias_probability,
+                      __global const int* spawn_alias_index, __global const float* spawn_weight,
+                      __global const int* device_face, const int face_count, const uint seed, const uint agent,
+                      const uint step, const uint placement, const uint corner_purpose) {
+  const uint4 face_choice = agent_random_words(seed, agent, step, placement, 0u);
+  const uint4 in_face = agent_random_words(seed, agent, step, placement, 1u);
+#if defined(PHYSARUM_SPAWN_WEIGHTS) && !defined(PHYSARUM_FAULT_SPAWN_WEIGHTS_IGNORED)
+  (void)alias_probability, (void)alias_index;
+  FacePoint p;
+  p.face = device_face[sample_face(spawn_alias_probability, spawn_alias_index, face_count, face_choice)];
+  const float w0 = spawn_weight[faces[p.face].vertex[0]];
+  const float w1 = spawn_weight[faces[p.face].vertex[1]];
+  const float w2 = spawn_weight[faces[p.face].vertex[2]];
+  const float target = first_uniform(agent_random_words(seed, agent, step, corner_purpose, 0u)) * (w0 + w1 + w2);
+  const int corner = target < w0 ? 0 : (target < w0 + w1 ? 1 : 2);
+  const float toward = beta22_from_uniform(first_uniform(in_face));
+  const float split = second_uniform(in_face);
+  const float rest_a = (1.0f - toward) * (1.0f - split), rest_b = (1.0f - toward) * split;
+  /* b1, b2 (corner 0 sits at the origin of the face frame, so b0 needs no term) */
+  const float b1 = corner == 1 ? toward : (corner == 0 ? rest_a : rest_b);
+  const float b2 = corner == 2 ? toward : (corner == 1 ? rest_a : rest_b);
+  p.position = b1 * face_corner1(faces, p.face) + b2 * face_corner2(faces, p.face);
+  return p;
+#else
+  /* Without spawn weights (or with the planted fault spawn-weights-ignored): uniform by area. */
+  (void)spawn_alias_probability, (void)spawn_alias_index, (void)spawn_weight, (void)corner_purpose;
+  return sample_surface_point(faces, alias_probability, alias_index, device_face, face_count, face_choice, in_face);
+#endif
+}
+
 float2 heading_from_uniform(const float u) {
   float c;
   const float s = sincos(2.0f * M_PI_F * u, &c);
@@ -97,10 +145,35 @@ float2 heading_from_uniform(const float u) {
 
 float exponential_exposure(const float u) { return -log(u); }
 
+/* The symmetry n of the directional bias (bias.cl), a build option when the controls have one. */
+#ifndef PHYSARUM_BIAS_SYMMETRY
+#define PHYSARUM_BIAS_SYMMETRY 1
+#endif
+
+/* A newborn's heading from the uniform u of its heading draw: random, or (PHYSARUM_SPAWN_HEADING_BIAS,
+ * Fig. 8) along copy floor(u n) of its face's bias direction, random where that is zero (mirrors
+ * heading_along_bias in common/directional_bias.cpp). */
+float2 spawn_heading(__global const float2* bias_direction, const int face, const float u) {
+#ifdef PHYSARUM_SPAWN_HEADING_BIAS
+  const float2 d = bias_direction[face];
+  if (d.x == 0.0f && d.y == 0.0f) return heading_from_uniform(u);
+  const int copy = min((int)(u * (float)PHYSARUM_BIAS_SYMMETRY), PHYSARUM_BIAS_SYMMETRY - 1);
+  const float angle = atan2(d.y, d.x) + 2.0f * M_PI_F * (float)copy / (float)PHYSARUM_BIAS_SYMMETRY;
+  float c;
+  const float s = sincos(angle, &c);
+  return (float2)(c, s);
+#else
+  (void)bias_direction, (void)face;
+  return heading_from_uniform(u);
+#endif
+}
+
 /* ---- the initial state: reference/agents.hpp explains the steady-state draw ---- */
 __kernel void initialise_agents(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                                 __global const PhysarumAgentParameters* vertex_parameters,
                                 __global const float* alias_probability, __global const int* alias_index,
+                                __global const float* spawn_alias_probability, __global const int* spawn_alias_index,
+                                __global const float* spawn_weight, __global const float2* bias_direction,
                                 __global const int* device_face, __global int* face, __global float2* position, __global float2* heading,
                                 __global float* age, __global float* exposure, __global float* exposure_threshold,
                                 __global float* time_since_decision, __global float* accumulated_turn,
@@ -108,14 +181,13 @@ __kernel void initialise_agents(const PhysarumStepConstants k, __global const Ph
   const int a = get_global_id(0);
   if (a >= k.agent_count) return;
   const uint agent = (uint)a;
-  const FacePoint p = sample_surface_point(
-      faces, alias_probability, alias_index, device_face, k.face_count,
-      agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_PLACEMENT, 0u),
-      agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_PLACEMENT, 1u));
+  const FacePoint p = spawn_point(faces, alias_probability, alias_index, spawn_alias_probability, spawn_alias_index,
+                                  spawn_weight, device_face, k.face_count, k.seed, agent, 0u,
+                                  PHYSARUM_PURPOSE_INITIAL_PLACEMENT, PHYSARUM_PURPOSE_INITIAL_SPAWN_CORNER);
   const uint4 state = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 0u);
   face[a] = p.face;
   position[a] = p.position;
-  heading[a] = heading_from_uniform(first_uniform(state));
+  heading[a] = spawn_heading(bias_direction, p.face, first_uniform(state));
   id[a] = agent;
   const PhysarumAgentParameters here = parameters_at(&k, faces, vertex_parameters, p.face, p.position);
   const uint4 remaining = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 1u);

@@ -110,6 +110,8 @@ typedef struct {
 #define PHYSARUM_PURPOSE_TURN_DIRECTION 3u
 #define PHYSARUM_PURPOSE_RESPAWN_PLACEMENT 4u
 #define PHYSARUM_PURPOSE_RESPAWN_STATE 5u
+#define PHYSARUM_PURPOSE_INITIAL_SPAWN_CORNER 6u
+#define PHYSARUM_PURPOSE_RESPAWN_CORNER 7u
 
 /* Bounds shared with the reference (common/trace.hpp, reference/sensing_steering.hpp). */
 #define PHYSARUM_MAX_TRACE_STEPS 65536

@@ -68,3 +68,16 @@ __kernel void csr_multiply(const uint n, __global const int* row_start, __global
   if (i >= n) return;
   y[i] = csr_row_times(i, row_start, column, value, x);
 }
+
+/* The write-stimuli of Sec. 3.3 (mirrors ReferenceDiffusionDecay): u_i += h w_i, a source term of
+ * the PDE in concentration per second, then, when `clamp_at_zero`, u_i = max(u_i, 0). Forward Euler
+ * runs it after every sub-step with h the sub-step and the clamp; backward Euler runs it before the
+ * solve with h = dt and no clamp (the right-hand side M (u + dt w)), and after it with h = 0 and the
+ * clamp. Launched only when the controls have a write rate. */
+__kernel void pheromone_add_source(const int n, const float h, __global const float* rate, const int clamp_at_zero,
+                                   __global float* u) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const float value = u[i] + h * rate[i];
+  u[i] = clamp_at_zero ? fmax(value, 0.0f) : value;
+}

@@ -10,6 +10,15 @@
 #include "deposition.cl"
 #include "trace.cl"
 
+/* BoundaryBehaviour::Terminate (Sec. 3.3): the walk stops at the boundary like a sensor's (depositing
+ * only along what it walked, at the step's deposit per length) and the agent step respawns the
+ * agent. Reflect otherwise. */
+#ifdef PHYSARUM_BOUNDARY_TERMINATE
+#define PHYSARUM_MOVE_REFLECT 0
+#else
+#define PHYSARUM_MOVE_REFLECT 1
+#endif
+
 /* Movement walks: PHYSARUM_MOVE_WALKERS walkers of `lanes` lanes (1..4) each, one agent a lane.
  * The walkers take turns step by step and each prefetches the faces it enters (walk_lanes_step),
  * so one walker's face reads are in flight while the others compute: a move crosses only a few
@@ -43,7 +52,7 @@ inline __attribute__((always_inline)) void trace_walk_lanes(
     for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) {
       if (LANE_ANY(w[h].walking)) {
         WalkPieces piece;
-        walk_lanes_step(faces, lanes, &w[h], 1, &piece);
+        walk_lanes_step(faces, lanes, &w[h], PHYSARUM_MOVE_REFLECT, &piece);
         deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale);
       }
       walking |= w[h].walking;

@@ -8,18 +8,34 @@
 #include "agents.cl"
 #include "trace.cl"
 
-/* The pheromone at barycentric point b of `face`, interpolated from its corners. */
-float reading_at(__global const PhysarumFaceRecord* faces, __global const float* concentration, const int face,
-                 const float3 b) {
-  return b.x * concentration[faces[face].vertex[0]] + b.y * concentration[faces[face].vertex[1]] +
-         b.z * concentration[faces[face].vertex[2]];
+/* What the sensed field holds at vertex v: the pheromone, plus the read-stimulus (Sec. 3.3) when
+ * the controls have one (PHYSARUM_READ_STIMULUS; otherwise that buffer is never read). */
+float sensed_value(__global const float* concentration, __global const float* read_stimulus, const int v) {
+#ifdef PHYSARUM_READ_STIMULUS
+#ifdef PHYSARUM_FAULT_STIMULUS_SIGN
+  return concentration[v] - read_stimulus[v]; /* planted fault: the read-stimulus weight negated */
+#else
+  return concentration[v] + read_stimulus[v];
+#endif
+#else
+  (void)read_stimulus;
+  return concentration[v];
+#endif
+}
+
+/* The sensed field at barycentric point b of `face`, interpolated from its corners. */
+float reading_at(__global const PhysarumFaceRecord* faces, __global const float* concentration,
+                 __global const float* read_stimulus, const int face, const float3 b) {
+  return b.x * sensed_value(concentration, read_stimulus, faces[face].vertex[0]) +
+         b.y * sensed_value(concentration, read_stimulus, faces[face].vertex[1]) +
+         b.z * sensed_value(concentration, read_stimulus, faces[face].vertex[2]);
 }
 
 /* What a sensor reads: the pheromone at its trace's end; 0 when the trace met the boundary (a
  * sensor past the boundary reads nothing). */
 float sensor_reading(__global const PhysarumFaceRecord* faces, __global const float* concentration,
-                     const TraceEnd* end) {
-  return end->hit_boundary ? 0.0f : reading_at(faces, concentration, end->face, end->barycentric);
+                     __global const float* read_stimulus, const TraceEnd* end) {
+  return end->hit_boundary ? 0.0f : reading_at(faces, concentration, read_stimulus, end->face, end->barycentric);
 }
 
 float2 rotate(const float2 v, const float angle) {
@@ -81,7 +97,7 @@ float sensor_angle_of(const PhysarumAgentParameters* p) {
 
 /* One sensing of one agent: its three sensor traces, read and compared by Jones' rule. */
 int sense_turn_choice(__global const PhysarumFaceRecord* faces, __global const float* concentration,
-                      const PhysarumAgentParameters* p, const int face, const float2 position, const float2 heading,
+                      __global const float* read_stimulus, const PhysarumAgentParameters* p, const int face, const float2 position, const float2 heading,
                       int* sensor_crossings) {
   const float sensor_angle = sensor_angle_of(p);
   TraceEnd left_end, centre_end, right_end;
@@ -90,9 +106,9 @@ int sense_turn_choice(__global const PhysarumFaceRecord* faces, __global const f
   trace_three_sensors(faces, face, position, left, heading, right, p->sensor_distance, &left_end, &centre_end,
                       &right_end);
   *sensor_crossings += left_end.face_crossings + centre_end.face_crossings + right_end.face_crossings;
-  return jones_turn_choice(sensor_reading(faces, concentration, &left_end),
-                           sensor_reading(faces, concentration, &centre_end),
-                           sensor_reading(faces, concentration, &right_end));
+  return jones_turn_choice(sensor_reading(faces, concentration, read_stimulus, &left_end),
+                           sensor_reading(faces, concentration, read_stimulus, &centre_end),
+                           sensor_reading(faces, concentration, read_stimulus, &right_end));
 }
 
 /* A sensing done ahead of the agent step (sense_deciders, below): the turn choice in the low two
@@ -105,7 +121,7 @@ int sensing_crossings(const uint packed) { return (int)(packed >> 2); }
  * done by sense_deciders and arrives packed in `first_sensing`; a second or later decision in the
  * same step (turn frequency above 1/dt) senses here, from the heading the earlier ones left. */
 void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const float* concentration,
-                     const PhysarumAgentParameters* p, const float dt, const uint seed, const uint step,
+                     __global const float* read_stimulus, const PhysarumAgentParameters* p, const float dt, const uint seed, const uint step,
                      const uint agent, const int face, const float2 position, const uint first_sensing,
                      float2* heading, float* time_since_decision, float* accumulated_turn, int* sensor_crossings) {
   const float period = decision_period(p, dt);
@@ -127,7 +143,7 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
       choice = sensing_choice(first_sensing);
       *sensor_crossings += sensing_crossings(first_sensing);
     } else {
-      choice = sense_turn_choice(faces, concentration, p, face, position, *heading, sensor_crossings);
+      choice = sense_turn_choice(faces, concentration, read_stimulus, p, face, position, *heading, sensor_crossings);
     }
     if (choice == PHYSARUM_TURN_RANDOM_SIDE) {
       if (!side_bits_drawn) {
@@ -189,14 +205,16 @@ __kernel void collect_deciders(const PhysarumStepConstants k, __global const Phy
 /* The first sensing of this step for the agents listed in deciders[first .. first + count). */
 void sense_listed_agents(const PhysarumStepConstants* k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters, __global const float* concentration,
-                         __global const int* face, __global const float2* position, __global const float2* heading,
+                         __global const float* read_stimulus, __global const int* face,
+                         __global const float2* position, __global const float2* heading,
                          __global const int* deciders, const int first, const int count,
                          __global uint* first_sensing) {
 #if PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM == 1
   const int a = deciders[first];
   const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
   int crossings = 0;
-  const int choice = sense_turn_choice(faces, concentration, &p, face[a], position[a], heading[a], &crossings);
+  const int choice =
+      sense_turn_choice(faces, concentration, read_stimulus, &p, face[a], position[a], heading[a], &crossings);
   first_sensing[a] = pack_sensing(choice, crossings);
 #else
   /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, PHYSARUM_SENSING_AGENTS_PER_WALKER (five) agents
@@ -256,7 +274,7 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
                                 float_in_lane(walker->b2, lane + r));
       reading[r] = int_in_lane(walker->hit_boundary, lane + r)
                        ? 0.0f
-                       : reading_at(faces, concentration, int_in_lane(walker->face, lane + r), b);
+                       : reading_at(faces, concentration, read_stimulus, int_in_lane(walker->face, lane + r), b);
       crossings += int_in_lane(walker->face_crossings, lane + r);
     }
     const int choice = jones_turn_choice(reading[0], reading[1], reading[2]);
@@ -276,10 +294,10 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
  * round-robin: bench/README.md, "Tuning measurements"). */
 __kernel void sense_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                              __global const PhysarumAgentParameters* vertex_parameters,
-                             __global const float* concentration, __global const int* face,
-                             __global const float2* position, __global const float2* heading,
-                             __global const int* deciders, __global const uint* decider_count,
-                             __global uint* first_sensing) {
+                             __global const float* concentration, __global const float* read_stimulus,
+                             __global const int* face, __global const float2* position,
+                             __global const float2* heading, __global const int* deciders,
+                             __global const uint* decider_count, __global uint* first_sensing) {
   const int count = (int)*decider_count;
   const int per_item = PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
   const int blocks = (count + per_item - 1) / per_item;
@@ -288,8 +306,8 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
   const int group_end = (int)(((long)blocks * (group + 1)) / groups);
   for (int b = group_first + (int)get_local_id(0); b < group_end; b += (int)get_local_size(0)) {
     const int first = b * per_item;
-    sense_listed_agents(&k, faces, vertex_parameters, concentration, face, position, heading, deciders, first,
-                        min(count - first, per_item), first_sensing);
+    sense_listed_agents(&k, faces, vertex_parameters, concentration, read_stimulus, face, position, heading, deciders,
+                        first, min(count - first, per_item), first_sensing);
   }
 }
 

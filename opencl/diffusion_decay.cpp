@@ -19,7 +19,7 @@
 namespace physarum::opencl {
 
 struct OpenCLDiffusionDecay::Kernels {
-  cl::Kernel forward_substep, forward_overflow, add_deposits, csr_multiply;
+  cl::Kernel forward_substep, forward_overflow, add_deposits, csr_multiply, add_source;
 };
 
 namespace {
@@ -85,8 +85,10 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
     k.add_deposits = cl::Kernel(program, "pheromone_add_deposits");
     k.csr_multiply = cl::Kernel(program, "csr_multiply");
+    k.add_source = cl::Kernel(program, "pheromone_add_source");
     // One local size for every per-vertex kernel; the smallest the kernels allow.
-    group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply},
+    group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply,
+                                     &k.add_source},
                                     compute.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
     throw device_error("preparing the pheromone kernels (diffusion_decay.cl) on " + compute.device.device_name, e.err());
@@ -202,11 +204,41 @@ const cl::Buffer& OpenCLDiffusionDecay::concentration_buffer() const { return u_
 
 // ---- time ----
 
+void OpenCLDiffusionDecay::set_write_rate(const DeviceVertexData<double>& rate) {
+  if (rate.empty()) {
+    has_write_rate_ = false;
+    write_rate_ = DeviceBuffer{};
+    return;
+  }
+  if (rate.size() != static_cast<size_t>(vertex_count_))
+    throw InputError("opencl pheromone: the write rate has " + std::to_string(rate.size()) + " values for " +
+                     std::to_string(vertex_count_) + " vertices");
+  for (size_t i = 0; i < rate.size(); ++i)
+    if (!std::isfinite(rate[i]))
+      throw InputError("opencl pheromone: the write rate at device vertex " + std::to_string(i) + " is " +
+                       std::to_string(rate[i]) + " (must be finite)");
+  write_rate_ = upload_buffer(compute_, "write rate", to_float(rate), CL_MEM_READ_ONLY, false);
+  has_write_rate_ = true;
+}
+
+void OpenCLDiffusionDecay::add_source(double h, bool clamp_at_zero) {
+  cl::Kernel& k = kernels_->add_source;
+  set_arguments(k, static_cast<cl_int>(vertex_count_), static_cast<cl_float>(h), write_rate_,
+                static_cast<cl_int>(clamp_at_zero ? 1 : 0), u_);
+  compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(group_count_ * group_), cl::NDRange(group_));
+}
+
 void OpenCLDiffusionDecay::step() {
   try {
-    if (integrator_ == Integrator::ForwardEuler) forward_step();
-    else if (diagonal_only_) diagonal_step();
+    if (integrator_ == Integrator::ForwardEuler) {
+      forward_step();
+      return;
+    }
+    // Backward Euler: the source joins the right-hand side, M (u + dt w), and the result is clamped.
+    if (has_write_rate_) add_source(time_step_, false);
+    if (diagonal_only_) diagonal_step();
     else backward_step();
+    if (has_write_rate_) add_source(0.0, true);
   } catch (const cl::Error& e) {
     throw device_error("pheromone step on " + compute_.device.device_name, e.err());
   }
@@ -232,6 +264,15 @@ void OpenCLDiffusionDecay::forward_step() {
       compute_.queue.enqueueNDRangeKernel(overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
     }
     std::swap(from, to);
+    // The source term after the whole sub-step (ELL and overflow): it needs the field in u, so with a
+    // write rate every sub-step ends there (one device-side copy each; only with write-stimuli).
+    if (has_write_rate_) {
+      if (from != &u_.buffer) {
+        compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
+        std::swap(from, to);
+      }
+      add_source(sub_step_, true);
+    }
   }
   if (from != &u_.buffer) compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
 }

@@ -3,7 +3,8 @@
 // reference/diffusion_decay.hpp is the serial counterpart): one layer of one float per intrinsic
 // vertex, advanced by Eq. 1 with the cotan Laplacian L and lumped mass M (Eq. 6 forward Euler with
 // automatic sub-steps, Eq. 7 backward Euler by conjugate gradients on the device). The field stays on
-// the device; the host reads it only on demand.
+// the device; the host reads it only on demand. An optional write rate (Sec. 3.3 write-stimuli) is a
+// source term, added and clamped at zero exactly where the reference does (pheromone_add_source).
 #include "common/element_data.hpp"
 #include "common/field_statistics.hpp"
 #include "common/scene.hpp"
@@ -64,6 +65,9 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   // backward Euler runs conjugate gradients, reading only the 32-byte solver state every
   // cg_check_interval iterations. Throws DeviceError when a solve ends far from convergence.
   void step();
+  // The write rate per vertex in the device's vertex order (concentration/s, finite; InputError
+  // naming the vertex otherwise), or empty for none (the base model, no extra launch).
+  void set_write_rate(const DeviceVertexData<double>& rate);
   // One time step with the step's deposits, in the order the integrator needs (deposit_order).
   void advance(const DeviceBuffer& cells, double scale) override;
   double time_step() const { return time_step_; }
@@ -89,6 +93,7 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   void forward_step();
   void backward_step();
   void diagonal_step();
+  void add_source(double h, bool clamp_at_zero);
 
   ComputeContext compute_;
   OpenCLDiffusionDecayOptions options_;
@@ -120,6 +125,9 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   std::unique_ptr<DeviceConjugateGradients> solver_;
   // Written by kernels: canary-guarded.
   DeviceBuffer u_, scratch_, amount_;
+  // The write rate (empty buffer and has_write_rate_ false when none).
+  DeviceBuffer write_rate_;
+  bool has_write_rate_ = false;
 
   std::unique_ptr<DeviceFieldStatistics> statistics_;
   ConjugateGradientReport last_solve_;

@@ -12,6 +12,11 @@ const std::vector<PlantedFault>& planted_faults() {
       {"no-reflect", "PHYSARUM_FAULT_NO_REFLECT", "agents stop at boundaries instead of reflecting"},
       {"uniform-face", "PHYSARUM_FAULT_UNIFORM_FACE", "respawn face not weighted by area"},
       {"turn-every-step", "PHYSARUM_FAULT_TURN_EVERY_STEP", "turn decisions ignore the decision frequency"},
+      {"bias-farthest-copy", "PHYSARUM_FAULT_BIAS_FARTHEST_COPY", "the bias turns toward the farthest copy of its direction"},
+      {"map-at-centroid", "PHYSARUM_FAULT_MAP_AT_CENTROID",
+       "agent parameters read at the face centroid instead of interpolated"},
+      {"stimulus-sign", "PHYSARUM_FAULT_STIMULUS_SIGN", "the read-stimulus weight negated"},
+      {"spawn-weights-ignored", "PHYSARUM_FAULT_SPAWN_WEIGHTS_IGNORED", "(re)spawn uniform by area, spawn weights ignored"},
   };
   return faults;
 }

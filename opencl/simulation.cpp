@@ -14,6 +14,7 @@
 #include "common/random_streams.hpp"
 #include "common/trace.hpp"
 #include "common/agent_model.hpp"
+#include "common/spawn_distribution.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,9 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_INITIAL_STATE == static_cast<unsigned>(RandomPurpose::InitialState) &&
               PHYSARUM_PURPOSE_TURN_DIRECTION == static_cast<unsigned>(RandomPurpose::TurnDirection) &&
               PHYSARUM_PURPOSE_RESPAWN_PLACEMENT == static_cast<unsigned>(RandomPurpose::RespawnPlacement) &&
-              PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState));
+              PHYSARUM_PURPOSE_RESPAWN_STATE == static_cast<unsigned>(RandomPurpose::RespawnState) &&
+              PHYSARUM_PURPOSE_INITIAL_SPAWN_CORNER == static_cast<unsigned>(RandomPurpose::InitialSpawnCorner) &&
+              PHYSARUM_PURPOSE_RESPAWN_CORNER == static_cast<unsigned>(RandomPurpose::RespawnCorner));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
 }  // namespace
@@ -50,8 +53,16 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationSettings& settings,
                                    const OpenCLSimulationOptions& options)
+    : OpenCLSimulation(compute, domain, params, SimulationControls{}, settings, options) {}
+
+OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
+                                   const VertexParameters& params, const SimulationControls& controls,
+                                   const SimulationSettings& settings, const OpenCLSimulationOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
   check_simulation_inputs(domain, params, settings, "opencl simulation");
+  check_controls(domain, controls, "opencl simulation");
+  const SpawnDistribution spawn =
+      build_spawn_distribution(domain, controls.spawn_weight, hazard_rate_per_vertex(params[Param::mean_lifetime]));
   if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
     throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
                      std::to_string(options.agents_per_work_item));
@@ -91,6 +102,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   cl::Program agent_program;
   std::string build = options.build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
+  // The controls present, as build options (kernels/agent_step.cl): absent ones compile to nothing.
+  if (!controls.read_stimulus.empty()) build += " -DPHYSARUM_READ_STIMULUS";
+  if (spawn.weighted) build += " -DPHYSARUM_SPAWN_WEIGHTS";
+  if (controls.bias) {
+    build += " -DPHYSARUM_BIAS -DPHYSARUM_BIAS_SYMMETRY=" + std::to_string(controls.bias->symmetry);
+    if (controls.spawn_heading == SpawnHeading::Bias) build += " -DPHYSARUM_SPAWN_HEADING_BIAS";
+  }
+  if (controls.boundary == BoundaryBehaviour::Terminate) build += " -DPHYSARUM_BOUNDARY_TERMINATE";
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
   const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
@@ -139,6 +158,33 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
   alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
   alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
+  // ---- the controls' arrays (placeholders of one element where absent) ----
+  const auto per_vertex = [&](const char* name, const IntrinsicVertexData<double>& values) {
+    if (values.empty()) return upload_buffer(compute, name, std::vector<float>{0.0f}, kRead, false);
+    const DeviceVertexData<double> device_values = to_device_order(values, vertex_order_);
+    return upload_buffer(compute, name, std::vector<float>(device_values.begin(), device_values.end()), kRead, false);
+  };
+  read_stimulus_ = per_vertex("read stimulus", controls.read_stimulus);
+  spawn_weight_ = per_vertex("spawn weights", spawn.weighted ? spawn.vertex_weight : IntrinsicVertexData<double>{});
+  if (spawn.weighted) {
+    // In domain face order, like the domain's table (device_face maps the answer).
+    spawn_alias_probability_ = upload_buffer(
+        compute, "spawn sampler probabilities",
+        std::vector<float>(spawn.face_sampler.probability.begin(), spawn.face_sampler.probability.end()), kRead, false);
+    spawn_alias_index_ = upload_buffer(compute, "spawn sampler aliases", spawn.face_sampler.alias, kRead, false);
+  } else {
+    spawn_alias_probability_ = upload_buffer(compute, "spawn sampler probabilities", std::vector<float>{0.0f}, kRead, false);
+    spawn_alias_index_ = upload_buffer(compute, "spawn sampler aliases", std::vector<cl_int>{0}, kRead, false);
+  }
+  bias_strength_ = per_vertex("bias strength", controls.bias ? controls.bias->strength : IntrinsicVertexData<double>{});
+  std::vector<cl_float2> directions(controls.bias ? static_cast<size_t>(domain.face_count) : 1, cl_float2{{0.0f, 0.0f}});
+  if (controls.bias)
+    for (int f = 0; f < domain.face_count; ++f) {
+      const std::array<double, 2>& d = controls.bias->direction[f];
+      directions[static_cast<size_t>(face_order_.device_of_domain[static_cast<size_t>(f)])] =
+          cl_float2{{static_cast<float>(d[0]), static_cast<float>(d[1])}};
+    }
+  bias_direction_ = upload_buffer(compute, "bias directions", directions, kRead, false);
   deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", nv)
                           : allocate_written<cl_float>(compute, "deposit accumulator", nv);
   group_counters_ = allocate_written<cl_ulong>(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
@@ -152,9 +198,12 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
                                                       agent_group_, agent_groups_);
   OpenCLDiffusionDecayOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
-  // One dynamic layer today: the pheromone every agent deposits into and senses.
-  layers_.push_back(std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params, settings.integrator,
-                                                           settings.time_step, pheromone_options));
+  // One dynamic layer today: the pheromone every agent deposits into and senses; the write-stimuli
+  // are its source term.
+  auto pheromone = std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params, settings.integrator,
+                                                          settings.time_step, pheromone_options);
+  if (!controls.write_rate.empty()) pheromone->set_write_rate(to_device_order(controls.write_rate, vertex_order_));
+  layers_.push_back(std::move(pheromone));
 
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
@@ -162,7 +211,8 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     compute.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
     if (agent_count > 0) {
       cl::Kernel& k = kernels_->initialise;
-      set_arguments(k, constants_, faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_,
+      set_arguments(k, constants_, faces_, vertex_parameters_, alias_probability_, alias_index_,
+                    spawn_alias_probability_, spawn_alias_index_, spawn_weight_, bias_direction_, device_face_,
                     agents_.buffers());
       compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                          cl::NDRange(agent_group_));
@@ -184,8 +234,8 @@ void OpenCLSimulation::enqueue_sensing() {
   compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
   cl::Kernel& sense = kernels_->sense_deciders;
-  set_arguments(sense, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), agents_.face,
-                agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
+  set_arguments(sense, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), read_stimulus_,
+                agents_.face, agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
   compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
                                       cl::NDRange(sensing_group_));
 }
@@ -193,8 +243,9 @@ void OpenCLSimulation::enqueue_sensing() {
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  set_arguments(k, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), alias_probability_,
-                alias_index_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
+  set_arguments(k, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), read_stimulus_,
+                alias_probability_, alias_index_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_,
+                bias_direction_, bias_strength_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
                 agents_.exposure, agents_.exposure_threshold, agents_.time_since_decision, agents_.accumulated_turn,
                 agents_.id, first_sensing_, group_counters_, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(step_groups_ * agent_group_),

@@ -4,7 +4,12 @@
 //
 //   0.   every sort_interval steps, agents are counting-sorted by face (kernels/agent_order.cl), a
 //        memory order only: results do not change
-//   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer, move + deposit, turnover
+//   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer (+ bias), move + deposit, turnover
+//
+// The controls of Sec. 3.3 (common/simulation_controls.hpp) are compiled into the kernels as build
+// options only when present (read-stimulus, spawn weights, bias, spawn heading, terminate) and the
+// write rate is one extra launch per sub-step of the field model: default controls run the same
+// kernels, bit for bit, at the same speed as before controls existed.
 //   4.   fields: every dynamic layer advances with this step's deposits, where its model puts
 //        them (opencl/field_model.hpp; today one diffusion-decay layer, opencl/diffusion_decay.hpp);
 //        static layers (opencl/static_field.hpp) do not take part
@@ -19,6 +24,7 @@
 // vertex) below 2^62, and the constructor refuses a scene where even that leaves fewer than 2^20
 // units for one agent's deposit of one step (rounding would then matter at the 1e-6 level).
 #include "common/scene.hpp"
+#include "common/simulation_controls.hpp"
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
@@ -62,6 +68,10 @@ class OpenCLSimulation final : public SimulationBackend {
   // parameters and DeviceError when a buffer exceeds the device or a kernel fails to build.
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    const SimulationSettings& settings, const OpenCLSimulationOptions& options = {});
+  // With the controls of Sec. 3.3; the same InputErrors as ReferenceSimulation for bad controls.
+  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                   const SimulationControls& controls, const SimulationSettings& settings,
+                   const OpenCLSimulationOptions& options = {});
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
                    const OpenCLSimulationOptions& options = {});
   ~OpenCLSimulation() override;
@@ -118,6 +128,9 @@ class OpenCLSimulation final : public SimulationBackend {
   std::vector<std::unique_ptr<OpenCLFieldLayer>> layers_;  // dynamic layers; layer 0 is sensed
   std::vector<std::unique_ptr<OpenCLStaticField>> static_fields_;  // layers layers_.size() and on
   DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_;
+  // The controls' arrays (device orders), one-element placeholders for those absent (never read then).
+  DeviceBuffer read_stimulus_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_;
+  DeviceBuffer bias_direction_, bias_strength_;
   DeviceBuffer deposits_, group_counters_;
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)
   DeviceAgents agents_;

@@ -10,18 +10,21 @@ namespace physarum {
 
 Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
                          const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
-                         int count, std::uint32_t seed) {
+                         int count, std::uint32_t seed, const SpawnRule& rule) {
   Agents agents;
   agents.resize(count);
   for (int a = 0; a < count; ++a) {
     const auto id = static_cast<std::uint32_t>(a);
-    const FacePoint p = sample_surface_point(
-        domain, agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 0),
-        agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 1));
+    const PhiloxWords face_choice = agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 0);
+    const PhiloxWords in_face = agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 1);
+    const FacePoint p = rule.distribution && rule.distribution->weighted
+                            ? sample_spawn_point(domain, *rule.distribution, face_choice, in_face,
+                                                 agent_random_words(seed, id, 0, RandomPurpose::InitialSpawnCorner, 0))
+                            : sample_surface_point(domain, face_choice, in_face);
     const PhiloxWords state = agent_random_words(seed, id, 0, RandomPurpose::InitialState, 0);
     agents.face[a] = p.face;
     agents.position[a] = p.position;
-    agents.heading[a] = heading_from_uniform(first_uniform(state));
+    agents.heading[a] = spawn_heading(rule, p, first_uniform(state));
     // A running population's decision clocks are out of phase: start each at a uniform point of its
     // period (with the turn accumulated so far), or every agent would decide in the same steps
     // forever when there is no turnover to scatter them.

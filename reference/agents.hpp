@@ -4,6 +4,7 @@
 #include "common/agents.hpp"
 #include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
+#include "reference/turnover.hpp"
 
 #include <cstdint>
 
@@ -31,8 +32,14 @@ namespace physarum {
 //
 // Decision clocks start at a uniform phase of the local decision period 1/f(x) (with the turn
 // omega(x) accumulated over that time), as in a population that has been running for a while.
+//
+// Everything above reads the LOCAL values at the agent's spawn point (hazard, so lifetime, and the
+// decision period), so with spatially varying maps each agent starts in the steady state of the
+// place it stands: no inspection-paradox bias and no start-up transient there either. With a
+// SpawnRule the placement follows its spawn density (RandomPurpose::InitialSpawnCorner for the
+// in-face corner) and the heading its spawn heading.
 Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
                          const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
-                         int count, std::uint32_t seed);
+                         int count, std::uint32_t seed, const SpawnRule& rule = {});
 
 }  // namespace physarum

@@ -102,13 +102,24 @@ void ReferenceDiffusionDecay::add_deposits(IntrinsicVertexData<double>& u,
   for (size_t i = 0; i < u.size(); ++i) u[i] += amount_per_vertex[i] * inverse_mass_[i];
 }
 
+void ReferenceDiffusionDecay::set_write_rate(const IntrinsicVertexData<double>& rate) {
+  if (!rate.empty()) {
+    check_size(rate, "the write rate");
+    for (size_t i = 0; i < rate.size(); ++i)
+      if (!std::isfinite(rate[i]))
+        throw InputError("pheromone: the write rate at vertex " + std::to_string(i) + " is " + std::to_string(rate[i]) +
+                         " (must be finite)");
+  }
+  write_rate_ = rate;
+}
+
 void ReferenceDiffusionDecay::step(IntrinsicVertexData<double>& u) {
   check_size(u, "the field");
   if (integrator_ == Integrator::BackwardEuler) {
     backward_step(u);
-    return;
+  } else {
+    for (int s = 0; s < sub_steps_; ++s) forward_sub_step(u, sub_step_);
   }
-  for (int s = 0; s < sub_steps_; ++s) forward_sub_step(u, sub_step_);
 }
 
 // Eq. 6 divided by M: u' = u - h (M^-1 R_dif L u + R_dec u), row by row through the CSR Laplacian.
@@ -120,13 +131,20 @@ void ReferenceDiffusionDecay::forward_sub_step(IntrinsicVertexData<double>& u, d
     for (int k = L.row_start[i]; k < L.row_start[i + 1]; ++k) Lu += L.value[k] * u[L.column[k]];
     scratch_[i] = u[i] - h * (diffuse_over_mass_[i] * Lu + decay_rate_[i] * u[i]);
   }
+  // The source term in its own pass, so the base model's arithmetic stays as it was.
+  if (!write_rate_.empty())
+    for (int i = 0; i < n; ++i) scratch_[i] = std::max(scratch_[i] + h * write_rate_[i], 0.0);
   u.values().swap(scratch_.values());
 }
 
-// Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u with the factorisation made in the constructor.
+// Eq. 7: [M + dt (R_dif L + R_dec M)] u' = M u with the factorisation made in the constructor; the
+// write rate joins the right-hand side as M (u + dt w).
 void ReferenceDiffusionDecay::backward_step(IntrinsicVertexData<double>& u) {
   const int n = static_cast<int>(u.size());
-  for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u[i];
+  if (write_rate_.empty())
+    for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * u[i];
+  else
+    for (int i = 0; i < n; ++i) rhs_[i] = domain_.vertex_mass[i] * (u[i] + time_step_ * write_rate_[i]);
   if (symmetric_) {
     // P A P^-1 = L D L^T, solved step by step into the buffers sized in the constructor: Eigen's own
     // solve() permutes the result in place, which allocates a mask on every call.
@@ -137,10 +155,12 @@ void ReferenceDiffusionDecay::backward_step(IntrinsicVertexData<double>& u) {
     solution_.array() /= ldlt_diagonal_.array();
     ldlt_->matrixU().solveInPlace(solution_);
     for (int i = 0; i < n; ++i) u[i] = solution_[permuted ? p[i] : i];  // u = P^-1 solution
-    return;
+  } else {
+    solution_ = lu_->solve(rhs_);
+    for (int i = 0; i < n; ++i) u[i] = solution_[i];
   }
-  solution_ = lu_->solve(rhs_);
-  for (int i = 0; i < n; ++i) u[i] = solution_[i];
+  if (!write_rate_.empty())
+    for (int i = 0; i < n; ++i) u[i] = std::max(u[i], 0.0);
 }
 
 double ReferenceDiffusionDecay::total_amount(const IntrinsicVertexData<double>& u) const {

@@ -2,7 +2,11 @@
 // The diffusion-decay field model in the serial reference (common/diffusion_decay.hpp defines it):
 // paper Eq. 1 discretised with the cotan Laplacian L and lumped mass M, with per-vertex rates R_dif,
 // R_dec (Eq. 6 forward Euler with sub-steps under the stability limit, Eq. 7 backward Euler by a
-// sparse factorisation made once).
+// sparse factorisation made once). An optional write rate w (Sec. 3.3 write-stimuli, concentration
+// per second per vertex) is a source term of the PDE, du/dt = ... + w: forward Euler adds h w in
+// each sub-step, backward Euler solves A u' = M (u + dt w); with diffusion off both reach exactly
+// u = w / r_dec. The concentration is clamped at zero after each sub-step (forward) or the solve
+// (backward), so a negative rate removes pheromone but never makes it negative.
 #include "common/diffusion_decay.hpp"
 #include "common/element_data.hpp"
 #include "common/scene.hpp"
@@ -28,8 +32,11 @@ class ReferenceDiffusionDecay final : public ReferenceFieldModel {
   // One time step with the step's deposits, in the order the integrator needs (deposit_order).
   void advance(IntrinsicVertexData<double>& u, const IntrinsicVertexData<double>& deposits) override;
 
-  // One time step of diffusion and decay alone (no sources).
+  // One time step of diffusion and decay (and the write rate, when set; no deposits).
   void step(IntrinsicVertexData<double>& u);
+  // The write rate per vertex (finite; InputError naming the vertex otherwise), or empty for none.
+  void set_write_rate(const IntrinsicVertexData<double>& rate);
+  const IntrinsicVertexData<double>& write_rate() const { return write_rate_; }
   // An AMOUNT at a vertex raises its concentration by amount / vertex_mass.
   void add_deposits(IntrinsicVertexData<double>& u, const IntrinsicVertexData<double>& amount_per_vertex) const;
 
@@ -56,6 +63,7 @@ class ReferenceDiffusionDecay final : public ReferenceFieldModel {
   IntrinsicVertexData<double> inverse_mass_;
   IntrinsicVertexData<double> diffuse_over_mass_;  // r_dif,i / m_i
   IntrinsicVertexData<double> decay_rate_;         // r_dec,i
+  IntrinsicVertexData<double> write_rate_;         // w_i, empty: no source term
   double stable_time_step_ = 0.0;
   int sub_steps_ = 1;
   double sub_step_ = 0.0;

@@ -10,11 +10,13 @@ namespace physarum {
 
 double read_sensor(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                    const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance,
-                   long long* crossings) {
+                   long long* crossings, const IntrinsicVertexData<double>* stimulus) {
   const TraceResult end = trace(domain, face, position, direction, distance, BoundaryRule::Stop);
   if (crossings) *crossings += end.face_crossings;
   if (end.hit_boundary) return 0.0;
-  return interpolate_vertex_field(domain, concentration, end.face, end.position);
+  const double pheromone = interpolate_vertex_field(domain, concentration, end.face, end.position);
+  if (!stimulus) return pheromone;
+  return pheromone + interpolate_vertex_field(domain, *stimulus, end.face, end.position);
 }
 
 Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
@@ -24,11 +26,13 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle) {
 
 SensorReadings read_sensors(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                             const Eigen::Vector2d& position, const Eigen::Vector2d& heading, double sensor_angle,
-                            double sensor_distance, long long* crossings) {
+                            double sensor_distance, long long* crossings, const IntrinsicVertexData<double>* stimulus) {
   SensorReadings r;
-  r.left = read_sensor(domain, concentration, face, position, rotate(heading, sensor_angle), sensor_distance, crossings);
-  r.centre = read_sensor(domain, concentration, face, position, heading, sensor_distance, crossings);
-  r.right = read_sensor(domain, concentration, face, position, rotate(heading, -sensor_angle), sensor_distance, crossings);
+  r.left = read_sensor(domain, concentration, face, position, rotate(heading, sensor_angle), sensor_distance, crossings,
+                       stimulus);
+  r.centre = read_sensor(domain, concentration, face, position, heading, sensor_distance, crossings, stimulus);
+  r.right = read_sensor(domain, concentration, face, position, rotate(heading, -sensor_angle), sensor_distance,
+                        crossings, stimulus);
   return r;
 }
 
@@ -41,7 +45,8 @@ TurnChoice jones_turn_choice(const SensorReadings& r) {
 }
 
 void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
-                     double dt, std::uint32_t seed, std::uint32_t step, Agents& agents, long long* sensor_crossings) {
+                     double dt, std::uint32_t seed, std::uint32_t step, Agents& agents, long long* sensor_crossings,
+                     const IntrinsicVertexData<double>* stimulus) {
   for (int a = 0; a < agents.count(); ++a) {
     const int face = agents.face[a];
     const Eigen::Vector2d& position = agents.position[a];
@@ -71,7 +76,7 @@ void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params
       agents.accumulated_turn[a] = carried_turn;
 
       const SensorReadings readings = read_sensors(domain, concentration, face, position, agents.heading[a],
-                                                   sensor_angle, sensor_distance, sensor_crossings);
+                                                   sensor_angle, sensor_distance, sensor_crossings, stimulus);
       TurnChoice choice = jones_turn_choice(readings);
       if (choice == TurnChoice::RandomSide) {
         if (!side_bits_drawn) {

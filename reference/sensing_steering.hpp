@@ -18,10 +18,12 @@ namespace physarum {
 // (face, position) along `direction`, interpolated barycentrically from the vertex concentrations.
 // Sensors stop at boundaries (BoundaryRule::Stop), and a sensor whose trace meets the boundary
 // reads nothing: 0, so agents are not drawn towards the rim.
-// `crossings`, when given, is increased by the faces the trace crossed.
+// `crossings`, when given, is increased by the faces the trace crossed. `stimulus`, when given (the
+// summed read-stimuli of Sec. 3.3, per vertex), is added to what an in-bounds sensor reads,
+// interpolated the same way.
 double read_sensor(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                    const Eigen::Vector2d& position, const Eigen::Vector2d& direction, double distance,
-                   long long* crossings = nullptr);
+                   long long* crossings = nullptr, const IntrinsicVertexData<double>* stimulus = nullptr);
 
 struct SensorReadings {
   double left = 0.0;    // at +angle (counter-clockwise of the heading)
@@ -33,7 +35,8 @@ struct SensorReadings {
 // attraction into chemo-repulsion (Fig. 9c).
 SensorReadings read_sensors(const SurfaceDomain& domain, const IntrinsicVertexData<double>& concentration, int face,
                             const Eigen::Vector2d& position, const Eigen::Vector2d& heading, double sensor_angle,
-                            double sensor_distance, long long* crossings = nullptr);
+                            double sensor_distance, long long* crossings = nullptr,
+                            const IntrinsicVertexData<double>* stimulus = nullptr);
 
 enum class TurnChoice { Straight, Left, Right, RandomSide };
 
@@ -49,9 +52,9 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle);
 // and omega(x) dt; whenever the clock reaches the decision period 1/f(x) the agent senses and turns by
 // the turn accumulated over exactly that period, and the remainder carries to the next period.
 // Parameters are interpolated at the agent's position. `sensor_crossings`, when given, is increased
-// by the faces the sensor traces crossed.
+// by the faces the sensor traces crossed; `stimulus` (may be null) is the read-stimulus sensors add.
 void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
                      double dt, std::uint32_t seed, std::uint32_t step, Agents& agents,
-                     long long* sensor_crossings = nullptr);
+                     long long* sensor_crossings = nullptr, const IntrinsicVertexData<double>* stimulus = nullptr);
 
 }  // namespace physarum

@@ -1,10 +1,12 @@
 #include "reference/simulation.hpp"
 
 #include "common/agent_model.hpp"
+#include "common/directional_bias.hpp"
 #include "common/domain_sampling.hpp"
 #include "common/errors.hpp"
 #include "reference/agents.hpp"
 #include "reference/deposition.hpp"
+#include "reference/directional_bias.hpp"
 #include "reference/movement.hpp"
 #include "reference/sensing_steering.hpp"
 #include "reference/turnover.hpp"
@@ -12,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace physarum {
 
@@ -23,20 +26,35 @@ const VertexParameters& checked(const SurfaceDomain& domain, const VertexParamet
   return params;
 }
 
+// The per-vertex controls (read-stimulus; the write rate is the field model's to check).
+const SimulationControls& checked(const SurfaceDomain& domain, const SimulationControls& controls) {
+  check_controls(domain, controls, "simulation");
+  return controls;
+}
+
 }  // namespace
 
 ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params,
                                          const SimulationSettings& settings)
+    : ReferenceSimulation(domain, std::move(params), SimulationControls{}, settings) {}
+
+ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params,
+                                         const SimulationControls& controls, const SimulationSettings& settings)
     : domain_(domain),
       params_(checked(domain, params, settings)),
+      controls_(checked(domain, controls)),
       settings_(settings),
       hazard_rate_(hazard_rate_per_vertex(params_[Param::mean_lifetime])),
+      spawn_(build_spawn_distribution(domain_, controls_.spawn_weight, hazard_rate_)),
+      spawn_rule_{&spawn_, controls_.spawn_heading, controls_.bias ? &*controls_.bias : nullptr},
       agents_(initialise_agents(domain_, hazard_rate_, params_[Param::turn_frequency], params_[Param::turn_rate],
-                                settings.agents, settings.seed)),
+                                settings.agents, settings.seed, spawn_rule_)),
       field_model_(domain_, params_, settings.integrator, settings.time_step),
       layers_(kDynamicLayers, IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)),
       deposit_amount_(static_cast<size_t>(domain.vertex_count), 0.0) {
+  field_model_.set_write_rate(controls_.write_rate);
   segments_.reserve(64);
+  if (controls_.boundary == BoundaryBehaviour::Terminate) terminated_.assign(static_cast<size_t>(settings.agents), 0);
 }
 
 ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene)
@@ -44,6 +62,7 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Scen
 
 void ReferenceSimulation::move_and_deposit() {
   const double dt = settings_.time_step;
+  const bool terminate = controls_.boundary == BoundaryBehaviour::Terminate;
   for (int a = 0; a < agents_.count(); ++a) {
     // Rates are read where the step starts.
     const int face = agents_.face[a];
@@ -53,10 +72,22 @@ void ReferenceSimulation::move_and_deposit() {
     const double deposit =
         interpolate_vertex_field(domain_, params_[Param::deposit_rate], face, start) * dt * active_fraction(agents_.age[a], dt, activation_time);
 
-    const TraceResult r = move_agent(domain_, agents_, a, move_rate * dt, segments_);
+    if (!terminate) {
+      const TraceResult r = move_agent(domain_, agents_, a, move_rate * dt, segments_);
+      counters_.face_crossings += r.face_crossings;
+      counters_.boundary_hits += r.hit_boundary ? 1 : 0;
+      deposit_along_path(domain_, segments_, deposit, face, start, deposit_amount_);
+      continue;
+    }
+    // Terminate: the walk stops at the boundary and the agent deposits only for the part of the
+    // step it walked (the same deposit per length as a full step), then turnover respawns it.
+    const double distance = move_rate * dt;
+    const TraceResult r = move_agent(domain_, agents_, a, distance, segments_, BoundaryRule::Stop);
     counters_.face_crossings += r.face_crossings;
     counters_.boundary_hits += r.hit_boundary ? 1 : 0;
-    deposit_along_path(domain_, segments_, deposit, face, start, deposit_amount_);
+    terminated_[static_cast<size_t>(a)] = r.hit_boundary ? 1 : 0;
+    const double walked = r.hit_boundary && distance > 0.0 ? r.length / distance : 1.0;
+    deposit_along_path(domain_, segments_, deposit * walked, face, start, deposit_amount_);
   }
 }
 
@@ -65,10 +96,12 @@ void ReferenceSimulation::step() {
   const auto step_index = static_cast<std::uint32_t>(steps_taken_);
 
   sense_and_steer(domain_, params_, layers_[0], dt, settings_.seed, step_index, agents_,
-                  &counters_.sensor_face_crossings);
+                  &counters_.sensor_face_crossings, controls_.read_stimulus.empty() ? nullptr : &controls_.read_stimulus);
+  if (controls_.bias) apply_directional_bias(domain_, *controls_.bias, dt, agents_);
   std::fill(deposit_amount_.begin(), deposit_amount_.end(), 0.0);
   move_and_deposit();
-  counters_.respawns += advance_turnover(domain_, hazard_rate_, dt, settings_.seed, step_index, agents_);
+  counters_.respawns += advance_turnover(domain_, hazard_rate_, dt, settings_.seed, step_index, agents_, nullptr,
+                                         spawn_rule_, terminated_.empty() ? nullptr : &terminated_);
 
   // One dynamic layer today: the pheromone every agent deposits into. Static layers (after the
   // dynamic ones) never advance.

@@ -2,9 +2,12 @@
 // The serial reference simulation of the extended slime-mold model (paper Sec. 3.2-3.3): the oracle
 // every faster backend is judged against. One step, in this order:
 //
-//   1. sense + steer   (sensing_steering.hpp) every agent whose turn decision is due
+//   1. sense + steer   (sensing_steering.hpp) every agent whose turn decision is due; sensors read
+//                      the pheromone plus the read-stimulus (controls)
+//   1b. bias           (directional_bias.hpp) when the controls have one
 //   2. move + deposit  (movement.hpp, deposition.hpp) along the path, into an amount buffer
-//   3. turnover        (turnover.hpp) age, exposure, respawn
+//   3. turnover        (turnover.hpp) age, exposure, respawn (also of agents in a sink face or, with
+//                      BoundaryBehaviour::Terminate, that reached a boundary)
 //   4. fields          the field model (field_model.hpp; today diffusion_decay.hpp, Eq. 6 / 7)
 //                      advances every dynamic layer with this step's deposits, in its own order
 //   5. time += dt
@@ -12,12 +15,17 @@
 // The simulation holds a list of per-vertex field layers: the dynamic ones first (layer 0 is the
 // pheromone the agents deposit and sense; one per species later), then static ones (fixed maps).
 //
+// The controls of Sec. 3.3 (common/simulation_controls.hpp) arrive evaluated; default controls are
+// the base model bit for bit (every control's work is skipped when it is absent).
+//
 // All randomness comes from Philox streams keyed (seed, agent), counter (step, purpose)
 // (common/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
 // recomputes no geometry: every buffer is sized once here (counted in
 // tests/test_reference_allocations.cpp; with a spatially varying diffuse rate the backward-Euler
 // solve goes through Eigen's SparseLU, whose solve() allocates).
 #include "common/scene.hpp"
+#include "common/simulation_controls.hpp"
+#include "common/spawn_distribution.hpp"
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
@@ -25,6 +33,7 @@
 #include "common/agents.hpp"
 #include "common/element_data.hpp"
 #include "reference/diffusion_decay.hpp"
+#include "reference/turnover.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -36,8 +45,15 @@ class ReferenceSimulation final : public SimulationBackend {
   // The domain must outlive the simulation (it is read, never copied). Throws InputError when the
   // parameter arrays do not match the domain or a setting is out of range.
   ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationSettings& settings);
+  // With the controls of Sec. 3.3 (copied). Throws InputError when a control does not match the
+  // domain (sizes, non-finite values, negative spawn weights, all spawn weights zero, symmetry).
+  ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationControls& controls,
+                      const SimulationSettings& settings);
   // Convenience: constant parameters from a scene (agents, time_step, seed, integrator from it too).
   ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene);
+  // Not copyable: the spawn rule points into this object's own controls.
+  ReferenceSimulation(const ReferenceSimulation&) = delete;
+  ReferenceSimulation& operator=(const ReferenceSimulation&) = delete;
 
   void step() override;
 
@@ -48,6 +64,8 @@ class ReferenceSimulation final : public SimulationBackend {
 
   const SurfaceDomain& domain() const { return domain_; }
   const VertexParameters& parameters() const { return params_; }
+  const SimulationControls& controls() const { return controls_; }
+  const SpawnDistribution& spawn_distribution() const { return spawn_; }
   const Agents& agents() const { return agents_; }
   Agents& agents() { return agents_; }  // tests place agents by hand
   // A layer itself (any layer; std::out_of_range past the end). The reference may be invalidated
@@ -82,8 +100,11 @@ class ReferenceSimulation final : public SimulationBackend {
 
   const SurfaceDomain& domain_;
   VertexParameters params_;
+  SimulationControls controls_;
   SimulationSettings settings_;
   IntrinsicVertexData<double> hazard_rate_;
+  SpawnDistribution spawn_;
+  SpawnRule spawn_rule_;  // points into controls_ and spawn_
   Agents agents_;
   ReferenceDiffusionDecay field_model_;
   // The dynamic layers (kDynamicLayers of them), then the static ones in the order they were added.
@@ -96,6 +117,7 @@ class ReferenceSimulation final : public SimulationBackend {
   // Per-step scratch, sized once.
   IntrinsicVertexData<double> deposit_amount_;  // amount per vertex deposited during the current step
   std::vector<TraceSegment> segments_;
+  std::vector<unsigned char> terminated_;  // agents whose move met a boundary (Terminate only)
 };
 
 }  // namespace physarum

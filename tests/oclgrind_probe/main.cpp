@@ -103,6 +103,69 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   check(damaged.empty(), label + ": canaries intact" + names);
 }
 
+// The same agents with every control of Sec. 3.3 switched on (common/simulation_controls.hpp), so
+// their kernel paths run under the checker too: a read-stimulus and a write rate (with negative
+// values, clamped), spawn weights with a zero region and a sink (mean lifetime 0), a bias of
+// symmetry 3 with spawn headings along it and a zero-direction face, a terminating boundary on the
+// square, and varying agent parameters (no uniform fast path).
+void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
+                              int agents_per_work_item, const std::string& label) {
+  const int n = domain.vertex_count;
+  Scene scene;
+  scene.parameters[Param::sensor_distance] = 0.3;
+  scene.parameters[Param::sensor_angle] = 0.4;
+  scene.parameters[Param::move_rate] = 10.0;
+  scene.parameters[Param::turn_rate] = 3.0;
+  scene.parameters[Param::turn_frequency] = 120.0;
+  scene.parameters[Param::deposit_rate] = 1.0;
+  scene.parameters[Param::decay_rate] = 0.5;
+  scene.parameters[Param::diffuse_rate] = 0.01;
+  scene.parameters[Param::mean_lifetime] = 0.05;
+  scene.parameters[Param::activation_time] = 0.01;
+  VertexParameters params = VertexParameters::constant(scene.parameters, n);
+  SimulationControls controls;
+  controls.read_stimulus.assign(static_cast<size_t>(n), 0.0);
+  controls.write_rate.assign(static_cast<size_t>(n), 0.0);
+  controls.spawn_weight.assign(static_cast<size_t>(n), 0.0);
+  DirectionalBias bias;
+  bias.symmetry = 3;
+  bias.strength.assign(static_cast<size_t>(n), 0.0);
+  bias.direction.assign(static_cast<size_t>(domain.face_count), {1.0, 0.5});
+  bias.direction[0] = {0.0, 0.0};
+  for (int i = 0; i < n; ++i) {
+    const auto v = static_cast<size_t>(i);
+    params[Param::move_rate][v] = 5.0 + 0.1 * (i % 7);
+    if (i == n / 2) params[Param::mean_lifetime][v] = 0.0;  // a sink
+    controls.read_stimulus[v] = (i % 3 == 0) ? 0.5 : -0.25;
+    controls.write_rate[v] = (i % 4 == 0) ? -1.0 : 0.5;
+    controls.spawn_weight[v] = (i < n / 4) ? 0.0 : 1.0 + (i % 5);
+    bias.strength[v] = 2.0 + 0.01 * i;
+  }
+  controls.bias = bias;
+  controls.spawn_heading = SpawnHeading::Bias;
+  controls.boundary = BoundaryBehaviour::Terminate;
+  SimulationSettings settings;
+  settings.agents = 301;
+  settings.time_step = 0.02;
+  settings.seed = 5;
+  settings.integrator = integrator;
+  OpenCLSimulationOptions options;
+  options.agents_per_work_item = agents_per_work_item;
+  options.pheromone.cg_max_iterations = 64;
+  options.pheromone.cg_check_interval = 8;
+  OpenCLSimulation sim(compute, domain, params, controls, settings, options);
+  sim.run(3);
+  const SimulationCounters c = sim.counters();
+  const FieldStatistics stats = sim.field_statistics(1.0);
+  check(std::isfinite(stats.mean) && stats.mean > 0.0 && c.respawns > 0,
+        label + ": agents moved with controls (" + std::to_string(c.respawns) + " respawns), mean " +
+            std::to_string(stats.mean));
+  const std::vector<std::string> damaged = sim.damaged_canaries();
+  std::string names;
+  for (const auto& d : damaged) names += " " + d;
+  check(damaged.empty(), label + ": canaries intact" + names);
+}
+
 void run_philox(const ComputeContext& compute) {
   const cl::Program p = build_program(compute.context, compute.device, "philox_check.cl", kernel_source("philox_check.cl"));
   const cl_uint n = 3;
@@ -165,6 +228,10 @@ int run(int argc, char** argv) {
     const std::string lanes = ", " + std::to_string(grouping) + " agent(s) per work-item";
     run_agents(compute, domain, Integrator::ForwardEuler, grouping, "agents on a sphere, forward Euler" + lanes);
     run_agents(compute, square, Integrator::BackwardEuler, grouping, "agents on a square, backward Euler" + lanes);
+    run_agents_with_controls(compute, square, Integrator::ForwardEuler, grouping,
+                             "controls on a square, forward Euler" + lanes);
+    run_agents_with_controls(compute, domain, Integrator::BackwardEuler, grouping,
+                             "controls on a sphere, backward Euler" + lanes);
   }
   run_philox(compute);
   return testing::probe_exit_status();
