@@ -233,6 +233,16 @@ const std::vector<SourceKind>& source_kinds() {
          if (!(d.norm() > 0.0)) c.fail("\"direction\" must not be zero");
          return DirectionSource{d};
        }},
+      {"toward", MapKind::Vector,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"toward"});
+         return RadialSource{c.point(o, "toward"), true};
+       }},
+      {"away_from", MapKind::Vector,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"away_from"});
+         return RadialSource{c.point(o, "away_from"), false};
+       }},
       // "ply" comes in two kinds, told apart by the second field (see source_kind_of).
       {"ply", MapKind::Scalar,
        [](const json& o, const MapContext& c) -> MapSource {

@@ -22,6 +22,8 @@
 //     {"sum": [OPERAND, ...]}, {"product": [...]}, {"min": [...]}, {"max": [...]}
 //   vector sources
 //     {"direction": [x, y, z]}                    a constant direction, projected into every face
+//     {"toward": [x, y, z]}, {"away_from": [...]}  unit directions from each face toward (away from) a
+//                                                  point, projected into the face (Fig. 8's bias to a sink)
 //     {"ply": FILE, "face_property": NAME}        per-face NAME_x, NAME_y, NAME_z of a PLY
 // Coordinates are the INPUT mesh's own (before scale_to_area). File paths are relative to the scene
 // file's folder (or absolute). Maps may name each other in any order; they are sorted so that every
@@ -100,6 +102,10 @@ struct CombineSource {
 struct DirectionSource {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // in input coordinates, any length
 };
+struct RadialSource {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // in input coordinates
+  bool toward = true;                                // false: away from the point
+};
 struct PlyFaceVectorSource {
   std::string path;      // resolved
   std::string property;  // NAME: the file has NAME_x, NAME_y, NAME_z per face
@@ -107,7 +113,7 @@ struct PlyFaceVectorSource {
 
 using MapSource = std::variant<ConstantSource, PlyVertexSource, TextureSource, RegionSource, AxisRampSource,
                                RangeSource, InvertSource, ThresholdSource, ClampSource, CombineSource,
-                               DirectionSource, PlyFaceVectorSource>;
+                               DirectionSource, RadialSource, PlyFaceVectorSource>;
 
 struct MapDefinition {
   std::string name;

@@ -159,7 +159,8 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
               }
             }
           }
-        } else if constexpr (std::is_same_v<S, DirectionSource> || std::is_same_v<S, PlyFaceVectorSource>) {
+        } else if constexpr (std::is_same_v<S, DirectionSource> || std::is_same_v<S, RadialSource> ||
+                             std::is_same_v<S, PlyFaceVectorSource>) {
           throw std::logic_error("map_evaluation: a vector source evaluated as a scalar map");
         } else {
           static_assert(sizeof(S) == 0, "evaluate_scalar: a map source without a case");
@@ -254,6 +255,12 @@ std::array<double, 2> in_chord_frame(const ChordTriangle& chord, const Vec3& d) 
   return {d.dot(x), d.dot(y)};
 }
 
+// The unit direction from `from` toward (or away from) the radial source's point; zero at the point.
+Vec3 radial_direction(const RadialSource& s, const Vec3& from) {
+  const Vec3 d = s.toward ? Vec3(s.point - from) : Vec3(from - s.point);
+  return d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3::Zero();
+}
+
 Vec3 projected_into_face(const InputMesh& input, int face, const Vec3& d) {
   const auto& t = input.triangles[static_cast<size_t>(face)];
   const Vec3 normal = (input.positions[t[1]] - input.positions[t[0]]).cross(input.positions[t[2]] - input.positions[t[0]]);
@@ -275,6 +282,11 @@ IntrinsicFaceData<std::array<double, 2>> evaluate_vector(const Evaluation& e, co
         using S = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<S, DirectionSource>) {
           for (size_t t = 0; t < chords.size(); ++t) out[t] = in_chord_frame(chords[t], s.direction);
+        } else if constexpr (std::is_same_v<S, RadialSource>) {
+          for (size_t t = 0; t < chords.size(); ++t) {
+            const Vec3 centroid = (chords[t].corner[0] + chords[t].corner[1] + chords[t].corner[2]) / 3.0;
+            out[t] = in_chord_frame(chords[t], radial_direction(s, centroid));
+          }
         } else if constexpr (std::is_same_v<S, PlyFaceVectorSource>) {
           const std::vector<Vec3> vectors = ply_face_vectors(e, map.name, s);
           for (size_t t = 0; t < chords.size(); ++t) out[t] = in_chord_frame(chords[t], vectors[static_cast<size_t>((*under)[t])]);
@@ -346,6 +358,12 @@ InputMaps maps_on_input(const MapSet& maps, const SceneSurface& surface, const E
     std::vector<Vec3> per_face(static_cast<size_t>(input.triangle_count()));
     if (const auto* d = std::get_if<DirectionSource>(&map.source)) {
       for (int f = 0; f < input.triangle_count(); ++f) per_face[static_cast<size_t>(f)] = projected_into_face(input, f, d->direction);
+    } else if (const auto* r = std::get_if<RadialSource>(&map.source)) {
+      for (int f = 0; f < input.triangle_count(); ++f) {
+        const auto& t = input.triangles[static_cast<size_t>(f)];
+        const Vec3 centroid = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) / 3.0;
+        per_face[static_cast<size_t>(f)] = projected_into_face(input, f, radial_direction(*r, centroid));
+      }
     } else {
       const std::vector<Vec3> vectors = ply_face_vectors(e, map.name, std::get<PlyFaceVectorSource>(map.source));
       for (int f = 0; f < input.triangle_count(); ++f)

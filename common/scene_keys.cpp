@@ -45,7 +45,7 @@ std::vector<SceneKey> build_keys() {
               "named surface maps the parameters and controls below refer to (README \"Surface maps\"; "
               "common/map_definition.hpp); coordinates are the input mesh's, before scale_to_area",
               "{\"NAME\": SOURCE, ...}: a number, ply, texture, sphere, box, half_space, axis, map+range, invert, "
-              "threshold, clamp, sum, product, min, max (scalar); direction, ply face_property (vector)"),
+              "threshold, clamp, sum, product, min, max (scalar); direction, toward, away_from, ply face_property (vector)"),
   };
   for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));
   const std::vector<SceneKey> controls = {

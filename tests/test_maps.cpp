@@ -387,6 +387,28 @@ TEST(Maps, DirectionHasTheRightAngleInEachFaceOfTheSquare) {
   }
 }
 
+// "toward" a point on the flat square: in every face, a unit vector whose angle is that of the
+// point seen from the face's centroid (both read off the corners' input positions here); "away_from"
+// is its opposite.
+TEST(Maps, TowardPointsFromEachFaceToThePoint) {
+  const SceneSurface s = surface_of("shape:square", 0.05, 4.0);
+  const Eigen::Vector3d c(0.3, 0.6, 0.0);
+  const EvaluatedMaps m = evaluate({{"in", {{"toward", {0.3, 0.6, 0.0}}}}, {"out", {{"away_from", {0.3, 0.6, 0.0}}}}}, s);
+  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  for (int f = 0; f < s.domain.face_count; ++f) {
+    const auto& fv = s.domain.face_vertices[static_cast<size_t>(f)];
+    const Eigen::Vector3d centroid = (p[static_cast<size_t>(fv[0])] + p[static_cast<size_t>(fv[1])] + p[static_cast<size_t>(fv[2])]) / 3.0;
+    const Eigen::Vector3d edge = p[static_cast<size_t>(fv[1])] - p[static_cast<size_t>(fv[0])];
+    const double expected = std::atan2(c.y() - centroid.y(), c.x() - centroid.x()) - std::atan2(edge.y(), edge.x());
+    const auto& in = m.vector_map("in")[f];
+    const auto& out = m.vector_map("out")[f];
+    EXPECT_NEAR(std::remainder(std::atan2(in[1], in[0]) - expected, 2 * std::numbers::pi), 0.0, 1e-9) << f;
+    EXPECT_NEAR(std::hypot(in[0], in[1]), 1.0, 1e-12) << f;
+    EXPECT_NEAR(in[0] + out[0], 0.0, 1e-12) << f;
+    EXPECT_NEAR(in[1] + out[1], 0.0, 1e-12) << f;
+  }
+}
+
 TEST(Maps, DirectionIsTangentWithItsProjectedLengthOnACurvedSurface) {
   // The icosphere: flat facets meeting at angles. An intrinsic face lying in one facet must carry d
   // projected into that facet's plane: tangent to it and of the projected length (both to rounding).

@@ -65,18 +65,16 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
-  // arrays.controls (Sec. 3.3) are evaluated and checked here with the parameters; the backends take
-  // them in their constructors once they consume them (common/simulation_controls.hpp).
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
-    return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, simulation_settings(scene));
+    return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
   }
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
-  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, simulation_settings(scene),
-                                                    options);
+  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, arrays.controls,
+                                                    simulation_settings(scene), options);
 }
 
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
