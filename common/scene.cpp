@@ -429,4 +429,10 @@ bool has_parameter_maps(const Scene& scene) {
   return std::any_of(scene.parameter_maps.begin(), scene.parameter_maps.end(), [](const auto& m) { return m.has_value(); });
 }
 
+bool steady_mean_is_U(const Scene& scene) {
+  for (const Param p : {Param::deposit_rate, Param::decay_rate, Param::mean_lifetime, Param::activation_time})
+    if (scene.parameter_maps[static_cast<size_t>(p)]) return false;
+  return scene.controls.write_stimuli.empty() && scene.controls.boundary == BoundaryBehaviour::Reflect;
+}
+
 }  // namespace physarum

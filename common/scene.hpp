@@ -85,4 +85,11 @@ void validate_scene(const Scene& scene);
 // True when some model parameter is given by a map.
 bool has_parameter_maps(const Scene& scene);
 
+// True when the pheromone's steady mean is U (Eq. 5) for this scene: U counts the deposits of N
+// agents at a uniform deposit rate and active fraction against a uniform decay, so it holds with any
+// maps on the other parameters, read-stimuli, spawn weights and a bias, but not with a mapped
+// deposit_rate, decay_rate, mean_lifetime (sinks included) or activation_time, with write-stimuli
+// (pheromone not from agents), or with a terminating boundary (lifetimes cut short).
+bool steady_mean_is_U(const Scene& scene);
+
 }  // namespace physarum

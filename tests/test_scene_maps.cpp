@@ -141,6 +141,29 @@ TEST(SceneMaps, AMeanLifetimeMapMayMakeASink) {
   EXPECT_NE(scene_error(j).find("key 'mean_lifetime'"), std::string::npos);
 }
 
+// Eq. 5's U is the steady mean only where every agent deposits at one rate with one active
+// fraction against one decay: maps on those parameters, write-stimuli and a terminating boundary
+// break it; maps on the others, read-stimuli, spawn weights and a bias do not.
+TEST(SceneMaps, TheSteadyMeanIsUOnlyWhereEq5Applies) {
+  TempDir dir;
+  auto with = [&](const json& changes) {
+    json j = base_scene();
+    j["maps"] = square_maps();
+    for (auto it = changes.begin(); it != changes.end(); ++it) j[it.key()] = it.value();
+    return steady_mean_is_U(load_scene(write_scene(dir, j)));
+  };
+  EXPECT_TRUE(with(json::object()));
+  EXPECT_TRUE(with({{"sensor_distance", {{"map", "ramp_x"}, {"range", {0.02, 0.06}}}}}));
+  EXPECT_TRUE(with({{"read_stimuli", {{{"map", "ramp_x"}, {"weight", 2.0}}}}, {"spawn_weight", "ramp_x"}}));
+  EXPECT_TRUE(with({{"bias", {{"direction", "east"}, {"strength", 10}}}}));
+  EXPECT_FALSE(with({{"deposit_rate", {{"map", "ramp_x"}, {"range", {0.5, 1.5}}}}}));
+  EXPECT_FALSE(with({{"decay_rate", {{"map", "ramp_x"}, {"range", {0.5, 1.5}}}}}));
+  EXPECT_FALSE(with({{"mean_lifetime", {{"map", "ramp_x"}, {"range", {0.0, 2.0}}}}}));
+  EXPECT_FALSE(with({{"activation_time", {{"map", "ramp_x"}, {"range", {0.0, 0.4}}}}}));
+  EXPECT_FALSE(with({{"write_stimuli", {{{"map", "ramp_x"}, {"rate", 1.0}}}}}));
+  EXPECT_FALSE(with({{"boundary", "terminate"}}));
+}
+
 TEST(SceneMaps, ControlsAreTheDocumentedSumsAndConversions) {
   TempDir dir;
   json j = base_scene();

@@ -274,9 +274,10 @@ int run_compare(const CompareOptions& o) {
 
   const Arm &A = arms[0], &B = arms[1];
   const std::vector<MetricInfo>& info = A.metrics->metrics();
-  const bool backends = o.arms.empty();  // the two backends on one scene: the analytic row is judged too
+  // The two backends on one scene: the analytic row is judged too, where the scene's mean is U.
+  const bool analytic = o.arms.empty() && steady_mean_is_U(A.scene);
   std::vector<std::string> names = metric_names(*A.metrics);
-  if (backends) names.push_back(kAnalyticMetric);
+  if (analytic) names.push_back(kAnalyticMetric);
   int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
 
   // ---- the second arm: stored, or run here batch by batch beside the first ----
@@ -311,7 +312,7 @@ int run_compare(const CompareOptions& o) {
     }
     run_batch(arms, tasks, jobs, {&a_values, stored ? &fresh_reference : &b_values},
               "look " + std::to_string(test.looks() + 1));
-    const Look look = summarise(info, a_values, b_values, backends);
+    const Look look = summarise(info, a_values, b_values, analytic);
     verdict = test.look(look.a, look.b, look.margins);
     if (show_progress()) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
