@@ -2,7 +2,7 @@
 # The README's pictures: runs each gallery scene on the OpenCL backend and keeps its preview.png
 # under docs/gallery/ (SCENE.png); for spot (needs ../shared/meshes) also its baked texture and a
 # re-colouring with the colour map extracted from the shipped exemplar image; the flat sign and disk
-# of the control scenes are shown face-on (physarum render's front view).
+# of the control scenes are shown face-on (physarum render's front view), spot_scale from the side.
 # Usage: tools/make_gallery.sh [SCENE ...] (default: all of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +15,9 @@ for scene in "${scenes[@]}"; do
   if [ "$scene" = sign ] || [ "$scene" = branching ]; then
     ./build/physarum render "$work/$scene" --views 3 --out "$work/$scene/views" > /dev/null
     cp "$work/$scene/views/view_front.png" "docs/gallery/$scene.png"
+  elif [ "$scene" = spot_scale ]; then
+    ./build/physarum render "$work/$scene" --views 3 --out "$work/$scene/views" > /dev/null
+    cp "$work/$scene/views/view_side.png" "docs/gallery/$scene.png"
   else
     cp "$work/$scene/preview.png" "docs/gallery/$scene.png"
   fi
