@@ -36,16 +36,6 @@ EvaluatedMaps evaluate(const json& maps, const SceneSurface& surface, const std:
   return evaluate_maps(parse_maps(maps, folder, "scene.json"), surface, "scene.json");
 }
 
-// The message of the InputError `f` throws ("" when it does not throw).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
 
 // The intrinsic vertices' positions in input coordinates, computed here from the barycentrics.
 std::vector<Eigen::Vector3d> intrinsic_positions(const SceneSurface& s) {
@@ -160,7 +150,7 @@ TEST(Maps, MapsMayNameEachOtherInAnyOrder) {
 // ---- refusals ------------------------------------------------------------------------------------------
 
 TEST(Maps, BadMapsAreRefusedNamingTheMap) {
-  auto parse_error = [](const json& maps) { return error_of([&] { parse_maps(maps, "/nonexistent-folder", "scene.json"); }); };
+  auto parse_error = [](const json& maps) { return testing::input_error_of([&] { parse_maps(maps, "/nonexistent-folder", "scene.json"); }); };
   struct Case {
     json maps;
     std::vector<std::string> says;
@@ -205,17 +195,17 @@ TEST(Maps, SourcesThatDoNotFitTheSurfaceAreRefused) {
   const InputMesh sphere = load_mesh("shape:sphere");
   const InputVertexData<double> ones(static_cast<size_t>(sphere.vertex_count()), 1.0);
   write_field_ply((dir.path / "other.ply").string(), sphere, ones, {}, "w");
-  std::string message = error_of([&] { evaluate({{"w", {{"ply", "other.ply"}, {"property", "w"}}}}, square, dir.path.string()); });
+  std::string message = testing::input_error_of([&] { evaluate({{"w", {{"ply", "other.ply"}, {"property", "w"}}}}, square, dir.path.string()); });
   EXPECT_NE(message.find("map 'w'"), std::string::npos) << message;
   EXPECT_NE(message.find("has 2562 vertices, but the input mesh shape:square has 1089"), std::string::npos) << message;
   // The right mesh, a property it does not have.
   const InputVertexData<double> zeros(static_cast<size_t>(square.input.vertex_count()), 0.0);
   write_field_ply((dir.path / "square.ply").string(), square.input, zeros, {}, "w");
-  message = error_of([&] { evaluate({{"v", {{"ply", "square.ply"}, {"property", "weight"}}}}, square, dir.path.string()); });
+  message = testing::input_error_of([&] { evaluate({{"v", {{"ply", "square.ply"}, {"property", "weight"}}}}, square, dir.path.string()); });
   EXPECT_NE(message.find("map 'v'"), std::string::npos) << message;
   EXPECT_NE(message.find("no vertex property 'weight' (it has: w"), std::string::npos) << message;
   // A face vector the file does not have.
-  message = error_of([&] { evaluate({{"f", {{"ply", "square.ply"}, {"face_property", "flow"}}}}, square, dir.path.string()); });
+  message = testing::input_error_of([&] { evaluate({{"f", {{"ply", "square.ply"}, {"face_property", "flow"}}}}, square, dir.path.string()); });
   EXPECT_NE(message.find("no face property 'flow_x'"), std::string::npos) << message;
   // A texture on a mesh without UVs.
   {
@@ -224,7 +214,7 @@ TEST(Maps, SourcesThatDoNotFitTheSurfaceAreRefused) {
     const unsigned char pixels[4] = {0, 64, 128, 255};
     ASSERT_TRUE(out->open((dir.path / "grey.png").string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
   }
-  message = error_of([&] { evaluate({{"t", {{"texture", "grey.png"}, {"channel", "r"}}}}, square, dir.path.string()); });
+  message = testing::input_error_of([&] { evaluate({{"t", {{"texture", "grey.png"}, {"channel", "r"}}}}, square, dir.path.string()); });
   EXPECT_NE(message.find("map 't'"), std::string::npos) << message;
   EXPECT_NE(message.find("needs texture coordinates (UVs), and shape:square has none"), std::string::npos) << message;
   // An alpha channel the image does not have (refused before any UV is looked at).
@@ -235,10 +225,10 @@ TEST(Maps, SourcesThatDoNotFitTheSurfaceAreRefused) {
     return m;
   }();
   const SceneSurface textured = prepare_surface(with_uvs, SurfaceSpec{"square with UVs", std::nullopt, std::nullopt, 0.0});
-  message = error_of([&] { evaluate({{"t", {{"texture", "grey.png"}, {"channel", "a"}}}}, textured, dir.path.string()); });
+  message = testing::input_error_of([&] { evaluate({{"t", {{"texture", "grey.png"}, {"channel", "a"}}}}, textured, dir.path.string()); });
   EXPECT_NE(message.find("no alpha"), std::string::npos) << message;
   // A ramp along an axis the flat square has no extent in.
-  message = error_of([&] { evaluate({{"height", {{"axis", "z"}}}}, square, "."); });
+  message = testing::input_error_of([&] { evaluate({{"height", {{"axis", "z"}}}}, square, "."); });
   EXPECT_NE(message.find("map 'height'"), std::string::npos) << message;
   EXPECT_NE(message.find("flat along z"), std::string::npos) << message;
 }

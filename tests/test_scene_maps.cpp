@@ -51,21 +51,12 @@ std::string write_scene(const TempDir& dir, const json& scene, const std::string
   return path;
 }
 
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
 
 // The message load_scene, or evaluating the loaded scene on its surface, refuses `scene` with.
 std::string scene_error(const json& scene) {
   TempDir dir;
   const std::string path = write_scene(dir, scene);
-  return error_of([&] {
+  return testing::input_error_of([&] {
     const Scene s = load_scene(path);
     const SceneSurface surface = prepare_scene_surface(s);
     scene_arrays(s, surface);

@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the test suites: locating the shared test meshes (skipping cleanly when the
 // folder is absent) and running the `physarum` program as a user would.
+#include "common/errors.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -80,5 +82,16 @@ struct TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
 };
+
+// The message of the InputError `f` throws ("" when it does not throw).
+template <class F>
+std::string input_error_of(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
 
 }  // namespace physarum::testing
