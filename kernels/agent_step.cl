@@ -65,6 +65,10 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     px[h] = py[h] = dx[h] = dy[h] = distance[h] = deposit[h] = (lane_float)(0.0f);
   }
   uint sensor_crossings = 0u;
+#if defined(PHYSARUM_BIAS) && defined(PHYSARUM_BIAS_UNIFORM_STRENGTH)
+  /* one strength everywhere (the host uploads just that value): one fraction for every agent */
+  const float uniform_bias_fraction = bias_strength[0] > 0.0f ? relaxed_fraction(bias_strength[0] * k.dt) : 0.0f;
+#endif
   for (int i = 0; i < AGENTS; ++i) {
     const int a = first + i;
     if (a >= k.agent_count) continue;
@@ -77,12 +81,15 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     s[i].time_since_decision = time_since_decision[a];
     s[i].accumulated_turn = accumulated_turn[a];
 
-    const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position);
+    PhysarumAgentParameters p;
+    parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position, &p);
     int crossings = 0;
     sense_and_steer(faces, concentration, read_stimulus, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position,
                     first_sensing[a], &s[i].heading, &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
     sensor_crossings += (uint)crossings;
-#ifdef PHYSARUM_BIAS
+#if defined(PHYSARUM_BIAS) && defined(PHYSARUM_BIAS_UNIFORM_STRENGTH)
+    s[i].heading = heading_relaxed_toward(bias_direction[s[i].face], uniform_bias_fraction, s[i].heading);
+#elif defined(PHYSARUM_BIAS)
     s[i].heading = biased_heading(faces, bias_direction, bias_strength, s[i].face, s[i].position, s[i].heading, k.dt);
 #else
     (void)bias_strength;
@@ -115,9 +122,9 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     s[i].position = moved[i].position;
     s[i].heading = moved[i].heading;
 
-    const float hazard = k.uniform_parameters
-                             ? k.uniform.hazard_rate
-                             : parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position).hazard_rate;
+    PhysarumAgentParameters here;
+    parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position, &here);
+    const float hazard = here.hazard_rate;
 #ifdef PHYSARUM_BOUNDARY_TERMINATE
     const int removed = moved[i].hit_boundary; /* the walk stopped there (movement.cl): respawn now */
 #else

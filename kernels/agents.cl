@@ -40,19 +40,13 @@ float2 face_corner2(__global const PhysarumFaceRecord* faces, const int face) {
   return (float2)(faces[face].shear * x1 * y2, y2);
 }
 
-PhysarumAgentParameters blend_parameters(const PhysarumAgentParameters a, const PhysarumAgentParameters b,
-                                         const PhysarumAgentParameters c, const float3 w) {
-  PhysarumAgentParameters r;
-  PHYSARUM_BLEND_AGENT_PARAMETERS(r, a, b, c, w)
-  return r;
-}
-
 /* Every agent parameter at a point (paper Sec. 3.3: maps live at vertices and are interpolated).
  * A uniform scene reads no per-vertex memory at all. */
-PhysarumAgentParameters parameters_at(const PhysarumStepConstants* k, __global const PhysarumFaceRecord* faces,
-                                      __global const PhysarumAgentParameters* vertex_parameters, const int face,
-                                      const float2 p) {
-  if (k->uniform_parameters) return k->uniform;
+void parameters_at(const PhysarumStepConstants* k, __global const PhysarumFaceRecord* faces,
+                   __global const PhysarumAgentParameters* vertex_parameters, const int face, const float2 p,
+                   PhysarumAgentParameters* r) {
+  *r = k->uniform;
+  if (k->uniform_parameters) return;
 #ifdef PHYSARUM_FAULT_MAP_AT_CENTROID
   /* planted fault: parameter maps read at the face centroid instead of interpolated at the point */
   (void)p;
@@ -60,8 +54,10 @@ PhysarumAgentParameters parameters_at(const PhysarumStepConstants* k, __global c
 #else
   const float3 b = barycentric_in_face(faces, face, p);
 #endif
-  return blend_parameters(vertex_parameters[faces[face].vertex[0]], vertex_parameters[faces[face].vertex[1]],
-                          vertex_parameters[faces[face].vertex[2]], b);
+  /* Only the mapped parameters (PHYSARUM_MAPPED_*) vary and are interpolated; the others keep their
+   * uniform values and read no vertex memory. */
+  const int v0 = faces[face].vertex[0], v1 = faces[face].vertex[1], v2 = faces[face].vertex[2];
+  PHYSARUM_BLEND_MAPPED_AGENT_PARAMETERS((*r), vertex_parameters[v0], vertex_parameters[v1], vertex_parameters[v2], b)
 }
 
 /* ---- uniform points and headings ---- */
@@ -189,7 +185,8 @@ __kernel void initialise_agents(const PhysarumStepConstants k, __global const Ph
   position[a] = p.position;
   heading[a] = spawn_heading(bias_direction, p.face, first_uniform(state));
   id[a] = agent;
-  const PhysarumAgentParameters here = parameters_at(&k, faces, vertex_parameters, p.face, p.position);
+  PhysarumAgentParameters here;
+  parameters_at(&k, faces, vertex_parameters, p.face, p.position, &here);
   const uint4 remaining = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 1u);
   time_since_decision[a] = second_uniform(remaining) / here.turn_frequency;
   accumulated_turn[a] = here.turn_rate * time_since_decision[a];

@@ -68,18 +68,25 @@ float relaxed_fraction(const float x) {
   return 1.0f - exp(-x);
 }
 
-/* The heading after one step of the bias at (face, p). */
+/* The heading turned by `fraction` of its angle to the closest copy of direction d (none when d is
+ * zero). The rotation keeps the length; the division only stops float drift. */
+float2 heading_relaxed_toward(const float2 d, const float fraction, const float2 heading) {
+  if (!(fraction > 0.0f) || (d.x == 0.0f && d.y == 0.0f)) return heading;
+  const float2 r = bias_cos_sin(-angle_from_closest_copy(heading, d) * fraction);
+  const float2 turned = (float2)(r.x * heading.x - r.y * heading.y, r.y * heading.x + r.x * heading.y);
+  return turned / sqrt(dot(turned, turned));
+}
+
+/* The heading after one step of a bias whose strength varies: interpolated at (face, p). With one
+ * strength everywhere (PHYSARUM_BIAS_UNIFORM_STRENGTH) the kernel computes the fraction once. */
 float2 biased_heading(__global const PhysarumFaceRecord* faces, __global const float2* bias_direction,
                       __global const float* bias_strength, const int face, const float2 p, const float2 heading,
                       const float dt) {
-  const float2 d = bias_direction[face];
   const float3 b = barycentric_in_face(faces, face, p);
   const float strength = b.x * bias_strength[faces[face].vertex[0]] + b.y * bias_strength[faces[face].vertex[1]] +
                          b.z * bias_strength[faces[face].vertex[2]];
-  if (!(strength > 0.0f) || (d.x == 0.0f && d.y == 0.0f)) return heading;
-  const float turn = -angle_from_closest_copy(heading, d) * relaxed_fraction(strength * dt);
-  const float2 r = bias_cos_sin(turn);
-  return normalize((float2)(r.x * heading.x - r.y * heading.y, r.y * heading.x + r.x * heading.y));
+  return heading_relaxed_toward(bias_direction[face], strength > 0.0f ? relaxed_fraction(strength * dt) : 0.0f,
+                                heading);
 }
 
 #endif /* PHYSARUM_BIAS_CL */

@@ -192,7 +192,8 @@ __kernel void collect_deciders(const PhysarumStepConstants k, __global const Phy
   barrier(CLK_LOCAL_MEM_FENCE);
   int slot = -1;
   if (a < k.agent_count) {
-    const PhysarumAgentParameters p = parameters_at(&k, faces, vertex_parameters, face[a], position[a]);
+    PhysarumAgentParameters p;
+    parameters_at(&k, faces, vertex_parameters, face[a], position[a], &p);
     if (decision_due(time_since_decision[a] + k.dt, k.dt, decision_period(&p, k.dt)))
       slot = (int)atomic_inc(&group_slots[0]);
   }
@@ -211,7 +212,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
                          __global uint* first_sensing) {
 #if PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM == 1
   const int a = deciders[first];
-  const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
+  PhysarumAgentParameters p;
+  parameters_at(k, faces, vertex_parameters, face[a], position[a], &p);
   int crossings = 0;
   const int choice =
       sense_turn_choice(faces, concentration, read_stimulus, &p, face[a], position[a], heading[a], &crossings);
@@ -230,7 +232,8 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
   }
   for (int i = 0; i < count; ++i) {
     const int a = deciders[first + i];
-    const PhysarumAgentParameters p = parameters_at(k, faces, vertex_parameters, face[a], position[a]);
+    PhysarumAgentParameters p;
+  parameters_at(k, faces, vertex_parameters, face[a], position[a], &p);
     const float sensor_angle = sensor_angle_of(&p);
     float2 ray[3];
     ray[1] = heading[a];

@@ -100,13 +100,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   // ---- kernels ----
   kernels_ = std::make_unique<Kernels>();
   cl::Program agent_program;
-  std::string build = options.build_options;
+  std::string build = options.build_options + agent_parameters.mapped_build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // The controls present, as build options (kernels/agent_step.cl): absent ones compile to nothing.
   if (!controls.read_stimulus.empty()) build += " -DPHYSARUM_READ_STIMULUS";
   if (spawn.weighted) build += " -DPHYSARUM_SPAWN_WEIGHTS";
   if (controls.bias) {
     build += " -DPHYSARUM_BIAS -DPHYSARUM_BIAS_SYMMETRY=" + std::to_string(controls.bias->symmetry);
+    if (is_uniform(controls.bias->strength)) build += " -DPHYSARUM_BIAS_UNIFORM_STRENGTH";
     if (controls.spawn_heading == SpawnHeading::Bias) build += " -DPHYSARUM_SPAWN_HEADING_BIAS";
   }
   if (controls.boundary == BoundaryBehaviour::Terminate) build += " -DPHYSARUM_BOUNDARY_TERMINATE";
@@ -176,7 +177,13 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     spawn_alias_probability_ = upload_buffer(compute, "spawn sampler probabilities", std::vector<float>{0.0f}, kRead, false);
     spawn_alias_index_ = upload_buffer(compute, "spawn sampler aliases", std::vector<cl_int>{0}, kRead, false);
   }
-  bias_strength_ = per_vertex("bias strength", controls.bias ? controls.bias->strength : IntrinsicVertexData<double>{});
+  // A uniform strength (the usual number in a scene) travels as its one value: no vertex reads.
+  const bool uniform_strength = controls.bias && is_uniform(controls.bias->strength);
+  bias_strength_ = uniform_strength ? upload_buffer(compute, "bias strength",
+                                                    std::vector<float>{static_cast<float>(controls.bias->strength.front())},
+                                                    kRead, false)
+                                    : per_vertex("bias strength", controls.bias ? controls.bias->strength
+                                                                                : IntrinsicVertexData<double>{});
   std::vector<cl_float2> directions(controls.bias ? static_cast<size_t>(domain.face_count) : 1, cl_float2{{0.0f, 0.0f}});
   if (controls.bias)
     for (int f = 0; f < domain.face_count; ++f) {
