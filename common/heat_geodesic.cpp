@@ -1,0 +1,206 @@
+#include "common/heat_geodesic.hpp"
+
+#include "common/errors.hpp"
+#include "common/surface_pieces.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace physarum {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
+
+// The principal submatrix of A on the vertices with keep_index[i] >= 0, renumbered to those indices.
+SparseMatrix principal_submatrix(const SparseMatrix& a, const std::vector<int>& keep_index, int kept) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(a.nonZeros()));
+  for (int col = 0; col < a.outerSize(); ++col) {
+    const int c = keep_index[static_cast<size_t>(col)];
+    if (c < 0) continue;
+    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
+      const int r = keep_index[static_cast<size_t>(it.row())];
+      if (r >= 0) entries.emplace_back(r, c, it.value());
+    }
+  }
+  SparseMatrix sub(kept, kept);
+  sub.setFromTriplets(entries.begin(), entries.end());
+  return sub;
+}
+
+std::unique_ptr<Cholesky> factor(const SparseMatrix& a, const char* what) {
+  auto solver = std::make_unique<Cholesky>();
+  solver->compute(a);
+  if (solver->info() != Eigen::Success)
+    throw InputError(std::string("heat method: the Cholesky factorization of ") + what +
+                     " failed (the intrinsic triangulation has degenerate faces)");
+  return solver;
+}
+
+}  // namespace
+
+struct HeatGeodesicSolver::Factorizations {
+  SurfacePieces pieces;
+  std::unique_ptr<Cholesky> heat;            // M + tL, Neumann
+  std::unique_ptr<Cholesky> heat_dirichlet;  // M + tL on interior vertices (u = 0 on the boundary); null without boundary
+  std::vector<int> interior_index;           // vertex -> row of the Dirichlet system, -1 on the boundary
+  std::unique_ptr<Cholesky> poisson;         // L without one pinned vertex per piece
+  std::vector<int> poisson_index;            // vertex -> row of the Poisson system, -1 when pinned
+  // Per face and corner k: cot of the interior angle at k (the divergence's weights).
+  std::vector<std::array<double, 3>> corner_cot;
+};
+
+double mean_edge_length(const SurfaceDomain& domain) {
+  double sum = 0.0;
+  long long count = 0;
+  for (int f = 0; f < domain.face_count; ++f)
+    for (int i = 0; i < 3; ++i) {
+      const int g = domain.face_neighbour[f][i];
+      // An interior edge is seen from both faces: count it from the lower halfedge only.
+      if (g >= 0 && 3 * g + domain.neighbour_edge[f][i] < 3 * f + i) continue;
+      sum += (domain.face_corners[f][(i + 1) % 3] - domain.face_corners[f][i]).norm();
+      ++count;
+    }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor)
+    : domain_(domain), factors_(std::make_unique<Factorizations>()) {
+  if (!(time_factor > 0.0) || !std::isfinite(time_factor))
+    throw std::invalid_argument("HeatGeodesicSolver: the time factor must be finite and > 0");
+  mean_edge_length_ = physarum::mean_edge_length(domain);
+  time_ = time_factor * mean_edge_length_ * mean_edge_length_;
+  Factorizations& f = *factors_;
+  const int n = domain.vertex_count;
+  f.pieces = surface_pieces(domain);
+
+  const SparseMatrix laplacian = domain.laplacian.to_eigen();  // symmetric: storage order is free
+  SparseMatrix heat = time_ * laplacian;
+  for (int v = 0; v < n; ++v) heat.coeffRef(v, v) += domain.vertex_mass[static_cast<size_t>(v)];
+  f.heat = factor(heat, "M + tL");
+
+  std::vector<char> on_boundary(static_cast<size_t>(n), 0);
+  for (int face = 0; face < domain.face_count; ++face)
+    for (int i = 0; i < 3; ++i)
+      if (domain.face_neighbour[face][i] < 0) {
+        on_boundary[static_cast<size_t>(domain.face_vertices[face][i])] = 1;
+        on_boundary[static_cast<size_t>(domain.face_vertices[face][(i + 1) % 3])] = 1;
+      }
+  if (std::find(on_boundary.begin(), on_boundary.end(), 1) != on_boundary.end()) {
+    f.interior_index.assign(static_cast<size_t>(n), -1);
+    int interior = 0;
+    for (int v = 0; v < n; ++v)
+      if (!on_boundary[static_cast<size_t>(v)]) f.interior_index[static_cast<size_t>(v)] = interior++;
+    if (interior > 0) f.heat_dirichlet = factor(principal_submatrix(heat, f.interior_index, interior), "M + tL (Dirichlet)");
+  }
+
+  // L is singular (constants per piece); pinning one vertex per piece leaves a positive definite
+  // system whose solution is exact (the divergence sums to zero over every piece).
+  f.poisson_index.assign(static_cast<size_t>(n), 0);
+  std::vector<char> pinned(static_cast<size_t>(f.pieces.count()), 0);
+  int rows = 0;
+  for (int v = 0; v < n; ++v) {
+    char& p = pinned[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(v)])];
+    if (!p) {
+      p = 1;
+      f.poisson_index[static_cast<size_t>(v)] = -1;
+    } else {
+      f.poisson_index[static_cast<size_t>(v)] = rows++;
+    }
+  }
+  if (rows > 0) f.poisson = factor(principal_submatrix(laplacian, f.poisson_index, rows), "L");
+
+  f.corner_cot.resize(static_cast<size_t>(domain.face_count));
+  for (int face = 0; face < domain.face_count; ++face) {
+    const auto& p = domain.face_corners[face];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+      f.corner_cot[static_cast<size_t>(face)][k] = a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+  }
+}
+
+HeatGeodesicSolver::~HeatGeodesicSolver() = default;
+
+bool HeatGeodesicSolver::has_boundary() const { return !factors_->interior_index.empty(); }
+
+IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>& seeds) const {
+  const Factorizations& f = *factors_;
+  const int n = domain_.vertex_count;
+  if (seeds.empty()) throw InputError("heat method: the seed set is empty");
+  for (const int s : seeds)
+    if (s < 0 || s >= n)
+      throw InputError("heat method: seed " + std::to_string(s) + " is no intrinsic vertex (0.." + std::to_string(n - 1) + ")");
+  require_seed_in_every_piece(f.pieces, seeds, "heat method");
+
+  // 1. Heat flow from the seeds' indicator.
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
+  for (const int s : seeds) delta[s] = 1.0;
+  Eigen::VectorXd u = f.heat->solve(delta);
+  if (!f.interior_index.empty()) {
+    Eigen::VectorXd u_dirichlet = Eigen::VectorXd::Zero(n);
+    if (f.heat_dirichlet) {
+      Eigen::VectorXd rhs(f.heat_dirichlet->rows());
+      for (int v = 0; v < n; ++v)
+        if (const int r = f.interior_index[static_cast<size_t>(v)]; r >= 0) rhs[r] = delta[v];
+      if (rhs.any()) {
+        const Eigen::VectorXd x = f.heat_dirichlet->solve(rhs);
+        for (int v = 0; v < n; ++v)
+          if (const int r = f.interior_index[static_cast<size_t>(v)]; r >= 0) u_dirichlet[v] = x[r];
+      }
+    }
+    u = 0.5 * (u + u_dirichlet);
+  }
+
+  // 2 + 3. The unit field X = -grad u / |grad u| per face, and its integrated divergence per vertex
+  // (Crane et al. Sec. 3.2: b_i = 1/2 sum over faces of cot(theta_1) e_1.X + cot(theta_2) e_2.X, e the
+  // edges leaving i, theta the angles opposite them).
+  Eigen::VectorXd divergence = Eigen::VectorXd::Zero(n);
+  for (int face = 0; face < domain_.face_count; ++face) {
+    const auto& p = domain_.face_corners[face];
+    const auto& v = domain_.face_vertices[face];
+    Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
+      grad += u[v[k]] * Eigen::Vector2d(-e.y(), e.x());
+    }
+    const double length = grad.norm();
+    if (!(length > 0.0)) continue;  // no heat reached this face: no direction
+    const Eigen::Vector2d x = -grad / length;
+    const auto& cot = f.corner_cot[static_cast<size_t>(face)];
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      divergence[v[i]] += 0.5 * (cot[k] * (p[j] - p[i]).dot(x) + cot[j] * (p[k] - p[i]).dot(x));
+    }
+  }
+
+  // L phi = -b (L is the positive semi-definite Laplacian, Crane's L_C = -L).
+  IntrinsicVertexData<double> phi(static_cast<size_t>(n), 0.0);
+  if (f.poisson) {
+    Eigen::VectorXd rhs(f.poisson->rows());
+    for (int v = 0; v < n; ++v)
+      if (const int r = f.poisson_index[static_cast<size_t>(v)]; r >= 0) rhs[r] = -divergence[v];
+    const Eigen::VectorXd x = f.poisson->solve(rhs);
+    for (int v = 0; v < n; ++v)
+      if (const int r = f.poisson_index[static_cast<size_t>(v)]; r >= 0) phi[static_cast<size_t>(v)] = x[r];
+  }
+
+  // Per piece: the smallest value over its seeds becomes 0.
+  std::vector<double> shift(static_cast<size_t>(f.pieces.count()), std::numeric_limits<double>::infinity());
+  for (const int s : seeds) {
+    double& m = shift[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(s)])];
+    m = std::min(m, phi[static_cast<size_t>(s)]);
+  }
+  for (int v = 0; v < n; ++v)
+    phi[static_cast<size_t>(v)] = std::max(0.0, phi[static_cast<size_t>(v)] - shift[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(v)])]);
+  return phi;
+}
+
+}  // namespace physarum
