@@ -48,7 +48,8 @@ class HeatGeodesicSolver {
   std::unique_ptr<Factorizations> factors_;
 };
 
-// The mean length of the domain's edges (each interior edge counted once), from its face layouts.
-double mean_edge_length(const SurfaceDomain& domain);
+// The mean length of the domain's edges (each interior edge counted once), from its face layouts
+// (not comparison_metrics' mean_edge_length, the side of an equilateral triangle of mean area).
+double mean_intrinsic_edge_length(const SurfaceDomain& domain);
 
 }  // namespace physarum
