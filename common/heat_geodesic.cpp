@@ -45,18 +45,21 @@ struct ScaledHeat {
   std::vector<double> log_scale;
 };
 
-// Values below this fraction of a level's largest unresolved value wait for the next level: far
-// above the smallest normal double (2e-308), so the band next to them is still accurate.
-constexpr double kResolved = 1e-200;
+// Values below this fraction of a level's largest unresolved value wait for the next level. Not
+// merely above underflow (2e-308): measured on the level-8 icosphere (1.3 M faces, pole to pole
+// 800 edges, no value of the single solve below 1e-308), the tiny values of one solve are not
+// accurate enough for their gradient's direction: maximum error 42 % of pi with no levels, 13 %
+// with levels at 1e-200, 0.51 % at 1e-100 (the same as with no levels needed at level 7, 0.51 %).
+constexpr double kResolved = 1e-100;
 constexpr int kMaxLevels = 64;
 
 // Solves A u = rhs in levels. Level 0 is the plain solve; vertices with u >= kResolved * max are
 // resolved. The rest, C, is exactly A^{-1} f with f = A (u 1_C): since A u = rhs, f is supported on
 // the band where C meets the resolved set K (f_i = rhs_i - sum_{j in K} A_ij u_j for i in C,
 // f_i = sum_{j in C} A_ij u_j for i in K), so it needs only values next to K, which are accurate.
-// Scaled by 1/(kResolved * max) the next solve brings C's values back into range. The solves are
-// componentwise accurate (A is a Stieltjes matrix: no cancellation), so each level is as accurate as
-// the first.
+// Scaled by 1/(kResolved * max) the next solve brings C's values back into range, and each level is
+// as accurate as the first (tested: forcing levels at 1e-10 or 1e-40 on a small sphere changes no
+// distance).
 ScaledHeat heat_in_levels(const Cholesky& solver, const SparseMatrix& a, Eigen::VectorXd rhs) {
   const int n = static_cast<int>(a.rows());
   ScaledHeat out{Eigen::VectorXd::Zero(n), std::vector<double>(static_cast<size_t>(n), 0.0)};

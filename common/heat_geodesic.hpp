@@ -12,9 +12,14 @@
 // at right angles, Dirichlet alone makes them follow it. A seed ON the boundary heats only the Neumann
 // solution (the Dirichlet one holds it at 0); with seeds on the boundary alone the result is Neumann's.
 //
-// The factorizations (supernodal Cholesky through CHOLMOD) are built once, in the constructor, for
-// one domain and one t; every distance() after that costs two or three pairs of triangular solves and
-// two passes over the faces. The domain must outlive the solver.
+// Far from the seeds the heat falls below what one solve resolves (about e^-1 per edge: 1e-100 some
+// 200 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
+// stopped (heat_geodesic.cpp); a surface less than ~200 edges across needs one level.
+//
+// The factorizations (supernodal Cholesky through CHOLMOD, METIS ordering) are built once, in the
+// constructor, for one domain and one t; every distance() after that costs one pair of triangular
+// solves per heat level (twice with a boundary) plus one for the Poisson step, and two passes over
+// the faces. The domain must outlive the solver.
 #include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
 
