@@ -1,9 +1,9 @@
 #include "common/heat_geodesic.hpp"
 
 #include "common/errors.hpp"
+#include "common/shared_cholesky.hpp"
 #include "common/surface_pieces.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -16,24 +16,6 @@ namespace physarum {
 namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
-using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
-
-// The principal submatrix of A on the vertices with keep_index[i] >= 0, renumbered to those indices.
-SparseMatrix principal_submatrix(const SparseMatrix& a, const std::vector<int>& keep_index, int kept) {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(a.nonZeros()));
-  for (int col = 0; col < a.outerSize(); ++col) {
-    const int c = keep_index[static_cast<size_t>(col)];
-    if (c < 0) continue;
-    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
-      const int r = keep_index[static_cast<size_t>(it.row())];
-      if (r >= 0) entries.emplace_back(r, c, it.value());
-    }
-  }
-  SparseMatrix sub(kept, kept);
-  sub.setFromTriplets(entries.begin(), entries.end());
-  return sub;
-}
 
 // A heat solution far from the seeds is smaller than any double: one backward Euler step of length
 // t = h^2 decays by about e per edge, so 700-odd edges away (a sphere of a million faces from pole to
@@ -60,7 +42,7 @@ constexpr int kMaxLevels = 64;
 // Scaled by 1/(kResolved * max) the next solve brings C's values back into range, and each level is
 // as accurate as the first (tested: forcing levels at 1e-10 or 1e-40 on a small sphere changes no
 // distance).
-ScaledHeat heat_in_levels(const Cholesky& solver, const SparseMatrix& a, Eigen::VectorXd rhs) {
+ScaledHeat heat_in_levels(const CholeskyFactor& solver, const SparseMatrix& a, Eigen::VectorXd rhs) {
   const int n = static_cast<int>(a.rows());
   ScaledHeat out{Eigen::VectorXd::Zero(n), std::vector<double>(static_cast<size_t>(n), 0.0)};
   std::vector<char> known(static_cast<size_t>(n), 0);
@@ -98,31 +80,26 @@ ScaledHeat heat_in_levels(const Cholesky& solver, const SparseMatrix& a, Eigen::
   return out;
 }
 
-std::unique_ptr<Cholesky> factor(const SparseMatrix& a, const char* what) {
-  auto solver = std::make_unique<Cholesky>();
-  // Nested dissection (METIS) only: CHOLMOD's default also tries AMD and keeps the better, which at
-  // a million faces costs more than the factorization itself (measured: 5.5 s analysis, 3.0 s
-  // factorization; METIS alone 4.0 s + 2.2 s, and the same fill; AMD alone 0.8 s + 4.1 s with 60 %
-  // more fill, which every solve pays again).
-  solver->cholmod().nmethods = 1;
-  solver->cholmod().method[0].ordering = CHOLMOD_METIS;
-  solver->compute(a);
-  if (solver->info() != Eigen::Success)
-    throw InputError(std::string("heat method: the Cholesky factorization of ") + what +
-                     " failed (the intrinsic triangulation has degenerate faces)");
-  return solver;
+// `a` with the rows and columns of `removed` vertices replaced by the identity, keeping every stored
+// entry (explicit zeros), so that the pattern stays the one analysed.
+SparseMatrix with_identity_rows(SparseMatrix a, const std::vector<char>& removed) {
+  for (int col = 0; col < a.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(a, col); it; ++it)
+      if (removed[static_cast<size_t>(col)] || removed[static_cast<size_t>(it.row())]) it.valueRef() = it.row() == col ? 1.0 : 0.0;
+  return a;
 }
 
 }  // namespace
 
 struct HeatGeodesicSolver::Factorizations {
   SurfacePieces pieces;
-  SparseMatrix heat_matrix, heat_dirichlet_matrix;
-  std::unique_ptr<Cholesky> heat;            // M + tL, Neumann
-  std::unique_ptr<Cholesky> heat_dirichlet;  // M + tL on interior vertices (u = 0 on the boundary); null without boundary
-  std::vector<int> interior_index;           // vertex -> row of the Dirichlet system, -1 on the boundary
-  std::unique_ptr<Cholesky> poisson;         // L without one pinned vertex per piece
-  std::vector<int> poisson_index;            // vertex -> row of the Poisson system, -1 when pinned
+  // M + tL (Neumann), the same with identity rows on the boundary (Dirichlet: u = 0 there), and L
+  // with identity rows at one pinned vertex per piece, all with one pattern and one analysis.
+  SparseMatrix heat_matrix, dirichlet_matrix;
+  std::unique_ptr<SharedCholesky> cholesky;
+  CholeskyFactor heat, dirichlet, poisson;  // dirichlet.index < 0 without boundary
+  std::vector<char> on_boundary, pinned;
+  bool boundary = false;
   // Per face and corner k: cot of the interior angle at k (the divergence's weights).
   std::vector<std::array<double, 3>> corner_cot;
 };
@@ -151,46 +128,52 @@ HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_
   const int n = domain.vertex_count;
   f.pieces = surface_pieces(domain);
 
-  const SparseMatrix laplacian = domain.laplacian.to_eigen();  // symmetric: storage order is free
   SparseMatrix& heat = f.heat_matrix;
-  heat = time_ * laplacian;
+  heat = time_ * SparseMatrix(domain.laplacian.to_eigen());  // symmetric: storage order is free
   for (int v = 0; v < n; ++v) heat.coeffRef(v, v) += domain.vertex_mass[static_cast<size_t>(v)];
   heat.makeCompressed();
+  f.cholesky = std::make_unique<SharedCholesky>(heat);
+  auto factor = [&](const SparseMatrix& a, const char* what) {
+    try {
+      return CholeskyFactor{f.cholesky.get(), f.cholesky->factor(a, what)};
+    } catch (const std::runtime_error& error) {
+      throw InputError(std::string("heat method: ") + error.what() + " (the intrinsic triangulation has degenerate faces)");
+    }
+  };
   f.heat = factor(heat, "M + tL");
 
-  std::vector<char> on_boundary(static_cast<size_t>(n), 0);
+  f.on_boundary.assign(static_cast<size_t>(n), 0);
   for (int face = 0; face < domain.face_count; ++face)
     for (int i = 0; i < 3; ++i)
       if (domain.face_neighbour[face][i] < 0) {
-        on_boundary[static_cast<size_t>(domain.face_vertices[face][i])] = 1;
-        on_boundary[static_cast<size_t>(domain.face_vertices[face][(i + 1) % 3])] = 1;
+        f.on_boundary[static_cast<size_t>(domain.face_vertices[face][i])] = 1;
+        f.on_boundary[static_cast<size_t>(domain.face_vertices[face][(i + 1) % 3])] = 1;
       }
-  if (std::find(on_boundary.begin(), on_boundary.end(), 1) != on_boundary.end()) {
-    f.interior_index.assign(static_cast<size_t>(n), -1);
-    int interior = 0;
-    for (int v = 0; v < n; ++v)
-      if (!on_boundary[static_cast<size_t>(v)]) f.interior_index[static_cast<size_t>(v)] = interior++;
-    if (interior > 0) {
-      f.heat_dirichlet_matrix = principal_submatrix(heat, f.interior_index, interior);
-      f.heat_dirichlet = factor(f.heat_dirichlet_matrix, "M + tL (Dirichlet)");
-    }
+  f.boundary = std::find(f.on_boundary.begin(), f.on_boundary.end(), 1) != f.on_boundary.end();
+  if (f.boundary) {
+    f.dirichlet_matrix = with_identity_rows(heat, f.on_boundary);
+    f.dirichlet = factor(f.dirichlet_matrix, "M + tL (Dirichlet)");
   }
 
   // L is singular (constants per piece); pinning one vertex per piece leaves a positive definite
-  // system whose solution is exact (the divergence sums to zero over every piece).
-  f.poisson_index.assign(static_cast<size_t>(n), 0);
-  std::vector<char> pinned(static_cast<size_t>(f.pieces.count()), 0);
-  int rows = 0;
+  // system whose solution is exact (the divergence sums to zero over every piece). L is taken from
+  // the heat matrix's own entries so that the pattern is the analysed one: off the diagonal
+  // L_ij = heat_ij / t, on it minus the sum of the others (rows of L sum to zero).
+  f.pinned.assign(static_cast<size_t>(n), 0);
+  std::vector<char> piece_pinned(static_cast<size_t>(f.pieces.count()), 0);
   for (int v = 0; v < n; ++v) {
-    char& p = pinned[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(v)])];
-    if (!p) {
-      p = 1;
-      f.poisson_index[static_cast<size_t>(v)] = -1;
-    } else {
-      f.poisson_index[static_cast<size_t>(v)] = rows++;
-    }
+    char& p = piece_pinned[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(v)])];
+    if (!p) p = f.pinned[static_cast<size_t>(v)] = 1;
   }
-  if (rows > 0) f.poisson = factor(principal_submatrix(laplacian, f.poisson_index, rows), "L");
+  SparseMatrix poisson = heat;
+  for (int col = 0; col < n; ++col) {
+    double off_diagonal = 0.0;
+    for (SparseMatrix::InnerIterator it(poisson, col); it; ++it)
+      if (it.row() != col) off_diagonal += it.valueRef() /= time_;
+    for (SparseMatrix::InnerIterator it(poisson, col); it; ++it)
+      if (it.row() == col) it.valueRef() = -off_diagonal;
+  }
+  f.poisson = factor(with_identity_rows(std::move(poisson), f.pinned), "L");
 
   f.corner_cot.resize(static_cast<size_t>(domain.face_count));
   for (int face = 0; face < domain.face_count; ++face) {
@@ -204,7 +187,7 @@ HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_
 
 HeatGeodesicSolver::~HeatGeodesicSolver() = default;
 
-bool HeatGeodesicSolver::has_boundary() const { return !factors_->interior_index.empty(); }
+bool HeatGeodesicSolver::has_boundary() const { return factors_->boundary; }
 
 IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>& seeds) const {
   const Factorizations& f = *factors_;
@@ -218,29 +201,27 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
   // 1. Heat flow from the seeds' indicator.
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
   for (const int s : seeds) delta[s] = 1.0;
-  ScaledHeat u = heat_in_levels(*f.heat, f.heat_matrix, delta);
-  if (f.heat_dirichlet) {
+  ScaledHeat u = heat_in_levels(f.heat, f.heat_matrix, delta);
+  if (f.boundary) {
     // A seed on the boundary keeps its Neumann value (u = 0 on the rest of the boundary): the
-    // Dirichlet solution is then the heat leaving the seed into the surface, not nothing.
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(f.heat_dirichlet->rows());
-    std::vector<double> boundary_value(static_cast<size_t>(n), 0.0);
+    // Dirichlet solution is then the heat leaving the seed into the surface, not nothing. Its
+    // couplings to interior vertices move to the right-hand side (they are zero in the matrix).
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (const int s : seeds) {
-      if (const int r = f.interior_index[static_cast<size_t>(s)]; r >= 0) {
-        rhs[r] = 1.0;
+      if (!f.on_boundary[static_cast<size_t>(s)]) {
+        rhs[s] += 1.0;
         continue;
       }
-      boundary_value[static_cast<size_t>(s)] = u.value[s];  // level 0: a seed is among the largest values
+      rhs[s] = u.value[s];  // level 0: a seed is among the largest values
       for (SparseMatrix::InnerIterator it(f.heat_matrix, s); it; ++it)
-        if (const int r = f.interior_index[static_cast<size_t>(it.row())]; r >= 0) rhs[r] -= it.value() * u.value[s];
+        if (!f.on_boundary[static_cast<size_t>(it.row())]) rhs[it.row()] -= it.value() * u.value[s];
     }
     // The average, at the Neumann solution's scale: u_D <= u_N (the boundary drains heat), so the
     // Dirichlet value can only underflow there, never overflow.
-    const ScaledHeat d = heat_in_levels(*f.heat_dirichlet, f.heat_dirichlet_matrix, rhs);
+    const ScaledHeat d = heat_in_levels(f.dirichlet, f.dirichlet_matrix, rhs);
     for (int v = 0; v < n; ++v) {
-      const int r = f.interior_index[static_cast<size_t>(v)];
-      double dirichlet = boundary_value[static_cast<size_t>(v)];
-      if (r >= 0 && d.value[r] != 0.0)
-        dirichlet = d.value[r] * std::exp(u.log_scale[static_cast<size_t>(v)] - d.log_scale[static_cast<size_t>(r)]);
+      const double dirichlet =
+          d.value[v] == 0.0 ? 0.0 : d.value[v] * std::exp(u.log_scale[static_cast<size_t>(v)] - d.log_scale[static_cast<size_t>(v)]);
       u.value[v] = 0.5 * (u.value[v] + dirichlet);
     }
   }
@@ -273,15 +254,11 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
   }
 
   // L phi = -b (L is the positive semi-definite Laplacian, Crane's L_C = -L).
+  Eigen::VectorXd rhs = -divergence;
+  for (int v = 0; v < n; ++v)
+    if (f.pinned[static_cast<size_t>(v)]) rhs[v] = 0.0;
   IntrinsicVertexData<double> phi(static_cast<size_t>(n), 0.0);
-  if (f.poisson) {
-    Eigen::VectorXd rhs(f.poisson->rows());
-    for (int v = 0; v < n; ++v)
-      if (const int r = f.poisson_index[static_cast<size_t>(v)]; r >= 0) rhs[r] = -divergence[v];
-    const Eigen::VectorXd x = f.poisson->solve(rhs);
-    for (int v = 0; v < n; ++v)
-      if (const int r = f.poisson_index[static_cast<size_t>(v)]; r >= 0) phi[static_cast<size_t>(v)] = x[r];
-  }
+  Eigen::Map<Eigen::VectorXd>(phi.data(), n) = f.poisson.solve(rhs);
 
   // Per piece: the smallest value over its seeds becomes 0.
   std::vector<double> shift(static_cast<size_t>(f.pieces.count()), std::numeric_limits<double>::infinity());
