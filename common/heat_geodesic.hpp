@@ -16,7 +16,8 @@
 // 200 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
 // stopped (heat_geodesic.cpp); a surface less than ~200 edges across needs one level.
 //
-// The factorizations (supernodal Cholesky through CHOLMOD, METIS ordering) are built once, in the
+// The factorizations (supernodal Cholesky through CHOLMOD, one METIS analysis shared by all three:
+// common/shared_cholesky.hpp) are built once, in the
 // constructor, for one domain and one t; every distance() after that costs one pair of triangular
 // solves per heat level (twice with a boundary) plus one for the Poisson step, and two passes over
 // the faces. The domain must outlive the solver.

@@ -47,6 +47,9 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern) : sta
   // more fill, which every solve pays again).
   s.common.nmethods = 1;
   s.common.method[0].ordering = CHOLMOD_METIS;
+  // Always LL' (supernodal): for small matrices CHOLMOD would pick a simplicial LDL', which factors
+  // an indefinite matrix without complaint instead of refusing it.
+  s.common.supernodal = CHOLMOD_SUPERNODAL;
   s.outer.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.outerSize() + 1);
   s.inner.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
   cholmod_sparse a = view(pattern);
