@@ -243,6 +243,11 @@ const std::vector<SourceKind>& source_kinds() {
          c.only(o, {"away_from"});
          return RadialSource{c.point(o, "away_from"), false};
        }},
+      {"geodesic_distance", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"geodesic_distance", "method", "time_factor"});
+         return parse_geodesic_distance_source(o, c.where + ": key 'maps': map '" + c.name + "'");
+       }},
       // "ply" comes in two kinds, told apart by the second field (see source_kind_of).
       {"ply", MapKind::Scalar,
        [](const json& o, const MapContext& c) -> MapSource {
@@ -314,6 +319,8 @@ std::vector<std::string> MapDefinition::dependencies() const {
         if constexpr (requires { s.operand; }) add(s.operand);
         if constexpr (std::is_same_v<S, CombineSource>)
           for (const MapOperand& operand : s.operands) add(operand);
+        if constexpr (requires { s.map_dependencies(); })
+          for (const std::string& name : s.map_dependencies()) names.push_back(name);
       },
       source);
   return names;

@@ -20,6 +20,10 @@
 //     {"threshold": OPERAND, "at": t}             1 where value >= t, else 0
 //     {"clamp": OPERAND, "min": a, "max": b}      value limited to [a, b] (either bound optional)
 //     {"sum": [OPERAND, ...]}, {"product": [...]}, {"min": [...]}, {"max": [...]}
+//   map tools
+//     {"geodesic_distance": {"from": SEEDS}, "method": "heat|fmm", "time_factor": m}
+//                                                 distance along the surface to the nearest seed
+//                                                 (common/geodesic_distance_source.hpp; SEEDS: seed_set.hpp)
 //   vector sources
 //     {"direction": [x, y, z]}                    a constant direction, projected into every face
 //     {"toward": [x, y, z]}, {"away_from": [...]}  unit directions from each face toward (away from) a
@@ -32,6 +36,8 @@
 // Adding a source kind (the map tools: geodesic distance, Laplace, diffusion, gradient) is one row
 // of the source table in map_definition.cpp, one alternative of MapSource, and one case in
 // map_evaluation.cpp (std::visit refuses to compile while the case is missing).
+#include "common/geodesic_distance_source.hpp"
+
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
@@ -113,13 +119,14 @@ struct PlyFaceVectorSource {
 
 using MapSource = std::variant<ConstantSource, PlyVertexSource, TextureSource, RegionSource, AxisRampSource,
                                RangeSource, InvertSource, ThresholdSource, ClampSource, CombineSource,
-                               DirectionSource, RadialSource, PlyFaceVectorSource>;
+                               DirectionSource, RadialSource, PlyFaceVectorSource, GeodesicDistanceSource>;
 
 struct MapDefinition {
   std::string name;
   MapKind kind = MapKind::Scalar;
   MapSource source;
-  // The names of the maps this one reads (operands that are names), in the order given.
+  // The names of the maps this one reads (operands that are names, and the maps a map tool's
+  // map_dependencies() names), in the order given.
   std::vector<std::string> dependencies() const;
 };
 

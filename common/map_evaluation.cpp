@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 #include "common/full_resolution_mesh.hpp"
+#include "common/geodesic_distance.hpp"
 #include "common/input_face_overlaps.hpp"
 #include "common/map_image.hpp"
 #include "common/ply_reader.hpp"
@@ -27,6 +28,7 @@ struct Evaluation {
   const std::string& where;
   const EvaluatedMaps& done;  // the maps evaluated so far (every dependency, by the sort)
   const std::vector<Vec3>& vertex_position;
+  GeodesicSolvers* geodesic;  // kept across the maps of one surface (null where no map tool runs)
 
   const InputMesh& input() const { return surface.input; }
   int vertex_count() const { return surface.domain.vertex_count; }
@@ -159,6 +161,11 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
               }
             }
           }
+        } else if constexpr (std::is_same_v<S, GeodesicDistanceSource>) {
+          const SeedSurface seeds{domain, e.vertex_position, [&](const std::string& name) -> const IntrinsicVertexData<double>& {
+                                    return e.done.scalar_map(name);
+                                  }};
+          out = geodesic_distance(s, seeds, *e.geodesic, e.where + ": key 'maps': map '" + map.name + "'");
         } else if constexpr (std::is_same_v<S, DirectionSource> || std::is_same_v<S, RadialSource> ||
                              std::is_same_v<S, PlyFaceVectorSource>) {
           throw std::logic_error("map_evaluation: a vector source evaluated as a scalar map");
@@ -324,7 +331,8 @@ EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, con
     vertex_position[static_cast<size_t>(v)] =
         p.barycentric[0] * input.positions[t[0]] + p.barycentric[1] * input.positions[t[1]] + p.barycentric[2] * input.positions[t[2]];
   }
-  const Evaluation e{surface, where, result, vertex_position};
+  GeodesicSolvers geodesic(domain);
+  const Evaluation e{surface, where, result, vertex_position, &geodesic};
 
   // The chord triangles and the face location serve every vector map; built only when one exists.
   std::vector<ChordTriangle> chords;
@@ -346,7 +354,7 @@ InputMaps maps_on_input(const MapSet& maps, const SceneSurface& surface, const E
   InputMaps out;
   const InputMesh& input = surface.input;
   const std::vector<Vec3> no_positions;
-  const Evaluation e{surface, where, evaluated, no_positions};
+  const Evaluation e{surface, where, evaluated, no_positions, nullptr};
   for (const MapDefinition& map : maps.in_dependency_order()) {
     if (map.kind == MapKind::Scalar) {
       const IntrinsicVertexData<double>& values = evaluated.scalar_map(map.name);

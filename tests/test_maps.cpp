@@ -164,7 +164,7 @@ TEST(Maps, BadMapsAreRefusedNamingTheMap) {
       {{{"a", {{"ply", "missing.ply"}, {"property", "w"}}}}, {"map 'a'", "file not found", "missing.ply"}},
       {{{"a", {{"texture", "missing.png"}, {"channel", "r"}}}}, {"map 'a'", "file not found"}},
       {{{"a", {{"texture", "x.png"}, {"channel", "q"}}}}, {"map 'a'", "\"channel\" = \"q\""}},
-      {{{"a", {{"geodesic_distance", {{"from", "b"}}}}}}, {"map 'a'", "no known map source", "\"sphere\""}},
+      {{{"a", {{"geodesic", {{"from", "b"}}}}}}, {"map 'a'", "no known map source", "\"sphere\""}},
       {{{"a", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}, {"falloff", -1}}}}, {"map 'a'", "falloff"}},
       {{{"a", {{"sphere", {{"center", {0, 0}}, {"radius", 1}}}}}}, {"map 'a'", "three numbers"}},
       {{{"a", {{"axis", "w"}}}}, {"map 'a'", "\"axis\" = \"w\""}},

@@ -1,0 +1,61 @@
+#pragma once
+// Geodesic distance by the heat method (Crane, Weischedel & Wardetzky, "Geodesics in Heat", 2013) on
+// the intrinsic triangulation of a SurfaceDomain:
+//   1. heat flow for a short time t = m h^2 (h the mean intrinsic edge length, m the time factor):
+//      (M + t L) u = delta_seeds, one backward Euler step from the seeds' indicator;
+//   2. the unit field X = -grad u / |grad u| on every face (heat flows away from the seeds);
+//   3. the distance phi solves the Poisson problem L phi = -div X, fixed per connected piece so that
+//      its smallest value over the seeds is 0 (values below 0 next to the seeds are clamped to 0).
+// L is the PSD cotan Laplacian and M the lumped mass of the domain. On a surface with boundary, step 1
+// is the average of the Neumann solution (the system above) and the Dirichlet one (u = 0 on every
+// boundary vertex), as the authors recommend: Neumann alone bends the level sets to meet the boundary
+// at right angles, Dirichlet alone makes them follow it. A seed ON the boundary heats only the Neumann
+// solution (the Dirichlet one holds it at 0); with seeds on the boundary alone the result is Neumann's.
+//
+// Far from the seeds the heat falls below what one solve resolves (about e^-1 per edge: 1e-100 some
+// 200 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
+// stopped (heat_geodesic.cpp); a surface less than ~200 edges across needs one level.
+//
+// The factorizations (supernodal Cholesky through CHOLMOD, one METIS analysis shared by all three:
+// common/shared_cholesky.hpp) are built once, in the
+// constructor, for one domain and one t; every distance() after that costs one pair of triangular
+// solves per heat level (twice with a boundary) plus one for the Poisson step, and two passes over
+// the faces. The domain must outlive the solver.
+#include "common/element_data.hpp"
+#include "common/surface_domain.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace physarum {
+
+class HeatGeodesicSolver {
+ public:
+  // Factors M + tL (and its Dirichlet restriction when the surface has a boundary) and L with one
+  // vertex pinned per connected piece. time_factor (m) must be > 0 (std::invalid_argument otherwise;
+  // scenes check it first). InputError when a factorization fails (a domain with degenerate faces).
+  explicit HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor = 1.0);
+  ~HeatGeodesicSolver();
+  HeatGeodesicSolver(const HeatGeodesicSolver&) = delete;
+  HeatGeodesicSolver& operator=(const HeatGeodesicSolver&) = delete;
+
+  // Distance from the nearest of `seeds` (intrinsic vertex ids) at every intrinsic vertex.
+  // InputError when `seeds` is empty, names a vertex out of range, or misses a connected piece.
+  IntrinsicVertexData<double> distance(const std::vector<int>& seeds) const;
+
+  double mean_edge_length() const { return mean_edge_length_; }
+  double time() const { return time_; }  // t = m h^2
+  bool has_boundary() const;
+
+ private:
+  struct Factorizations;
+  const SurfaceDomain& domain_;
+  double mean_edge_length_ = 0.0, time_ = 0.0;
+  std::unique_ptr<Factorizations> factors_;
+};
+
+// The mean length of the domain's edges (each interior edge counted once), from its face layouts
+// (not comparison_metrics' mean_edge_length, the side of an equilateral triangle of mean area).
+double mean_intrinsic_edge_length(const SurfaceDomain& domain);
+
+}  // namespace physarum
