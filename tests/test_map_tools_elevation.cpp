@@ -54,6 +54,27 @@ TEST(MapToolsElevation, TheSmoothedCopyKeepsTheEnclosedVolume) {
   }
 }
 
+// Each closed component keeps its own volume about its own centre: a bumpy sphere and a plain
+// sphere of radius 2 side by side, in one mesh.
+TEST(MapToolsElevation, EachClosedComponentKeepsItsOwnVolume) {
+  InputMesh two = testing::make_displaced_sphere(3, 0.1, five_bumps);
+  const InputMesh big = testing::make_icosphere(3);
+  const int offset = two.vertex_count();
+  for (const Eigen::Vector3d& q : big.positions) two.positions.push_back(2.0 * q + Eigen::Vector3d(5.0, 0.0, 0.0));
+  for (const auto& t : big.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const ElevationProxy proxy = elevation_proxy(two, 0.002, 1, "test");
+  const std::vector<std::array<int, 3>> first(two.triangles.begin(), two.triangles.begin() + (two.triangle_count() - big.triangle_count()));
+  const std::vector<std::array<int, 3>> second(two.triangles.end() - big.triangle_count(), two.triangles.end());
+  for (const auto* faces : {&first, &second}) {
+    const double original = enclosed_volume(two.positions, *faces);
+    EXPECT_NEAR(enclosed_volume(proxy.smoothed, *faces), original, 1e-12 * original);
+  }
+  // The plain sphere stays where it was: its copy's centre is its own.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int v = offset; v < two.vertex_count(); ++v) centre += proxy.smoothed[static_cast<size_t>(v)] / big.vertex_count();
+  EXPECT_LT((centre - Eigen::Vector3d(5.0, 0.0, 0.0)).norm(), 1e-9);
+}
+
 // Bumps of 10 % of the radius: every vertex near a bump's top is higher than every vertex near a
 // valley's bottom, and the relief spans exactly 0..1.
 TEST(MapToolsElevation, BumpsAreHigherThanValleys) {
