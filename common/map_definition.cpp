@@ -134,6 +134,50 @@ std::vector<MapOperand> operand_list(const json& value, const MapContext& c, std
   return operands;
 }
 
+// ---- map tools' fields ------------------------------------------------------------------------------
+
+// A time that must be positive: "time" of "diffuse" and "elevation".
+double positive_time(const json& object, const MapContext& c) {
+  const double time = c.number(object, "time");
+  if (!(time > 0.0)) c.fail("\"time\" = " + object.at("time").dump() + " must be > 0");
+  return time;
+}
+
+// An optional step count >= 1 (default 1).
+int step_count(const json& object, const MapContext& c) {
+  const auto it = object.find("steps");
+  if (it == object.end()) return 1;
+  if (!it->is_number_integer() || it->get<long long>() < 1 || it->get<long long>() > 1000000)
+    c.fail("\"steps\" = " + it->dump() + " must be a whole number from 1 to 1000000");
+  return static_cast<int>(it->get<long long>());
+}
+
+// The operand of "gradient" and "slope": a scalar map's name (a number has no gradient).
+MapOperand map_name_operand(const json& object, const MapContext& c, const char* key) {
+  const json& value = object.at(key);
+  if (!value.is_string() || value.get<std::string>().empty())
+    c.fail(in_quotes(key) + " = " + value.dump() + " must name a scalar map (a constant has no gradient)");
+  return value.get<std::string>();
+}
+
+LaplaceSource laplace_source(const json& list, const MapContext& c) {
+  const std::string shape = "(expected [{\"region\": MAP, \"value\": v}, ...])";
+  if (!list.is_array() || list.empty()) c.fail("\"laplace\" = " + list.dump() + " must be a non-empty list of regions " + shape);
+  LaplaceSource s;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const json& entry = list[i];
+    const std::string at = "\"laplace\"[" + std::to_string(i) + "]";
+    if (!entry.is_object()) c.fail(at + " = " + entry.dump() + " must be an object " + shape);
+    for (auto it = entry.begin(); it != entry.end(); ++it)
+      if (it.key() != "region" && it.key() != "value")
+        c.fail(at + ": unknown field \"" + it.key() + "\" (a region takes \"region\" and \"value\")");
+    if (!entry.contains("region") || !entry.at("region").is_string() || entry.at("region").get<std::string>().empty())
+      c.fail(at + ": \"region\" must name a scalar map (its vertices with value >= 0.5 are held)");
+    s.regions.push_back(LaplaceRegion{entry.at("region").get<std::string>(), c.number(entry, "value")});
+  }
+  return s;
+}
+
 // ---- the source table: one row per source kind, told apart by its defining key ---------------------
 
 struct SourceKind {
@@ -247,6 +291,39 @@ const std::vector<SourceKind>& source_kinds() {
        [](const json& o, const MapContext& c) -> MapSource {
          c.only(o, {"geodesic_distance", "method", "time_factor"});
          return parse_geodesic_distance_source(o, c.where + ": key 'maps': map '" + c.name + "'");
+       }},
+      {"diffuse", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"diffuse", "time", "steps"});
+         return DiffuseSource{c.operand(o.at("diffuse"), "\"diffuse\""), positive_time(o, c), step_count(o, c)};
+       }},
+      {"laplace", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"laplace"});
+         return laplace_source(o.at("laplace"), c);
+       }},
+      {"elevation", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"elevation"});
+         const json& flow = o.at("elevation");
+         if (!flow.is_object()) c.fail("\"elevation\" = " + flow.dump() + " must be an object ({\"time\": t, \"steps\": n})");
+         c.only(flow, {"time", "steps"});
+         return ElevationSource{positive_time(flow, c), step_count(flow, c)};
+       }},
+      {"slope", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"slope"});
+         return SlopeSource{map_name_operand(o, c, "slope")};
+       }},
+      {"gradient", MapKind::Vector,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"gradient", "normalize"});
+         GradientSource s{map_name_operand(o, c, "gradient")};
+         if (const auto it = o.find("normalize"); it != o.end()) {
+           if (!it->is_boolean()) c.fail("\"normalize\" = " + it->dump() + " must be true or false");
+           s.normalize = it->get<bool>();
+         }
+         return s;
        }},
       // "ply" comes in two kinds, told apart by the second field (see source_kind_of).
       {"ply", MapKind::Scalar,

@@ -24,7 +24,17 @@
 //     {"geodesic_distance": {"from": SEEDS}, "method": "heat|fmm", "time_factor": m}
 //                                                 distance along the surface to the nearest seed
 //                                                 (common/geodesic_distance_source.hpp; SEEDS: seed_set.hpp)
+//   map tools on the intrinsic triangulation (common/surface_diffusion.hpp, laplace_interpolation.hpp,
+//   elevation_proxy.hpp, surface_gradient.hpp say what each computes and in which units)
+//     {"diffuse": OPERAND, "time": T, "steps": n}  backward-Euler heat flow for time T (scene m^2), n steps (1)
+//     {"laplace": [{"region": NAME, "value": v}, ...]}  harmonic between regions held at values; a
+//                                                  region is a scalar map's vertices with value >= 0.5
+//     {"elevation": {"time": t, "steps": n}}       0..1 height over a volume-preserving smoothed copy
+//                                                  (t in units of the squared bounding-box diagonal)
+//     {"slope": NAME}                              |gradient| per vertex (area-weighted face mean)
 //   vector sources
+//     {"gradient": NAME, "normalize": bool}       the FE gradient per face (unit length, or zero
+//                                                  where flat, when normalize is true; default false)
 //     {"direction": [x, y, z]}                    a constant direction, projected into every face
 //     {"toward": [x, y, z]}, {"away_from": [...]}  unit directions from each face toward (away from) a
 //                                                  point, projected into the face (Fig. 8's bias to a sink)
@@ -117,9 +127,40 @@ struct PlyFaceVectorSource {
   std::string property;  // NAME: the file has NAME_x, NAME_y, NAME_z per face
 };
 
+// ---- map tools (paper Sec. 3.3) ----
+struct DiffuseSource {
+  MapOperand operand;
+  double time = 0.0;  // > 0, in the domain's m^2
+  int steps = 1;      // >= 1
+};
+struct LaplaceRegion {
+  std::string region;  // a scalar map: its vertices with value >= 0.5 are held at `value`
+  double value = 0.0;
+};
+struct LaplaceSource {
+  std::vector<LaplaceRegion> regions;  // at least one
+  std::vector<std::string> map_dependencies() const {
+    std::vector<std::string> names;
+    for (const LaplaceRegion& r : regions) names.push_back(r.region);
+    return names;
+  }
+};
+struct ElevationSource {
+  double time = 0.0;  // > 0, in units of the squared bounding-box diagonal
+  int steps = 1;      // >= 1
+};
+struct SlopeSource {
+  MapOperand operand;  // always a map name
+};
+struct GradientSource {
+  MapOperand operand;  // always a map name
+  bool normalize = false;
+};
+
 using MapSource = std::variant<ConstantSource, PlyVertexSource, TextureSource, RegionSource, AxisRampSource,
                                RangeSource, InvertSource, ThresholdSource, ClampSource, CombineSource,
-                               DirectionSource, RadialSource, PlyFaceVectorSource, GeodesicDistanceSource>;
+                               DirectionSource, RadialSource, PlyFaceVectorSource, GeodesicDistanceSource,
+                               DiffuseSource, LaplaceSource, ElevationSource, SlopeSource, GradientSource>;
 
 struct MapDefinition {
   std::string name;

@@ -1,12 +1,17 @@
 #include "common/map_evaluation.hpp"
 
+#include "common/elevation_proxy.hpp"
 #include "common/errors.hpp"
+#include "common/field_transfer.hpp"
 #include "common/full_resolution_mesh.hpp"
 #include "common/geodesic_distance.hpp"
 #include "common/input_face_overlaps.hpp"
+#include "common/laplace_interpolation.hpp"
 #include "common/map_image.hpp"
 #include "common/ply_reader.hpp"
 #include "common/ply_writer.hpp"
+#include "common/surface_diffusion.hpp"
+#include "common/surface_gradient.hpp"
 
 #include <Eigen/Geometry>
 
@@ -94,6 +99,16 @@ InputVertexData<double> ply_vertex_values(const Evaluation& e, const std::string
                    ": a PLY map must be on the input mesh's own vertices");
 }
 
+// The intrinsic vertices a region holds (a Laplace region): where the scalar map `region` is >= 0.5,
+// the middle of a region map's 0 outside / 1 inside. The one place a region becomes vertices.
+std::vector<int> region_vertices(const Evaluation& e, const std::string& region) {
+  const IntrinsicVertexData<double>& values = e.done.scalar_map(region);
+  std::vector<int> vertices;
+  for (int v = 0; v < e.vertex_count(); ++v)
+    if (values[v] >= 0.5) vertices.push_back(v);
+  return vertices;
+}
+
 IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefinition& map) {
   const int n = e.vertex_count();
   const SurfaceDomain& domain = e.surface.domain;
@@ -166,8 +181,24 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
                                     return e.done.scalar_map(name);
                                   }};
           out = geodesic_distance(s, seeds, *e.geodesic, e.where + ": key 'maps': map '" + map.name + "'");
+        } else if constexpr (std::is_same_v<S, DiffuseSource>) {
+          try {
+            out = diffuse_on_surface(domain, e.operand(s.operand), s.time, s.steps);
+          } catch (const InputError& error) {
+            e.fail(map.name, error.what());
+          }
+        } else if constexpr (std::is_same_v<S, LaplaceSource>) {
+          std::vector<DirichletRegion> regions;
+          for (const LaplaceRegion& r : s.regions) regions.push_back(DirichletRegion{r.region, region_vertices(e, r.region), r.value});
+          out = laplace_interpolation(domain, regions, e.where + ": key 'maps': map '" + map.name + "'");
+        } else if constexpr (std::is_same_v<S, ElevationSource>) {
+          // On the input mesh, then carried to the intrinsic vertices as a PLY vertex map is.
+          const ElevationProxy proxy = elevation_proxy(input, s.time, s.steps, e.where + ": key 'maps': map '" + map.name + "'");
+          out = input_to_intrinsic(input, domain.vertex_location, proxy.value);
+        } else if constexpr (std::is_same_v<S, SlopeSource>) {
+          out = gradient_magnitude_per_vertex(domain, e.operand(s.operand));
         } else if constexpr (std::is_same_v<S, DirectionSource> || std::is_same_v<S, RadialSource> ||
-                             std::is_same_v<S, PlyFaceVectorSource>) {
+                             std::is_same_v<S, PlyFaceVectorSource> || std::is_same_v<S, GradientSource>) {
           throw std::logic_error("map_evaluation: a vector source evaluated as a scalar map");
         } else {
           static_assert(sizeof(S) == 0, "evaluate_scalar: a map source without a case");
@@ -297,6 +328,8 @@ IntrinsicFaceData<std::array<double, 2>> evaluate_vector(const Evaluation& e, co
         } else if constexpr (std::is_same_v<S, PlyFaceVectorSource>) {
           const std::vector<Vec3> vectors = ply_face_vectors(e, map.name, s);
           for (size_t t = 0; t < chords.size(); ++t) out[t] = in_chord_frame(chords[t], vectors[static_cast<size_t>((*under)[t])]);
+        } else if constexpr (std::is_same_v<S, GradientSource>) {
+          out = gradient_vector_map(e.surface.domain, e.operand(s.operand), s.normalize);  // already in the face frames
         } else {
           throw std::logic_error("map_evaluation: a scalar source evaluated as a vector map");
         }
@@ -342,7 +375,7 @@ EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, con
       result.scalar.emplace(map.name, evaluate_scalar(e, map));
       continue;
     }
-    if (chords.empty()) chords = input_chords(surface);
+    if (chords.empty() && !std::holds_alternative<GradientSource>(map.source)) chords = input_chords(surface);
     if (std::holds_alternative<PlyFaceVectorSource>(map.source) && !under) under = input_face_under_centroids(surface, chords);
     result.vector.emplace(map.name, evaluate_vector(e, map, chords, under ? &*under : nullptr));
   }
@@ -372,6 +405,10 @@ InputMaps maps_on_input(const MapSet& maps, const SceneSurface& surface, const E
         const Vec3 centroid = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) / 3.0;
         per_face[static_cast<size_t>(f)] = projected_into_face(input, f, radial_direction(*r, centroid));
       }
+    } else if (const auto* g = std::get_if<GradientSource>(&map.source)) {
+      // The gradient of the operand's values at the input vertices over each input triangle.
+      const IntrinsicVertexData<double>& values = evaluated.scalar_map(std::get<std::string>(g->operand));
+      per_face = input_face_gradients(input, intrinsic_to_input(surface.input_to_intrinsic, values), g->normalize);
     } else {
       const std::vector<Vec3> vectors = ply_face_vectors(e, map.name, std::get<PlyFaceVectorSource>(map.source));
       for (int f = 0; f < input.triangle_count(); ++f)

@@ -16,6 +16,13 @@
 // A per-face PLY vector (NAME_x, NAME_y, NAME_z on the input mesh's faces) is read at the input face
 // nearest to T's chord-triangle centroid (the input face under it; InputFaceOverlaps lists the
 // candidates) and enters T as a direction does.
+//
+// Map tools. "diffuse", "laplace", "slope" and "gradient" are computed on the intrinsic triangulation
+// itself (its Laplacian, masses and face frames); a gradient is already in each face's frame.
+// "elevation" is a property of the input's extrinsic shape, computed on the input mesh and carried
+// to the intrinsic vertices as a PLY vertex map is. Written back onto the input (maps_on_input), a
+// gradient is the gradient of the operand's input-vertex values over each input triangle, in input
+// coordinates.
 #include "common/element_data.hpp"
 #include "common/map_definition.hpp"
 #include "common/scene_surface.hpp"
