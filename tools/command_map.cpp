@@ -172,6 +172,13 @@ void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps,
     for (const auto& [name, vectors] : on_input.vector)
       pictures.emplace_back(preview_path_for(o, out, name, one_map), render_vector_map_preview(surface.input, vectors, name, view));
   }
+  // Every file's folder must exist before the first is written: a bad --preview leaves no PLY behind.
+  std::vector<std::string> targets{out};
+  for (const auto& picture : pictures) targets.push_back(picture.first);
+  for (const std::string& target : targets) {
+    const fs::path folder = fs::path(target).has_parent_path() ? fs::path(target).parent_path() : fs::path(".");
+    if (!fs::is_directory(folder)) throw InputError(target + ": cannot write: folder " + folder.string() + " does not exist");
+  }
   write_maps_ply(out, surface.input, on_input);
   for (const auto& [path, image] : pictures) write_rgb_png(path, image);
 
