@@ -3,6 +3,8 @@
 #include "common/content_hash.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <set>
@@ -102,6 +104,9 @@ std::string MapEvaluationReport::summary() const {
   if (!from_cache.empty()) line += std::to_string(from_cache.size()) + " from cache";
   if (!computed.empty()) line += std::string(from_cache.empty() ? "" : ", ") + std::to_string(computed.size()) + " computed";
   if (from_cache.empty() && computed.empty()) line += "none";
+  char time[32];
+  std::snprintf(time, sizeof time, ", %.3g s", seconds);
+  line += time;
   line += cache_folder.empty() ? std::string(" (cache off)") : " (cache: " + cache_folder + ")";
   return line;
 }
@@ -150,6 +155,12 @@ EvaluatedMaps cached_evaluate_maps(const MapSources& sources, const SceneSurface
   MapEvaluationReport local;
   MapEvaluationReport& r = report ? *report : local;
   r = MapEvaluationReport{};
+  const auto start = std::chrono::steady_clock::now();
+  struct Clock {  // stops the clock however the call returns
+    MapEvaluationReport& r;
+    std::chrono::steady_clock::time_point start;
+    ~Clock() { r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+  } clock{r, start};
   if (!cache.enabled() || sources.maps.empty()) {
     for (const MapDefinition& m : sources.maps.in_dependency_order()) r.computed.push_back(m.name);
     return evaluate_maps(sources.maps, surface, sources.where);
