@@ -20,12 +20,13 @@ using nlohmann::json;
 std::uint64_t triangulation_hash(const SceneSurface& surface) {
   ContentHasher h;
   const InputMesh& input = surface.input;
-  for (const Eigen::Vector3d& p : input.positions) h.add_bytes(p.data(), 3 * sizeof(double));
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) && sizeof(std::array<Eigen::Vector2d, 3>) == 6 * sizeof(double),
+                "positions and layouts are hashed as packed doubles");
+  h.add_array(std::span<const Eigen::Vector3d>(input.positions));
   h.add_array(std::span<const std::array<int, 3>>(input.triangles));
   const SurfaceDomain& domain = surface.domain;
   h.add_array(std::span<const std::array<int, 3>>(domain.face_vertices));
-  for (const auto& corners : domain.face_corners)
-    for (const Eigen::Vector2d& c : corners) h.add_bytes(c.data(), 2 * sizeof(double));
+  h.add_array(std::span<const std::array<Eigen::Vector2d, 3>>(domain.face_corners));
   // Field by field: SurfacePoint has padding between its int and its doubles.
   for (const SurfacePoint& p : domain.vertex_location) {
     h.add_bytes(&p.face, sizeof p.face);

@@ -9,8 +9,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <system_error>
 
 namespace physarum {
@@ -99,14 +97,18 @@ MapCacheLookup<std::vector<double>> MapCache::load(const MapCacheKey& key, MapKi
   const fs::path path = entry_path(key);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return result;
+  // Read whole in one call (an entry of a million-vertex map is 8 MB).
   std::string bytes;
   {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::FILE* in = std::fopen(path.c_str(), "rb");
+    if (in == nullptr) {
       result.rejected = "cannot be opened";
       return result;
     }
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    const std::uintmax_t size = fs::file_size(path, ec);
+    bytes.resize(ec ? 0 : static_cast<std::size_t>(size));
+    bytes.resize(std::fread(bytes.data(), 1, bytes.size(), in));
+    std::fclose(in);
   }
   auto reject = [&](const std::string& why) {
     result.rejected = why;
