@@ -101,6 +101,19 @@ TEST_F(MapCommand, ArgsGoIntoTheKindsObjectAndASlashKeyBesideIt) {
   EXPECT_EQ(image_shape(dir_.path / "pictures" / "blob.png")[0], 800);
 }
 
+TEST_F(MapCommand, RelativeRefinementIsTheMeshCommandsAtAnyScale) {
+  // A circumradius bound relative to the bounding box does not change with --scale-to-area: the
+  // triangulation is the one `physarum mesh` builds with the same fraction.
+  const CommandResult mesh = run_physarum("mesh shape:square --max-circumradius-rel 0.01 --json");
+  ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
+  const int vertices = json::parse(mesh.out)["intrinsic"]["vertices"].get<int>();
+  ASSERT_GT(vertices, 33 * 33);
+  const CommandResult r = map("shape:square --kind axis --value x --max-circumradius-rel 0.01 --scale-to-area 4 --no-preview --out " +
+                              quoted(dir_.path / "x.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("intrinsic triangulation " + std::to_string(vertices) + " vertices"), std::string::npos) << r.out;
+}
+
 TEST_F(MapCommand, AVectorMapIsWrittenPerFaceWithAPicture) {
   // The square lies in z = 0: the direction (1, 0, 1) projects to (1, 0, 0) in every face.
   const fs::path ply = dir_.path / "east.ply";

@@ -193,6 +193,8 @@ void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps,
     std::printf("%-20s vector  length %.6g .. %.6g (on %d input faces)\n", name.c_str(), shortest, longest,
                 surface.input.triangle_count());
   }
+  std::printf("surface              %d input vertices; intrinsic triangulation %d vertices, %d faces\n",
+              surface.input.vertex_count(), surface.domain.vertex_count, surface.domain.face_count);
   std::printf("physarum map: wrote %s", out.c_str());
   for (const auto& picture : pictures) std::printf(", %s", picture.first.c_str());
   std::printf("\n");
