@@ -151,9 +151,10 @@ void print_report(const MapEvaluationReport& report) {
   std::cerr << "physarum map: " << report.summary() << "\n";
 }
 
-// Writes the PLY and the pictures of the maps of `sources` on `surface`; prints one line per map.
+// Writes the PLY and the pictures of `maps` on `surface` (one picture FILE.png for `one_map`, else
+// FILE_NAME.png per map, even when a scene has a single map); prints one line per map.
 void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps, const SceneSurface& surface,
-                const EvaluatedMaps& evaluated, const std::string& where) {
+                const EvaluatedMaps& evaluated, const std::string& where, bool one_map) {
   const InputMaps on_input = maps_on_input(maps, surface, evaluated, where);
   // Pictures first: rendering can fail on a bad size, and then nothing should have been written.
   std::vector<std::pair<std::string, RgbImage>> pictures;
@@ -161,7 +162,6 @@ void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps,
     MapPreviewOptions view;
     view.width = o.width;
     view.height = o.height;
-    const bool one_map = on_input.scalar.size() + on_input.vector.size() == 1;
     std::optional<FullResolutionMesh> full;
     for (const auto& [name, values] : on_input.scalar) {
       (void)values;
@@ -211,7 +211,7 @@ int run_scene_maps(const MapOptions& o) {
   // The same checks as `run`: parameter values in range, spawn weights usable.
   vertex_parameters(scene, surface, maps);
   simulation_controls(scene, surface, maps);
-  write_maps(o, o.out.empty() ? "maps.ply" : o.out, scene.maps, surface, maps, o.input);
+  write_maps(o, o.out.empty() ? "maps.ply" : o.out, scene.maps, surface, maps, o.input, /*one_map=*/false);
   return 0;
 }
 
@@ -260,7 +260,7 @@ int run_one_map(const MapOptions& o) {
   print_report(report);
   // Write the asked-for map alone: helpers it reads are inputs, not results.
   const MapSet only(std::vector<MapDefinition>{*parsed.find(name)});
-  write_maps(o, o.out.empty() ? name + ".ply" : o.out, only, surface, evaluated, where);
+  write_maps(o, o.out.empty() ? name + ".ply" : o.out, only, surface, evaluated, where, /*one_map=*/true);
   return 0;
 }
 
