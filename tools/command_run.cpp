@@ -154,11 +154,17 @@ int run_run(const RunOptions& o) {
   const long long steps = run_length_in_steps(o, given_scene);
   TimeLapse time_lapse(o.frames, steps);
 
-  const SceneSurface surface = prepare_feasible_surface(given_scene, steps);
+  // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
+  // controls the backend is built from, and what --maps-out writes. `scene` summarises each mapped
+  // parameter by its mean (U, run.json).
+  const FeasibleSurface feasible = prepare_feasible_surface(given_scene, steps, MapCache::from_environment());
+  const SceneSurface& surface = feasible.surface;
   const SurfaceDomain& domain = surface.domain;
-  // The maps, evaluated once: the per-vertex parameters and controls the backend is built from, and
-  // what --maps-out writes. `scene` summarises each mapped parameter by its mean (U, run.json).
-  const EvaluatedMaps maps = evaluate_maps(given_scene.maps, surface, o.scene);
+  const EvaluatedMaps& maps = feasible.maps;
+  if (!given_scene.maps.empty()) {
+    for (const std::string& note : feasible.maps_report.notes) std::cerr << "physarum run: " << note << "\n";
+    std::cerr << "physarum run: " << feasible.maps_report.summary() << "\n";
+  }
   const SceneArrays arrays{vertex_parameters(given_scene, surface, maps), simulation_controls(given_scene, surface, maps)};
   const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
   const InputMesh& input = surface.input;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -110,18 +111,22 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   for (size_t i = 0; i < arms.size(); ++i)
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
 
-  // Surfaces, built once where the arms share one.
+  // Surfaces, built once where the arms share one, and the maps of each arm's scene on its surface,
+  // evaluated once for all its seeds (through the map cache).
+  const MapCache cache = MapCache::from_environment();
   for (size_t i = 0; i < arms.size(); ++i) {
+    Arm& a = arms[i];
     for (size_t j = 0; j < i; ++j)
-      if (surface_key(arms[j].scene) == surface_key(arms[i].scene)) arms[i].surface = arms[j].surface;
-    if (!arms[i].surface)
-      arms[i].surface =
-          std::make_shared<const SceneSurface>(prepare_feasible_surface(arms[i].scene, steps_per_seed(arms[i].scene)));
-  }
-
-  // The maps of each arm's scene on its surface, evaluated once for all its seeds.
-  for (Arm& a : arms) {
-    a.arrays = scene_arrays(a.scene, *a.surface);
+      if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
+    std::optional<EvaluatedMaps> maps;
+    if (!a.surface) {
+      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache);
+      a.surface = std::make_shared<const SceneSurface>(std::move(feasible.surface));
+      maps = std::move(feasible.maps);
+    } else {
+      maps = cached_evaluate_maps(map_sources_of(a.scene), *a.surface, cache);
+    }
+    a.arrays = SceneArrays{vertex_parameters(a.scene, *a.surface, *maps), simulation_controls(a.scene, *a.surface, *maps)};
     a.scene = with_mean_parameters(a.scene, a.arrays.parameters, a.surface->domain);
   }
 

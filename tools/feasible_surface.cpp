@@ -13,7 +13,7 @@ namespace physarum::cli {
 // About ten seconds of work and more (1e9 elementary operations a second at best).
 constexpr double kLongRunOperations = 1e10;
 
-SceneSurface prepare_feasible_surface(const Scene& given, long long steps) {
+FeasibleSurface prepare_feasible_surface(const Scene& given, long long steps, const MapCache& cache) {
   // Without parameter maps the time scales are known before the surface: checked first, as a bad
   // time step is cheaper to refuse than a refinement is to wait for.
   const bool mapped = has_parameter_maps(given);
@@ -22,15 +22,19 @@ SceneSurface prepare_feasible_surface(const Scene& given, long long steps) {
       std::cerr << "physarum: warning: " << w << "\n";
   };
   if (!mapped) check_scales(given);
-  SceneSurface surface = prepare_scene_surface(given, [](const std::string& line) { std::cerr << line << "\n"; });
+  FeasibleSurface feasible;
+  feasible.surface = prepare_scene_surface(given, [](const std::string& line) { std::cerr << line << "\n"; });
+  const SceneSurface& surface = feasible.surface;
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
-  const Scene scene = mapped ? with_mean_parameters(given, vertex_parameters(given, surface), surface.domain) : given;
+  feasible.maps = cached_evaluate_maps(map_sources_of(given), surface, cache, &feasible.maps_report);
+  const Scene scene =
+      mapped ? with_mean_parameters(given, vertex_parameters(given, surface, feasible.maps), surface.domain) : given;
   if (mapped) check_scales(scene);
   const WorkEstimate work = estimate_work(scene, surface.domain, surface.diameter, steps, kMaxTurnDecisionsPerStep);
   // On a terminal always; in a log only for a long run (a quiet log stays empty on a short one).
   if (::isatty(STDERR_FILENO) == 1 || work.operations >= kLongRunOperations) std::cerr << work.describe() << "\n";
   check_work(scene, work);
-  return surface;
+  return feasible;
 }
 
 }  // namespace physarum::cli

@@ -4,13 +4,23 @@
 // time scales (warnings on stderr, or InputError), the surface (refused before refining when the
 // refinement would exceed its budget, announced when it will be long), then the run's work: one
 // estimate line on stderr (on a terminal, or for a long run), and InputError when a length exceeds the surface or the work is absurd.
+#include "common/cached_map_evaluation.hpp"
+#include "common/map_cache.hpp"
 #include "common/scene.hpp"
 #include "common/scene_surface.hpp"
 
 namespace physarum::cli {
 
+struct FeasibleSurface {
+  SceneSurface surface;
+  // The scene's maps on the surface, evaluated once here through the map cache: a scene with
+  // parameter maps needs them for its checks, and the caller builds its backend from them.
+  EvaluatedMaps maps;
+  MapEvaluationReport maps_report;
+};
+
 // A scene with parameter maps is checked with each mapped parameter's mean over the surface
 // (with_mean_parameters), so its time-scale checks come after the surface is built.
-SceneSurface prepare_feasible_surface(const Scene& scene, long long steps);
+FeasibleSurface prepare_feasible_surface(const Scene& scene, long long steps, const MapCache& cache);
 
 }  // namespace physarum::cli

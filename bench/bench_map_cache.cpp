@@ -1,0 +1,82 @@
+// The map cache (common/cached_map_evaluation.hpp) on the sizes of bench_maps.cpp: spot.obj scaled
+// to 4 m^2 and refined to ~50k and ~1.07M intrinsic faces, with BM_MapsProcedural's seven maps.
+//   BM_MapCacheKeys  the keys alone: the executable's and the triangulation's hashes, the JSON
+//   BM_MapsFromCache a warm cache: keys, then every map read back and checked (what a second run
+//                    pays instead of evaluating; compare BM_MapsProcedural, and for the map tools
+//                    their own benchmarks)
+// The entries live in a temporary folder, written once before timing.
+#include "bench/bench_support.hpp"
+#include "common/cached_map_evaluation.hpp"
+#include "common/map_cache.hpp"
+#include "common/map_definition.hpp"
+#include "common/scene_surface.hpp"
+
+#include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <unistd.h>
+
+namespace physarum::bench {
+namespace {
+
+const nlohmann::json& procedural_maps() {
+  static const nlohmann::json maps = nlohmann::json::parse(R"({
+        "ramp": {"axis": "y"},
+        "spot": {"sphere": {"center": [0.1, 0.3, 0.0], "radius": 0.2}, "falloff": 0.05},
+        "box": {"box": {"min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2]}},
+        "scale": {"map": "ramp", "range": [0.5, 1.5]},
+        "scaled_spot": {"product": ["scale", "spot"]},
+        "mix": {"max": ["scaled_spot", "box"]},
+        "east": {"direction": [1.0, 0.0, 0.0]}
+      })");
+  return maps;
+}
+
+struct Fixture {
+  const SceneSurface* surface = nullptr;
+  SurfaceSpec spec;
+};
+
+Fixture spot(benchmark::State& state) {
+  Fixture f;
+  const std::string mesh = mesh_spec("spot.obj");
+  if (mesh.empty()) {
+    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
+    return f;
+  }
+  f.spec = bench_surface(mesh, static_cast<double>(state.range(0)) / 10000.0);
+  f.surface = &surfaces().get(f.spec);
+  return f;
+}
+
+void BM_MapCacheKeys(benchmark::State& state) {
+  const Fixture f = spot(state);
+  if (!f.surface) return;
+  const MapSet maps = parse_maps(procedural_maps(), ".", "bench");
+  const MapSources sources{maps, procedural_maps(), ".", f.spec, "bench"};
+  for (auto _ : state) benchmark::DoNotOptimize(map_cache_keys(sources, *f.surface));
+  state.counters["intrinsic_faces"] = f.surface->domain.face_count;
+}
+
+void BM_MapsFromCache(benchmark::State& state) {
+  const Fixture f = spot(state);
+  if (!f.surface) return;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("physarum_bench_map_cache_" + std::to_string(::getpid()));
+  const MapCache cache(dir);
+  const MapSet maps = parse_maps(procedural_maps(), ".", "bench");
+  const MapSources sources{maps, procedural_maps(), ".", f.spec, "bench"};
+  cached_evaluate_maps(sources, *f.surface, cache);  // fills the cache
+  MapEvaluationReport report;
+  for (auto _ : state) benchmark::DoNotOptimize(cached_evaluate_maps(sources, *f.surface, cache, &report));
+  if (report.from_cache.size() != 7) state.SkipWithError("the cache did not serve every map");
+  state.counters["intrinsic_faces"] = f.surface->domain.face_count;
+  std::filesystem::remove_all(dir);
+}
+
+BENCHMARK(BM_MapCacheKeys)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MapsFromCache)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace physarum::bench
