@@ -1,12 +1,13 @@
 #include "common/laplace_interpolation.hpp"
 
 #include "common/errors.hpp"
+#include "common/shared_cholesky.hpp"
 
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 namespace physarum {
 
@@ -102,10 +103,15 @@ IntrinsicVertexData<double> laplace_interpolation(const SurfaceDomain& domain, c
   }
   Eigen::SparseMatrix<double> system(free_count, free_count);
   system.setFromTriplets(triplets.begin(), triplets.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-  if (solver.info() != Eigen::Success)
+  // CHOLMOD's supernodal factorization (shared_cholesky.hpp): at a million faces it is several times
+  // faster than a simplicial one.
+  SharedCholesky solver(system);
+  try {
+    solver.factor(system, "the Laplace system");
+  } catch (const std::runtime_error&) {
     throw InputError(where + ": the Laplace system could not be factorized (degenerate triangles?)");
-  const Eigen::VectorXd solution = solver.solve(rhs);
+  }
+  const Eigen::VectorXd solution = solver.solve(0, rhs);
   for (int v = 0; v < n; ++v)
     if (const int i = free_index[static_cast<size_t>(v)]; i >= 0) u[v] = solution[i];
   return u;

@@ -1,8 +1,10 @@
 #include "common/surface_diffusion.hpp"
 
 #include "common/errors.hpp"
+#include "common/shared_cholesky.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace physarum {
@@ -15,15 +17,18 @@ BackwardEulerDiffusion::BackwardEulerDiffusion(const SurfaceDomain& domain, doub
   // Column-major for the Cholesky factorization; L is symmetric, so transposing the CSR is free.
   Eigen::SparseMatrix<double> system = Eigen::SparseMatrix<double>(domain.laplacian.to_eigen()) * step;
   for (int i = 0; i < n; ++i) system.coeffRef(i, i) += mass_[i];
-  solver_ = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(system);
-  if (solver_->info() != Eigen::Success)
+  solver_ = std::make_shared<SharedCholesky>(system);
+  try {
+    solver_->factor(system, "the backward-Euler matrix");
+  } catch (const std::runtime_error&) {
     throw InputError("diffusion: the backward-Euler matrix M + h L (h = " + std::to_string(step) +
                      ") could not be factorized (a vertex without area?)");
+  }
 }
 
 IntrinsicVertexData<double> BackwardEulerDiffusion::step(const IntrinsicVertexData<double>& u) const {
   const Eigen::VectorXd rhs = mass_.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(u.data(), mass_.size()));
-  const Eigen::VectorXd next = solver_->solve(rhs);
+  const Eigen::VectorXd next = solver_->solve(0, rhs);
   return IntrinsicVertexData<double>(std::vector<double>(next.data(), next.data() + next.size()));
 }
 

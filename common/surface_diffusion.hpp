@@ -16,7 +16,9 @@
 #include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
 
-#include <Eigen/SparseCholesky>
+#include "common/shared_cholesky.hpp"
+
+#include <Eigen/Core>
 #include <memory>
 
 namespace physarum {
@@ -32,7 +34,7 @@ class BackwardEulerDiffusion {
 
  private:
   Eigen::VectorXd mass_;
-  std::shared_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> solver_;
+  std::shared_ptr<SharedCholesky> solver_;  // CHOLMOD, supernodal (one factorization)
 };
 
 // `u` diffused for `time` in `steps` equal backward-Euler steps. InputError when time <= 0, steps <
