@@ -64,6 +64,12 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  // Competing species are parsed and evaluated (common/species.hpp) but no backend simulates them
+  // yet: refused here rather than silently run as one population.
+  if (!arrays.species.species.empty() && !arrays.species.is_single())
+    throw InputError((scene.source.empty() ? std::string("scene") : scene.source) +
+                     ": key 'species': competing species are not simulated by the " +
+                     (backend == BackendChoice::Reference ? "reference" : "OpenCL") + " backend yet");
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());

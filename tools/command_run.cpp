@@ -159,7 +159,9 @@ int run_run(const RunOptions& o) {
   // The maps, evaluated once: the per-vertex parameters and controls the backend is built from, and
   // what --maps-out writes. `scene` summarises each mapped parameter by its mean (U, run.json).
   const EvaluatedMaps maps = evaluate_maps(given_scene.maps, surface, o.scene);
-  const SceneArrays arrays{vertex_parameters(given_scene, surface, maps), simulation_controls(given_scene, surface, maps)};
+  const VertexParameters parameters = vertex_parameters(given_scene, surface, maps);
+  const SceneArrays arrays{parameters, simulation_controls(given_scene, surface, maps),
+                           species_set(given_scene, surface, maps, parameters)};
   const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
