@@ -64,17 +64,19 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
-  // Competing species are parsed and evaluated (common/species.hpp) but no backend simulates them
-  // yet: refused here rather than silently run as one population.
-  if (!arrays.species.species.empty() && !arrays.species.is_single())
-    throw InputError((scene.source.empty() ? std::string("scene") : scene.source) +
-                     ": key 'species': competing species are not simulated by the " +
-                     (backend == BackendChoice::Reference ? "reference" : "OpenCL") + " backend yet");
+  const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
+    if (competing_species)
+      return std::make_unique<ReferenceSimulation>(domain, arrays.species, arrays.controls, simulation_settings(scene));
     return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
   }
+  // The OpenCL kernels do not simulate competing species yet: refused rather than silently run as
+  // one population.
+  if (competing_species)
+    throw InputError((scene.source.empty() ? std::string("scene") : scene.source) +
+                     ": key 'species': competing species are not simulated by the OpenCL backend yet (use --backend reference)");
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
