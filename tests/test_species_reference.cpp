@@ -5,6 +5,7 @@
 // of the sensing matrix is what species i reads (an asymmetric matrix tells the two orientations
 // apart).
 #include "common/field_statistics.hpp"
+#include "common/ply_reader.hpp"
 #include "common/scene.hpp"
 #include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
@@ -165,6 +166,37 @@ TEST(SpeciesReference, RowIOfTheMatrixIsWhatSpeciesIReads) {
   // rest (about 1 - 2 x 22.5/360 of them, less the few whose sensors leave the square) turn.
   EXPECT_GT(turned0, 120);
   EXPECT_EQ(turned1, 0);
+}
+
+// `physarum run` on the reference writes every species' layer: pheromone_0, pheromone_1 beside
+// "pheromone" (layer 0, for one-species readers), in pheromone.ply and fields_full.ply; the two
+// layers differ (two species, different deposits), and a one-species run has no pheromone_0.
+TEST(SpeciesReference, RunWritesOnePropertyPerSpecies) {
+  TempDir dir;
+  json j = square_scene(0);
+  j.erase("agents");
+  j["species"] = {{{"agents", 300}}, {{"agents", 100}, {"deposit_rate", 4.0}}};
+  j["sensing"] = {{1.0, -0.5}, {-0.5, 1.0}};
+  j["steps"] = 20;
+  const std::string path = (dir.path / "species.json").string();
+  std::ofstream(path) << j.dump(2);
+  const auto r = testing::run_physarum("run " + testing::quoted(path) + " --backend reference --out " +
+                                       testing::quoted(dir.path / "out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* file : {"pheromone.ply", "fields_full.ply"}) {
+    const PlyFields ply = read_ply_fields((dir.path / "out" / file).string());
+    EXPECT_EQ(ply.property("pheromone"), ply.property("pheromone_0")) << file;
+    EXPECT_NE(ply.property("pheromone_0"), ply.property("pheromone_1")) << file;
+    EXPECT_EQ(ply.properties.count("pheromone_2"), 0u) << file;
+  }
+  json one = square_scene(50);
+  one["steps"] = 2;
+  std::ofstream((dir.path / "one.json").string()) << one.dump(2);
+  ASSERT_EQ(testing::run_physarum("run " + testing::quoted(dir.path / "one.json") + " --backend reference --out " +
+                                  testing::quoted(dir.path / "one"))
+                .exit_code,
+            0);
+  EXPECT_EQ(read_ply_fields((dir.path / "one" / "pheromone.ply").string()).properties.count("pheromone_0"), 0u);
 }
 
 }  // namespace

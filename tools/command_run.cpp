@@ -229,8 +229,22 @@ int run_run(const RunOptions& o) {
   const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, field);
   const InputVertexData<double> on_full = full.vertex_values(field);
   std::string written = "pheromone.ply, fields_full.ply";
-  write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
-  write_fields_ply((out / "fields_full.ply").string(), full.mesh, {PlyField{"pheromone", on_full}}, coloring,
+  // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
+  // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
+  const int species_layers = simulation.dynamic_layer_count();
+  std::vector<InputVertexData<double>> species_on_input, species_on_full;
+  for (int layer = 0; species_layers > 1 && layer < species_layers; ++layer) {
+    const IntrinsicVertexData<double> values = simulation.field_values(layer);
+    species_on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
+    species_on_full.push_back(full.vertex_values(values));
+  }
+  std::vector<PlyField> input_fields{PlyField{"pheromone", on_input}}, full_fields{PlyField{"pheromone", on_full}};
+  for (size_t layer = 0; layer < species_on_input.size(); ++layer) {
+    input_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_input[layer]});
+    full_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_full[layer]});
+  }
+  write_fields_ply((out / "pheromone.ply").string(), input, input_fields, coloring, "pheromone per input vertex");
+  write_fields_ply((out / "fields_full.ply").string(), full.mesh, full_fields, coloring,
                    "pheromone per intrinsic vertex (full resolution)");
   write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
   const SurfaceExportsWritten exports =
