@@ -72,15 +72,13 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
       return std::make_unique<ReferenceSimulation>(domain, arrays.species, arrays.controls, simulation_settings(scene));
     return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
   }
-  // The OpenCL kernels do not simulate competing species yet: refused rather than silently run as
-  // one population.
-  if (competing_species)
-    throw InputError((scene.source.empty() ? std::string("scene") : scene.source) +
-                     ": key 'species': competing species are not simulated by the OpenCL backend yet (use --backend reference)");
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
+  if (competing_species)
+    return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.species, arrays.controls,
+                                                      simulation_settings(scene), options);
   return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, arrays.controls,
                                                     simulation_settings(scene), options);
 }
