@@ -14,4 +14,15 @@ void Agents::resize(int n) {
   accumulated_turn.resize(size);
 }
 
+void Agents::append(const Agents& other) {
+  face.insert(face.end(), other.face.begin(), other.face.end());
+  position.insert(position.end(), other.position.begin(), other.position.end());
+  heading.insert(heading.end(), other.heading.begin(), other.heading.end());
+  age.insert(age.end(), other.age.begin(), other.age.end());
+  exposure.insert(exposure.end(), other.exposure.begin(), other.exposure.end());
+  exposure_threshold.insert(exposure_threshold.end(), other.exposure_threshold.begin(), other.exposure_threshold.end());
+  time_since_decision.insert(time_since_decision.end(), other.time_since_decision.begin(), other.time_since_decision.end());
+  accumulated_turn.insert(accumulated_turn.end(), other.accumulated_turn.begin(), other.accumulated_turn.end());
+}
+
 }  // namespace physarum

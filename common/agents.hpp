@@ -23,6 +23,15 @@ struct Agents {
 
   int count() const { return static_cast<int>(face.size()); }
   void resize(int n);
+  // Appends `other`'s agents after these (populations of competing species, numbered species by
+  // species: common/species.hpp).
+  void append(const Agents& other);
+};
+
+// A contiguous run of agent ids [begin, end): one species' agents. The default is every agent.
+struct AgentRange {
+  int begin = 0;
+  int end = 2147483647;
 };
 
 // A point on the surface: a face and a position in its frame.

@@ -12,11 +12,18 @@
 #include <numbers>
 
 namespace physarum {
+namespace {
 
-RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options) {
+void check_values(const InputMesh& mesh, const InputVertexData<double>& values) {
   if (static_cast<int>(values.size()) != mesh.vertex_count())
     throw InputError("preview of " + mesh.source + ": " + std::to_string(values.size()) + " values for " +
                      std::to_string(mesh.vertex_count()) + " vertices");
+}
+
+// The rasteriser shared by every preview: `surface_colour(triangle, w0, w1, w2)` gives the unshaded
+// colour (components in [0, 1]) at barycentric point w of a triangle, shading is applied here.
+template <class SurfaceColour>
+RgbImage render_shaded(const InputMesh& mesh, const PreviewOptions& options, const SurfaceColour& surface_colour) {
   if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
     throw InputError("preview: image size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                      " is out of range (1..16384 each)");
@@ -65,7 +72,6 @@ RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& va
   }
   for (auto& n : normal) n = n.norm() > 0 ? n.normalized() : toward_camera;
 
-  const double upper_end = options.coloring.upper(values);
   std::vector<double> depth(static_cast<size_t>(image.width) * image.height, -std::numeric_limits<double>::infinity());
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d &a = view[t[0]], &b = view[t[1]], &c = view[t[2]];
@@ -87,17 +93,66 @@ RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& va
         const size_t pixel = static_cast<size_t>(y) * image.width + x;
         if (z <= depth[pixel]) continue;
         depth[pixel] = z;
-        const double value = w0 * values[t[0]] + w1 * values[t[1]] + w2 * values[t[2]];
         const Eigen::Vector3d n = (w0 * normal[t[0]] + w1 * normal[t[1]] + w2 * normal[t[2]]).normalized();
         // Two-sided Lambert plus ambient: open meshes show their inside, which must not be black.
         const double shade = 0.3 + 0.7 * std::abs(n.dot(light));
-        const auto rgb = colormap_color_float(options.coloring.map, options.coloring.normalise(value, upper_end));
+        const auto rgb = surface_colour(t, w0, w1, w2);
         for (int ch = 0; ch < 3; ++ch)
           image.pixels[3 * pixel + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(rgb[ch] * shade, 0.0, 1.0) * 255.0));
       }
     }
   }
   return image;
+}
+
+}  // namespace
+
+RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options) {
+  check_values(mesh, values);
+  const double upper_end = options.coloring.upper(values);
+  return render_shaded(mesh, options, [&](const std::array<int, 3>& t, double w0, double w1, double w2) {
+    const double value = w0 * values[t[0]] + w1 * values[t[1]] + w2 * values[t[2]];
+    return colormap_color_float(options.coloring.map, options.coloring.normalise(value, upper_end));
+  });
+}
+
+std::array<double, 3> species_colour(int species) {
+  // Additive on a dark base: distinct hues of similar weight; two species' overlap reads as a pale
+  // mix of both. Orange and azure first: told apart also by the common kinds of colour blindness.
+  static constexpr std::array<std::array<double, 3>, 8> kPalette = {{{1.00, 0.50, 0.05},
+                                                                     {0.10, 0.55, 1.00},
+                                                                     {0.35, 0.90, 0.20},
+                                                                     {0.95, 0.20, 0.75},
+                                                                     {0.95, 0.90, 0.15},
+                                                                     {0.15, 0.90, 0.85},
+                                                                     {0.60, 0.35, 1.00},
+                                                                     {0.90, 0.15, 0.15}}};
+  return kPalette[static_cast<size_t>(species) % kPalette.size()];
+}
+
+RgbImage render_species_preview(const InputMesh& mesh, const std::vector<InputVertexData<double>>& layers,
+                                const std::vector<FieldColoring>& colorings, const PreviewOptions& options) {
+  if (layers.empty() || layers.size() != colorings.size())
+    throw InputError("species preview of " + mesh.source + ": " + std::to_string(layers.size()) + " layers and " +
+                     std::to_string(colorings.size()) + " colourings (one each, at least one)");
+  for (const auto& layer : layers) check_values(mesh, layer);
+  std::vector<double> upper_end;
+  std::vector<std::array<double, 3>> colour;
+  for (size_t s = 0; s < layers.size(); ++s) {
+    upper_end.push_back(colorings[s].upper(layers[s]));
+    colour.push_back(species_colour(static_cast<int>(s)));
+  }
+  constexpr std::array<double, 3> kBase = {0.06, 0.06, 0.08};  // where no species has pheromone
+  return render_shaded(mesh, options, [&](const std::array<int, 3>& t, double w0, double w1, double w2) {
+    std::array<double, 3> rgb = kBase;
+    for (size_t s = 0; s < layers.size(); ++s) {
+      const InputVertexData<double>& u = layers[s];
+      const double level = colorings[s].normalise(w0 * u[t[0]] + w1 * u[t[1]] + w2 * u[t[2]], upper_end[s]);
+      for (int ch = 0; ch < 3; ++ch) rgb[ch] += level * colour[s][ch];
+    }
+    for (double& c : rgb) c = std::min(c, 1.0);
+    return rgb;
+  });
 }
 
 void write_rgb_png(const std::string& path, const RgbImage& image) {

@@ -32,6 +32,15 @@ struct RgbImage {
 // size outside 1..16384.
 RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& values, const PreviewOptions& options = {});
 
+// Competing species (common/species.hpp): one fixed colour per species (species_colour), added on a
+// dark base in proportion to each layer's normalised value (colorings[s]: its levels, e.g. 0 .. 2 U_s
+// of that species), so every species' network shows in its own colour and overlaps mix. InputError
+// unless there are as many colourings as layers (at least one) and each layer has a value per vertex.
+RgbImage render_species_preview(const InputMesh& mesh, const std::vector<InputVertexData<double>>& layers,
+                                const std::vector<FieldColoring>& colorings, const PreviewOptions& options = {});
+// Species s's colour, components in [0, 1] (a fixed palette of 8, repeated beyond).
+std::array<double, 3> species_colour(int species);
+
 // Writes an 8-bit RGB PNG at `path` (temporary file and rename); InputError naming `path` when it
 // cannot be written.
 void write_rgb_png(const std::string& path, const RgbImage& image);

@@ -111,28 +111,30 @@ struct Reader {
 // A parameter given by a map: a bare map name, or {"map": NAME, "range": [lo, hi]} whose bounds are
 // in the parameter's range (so every map value in 0..1 gives an allowed value). nullopt for a
 // number (or null, or absent): the ordinary reader takes those.
-std::optional<ParameterMap> read_parameter_map(const json& object, const ParameterSpec& p, const std::string& source) {
+// `key` names it in messages: p.key at the top level, "species[i].key" inside a species entry.
+std::optional<ParameterMap> read_parameter_map(const json& object, const ParameterSpec& p, const std::string& source,
+                                              std::string_view key) {
   const auto it = object.find(std::string(p.key));
   if (it == object.end()) return std::nullopt;
   if (it->is_string()) {
-    if (it->get<std::string>().empty()) fail_key(source, p.key, "an empty map name");
+    if (it->get<std::string>().empty()) fail_key(source, key, "an empty map name");
     return ParameterMap{it->get<std::string>(), std::nullopt};
   }
   if (!it->is_object()) return std::nullopt;
   for (auto field = it->begin(); field != it->end(); ++field)
     if (field.key() != "map" && field.key() != "range")
-      fail_key(source, p.key, "unknown field \"" + field.key() + "\" (a parameter map is {\"map\": NAME, \"range\": [lo, hi]})");
+      fail_key(source, key, "unknown field \"" + field.key() + "\" (a parameter map is {\"map\": NAME, \"range\": [lo, hi]})");
   const auto name = it->find("map");
   if (name == it->end() || !name->is_string() || name->get<std::string>().empty())
-    fail_key(source, p.key, it->dump() + " needs \"map\": the name of a scalar map");
+    fail_key(source, key, it->dump() + " needs \"map\": the name of a scalar map");
   ParameterMap map{name->get<std::string>(), std::nullopt};
   if (const auto range = it->find("range"); range != it->end()) {
     if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() || !(*range)[1].is_number())
-      fail_key(source, p.key, "\"range\" = " + range->dump() + " must be two numbers [lo, hi]");
+      fail_key(source, key, "\"range\" = " + range->dump() + " must be two numbers [lo, hi]");
     map.range = std::array<double, 2>{(*range)[0].get<double>(), (*range)[1].get<double>()};
     for (const double bound : *map.range)
       if (!map_value_range(p).contains(bound))
-        fail_key(source, p.key, "\"range\" = " + range->dump() + ": the bound " + ValueRange::number(bound) + " " +
+        fail_key(source, key, "\"range\" = " + range->dump() + ": the bound " + ValueRange::number(bound) + " " +
                                     std::string(p.unit) + " is out of range (" + map_value_range(p).describe() + ")");
   }
   return map;
@@ -220,6 +222,79 @@ SceneControls read_controls(const json& j, const std::string& source) {
   return c;
 }
 
+// "species": [{"agents": N, PARAMETER: number | map, ...}, ...] and "sensing": K x K numbers. The
+// entries' parameter values are checked like the top-level keys' (validate_species), with messages
+// naming "species[i].KEY".
+SceneSpecies read_species(const json& j, const std::string& source) {
+  SceneSpecies result;
+  const auto list = j.find("species");
+  const bool given = list != j.end() && !list->is_null();
+  if (given) {
+    if (!list->is_array() || list->empty())
+      fail_key(source, "species", list->dump() + " must be a non-empty list of {\"agents\": N, ...parameter overrides}");
+    for (size_t i = 0; i < list->size(); ++i) {
+      const std::string name = entry_name("species", i);
+      const json& entry = (*list)[i];
+      if (!entry.is_object()) fail_key(source, name, entry.dump() + " must be an object");
+      SpeciesSpec species;
+      for (auto field = entry.begin(); field != entry.end(); ++field) {
+        if (field.key() == "agents") continue;
+        if (std::none_of(kParameterTable.begin(), kParameterTable.end(), [&](const ParameterSpec& p) { return p.key == field.key(); }))
+          fail_key(source, name + "." + field.key(),
+                   "unknown field (a species takes \"agents\" and the model parameters of Table 1, e.g. \"" +
+                       closest_scene_key(field.key()) + "\")");
+      }
+      const auto agents = entry.find("agents");
+      if (agents == entry.end()) fail_key(source, name, "missing \"agents\" (the number of agents of this species)");
+      const std::string agents_key = name + ".agents";
+      if (!agents->is_number() || agents->get<double>() != std::floor(agents->get<double>()))
+        fail_key(source, agents_key, agents->dump() + " must be a whole number");
+      if (!spec_of("agents").range.contains(agents->get<double>()))
+        fail_key(source, agents_key, agents->dump() + " is out of range (" + spec_of("agents").range.describe() + ")");
+      species.agents = static_cast<int>(agents->get<double>());
+      for (const ParameterSpec& p : kParameterTable) {
+        const std::string key = name + "." + std::string(p.key);
+        const size_t index = static_cast<size_t>(p.id);
+        if (auto map = read_parameter_map(entry, p, source, key)) {
+          species.parameter_maps[index] = *map;
+          continue;
+        }
+        const auto value = entry.find(std::string(p.key));
+        if (value == entry.end()) continue;  // inherits the top-level value
+        if (value->is_null() && p.null_means_infinite) {
+          species.parameters[index] = kInfinity;
+          continue;
+        }
+        if (!value->is_number())
+          fail_key(source, key, value->dump() + " has the wrong type (" + value->type_name() + "; expected a number" +
+                                    (p.null_means_infinite ? ", null" : "") + " or a scalar map)");
+        species.parameters[index] = value->get<double>() * p.file_to_si;
+      }
+      result.species.push_back(species);
+    }
+  }
+  if (const auto matrix = j.find("sensing"); matrix != j.end() && !matrix->is_null()) {
+    if (!given) fail_key(source, "sensing", "an interaction matrix between species, and the scene has no 'species'");
+    const size_t k = result.species.size();
+    const std::string shape = std::to_string(k) + " x " + std::to_string(k);
+    if (!matrix->is_array() || matrix->size() != k)
+      fail_key(source, "sensing", matrix->dump() + " must be a " + shape + " matrix (one row per species)");
+    for (size_t row = 0; row < k; ++row) {
+      const json& r = (*matrix)[row];
+      if (!r.is_array() || r.size() != k)
+        fail_key(source, "sensing", "row " + std::to_string(row) + " = " + r.dump() + " must be " + std::to_string(k) +
+                                        " numbers (the matrix is " + shape + ")");
+      for (size_t col = 0; col < k; ++col) {
+        if (!r[col].is_number())
+          fail_key(source, "sensing", "[" + std::to_string(row) + "][" + std::to_string(col) + "] = " + r[col].dump() +
+                                          " must be a number");
+        result.sensing.push_back(r[col].get<double>());
+      }
+    }
+  }
+  return result;
+}
+
 // The map `name` must exist and be of `kind`. `shown_value` (optional) is shown after the key, as a
 // number's out-of-range message shows the number.
 void check_map_reference(const Scene& scene, const std::string& key, const std::string& name, MapKind kind,
@@ -271,6 +346,47 @@ void validate_controls(const Scene& scene) {
   }
   if (c.spawn_heading == SpawnHeading::Bias && !c.bias)
     fail_key(s, "spawn_heading", "\"bias\" aligns agents with the bias direction, and the scene has no 'bias'");
+}
+
+// Every species' overrides in their parameter's range (numbers) or naming a scalar map, its agent
+// count allowed, and the sensing matrix K x K and finite.
+void validate_species(const Scene& scene) {
+  const SceneSpecies& sp = scene.species;
+  if (!sp.given()) {
+    if (!sp.sensing.empty()) fail_key(scene.source, "sensing", "an interaction matrix between species, and the scene has no 'species'");
+    return;
+  }
+  long long total = 0;
+  for (size_t i = 0; i < sp.species.size(); ++i) {
+    const SpeciesSpec& species = sp.species[i];
+    const std::string name = entry_name("species", i);
+    check_range(scene.source, "agents", species.agents);  // the same range as the top-level count
+    total += species.agents;
+    for (const ParameterSpec& p : kParameterTable) {
+      const std::string key = name + "." + std::string(p.key);
+      const size_t index = static_cast<size_t>(p.id);
+      if (const auto& map = species.parameter_maps[index]) {
+        check_map_reference(scene, key, map->map, MapKind::Scalar, json(map->map).dump());
+        continue;
+      }
+      if (!species.parameters[index]) continue;
+      const double value = *species.parameters[index];
+      if (p.null_means_infinite && value == kInfinity) continue;
+      const double file_value = value / p.file_to_si;
+      if (!p.range.contains(file_value)) fail_range(scene.source, key, ValueRange::number(file_value), p.range);
+    }
+  }
+  if (total != scene.agents)
+    fail_key(scene.source, "agents", std::to_string(scene.agents) + " differs from the sum of the species' agents (" +
+                                         std::to_string(total) + "); leave it out, or give the sum");
+  const size_t k = sp.species.size();
+  if (!sp.sensing.empty() && sp.sensing.size() != k * k)
+    fail_key(scene.source, "sensing", "has " + std::to_string(sp.sensing.size()) + " entries; a " + std::to_string(k) +
+                                          " x " + std::to_string(k) + " matrix has " + std::to_string(k * k));
+  for (size_t e = 0; e < sp.sensing.size(); ++e)
+    if (!std::isfinite(sp.sensing[e]))
+      fail_key(scene.source, "sensing", "[" + std::to_string(e / k) + "][" + std::to_string(e % k) + "] = " +
+                                            ValueRange::number(sp.sensing[e]) + " must be finite");
 }
 
 json parse_scene_text(const std::string& text, const std::string& path) {
@@ -344,7 +460,18 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   scene.max_circumradius = read.number("max_circumradius");
   scene.min_angle_deg = read.number("min_angle").value_or(0.0);
 
-  scene.agents = static_cast<int>(*read.integer("agents"));
+  // With "species" the top-level count may be left out: it is then the species' sum.
+  scene.species = read_species(j, path);
+  if (scene.species.given() && !j.contains("agents")) {
+    long long total = 0;
+    for (const SpeciesSpec& species : scene.species.species) total += species.agents;
+    if (total > static_cast<long long>(std::numeric_limits<int>::max()))
+      fail_key(path, "species", "the species' agents add up to " + std::to_string(total) + ", more than " +
+                                    std::to_string(std::numeric_limits<int>::max()));
+    scene.agents = static_cast<int>(total);
+  } else {
+    scene.agents = static_cast<int>(*read.integer("agents"));
+  }
   scene.time_step = *read.number("time_step");
   const std::string folder = std::filesystem::path(path).parent_path().string();
   if (auto it = j.find("maps"); it != j.end()) {
@@ -352,7 +479,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
     scene.maps_given = *it;
   }
   for (const ParameterSpec& p : kParameterTable) {
-    if (auto map = read_parameter_map(j, p, path)) {
+    if (auto map = read_parameter_map(j, p, path, p.key)) {
       scene.parameter_maps[static_cast<size_t>(p.id)] = *map;
       scene.parameters[p.id] = std::numeric_limits<double>::quiet_NaN();
       continue;
@@ -423,6 +550,7 @@ void validate_scene(const Scene& scene) {
   if (scene.steps && scene.sim_time)
     throw InputError(where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
   validate_controls(scene);
+  validate_species(scene);
 }
 
 bool has_parameter_maps(const Scene& scene) {
@@ -432,7 +560,10 @@ bool has_parameter_maps(const Scene& scene) {
 bool steady_mean_is_U(const Scene& scene) {
   for (const Param p : {Param::deposit_rate, Param::decay_rate, Param::mean_lifetime, Param::activation_time})
     if (scene.parameter_maps[static_cast<size_t>(p)]) return false;
-  return scene.controls.write_stimuli.empty() && scene.controls.boundary == BoundaryBehaviour::Reflect;
+  // With species, U holds per layer for each species' own count and rates (common/species.hpp), not for
+  // the scene's total.
+  return !scene.species.given() && scene.controls.write_stimuli.empty() &&
+         scene.controls.boundary == BoundaryBehaviour::Reflect;
 }
 
 }  // namespace physarum

@@ -7,6 +7,7 @@
 #include "common/map_definition.hpp"
 #include "common/model_parameters.hpp"
 #include "common/scene_controls.hpp"
+#include "common/scene_species.hpp"
 
 #include <array>
 #include <cstdint>
@@ -47,7 +48,7 @@ struct Scene {
   std::optional<double> max_circumradius;  // intrinsic refinement bound, in scaled units (m)
   double min_angle_deg = 0.0;              // optional refinement angle bound
 
-  int agents = 0;  // N
+  int agents = 0;  // N (with "species": the sum of the species' agents)
   // Every model parameter of Table 1 (common/model_parameters.hpp), in SI units. A parameter given
   // by a map (parameter_maps[p] set) holds NaN here until the surface exists: its values are per
   // vertex (common/scene_maps.hpp: vertex_parameters, and with_mean_parameters for one summary value).
@@ -58,6 +59,7 @@ struct Scene {
   MapSet maps;                // the named maps ("maps"), parsed and checked, not yet evaluated
   nlohmann::json maps_given;  // "maps" as the file gave it (null when absent), for run.json
   SceneControls controls;
+  SceneSpecies species;       // "species" and "sensing" (competing species); empty: one population
   Integrator integrator = Integrator::ForwardEuler;  // for the pheromone PDE (Eq. 6 / 7)
 
   // ---- time ----
@@ -89,7 +91,8 @@ bool has_parameter_maps(const Scene& scene);
 // agents at a uniform deposit rate and active fraction against a uniform decay, so it holds with any
 // maps on the other parameters, read-stimuli, spawn weights and a bias, but not with a mapped
 // deposit_rate, decay_rate, mean_lifetime (sinks included) or activation_time, with write-stimuli
-// (pheromone not from agents), or with a terminating boundary (lifetimes cut short).
+// (pheromone not from agents), with a terminating boundary (lifetimes cut short), or with species
+// (each layer's mean is its own species' U instead).
 bool steady_mean_is_U(const Scene& scene);
 
 }  // namespace physarum

@@ -45,6 +45,30 @@ nlohmann::ordered_json scene_parameters_json(const Scene& s) {
   }
   if (c.spawn_heading != SpawnHeading::Random) j["spawn_heading"] = "bias";
   if (c.boundary != BoundaryBehaviour::Reflect) j["boundary"] = "terminate";
+  // Competing species: each entry's agents and overrides as the file gave them (file units).
+  for (const SpeciesSpec& species : s.species.species) {
+    nlohmann::ordered_json entry;
+    entry["agents"] = species.agents;
+    for (const ParameterSpec& p : kParameterTable) {
+      const size_t index = static_cast<size_t>(p.id);
+      if (const auto& map = species.parameter_maps[index]) {
+        nlohmann::ordered_json m;
+        m["map"] = map->map;
+        if (map->range) m["range"] = {(*map->range)[0], (*map->range)[1]};
+        entry[std::string(p.key)] = m;
+      } else if (const auto& value = species.parameters[index]) {
+        entry[std::string(p.key)] = p.null_means_infinite && std::isinf(*value) ? nlohmann::ordered_json()
+                                                                               : nlohmann::ordered_json(to_file_units(p, *value));
+      }
+    }
+    j["species"].push_back(entry);
+  }
+  if (!s.species.sensing.empty()) {
+    const size_t k = s.species.species.size();
+    for (size_t row = 0; row < k; ++row)
+      j["sensing"].push_back(std::vector<double>(s.species.sensing.begin() + static_cast<long>(row * k),
+                                                 s.species.sensing.begin() + static_cast<long>((row + 1) * k)));
+  }
   return j;
 }
 

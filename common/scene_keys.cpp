@@ -67,6 +67,13 @@ std::vector<SceneKey> build_keys() {
       setting("boundary", K::String, false, {}, "", "\"reflect\"",
               "agents reaching a boundary edge are mirrored, or removed and respawned (Fig. 18's margin)",
               "\"reflect\" or \"terminate\""),
+      setting("species", K::List, false, {}, "", "one species",
+              "competing species (MoMaS): one pheromone layer each, deposited by that species only; each entry "
+              "overrides parameters above (numbers or maps); the top-level agents, if given, must be their sum",
+              "[{\"agents\": N, PARAMETER: value or map, ...}, ...]"),
+      setting("sensing", K::List, false, {}, "", "identity",
+              "what species i's sensors read: sum over j of m_ij x layer_j (row i = species i; needs species)",
+              "K x K finite numbers, e.g. [[1, -0.5], [-0.5, 1]]"),
   };
   keys.insert(keys.end(), controls.begin(), controls.end());
   const ComparisonSettings c;  // the harness's documented defaults, shown as they are in code

@@ -35,27 +35,63 @@ IntrinsicVertexData<double> weighted_sum(const std::vector<Spec>& terms, Coeffic
 
 }  // namespace
 
+namespace {
+
+// A parameter given by a map, evaluated into `out` (SI units) and checked vertex by vertex; `key`
+// names it in messages (p.key, or "species[i].KEY").
+void fill_from_map(const Scene& scene, const ParameterSpec& p, const std::string& key, const ParameterMap& map,
+                   const EvaluatedMaps& maps, IntrinsicVertexData<double>& out) {
+  const IntrinsicVertexData<double>& values = maps.scalar_map(map.map);
+  for (size_t v = 0; v < out.size(); ++v) {
+    const double file_value = map.range ? (*map.range)[0] + ((*map.range)[1] - (*map.range)[0]) * values[v] : values[v];
+    if (!map_value_range(p).contains(file_value))
+      fail_key(scene, key,
+               "map '" + map.map + "' gives " + ValueRange::number(file_value) + " " + std::string(p.unit) +
+                   " at intrinsic vertex " + std::to_string(v) + ", out of range (" + map_value_range(p).describe() + ")" +
+                   (map.range ? std::string(" (the map's value there is ") + ValueRange::number(values[v]) +
+                                    "; a range remaps values 0..1)"
+                              : std::string()));
+    out[v] = file_value * p.file_to_si;
+  }
+}
+
+}  // namespace
+
 VertexParameters vertex_parameters(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps) {
   const int n = surface.domain.vertex_count;
   VertexParameters parameters = VertexParameters::constant(scene.parameters, n);
-  for (const ParameterSpec& p : kParameterTable) {
-    const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)];
-    if (!map) continue;
-    const IntrinsicVertexData<double>& values = maps.scalar_map(map->map);
-    IntrinsicVertexData<double>& out = parameters[p.id];
-    for (int v = 0; v < n; ++v) {
-      const double file_value = map->range ? (*map->range)[0] + ((*map->range)[1] - (*map->range)[0]) * values[v] : values[v];
-      if (!map_value_range(p).contains(file_value))
-        fail_key(scene, std::string(p.key),
-                 "map '" + map->map + "' gives " + ValueRange::number(file_value) + " " + std::string(p.unit) +
-                     " at intrinsic vertex " + std::to_string(v) + ", out of range (" + map_value_range(p).describe() + ")" +
-                     (map->range ? std::string(" (the map's value there is ") + ValueRange::number(values[v]) +
-                                       "; a range remaps values 0..1)"
-                                 : std::string()));
-      out[v] = file_value * p.file_to_si;
-    }
-  }
+  for (const ParameterSpec& p : kParameterTable)
+    if (const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)])
+      fill_from_map(scene, p, std::string(p.key), *map, maps, parameters[p.id]);
   return parameters;
+}
+
+SpeciesSet species_set(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps,
+                       const VertexParameters& parameters) {
+  const SceneSpecies& given = scene.species;
+  if (!given.given()) return SpeciesSet::single(scene.agents, parameters);
+  const int n = surface.domain.vertex_count;
+  SpeciesSet set;
+  for (size_t i = 0; i < given.species.size(); ++i) {
+    const SpeciesSpec& spec = given.species[i];
+    Species species{spec.agents, parameters};
+    for (const ParameterSpec& p : kParameterTable) {
+      const size_t index = static_cast<size_t>(p.id);
+      if (const auto& map = spec.parameter_maps[index])
+        fill_from_map(scene, p, "species[" + std::to_string(i) + "]." + std::string(p.key), *map, maps, species.parameters[p.id]);
+      else if (const auto& value = spec.parameters[index])
+        species.parameters[p.id] = IntrinsicVertexData<double>(static_cast<size_t>(n), *value);
+    }
+    set.species.push_back(std::move(species));
+  }
+  const size_t k = set.species.size();
+  if (given.sensing.empty()) {
+    set.sensing.assign(k * k, 0.0);
+    for (size_t i = 0; i < k; ++i) set.sensing[i * k + i] = 1.0;
+  } else {
+    set.sensing = given.sensing;
+  }
+  return set;
 }
 
 SimulationControls simulation_controls(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps) {
@@ -105,8 +141,13 @@ SimulationControls simulation_controls(const Scene& scene, const SceneSurface& s
 }
 
 SceneArrays scene_arrays(const Scene& scene, const SceneSurface& surface) {
-  const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, where(scene));
-  return SceneArrays{vertex_parameters(scene, surface, maps), simulation_controls(scene, surface, maps)};
+  return scene_arrays(scene, surface, evaluate_maps(scene.maps, surface, where(scene)));
+}
+
+SceneArrays scene_arrays(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps) {
+  VertexParameters parameters = vertex_parameters(scene, surface, maps);
+  SpeciesSet species = species_set(scene, surface, maps, parameters);
+  return SceneArrays{std::move(parameters), simulation_controls(scene, surface, maps), std::move(species)};
 }
 
 Scene with_mean_parameters(Scene scene, const VertexParameters& parameters, const SurfaceDomain& domain) {

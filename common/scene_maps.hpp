@@ -11,6 +11,7 @@
 #include "common/scene.hpp"
 #include "common/scene_surface.hpp"
 #include "common/simulation_controls.hpp"
+#include "common/species.hpp"
 #include "common/vertex_parameters.hpp"
 
 namespace physarum {
@@ -23,12 +24,21 @@ VertexParameters vertex_parameters(const Scene& scene, const SceneSurface& surfa
 // strength is negative.
 SimulationControls simulation_controls(const Scene& scene, const SceneSurface& surface);
 
-// Both, from one evaluation of the maps (what the command line builds a backend from).
+// The scene's competing species (common/species.hpp): each species' parameters are `parameters`
+// (the top-level ones, evaluated) with its overrides applied, numbers or maps, and the sensing matrix
+// (identity when not given). A scene without "species" gives SpeciesSet::single(scene.agents,
+// parameters). InputError naming "species[i].KEY" when an override's map gives a value out of range.
+SpeciesSet species_set(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps,
+                       const VertexParameters& parameters);
+
+// All three, from one evaluation of the maps (what the command line builds a backend from).
 struct SceneArrays {
   VertexParameters parameters;
   SimulationControls controls;
+  SpeciesSet species;
 };
 SceneArrays scene_arrays(const Scene& scene, const SceneSurface& surface);
+SceneArrays scene_arrays(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps);
 
 // The same from maps already evaluated on `surface` (`physarum map` and --maps-out reuse them).
 VertexParameters vertex_parameters(const Scene& scene, const SceneSurface& surface, const EvaluatedMaps& maps);

@@ -11,7 +11,10 @@
  * Several agents per work-item (walkers of PHYSARUM_AGENTS_PER_WORK_ITEM lanes, below). Rates are
  * read where the step starts, the hazard where it ends, as in the reference. Counters (crossings,
  * reflections, respawns) are summed per work-group in local memory and added to that group's own
- * slot, so no global atomics are spent on them. */
+ * slot, so no global atomics are spent on them.
+ * Competing species (PHYSARUM_SPECIES, species.cl): each agent reads its own species' parameters
+ * and sensed field and deposits into its species' cells; `concentration` is then the sensed fields
+ * of every species, `vertex_parameters` and `deposits` every species' records and cells. */
 #include "device_types.h"
 #include "agents.cl"
 #include "bias.cl"
@@ -20,6 +23,7 @@
 #include "sensing_steering.cl"
 #include "turnover.cl"
 #include "agent_order.cl"
+#include "species.cl"
 
 /* Agents per walker (1..4, a build option the host sets) and walkers per work-item
  * (PHYSARUM_MOVE_WALKERS, movement.cl): on a CPU the agents of one walker move in lockstep, one vector
@@ -64,6 +68,10 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     active[h] = start_face[h] = (lane_int)(0);
     px[h] = py[h] = dx[h] = dy[h] = distance[h] = deposit[h] = (lane_float)(0.0f);
   }
+#ifdef PHYSARUM_SPECIES
+  lane_int cell_offset[PHYSARUM_MOVE_WALKERS];
+  for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) cell_offset[h] = (lane_int)(0);
+#endif
   uint sensor_crossings = 0u;
 #if defined(PHYSARUM_BIAS) && defined(PHYSARUM_BIAS_UNIFORM_STRENGTH)
   /* one strength everywhere (the host uploads just that value): one fraction for every agent */
@@ -81,10 +89,17 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     s[i].time_since_decision = time_since_decision[a];
     s[i].accumulated_turn = accumulated_turn[a];
 
+#ifdef PHYSARUM_SPECIES
+    __global const PhysarumAgentParameters* own_parameters = species_parameters(vertex_parameters, id[a]);
+    __global const float* own_concentration = species_sensed(concentration, id[a]);
+#else
+    __global const PhysarumAgentParameters* own_parameters = vertex_parameters;
+    __global const float* own_concentration = concentration;
+#endif
     PhysarumAgentParameters p;
-    parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position, &p);
+    parameters_at(&k, faces, own_parameters, s[i].face, s[i].position, &p);
     int crossings = 0;
-    sense_and_steer(faces, concentration, read_stimulus, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position,
+    sense_and_steer(faces, own_concentration, read_stimulus, &p, k.dt, k.seed, k.step, id[a], s[i].face, s[i].position,
                     first_sensing[a], &s[i].heading, &s[i].time_since_decision, &s[i].accumulated_turn, &crossings);
     sensor_crossings += (uint)crossings;
 #if defined(PHYSARUM_BIAS) && defined(PHYSARUM_BIAS_UNIFORM_STRENGTH)
@@ -98,6 +113,9 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     const int h = i / LANES, lane = i % LANES;
     active[h] = with_lane_int(active[h], lane, -1);
     start_face[h] = with_lane_int(start_face[h], lane, s[i].face);
+#ifdef PHYSARUM_SPECIES
+    cell_offset[h] = with_lane_int(cell_offset[h], lane, species_cells(id[a]));
+#endif
     px[h] = with_lane(px[h], lane, s[i].position.x);
     py[h] = with_lane(py[h], lane, s[i].position.y);
     dx[h] = with_lane(dx[h], lane, s[i].heading.x);
@@ -110,7 +128,8 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
   TraceEnd moved[AGENTS];
   /* Agents fill the walkers in order: when the first walker has none, no walker has any. */
   if (LANE_ANY(active[0]))
-    move_agents(faces, LANES, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale, moved);
+    move_agents(faces, LANES, start_face, px, py, dx, dy, distance, deposit, active, deposits, k.deposit_scale,
+                moved PHYSARUM_SPECIES_CELL_OFFSETS(cell_offset));
 
   const SpawnSources spawn = {alias_probability, alias_index, spawn_alias_probability, spawn_alias_index,
                               spawn_weight, bias_direction, device_face, k.face_count};
@@ -123,7 +142,11 @@ __kernel void agent_step(const PhysarumStepConstants k, __global const PhysarumF
     s[i].heading = moved[i].heading;
 
     PhysarumAgentParameters here;
+#ifdef PHYSARUM_SPECIES
+    parameters_at(&k, faces, species_parameters(vertex_parameters, id[a]), s[i].face, s[i].position, &here);
+#else
     parameters_at(&k, faces, vertex_parameters, s[i].face, s[i].position, &here);
+#endif
     const float hazard = here.hazard_rate;
 #ifdef PHYSARUM_BOUNDARY_TERMINATE
     const int removed = moved[i].hit_boundary; /* the walk stopped there (movement.cl): respawn now */

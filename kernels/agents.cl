@@ -7,6 +7,7 @@
 #define PHYSARUM_AGENTS_CL
 #include "device_types.h"
 #include <Random123/philox.h>
+#include "species.cl"
 
 /* ---- random numbers: the packing of common/philox.hpp and common/random_streams.hpp ---- */
 
@@ -186,7 +187,11 @@ __kernel void initialise_agents(const PhysarumStepConstants k, __global const Ph
   heading[a] = spawn_heading(bias_direction, p.face, first_uniform(state));
   id[a] = agent;
   PhysarumAgentParameters here;
+#ifdef PHYSARUM_SPECIES
+  parameters_at(&k, faces, vertex_parameters + species_of(agent) * PHYSARUM_SPECIES_VERTICES, p.face, p.position, &here);
+#else
   parameters_at(&k, faces, vertex_parameters, p.face, p.position, &here);
+#endif
   const uint4 remaining = agent_random_words(k.seed, agent, 0u, PHYSARUM_PURPOSE_INITIAL_STATE, 1u);
   time_since_decision[a] = second_uniform(remaining) / here.turn_frequency;
   accumulated_turn[a] = here.turn_rate * time_since_decision[a];

@@ -14,6 +14,7 @@
 #include "trace.cl"
 
 #include "deposit_cells.h"
+#include "species.cl"
 
 /* Bounded retries of the float compare-and-swap: contention on one vertex cannot reach this many
  * collisions in practice; giving up after it loses one deposit rather than hanging the device. */
@@ -62,7 +63,7 @@ void deposit_at_barycentric(__global const PhysarumFaceRecord* faces, const int 
  * vectors, one instruction for all lanes; the deposits themselves lane by lane. */
 void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, const WalkPieces* piece,
                     const lane_float length, const lane_float walk_amount, const lane_float per_length,
-                    __global PhysarumDepositCell* deposits, const float deposit_scale) {
+                    __global PhysarumDepositCell* deposits, const float deposit_scale PHYSARUM_SPECIES_CELL_OFFSET_PARAMETER) {
   /* Lane i deposits walk_amount[i] spread over its walk; a walk of no length all of it at its end
    * point. */
   const lane_int whole = !(length > 0.0f);
@@ -75,7 +76,11 @@ void deposit_pieces(__global const PhysarumFaceRecord* faces, const int lanes, c
     if (int_in_lane(depositing, lane))
       deposit_at_barycentric(faces, int_in_lane(piece->face, lane),
                              (float3)(float_in_lane(at0, lane), float_in_lane(at1, lane), float_in_lane(at2, lane)),
+#ifdef PHYSARUM_SPECIES
+                             float_in_lane(amount, lane), deposits + int_in_lane(cell_offset, lane), deposit_scale);
+#else
                              float_in_lane(amount, lane), deposits, deposit_scale);
+#endif
 }
 
 #endif /* PHYSARUM_DEPOSITION_CL */

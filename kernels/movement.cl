@@ -38,7 +38,7 @@ inline __attribute__((always_inline)) void trace_walk_lanes(
     __global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face, const lane_float* px,
     const lane_float* py, const lane_float* dx, const lane_float* dy, const lane_float* length,
     const lane_float* deposit_amount, const lane_int* active, __global PhysarumDepositCell* deposits,
-    const float deposit_scale, TraceEnd* ends) {
+    const float deposit_scale, TraceEnd* ends PHYSARUM_SPECIES_CELL_OFFSETS_PARAMETER) {
   WalkLanes w[PHYSARUM_MOVE_WALKERS];
   lane_float per_length[PHYSARUM_MOVE_WALKERS];
 #pragma unroll
@@ -53,7 +53,8 @@ inline __attribute__((always_inline)) void trace_walk_lanes(
       if (LANE_ANY(w[h].walking)) {
         WalkPieces piece;
         walk_lanes_step(faces, lanes, &w[h], PHYSARUM_MOVE_REFLECT, &piece);
-        deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale);
+        deposit_pieces(faces, lanes, &piece, length[h], deposit_amount[h], per_length[h], deposits, deposit_scale
+                       PHYSARUM_SPECIES_CELL_OFFSET(cell_offsets[h]));
       }
       walking |= w[h].walking;
     }
@@ -66,22 +67,29 @@ inline __attribute__((always_inline)) void trace_walk_lanes(
 void move_agents(__global const PhysarumFaceRecord* faces, const int lanes, const lane_int* face,
                  const lane_float* px, const lane_float* py, const lane_float* dx, const lane_float* dy,
                  const lane_float* distance, const lane_float* deposit_amount, const lane_int* active,
-                 __global PhysarumDepositCell* deposits, const float deposit_scale, TraceEnd* ends) {
+                 __global PhysarumDepositCell* deposits, const float deposit_scale,
+                 TraceEnd* ends PHYSARUM_SPECIES_CELL_OFFSETS_PARAMETER) {
 #ifdef PHYSARUM_FAULT_DEPOSIT_ENDPOINT
   /* planted fault: the whole deposit at the end of the step instead of along the path */
   lane_float none[PHYSARUM_MOVE_WALKERS];
   for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h) none[h] = (lane_float)(0.0f);
-  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, none, active, deposits, deposit_scale, ends);
+  trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, none, active, deposits, deposit_scale,
+                   ends PHYSARUM_SPECIES_CELL_OFFSETS(cell_offsets));
   for (int h = 0; h < PHYSARUM_MOVE_WALKERS; ++h)
     for (int lane = 0; lane < lanes; ++lane) {
       const float amount = float_in_lane(deposit_amount[h], lane);
       const TraceEnd* end = &ends[h * lanes + lane];
       if (int_in_lane(active[h], lane) && amount != 0.0f)
+#ifdef PHYSARUM_SPECIES
+        deposit_at_barycentric(faces, end->face, end->barycentric, amount,
+                               deposits + int_in_lane(cell_offsets[h], lane), deposit_scale);
+#else
         deposit_at_barycentric(faces, end->face, end->barycentric, amount, deposits, deposit_scale);
+#endif
     }
 #else
   trace_walk_lanes(faces, lanes, face, px, py, dx, dy, distance, deposit_amount, active, deposits, deposit_scale,
-                   ends);
+                   ends PHYSARUM_SPECIES_CELL_OFFSETS(cell_offsets));
 #endif
 }
 

@@ -7,6 +7,7 @@
 #include "device_types.h"
 #include "agents.cl"
 #include "trace.cl"
+#include "species.cl"
 
 /* What the sensed field holds at vertex v: the pheromone, plus the read-stimulus (Sec. 3.3) when
  * the controls have one (PHYSARUM_READ_STIMULUS; otherwise that buffer is never read). */
@@ -171,7 +172,8 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
  * (collect_deciders), then senses for exactly those, packed densely (sense_deciders): on a CPU the
  * 15 traces of five agents walk together in the lanes of float16 vectors, several such walkers per
  * work-item taking turns; on a GPU each thread senses for one agent. The agent step then steers
- * with the packed result. */
+ * with the packed result. With competing species (species.cl) each agent's id picks its species'
+ * parameters and sensed field. */
 
 /* Agents sensed per block of a work-item: five per walker (15 traces in 16 lanes) with vector lanes,
  * one without. */
@@ -186,14 +188,20 @@ void sense_and_steer(__global const PhysarumFaceRecord* faces, __global const fl
 __kernel void collect_deciders(const PhysarumStepConstants k, __global const PhysarumFaceRecord* faces,
                                __global const PhysarumAgentParameters* vertex_parameters, __global const int* face,
                                __global const float2* position, __global const float* time_since_decision,
-                               __global int* deciders, __global uint* decider_count, __local uint* group_slots) {
+                               __global const uint* id, __global int* deciders, __global uint* decider_count,
+                               __local uint* group_slots) {
   const int a = get_global_id(0);
   if (get_local_id(0) == 0) group_slots[0] = 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
   int slot = -1;
   if (a < k.agent_count) {
     PhysarumAgentParameters p;
+#ifdef PHYSARUM_SPECIES
+    parameters_at(&k, faces, species_parameters(vertex_parameters, id[a]), face[a], position[a], &p);
+#else
+    (void)id;
     parameters_at(&k, faces, vertex_parameters, face[a], position[a], &p);
+#endif
     if (decision_due(time_since_decision[a] + k.dt, k.dt, decision_period(&p, k.dt)))
       slot = (int)atomic_inc(&group_slots[0]);
   }
@@ -207,16 +215,25 @@ __kernel void collect_deciders(const PhysarumStepConstants k, __global const Phy
 void sense_listed_agents(const PhysarumStepConstants* k, __global const PhysarumFaceRecord* faces,
                          __global const PhysarumAgentParameters* vertex_parameters, __global const float* concentration,
                          __global const float* read_stimulus, __global const int* face,
-                         __global const float2* position, __global const float2* heading,
+                         __global const float2* position, __global const float2* heading, __global const uint* id,
                          __global const int* deciders, const int first, const int count,
                          __global uint* first_sensing) {
+#ifndef PHYSARUM_SPECIES
+  (void)id;
+#endif
 #if PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM == 1
   const int a = deciders[first];
   PhysarumAgentParameters p;
+#ifdef PHYSARUM_SPECIES
+  parameters_at(k, faces, species_parameters(vertex_parameters, id[a]), face[a], position[a], &p);
+  __global const float* own_concentration = species_sensed(concentration, id[a]);
+#else
   parameters_at(k, faces, vertex_parameters, face[a], position[a], &p);
+  __global const float* own_concentration = concentration;
+#endif
   int crossings = 0;
   const int choice =
-      sense_turn_choice(faces, concentration, read_stimulus, &p, face[a], position[a], heading[a], &crossings);
+      sense_turn_choice(faces, own_concentration, read_stimulus, &p, face[a], position[a], heading[a], &crossings);
   first_sensing[a] = pack_sensing(choice, crossings);
 #else
   /* PHYSARUM_SENSING_WALKERS walkers of 16 lanes, PHYSARUM_SENSING_AGENTS_PER_WALKER (five) agents
@@ -233,7 +250,11 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
   for (int i = 0; i < count; ++i) {
     const int a = deciders[first + i];
     PhysarumAgentParameters p;
-  parameters_at(k, faces, vertex_parameters, face[a], position[a], &p);
+#ifdef PHYSARUM_SPECIES
+    parameters_at(k, faces, species_parameters(vertex_parameters, id[a]), face[a], position[a], &p);
+#else
+    parameters_at(k, faces, vertex_parameters, face[a], position[a], &p);
+#endif
     const float sensor_angle = sensor_angle_of(&p);
     float2 ray[3];
     ray[1] = heading[a];
@@ -272,12 +293,17 @@ void sense_listed_agents(const PhysarumStepConstants* k, __global const Physarum
     const int lane = 3 * (i % PHYSARUM_SENSING_AGENTS_PER_WALKER);
     float reading[3];
     int crossings = 0;
+#ifdef PHYSARUM_SPECIES
+    __global const float* own_concentration = species_sensed(concentration, id[deciders[first + i]]);
+#else
+    __global const float* own_concentration = concentration;
+#endif
     for (int r = 0; r < 3; ++r) {
       const float3 b = (float3)(float_in_lane(walker->b0, lane + r), float_in_lane(walker->b1, lane + r),
                                 float_in_lane(walker->b2, lane + r));
       reading[r] = int_in_lane(walker->hit_boundary, lane + r)
                        ? 0.0f
-                       : reading_at(faces, concentration, read_stimulus, int_in_lane(walker->face, lane + r), b);
+                       : reading_at(faces, own_concentration, read_stimulus, int_in_lane(walker->face, lane + r), b);
       crossings += int_in_lane(walker->face_crossings, lane + r);
     }
     const int choice = jones_turn_choice(reading[0], reading[1], reading[2]);
@@ -299,7 +325,7 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
                              __global const PhysarumAgentParameters* vertex_parameters,
                              __global const float* concentration, __global const float* read_stimulus,
                              __global const int* face, __global const float2* position,
-                             __global const float2* heading, __global const int* deciders,
+                             __global const float2* heading, __global const uint* id, __global const int* deciders,
                              __global const uint* decider_count, __global uint* first_sensing) {
   const int count = (int)*decider_count;
   const int per_item = PHYSARUM_SENSING_AGENTS_PER_WORK_ITEM;
@@ -309,8 +335,8 @@ __kernel void sense_deciders(const PhysarumStepConstants k, __global const Physa
   const int group_end = (int)(((long)blocks * (group + 1)) / groups);
   for (int b = group_first + (int)get_local_id(0); b < group_end; b += (int)get_local_size(0)) {
     const int first = b * per_item;
-    sense_listed_agents(&k, faces, vertex_parameters, concentration, read_stimulus, face, position, heading, deciders,
-                        first, min(count - first, per_item), first_sensing);
+    sense_listed_agents(&k, faces, vertex_parameters, concentration, read_stimulus, face, position, heading, id,
+                        deciders, first, min(count - first, per_item), first_sensing);
   }
 }
 

@@ -2,6 +2,12 @@
 
 namespace physarum::opencl {
 
+namespace {
+std::string mapped_build_option(const ParameterSpec& spec) {
+  return " -DPHYSARUM_MAPPED_" + std::string(spec.device_name) + "=1";
+}
+}  // namespace
+
 PackedAgentParameters pack_agent_parameters(const VertexParameters& params) {
   PackedAgentParameters packed;
   const auto n = static_cast<size_t>(params.vertex_count());
@@ -12,10 +18,16 @@ PackedAgentParameters pack_agent_parameters(const VertexParameters& params) {
     for (size_t i = 0; i < n; ++i) packed.per_vertex[i].value[slot] = static_cast<float>(device_value(spec, values[i]));
     if (!is_uniform(values)) {
       packed.uniform = false;
-      packed.mapped_build_options += " -DPHYSARUM_MAPPED_" + std::string(spec.device_name) + "=1";
+      packed.mapped_build_options += mapped_build_option(spec);
     }
   }
   return packed;
+}
+
+std::string every_parameter_mapped_build_options() {
+  std::string options;
+  for (const Param p : kAgentParams) options += mapped_build_option(parameter_spec(p));
+  return options;
 }
 
 const std::string& agent_parameters_header() {

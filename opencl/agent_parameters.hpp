@@ -26,6 +26,10 @@ struct PackedAgentParameters {
 // Packs every agent parameter of `params` in its device form (DeviceForm), as float.
 PackedAgentParameters pack_agent_parameters(const VertexParameters& params);
 
+// The build options marking every agent parameter as mapped: competing species each read their own
+// records, so a parameter uniform within every species may still differ between them.
+std::string every_parameter_mapped_build_options();
+
 // The kernels' "agent_parameters.h": the PhysarumAgentParameters struct with one named float per
 // agent parameter (the table's device_name), and PHYSARUM_BLEND_MAPPED_AGENT_PARAMETERS(r, a, b, c,
 // w), which sets each MAPPED parameter (PHYSARUM_MAPPED_<name> = 1: mapped_build_options) to the

@@ -17,6 +17,8 @@ const std::vector<PlantedFault>& planted_faults() {
        "agent parameters read at the face centroid instead of interpolated"},
       {"stimulus-sign", "PHYSARUM_FAULT_STIMULUS_SIGN", "the read-stimulus weight negated"},
       {"spawn-weights-ignored", "PHYSARUM_FAULT_SPAWN_WEIGHTS_IGNORED", "(re)spawn uniform by area, spawn weights ignored"},
+      {"species-matrix-transposed", "PHYSARUM_FAULT_SPECIES_MATRIX_TRANSPOSED",
+       "species i senses with column i of the sensing matrix instead of row i"},
   };
   return faults;
 }

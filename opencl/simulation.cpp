@@ -23,6 +23,7 @@ namespace physarum::opencl {
 
 struct OpenCLSimulation::Kernels {
   cl::Kernel initialise, collect_deciders, sense_deciders, agent_step;
+  cl::Kernel add_layer_to_sensed;  // competing species only (kernels/species.cl)
 };
 
 namespace {
@@ -41,6 +42,42 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_RESPAWN_CORNER == static_cast<unsigned>(RandomPurpose::RespawnCorner));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
+// The species, checked as the reference checks them (reference/simulation.cpp): each species'
+// parameters like a one-species simulation's, then the set itself, and the agents adding up.
+void check_species_inputs(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationSettings& settings) {
+  for (const Species& s : species.species) {
+    SimulationSettings one = settings;
+    one.agents = species.count() == 1 ? settings.agents : s.agents;
+    check_simulation_inputs(domain, s.parameters, one, "opencl simulation");
+  }
+  check_species(species, domain.vertex_count, "opencl simulation");
+  if (species.total_agents() != settings.agents)
+    throw InputError("opencl simulation: the species have " + std::to_string(species.total_agents()) +
+                     " agents in all, the settings " + std::to_string(settings.agents));
+}
+
+bool same_spawn(const SpawnDistribution& a, const SpawnDistribution& b) {
+  return a.weighted == b.weighted && a.vertex_weight == b.vertex_weight &&
+         a.face_sampler.probability == b.face_sampler.probability && a.face_sampler.alias == b.face_sampler.alias;
+}
+
+// The largest deposit rate of any species at each vertex: the fixed-point scale must hold the worst
+// step of whichever species deposits most.
+IntrinsicVertexData<double> largest_deposit_rate(const SpeciesSet& species) {
+  IntrinsicVertexData<double> largest = species.species.front().parameters[Param::deposit_rate];
+  for (const Species& s : species.species)
+    for (size_t v = 0; v < largest.size(); ++v) largest[v] = std::max(largest[v], s.parameters[Param::deposit_rate][v]);
+  return largest;
+}
+
+// Deposit cells per species, rounded up so that each species' cells start where the device allows a
+// sub-buffer to start (CL_DEVICE_MEM_BASE_ADDR_ALIGN, in bits).
+size_t species_cell_stride(const DeviceInfo& device, size_t vertex_count, size_t cell_bytes) {
+  const size_t align_bytes = std::max<size_t>(device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / 8, cell_bytes);
+  const size_t bytes = (vertex_count * cell_bytes + align_bytes - 1) / align_bytes * align_bytes;
+  return std::max<size_t>(bytes / cell_bytes, 1);
+}
+
 }  // namespace
 
 OpenCLSimulation::~OpenCLSimulation() = default;
@@ -58,11 +95,30 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationControls& controls,
                                    const SimulationSettings& settings, const OpenCLSimulationOptions& options)
+    : OpenCLSimulation(compute, domain, SpeciesSet::single(settings.agents, params), controls, settings, options) {}
+
+OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
+                                   const SimulationControls& controls, const SimulationSettings& settings,
+                                   const OpenCLSimulationOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
-  check_simulation_inputs(domain, params, settings, "opencl simulation");
+  check_species_inputs(domain, species, settings);
   check_controls(domain, controls, "opencl simulation");
+  // One species reading its own layer with weight 1 runs the base model's kernels, bit for bit.
+  const bool competing = !species.is_single();
+  const int species_count = species.count();
+  const VertexParameters& params = species.species.front().parameters;
   const SpawnDistribution spawn =
       build_spawn_distribution(domain, controls.spawn_weight, hazard_rate_per_vertex(params[Param::mean_lifetime]));
+  // The kernels keep one spawn table for every agent: species whose sinks differ (and so spawn
+  // elsewhere) are refused rather than spawned where another species would be.
+  for (int s = 1; s < species_count; ++s) {
+    const VertexParameters& own = species.species[static_cast<size_t>(s)].parameters;
+    if (!same_spawn(spawn, build_spawn_distribution(domain, controls.spawn_weight,
+                                                    hazard_rate_per_vertex(own[Param::mean_lifetime]))))
+      throw InputError("opencl simulation: species " + std::to_string(s) +
+                       " has its sinks (mean_lifetime 0) elsewhere than species 0, so it would spawn elsewhere; the "
+                       "OpenCL backend spawns every species alike (use --backend reference)");
+  }
   if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
     throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
                      std::to_string(options.agents_per_work_item));
@@ -77,15 +133,28 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
   // The domain with vertices in device order: what the face records and the field are built from
   // (needed only here; the buffers keep what the kernels read).
   const SurfaceDomain device_domain = renumber_vertices(domain, vertex_order_);
-  const VertexParameters device_params = renumber_parameters(params, vertex_order_);
+  std::vector<VertexParameters> device_params;
+  for (const Species& s : species.species) device_params.push_back(renumber_parameters(s.parameters, vertex_order_));
 
   // ---- parameters per vertex, and whether they are all one value ----
-  const PackedAgentParameters agent_parameters = pack_agent_parameters(device_params);
+  // Competing species: every species' records one after the other (kernels/species.cl), read per vertex.
+  PackedAgentParameters agent_parameters = pack_agent_parameters(device_params.front());
+  for (int s = 1; s < species_count; ++s) {
+    const PackedAgentParameters own = pack_agent_parameters(device_params[static_cast<size_t>(s)]);
+    agent_parameters.per_vertex.insert(agent_parameters.per_vertex.end(), own.per_vertex.begin(), own.per_vertex.end());
+  }
+  if (competing) {
+    agent_parameters.uniform = false;
+    agent_parameters.mapped_build_options = every_parameter_mapped_build_options();
+  }
 
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
   fixed_point_ = opencl::fixed_point_deposits(compute.device);
   if (fixed_point_)
-    deposit_scale_ = fixed_point_deposit_scale(params[Param::deposit_rate], agent_count, settings.time_step);
+    deposit_scale_ = fixed_point_deposit_scale(competing ? largest_deposit_rate(species) : params[Param::deposit_rate],
+                                               agent_count, settings.time_step);
+  const size_t cell_bytes = fixed_point_ ? sizeof(cl_long) : sizeof(cl_float);
+  const size_t cell_stride = competing ? species_cell_stride(compute.device, nv, cell_bytes) : nv;
 
   constants_.dt = static_cast<float>(settings.time_step);
   constants_.deposit_scale = static_cast<float>(deposit_scale_);
@@ -111,6 +180,13 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
     if (controls.spawn_heading == SpawnHeading::Bias) build += " -DPHYSARUM_SPAWN_HEADING_BIAS";
   }
   if (controls.boundary == BoundaryBehaviour::Terminate) build += " -DPHYSARUM_BOUNDARY_TERMINATE";
+  if (competing) {
+    std::string first_ids;
+    for (int s = 0; s <= species_count; ++s)
+      first_ids += (s ? "," : "") + std::to_string(s < species_count ? species.first_agent(s) : agent_count);
+    build += " -DPHYSARUM_SPECIES=" + std::to_string(species_count) + " -DPHYSARUM_SPECIES_FIRST_IDS=" + first_ids +
+             " -DPHYSARUM_SPECIES_VERTICES=" + std::to_string(nv) + " -DPHYSARUM_SPECIES_CELLS=" + std::to_string(cell_stride);
+  }
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
   const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
@@ -125,6 +201,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
         build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
+    if (competing) kernels_->add_layer_to_sensed = cl::Kernel(program, "add_layer_to_sensed");
     agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
     agent_program = program;
   } catch (const cl::Error& e) {
@@ -192,8 +269,23 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
           cl_float2{{static_cast<float>(d[0]), static_cast<float>(d[1])}};
     }
   bias_direction_ = upload_buffer(compute, "bias directions", directions, kRead, false);
-  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", nv)
-                          : allocate_written<cl_float>(compute, "deposit accumulator", nv);
+  const size_t cells = competing ? cell_stride * static_cast<size_t>(species_count) : nv;
+  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", cells)
+                          : allocate_written<cl_float>(compute, "deposit accumulator", cells);
+  if (competing) {
+    // Each species' cells as a buffer of their own, what its layer's advance empties.
+    for (int s = 0; s < species_count; ++s) {
+      const cl_buffer_region region{static_cast<size_t>(s) * cell_stride * cell_bytes, nv * cell_bytes};
+      DeviceBuffer own;
+      own.buffer = deposits_.buffer.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region);
+      own.name = "deposit accumulator of species " + std::to_string(s);
+      own.payload_bytes = nv * cell_bytes;
+      species_deposits_.push_back(std::move(own));
+    }
+    sensed_ = allocate_written<cl_float>(compute, "sensed field of each species", nv * static_cast<size_t>(species_count));
+    sensing_matrix_ = upload_buffer(compute, "sensing matrix", std::vector<float>(species.sensing.begin(), species.sensing.end()),
+                                    kRead, false);
+  }
   group_counters_ = allocate_written<cl_ulong>(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
   agents_ = DeviceAgents::allocate(compute, agent_count);
   const size_t agent_slots = static_cast<size_t>(std::max(agent_count, 1));
@@ -205,12 +297,14 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
                                                       agent_group_, agent_groups_);
   OpenCLDiffusionDecayOptions pheromone_options = options.pheromone;
   pheromone_options.build_options += " " + options.build_options;
-  // One dynamic layer today: the pheromone every agent deposits into and senses; the write-stimuli
-  // are its source term.
-  auto pheromone = std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params, settings.integrator,
-                                                          settings.time_step, pheromone_options);
-  if (!controls.write_rate.empty()) pheromone->set_write_rate(to_device_order(controls.write_rate, vertex_order_));
-  layers_.push_back(std::move(pheromone));
+  // One dynamic layer per species, with its species' decay and diffusion: the pheromone its agents
+  // deposit into (and, for one species, sense); the write-stimuli are every layer's source term.
+  for (int s = 0; s < species_count; ++s) {
+    auto pheromone = std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params[static_cast<size_t>(s)],
+                                                            settings.integrator, settings.time_step, pheromone_options);
+    if (!controls.write_rate.empty()) pheromone->set_write_rate(to_device_order(controls.write_rate, vertex_order_));
+    layers_.push_back(std::move(pheromone));
+  }
 
   try {
     compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
@@ -237,12 +331,12 @@ void OpenCLSimulation::enqueue_sensing() {
   compute_.queue.enqueueFillBuffer(decider_count_.buffer, cl_uint{0}, 0, decider_count_.payload_bytes);
   cl::Kernel& collect = kernels_->collect_deciders;
   set_arguments(collect, constants_, faces_, vertex_parameters_, agents_.face, agents_.position,
-                agents_.time_since_decision, deciders_, decider_count_, cl::Local(2 * sizeof(cl_uint)));
+                agents_.time_since_decision, agents_.id, deciders_, decider_count_, cl::Local(2 * sizeof(cl_uint)));
   compute_.queue.enqueueNDRangeKernel(collect, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
                                       cl::NDRange(agent_group_));
   cl::Kernel& sense = kernels_->sense_deciders;
-  set_arguments(sense, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), read_stimulus_,
-                agents_.face, agents_.position, agents_.heading, deciders_, decider_count_, first_sensing_);
+  set_arguments(sense, constants_, faces_, vertex_parameters_, sensed_buffer(), read_stimulus_, agents_.face,
+                agents_.position, agents_.heading, agents_.id, deciders_, decider_count_, first_sensing_);
   compute_.queue.enqueueNDRangeKernel(sense, cl::NullRange, cl::NDRange(sensing_groups_ * sensing_group_),
                                       cl::NDRange(sensing_group_));
 }
@@ -250,8 +344,7 @@ void OpenCLSimulation::enqueue_sensing() {
 void OpenCLSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
-  set_arguments(k, constants_, faces_, vertex_parameters_, layers_[0]->concentration_buffer(), read_stimulus_,
-                alias_probability_, alias_index_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_,
+  set_arguments(k, constants_, faces_, vertex_parameters_, sensed_buffer(), read_stimulus_, alias_probability_, alias_index_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_,
                 bias_direction_, bias_strength_, device_face_, deposits_, agents_.face, agents_.position, agents_.heading, agents_.age,
                 agents_.exposure, agents_.exposure_threshold, agents_.time_since_decision, agents_.accumulated_turn,
                 agents_.id, first_sensing_, group_counters_, cl::Local(PHYSARUM_COUNTERS * sizeof(cl_uint)));
@@ -259,15 +352,36 @@ void OpenCLSimulation::enqueue_agent_step() {
                                       cl::NDRange(agent_group_));
 }
 
+const cl::Buffer& OpenCLSimulation::sensed_buffer() const {
+  return species_deposits_.empty() ? layers_[0]->concentration_buffer() : sensed_.buffer;
+}
+
+// sensed_s = sum_j m_sj layer_j for every species s (kernels/species.cl), one launch per layer.
+void OpenCLSimulation::enqueue_species_sensed_fields() {
+  if (species_deposits_.empty() || settings_.agents == 0) return;
+  cl::Kernel& k = kernels_->add_layer_to_sensed;
+  const size_t group = 64;
+  const size_t global = padded_global_size(static_cast<size_t>(std::max(domain_.vertex_count, 1)), group);
+  for (size_t j = 0; j < layers_.size(); ++j) {
+    set_arguments(k, sensed_, layers_[j]->concentration_buffer(), sensing_matrix_, static_cast<cl_int>(j),
+                  static_cast<cl_int>(j == 0 ? 1 : 0));
+    compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NDRange(group));
+  }
+}
+
 void OpenCLSimulation::step() {
   try {
     if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) agent_order_->enqueue_sort(agents_);
     constants_.step = static_cast<dev_uint>(steps_taken_);
+    enqueue_species_sensed_fields();
     enqueue_sensing();
     enqueue_agent_step();
-    // The field model puts the deposits where its scheme needs them (field_model.hpp). One dynamic
-    // layer today; static fields (static_fields_) never advance.
-    layers_[0]->advance(deposits_, deposit_scale_);
+    // The field model puts the deposits where its scheme needs them (field_model.hpp): each species'
+    // layer its own species' cells. Static fields (static_fields_) never advance.
+    if (species_deposits_.empty())
+      layers_[0]->advance(deposits_, deposit_scale_);
+    else
+      for (size_t s = 0; s < layers_.size(); ++s) layers_[s]->advance(species_deposits_[s], deposit_scale_);
   } catch (const cl::Error& e) {
     throw device_error("simulation step " + std::to_string(steps_taken_) + " on " + compute_.device.device_name,
                        e.err());
@@ -367,6 +481,7 @@ std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
   std::vector<const DeviceBuffer*> guarded = agents_.buffers();
   guarded.push_back(&deposits_);
   guarded.push_back(&group_counters_);
+  if (!species_deposits_.empty()) guarded.push_back(&sensed_);
   for (const DeviceBuffer* b : {&deciders_, &decider_count_, &first_sensing_}) guarded.push_back(b);
   if (agent_order_)
     for (const DeviceBuffer* b : agent_order_->written_buffers()) guarded.push_back(b);

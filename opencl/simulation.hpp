@@ -11,8 +11,13 @@
 // write rate is one extra launch per sub-step of the field model: default controls run the same
 // kernels, bit for bit, at the same speed as before controls existed.
 //   4.   fields: every dynamic layer advances with this step's deposits, where its model puts
-//        them (opencl/field_model.hpp; today one diffusion-decay layer, opencl/diffusion_decay.hpp);
-//        static layers (opencl/static_field.hpp) do not take part
+//        them (opencl/field_model.hpp; one diffusion-decay layer per species,
+//        opencl/diffusion_decay.hpp); static layers (opencl/static_field.hpp) do not take part
+//
+// Competing species (common/species.hpp, kernels/species.cl) are compiled in only when there are
+// several (-DPHYSARUM_SPECIES=K): before the sensing, each species' sensed field sum_j m_sj layer_j
+// is built on the device; the kernels take each agent's species from its id. One species runs the
+// base model's kernels, bit for bit.
 //   5.   time += dt
 //
 // step() only enqueues: forward Euler runs with no host round trip at all; backward Euler reads the
@@ -26,6 +31,7 @@
 #include "common/scene.hpp"
 #include "common/simulation_controls.hpp"
 #include "common/simulation_backend.hpp"
+#include "common/species.hpp"
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 #include "kernels/device_types.h"
@@ -72,6 +78,12 @@ class OpenCLSimulation final : public SimulationBackend {
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    const SimulationControls& controls, const SimulationSettings& settings,
                    const OpenCLSimulationOptions& options = {});
+  // Competing species (common/species.hpp; copied); settings.agents must be their total. The same
+  // InputErrors as ReferenceSimulation's species constructor, and one more: species whose sinks
+  // differ (they would spawn in different places; the kernels keep one spawn table).
+  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
+                   const SimulationControls& controls, const SimulationSettings& settings,
+                   const OpenCLSimulationOptions& options = {});
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
                    const OpenCLSimulationOptions& options = {});
   ~OpenCLSimulation() override;
@@ -85,7 +97,7 @@ class OpenCLSimulation final : public SimulationBackend {
   double time() const override { return static_cast<double>(steps_taken_) * settings_.time_step; }
   long long steps_taken() const override { return steps_taken_; }
   // Fields in the domain's vertex order (the device keeps its own locality order). One dynamic
-  // layer today: the pheromone; static layers after it.
+  // layer per species (the pheromone, for one species); static layers after them.
   int layer_count() const override { return static_cast<int>(layers_.size() + static_fields_.size()); }
   int dynamic_layer_count() const override { return static_cast<int>(layers_.size()); }
   int add_static_layer(const IntrinsicVertexData<double>& domain_values) override;
@@ -115,6 +127,9 @@ class OpenCLSimulation final : public SimulationBackend {
   struct Kernels;
   void enqueue_agent_step();
   void enqueue_sensing();
+  void enqueue_species_sensed_fields();
+  // What the sensing kernels read: layer 0 for one species, sensed_ for competing species.
+  const cl::Buffer& sensed_buffer() const;
   OpenCLField& checked_layer(int index, const char* what) const;
 
   ComputeContext compute_;
@@ -125,13 +140,18 @@ class OpenCLSimulation final : public SimulationBackend {
   VertexOrder vertex_order_;
   std::unique_ptr<Kernels> kernels_;
   PhysarumStepConstants constants_{};
-  std::vector<std::unique_ptr<OpenCLFieldLayer>> layers_;  // dynamic layers; layer 0 is sensed
+  std::vector<std::unique_ptr<OpenCLFieldLayer>> layers_;  // dynamic layers, one per species
   std::vector<std::unique_ptr<OpenCLStaticField>> static_fields_;  // layers layers_.size() and on
   DeviceBuffer faces_, vertex_parameters_, alias_probability_, alias_index_, device_face_;
   // The controls' arrays (device orders), one-element placeholders for those absent (never read then).
   DeviceBuffer read_stimulus_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_;
   DeviceBuffer bias_direction_, bias_strength_;
   DeviceBuffer deposits_, group_counters_;
+  // Competing species only (kernels/species.cl; empty for one species): each species' deposit cells
+  // (sub-buffers of deposits_), the sensed field of each species (sum_j m_sj layer_j, species by
+  // species) and the K x K matrix.
+  std::vector<DeviceBuffer> species_deposits_;
+  DeviceBuffer sensed_, sensing_matrix_;
   DeviceBuffer deciders_, decider_count_, first_sensing_;  // agents sensed ahead of the step (sense_deciders)
   DeviceAgents agents_;
   std::unique_ptr<DeviceAgentOrder> agent_order_;  // sorts agents_ by face (absent when sort_interval is 0)

@@ -10,11 +10,11 @@ namespace physarum {
 
 Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
                          const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
-                         int count, std::uint32_t seed, const SpawnRule& rule) {
+                         int count, std::uint32_t seed, const SpawnRule& rule, int first_id) {
   Agents agents;
   agents.resize(count);
   for (int a = 0; a < count; ++a) {
-    const auto id = static_cast<std::uint32_t>(a);
+    const auto id = static_cast<std::uint32_t>(first_id + a);
     const PhiloxWords face_choice = agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 0);
     const PhiloxWords in_face = agent_random_words(seed, id, 0, RandomPurpose::InitialPlacement, 1);
     const FacePoint p = rule.distribution && rule.distribution->weighted

@@ -37,9 +37,10 @@ namespace physarum {
 // decision period), so with spatially varying maps each agent starts in the steady state of the
 // place it stands: no inspection-paradox bias and no start-up transient there either. With a
 // SpawnRule the placement follows its spawn density (RandomPurpose::InitialSpawnCorner for the
-// in-face corner) and the heading its spawn heading.
+// in-face corner) and the heading its spawn heading. Agent a draws from the streams of id first_id + a
+// (a species' agents after those of the species before it: common/species.hpp).
 Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
                          const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
-                         int count, std::uint32_t seed, const SpawnRule& rule = {});
+                         int count, std::uint32_t seed, const SpawnRule& rule = {}, int first_id = 0);
 
 }  // namespace physarum

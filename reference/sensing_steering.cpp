@@ -4,6 +4,7 @@
 #include "common/random_streams.hpp"
 #include "common/trace.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace physarum {
@@ -46,8 +47,9 @@ TurnChoice jones_turn_choice(const SensorReadings& r) {
 
 void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
                      double dt, std::uint32_t seed, std::uint32_t step, Agents& agents, long long* sensor_crossings,
-                     const IntrinsicVertexData<double>* stimulus) {
-  for (int a = 0; a < agents.count(); ++a) {
+                     const IntrinsicVertexData<double>* stimulus, AgentRange range) {
+  const int end = std::min(range.end, agents.count());
+  for (int a = range.begin; a < end; ++a) {
     const int face = agents.face[a];
     const Eigen::Vector2d& position = agents.position[a];
     const double turn_rate = interpolate_vertex_field(domain, params[Param::turn_rate], face, position);

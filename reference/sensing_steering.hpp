@@ -53,8 +53,10 @@ Eigen::Vector2d rotate(const Eigen::Vector2d& v, double angle);
 // the turn accumulated over exactly that period, and the remainder carries to the next period.
 // Parameters are interpolated at the agent's position. `sensor_crossings`, when given, is increased
 // by the faces the sensor traces crossed; `stimulus` (may be null) is the read-stimulus sensors add.
+// Only the agents of `range` (one species, whose `params` these are) are advanced.
 void sense_and_steer(const SurfaceDomain& domain, const VertexParameters& params, const IntrinsicVertexData<double>& concentration,
                      double dt, std::uint32_t seed, std::uint32_t step, Agents& agents,
-                     long long* sensor_crossings = nullptr, const IntrinsicVertexData<double>* stimulus = nullptr);
+                     long long* sensor_crossings = nullptr, const IntrinsicVertexData<double>* stimulus = nullptr,
+                     AgentRange range = {});
 
 }  // namespace physarum

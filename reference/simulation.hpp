@@ -12,8 +12,12 @@
 //                      advances every dynamic layer with this step's deposits, in its own order
 //   5. time += dt
 //
-// The simulation holds a list of per-vertex field layers: the dynamic ones first (layer 0 is the
-// pheromone the agents deposit and sense; one per species later), then static ones (fixed maps).
+// The simulation holds a list of per-vertex field layers: the dynamic ones first (one pheromone
+// layer per species, common/species.hpp: species i deposits only into layer i and its sensors read
+// sum_j m_ij * layer_j, each layer decaying and diffusing with its species' rates), then static ones
+// (fixed maps). Agents are numbered species by species, so every species works on a contiguous run
+// of ids and the random streams stay keyed by id; one species reading its layer with weight 1 is
+// the base model bit for bit (the sensors then read layer 0 itself).
 //
 // The controls of Sec. 3.3 (common/simulation_controls.hpp) arrive evaluated; default controls are
 // the base model bit for bit (every control's work is skipped when it is absent).
@@ -29,6 +33,7 @@
 #include "common/simulation_backend.hpp"
 #include "common/surface_domain.hpp"
 #include "common/trace.hpp"
+#include "common/species.hpp"
 #include "common/vertex_parameters.hpp"
 #include "common/agents.hpp"
 #include "common/element_data.hpp"
@@ -36,6 +41,7 @@
 #include "reference/turnover.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace physarum {
@@ -48,6 +54,10 @@ class ReferenceSimulation final : public SimulationBackend {
   // With the controls of Sec. 3.3 (copied). Throws InputError when a control does not match the
   // domain (sizes, non-finite values, negative spawn weights, all spawn weights zero, symmetry).
   ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationControls& controls,
+                      const SimulationSettings& settings);
+  // Competing species (copied); settings.agents must be their total. Throws InputError when the set
+  // does not match the domain (common/species.hpp: check_species) or the count differs.
+  ReferenceSimulation(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationControls& controls,
                       const SimulationSettings& settings);
   // Convenience: constant parameters from a scene (agents, time_step, seed, integrator from it too).
   ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene);
@@ -63,22 +73,26 @@ class ReferenceSimulation final : public SimulationBackend {
   std::uint32_t seed() const { return settings_.seed; }
 
   const SurfaceDomain& domain() const { return domain_; }
-  const VertexParameters& parameters() const { return params_; }
+  // Species 0's parameters (every agent's in a one-species simulation).
+  const VertexParameters& parameters() const { return species_.front()->params; }
+  int species_count() const { return static_cast<int>(species_.size()); }
+  const SpeciesSet& species() const { return species_set_; }
   const SimulationControls& controls() const { return controls_; }
-  const SpawnDistribution& spawn_distribution() const { return spawn_; }
+  const SpawnDistribution& spawn_distribution() const { return species_.front()->spawn; }
   const Agents& agents() const { return agents_; }
   Agents& agents() { return agents_; }  // tests place agents by hand
   // A layer itself (any layer; std::out_of_range past the end). The reference may be invalidated
   // by add_static_layer.
   const IntrinsicVertexData<double>& field(int layer = 0) const { return layers_.at(static_cast<size_t>(layer)); }
   IntrinsicVertexData<double>& field(int layer = 0) { return layers_.at(static_cast<size_t>(layer)); }
-  ReferenceDiffusionDecay& field_model() { return field_model_; }
-  const ReferenceDiffusionDecay& field_model() const { return field_model_; }
+  // Species 0's field model (the pheromone's, in a one-species simulation).
+  ReferenceDiffusionDecay& field_model() { return *species_.front()->field_model; }
+  const ReferenceDiffusionDecay& field_model() const { return *species_.front()->field_model; }
   SimulationCounters counters() const override { return counters_; }
 
   // ---- SimulationBackend ----
   int layer_count() const override { return static_cast<int>(layers_.size()); }
-  int dynamic_layer_count() const override { return kDynamicLayers; }
+  int dynamic_layer_count() const override { return species_count(); }
   int add_static_layer(const IntrinsicVertexData<double>& values) override;
   IntrinsicVertexData<double> field_values(int layer = 0) const override;
   void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
@@ -87,27 +101,36 @@ class ReferenceSimulation final : public SimulationBackend {
   std::vector<int> agent_faces() const override { return agents_.face; }
   std::string backend_name() const override { return "reference"; }
   std::string device_name() const override { return "CPU (serial reference, 1 thread)"; }
-  // Hazard rate 1/tau per vertex (common/agent_model.hpp).
-  const IntrinsicVertexData<double>& hazard_rate() const { return hazard_rate_; }
+  // Species 0's hazard rate 1/tau per vertex (common/agent_model.hpp).
+  const IntrinsicVertexData<double>& hazard_rate() const { return species_.front()->hazard_rate; }
 
  private:
   void move_and_deposit();
   // The layer, after check_layer_index (InputError naming `what` when out of range).
   const IntrinsicVertexData<double>& checked_layer(int layer, const char* what) const;
 
-  // One dynamic layer today: the pheromone (layer 0).
-  static constexpr int kDynamicLayers = 1;
+  // What sensors of species s read: layer s itself for the base model, else sensed_ filled with
+  // sum_j m_sj * layer_j.
+  const IntrinsicVertexData<double>& sensed_field(int s);
+
+  // Everything one species owns. Held by pointer: spawn_rule points into spawn.
+  struct SpeciesState {
+    VertexParameters params;
+    IntrinsicVertexData<double> hazard_rate;
+    SpawnDistribution spawn;
+    SpawnRule spawn_rule;  // points into spawn and controls_
+    std::unique_ptr<ReferenceDiffusionDecay> field_model;
+    IntrinsicVertexData<double> deposit_amount;  // amount per vertex deposited during the current step
+    AgentRange agents;
+  };
 
   const SurfaceDomain& domain_;
-  VertexParameters params_;
+  SpeciesSet species_set_;
   SimulationControls controls_;
   SimulationSettings settings_;
-  IntrinsicVertexData<double> hazard_rate_;
-  SpawnDistribution spawn_;
-  SpawnRule spawn_rule_;  // points into controls_ and spawn_
+  std::vector<std::unique_ptr<SpeciesState>> species_;
   Agents agents_;
-  ReferenceDiffusionDecay field_model_;
-  // The dynamic layers (kDynamicLayers of them), then the static ones in the order they were added.
+  // The dynamic layers (one per species), then the static ones in the order they were added.
   std::vector<IntrinsicVertexData<double>> layers_;
 
   double time_ = 0.0;
@@ -115,7 +138,7 @@ class ReferenceSimulation final : public SimulationBackend {
   SimulationCounters counters_;
 
   // Per-step scratch, sized once.
-  IntrinsicVertexData<double> deposit_amount_;  // amount per vertex deposited during the current step
+  IntrinsicVertexData<double> sensed_;  // sensed_field's sum (empty for one species reading its own layer)
   std::vector<TraceSegment> segments_;
   std::vector<unsigned char> terminated_;  // agents whose move met a boundary (Terminate only)
 };

@@ -4,6 +4,7 @@
 #include "common/domain_sampling.hpp"
 #include "common/random_streams.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,9 +42,10 @@ void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_
 
 int advance_turnover(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate, double dt, std::uint32_t seed,
                      std::uint32_t step, Agents& agents, std::vector<double>* lifetimes, const SpawnRule& rule,
-                     const std::vector<unsigned char>* removed) {
+                     const std::vector<unsigned char>* removed, AgentRange range) {
   int respawned = 0;
-  for (int a = 0; a < agents.count(); ++a) {
+  const int end = std::min(range.end, agents.count());
+  for (int a = range.begin; a < end; ++a) {
     agents.age[a] += dt;
     const double hazard = interpolate_vertex_field(domain, hazard_rate, agents.face[a], agents.position[a]);
     // A sink corner makes the interpolated hazard +infinity, or NaN where the agent's barycentric

@@ -42,9 +42,11 @@ void respawn_agent(const SurfaceDomain& domain, std::uint32_t seed, std::uint32_
 // Ages every agent by dt, grows its exposure by dt times the hazard at its position, and respawns
 // those whose exposure reached the threshold, that stand in a sink face, or that `removed` flags
 // (non-zero entries; may be null). Returns how many were respawned. When `lifetimes` is given, the
-// age at decay of every respawned agent is appended (for tests and statistics).
+// age at decay of every respawned agent is appended (for tests and statistics). Only the agents of
+// `range` (one species, whose hazard and spawn rule these are) are advanced.
 int advance_turnover(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate, double dt, std::uint32_t seed,
                      std::uint32_t step, Agents& agents, std::vector<double>* lifetimes = nullptr,
-                     const SpawnRule& rule = {}, const std::vector<unsigned char>* removed = nullptr);
+                     const SpawnRule& rule = {}, const std::vector<unsigned char>* removed = nullptr,
+                     AgentRange range = {});
 
 }  // namespace physarum

@@ -1,6 +1,6 @@
 // The differential harness on the controls of Sec. 3.3 (tools/scenes/compare/): scenes that use a
 // parameter map with a directional bias, read- and write-stimuli, a sink with spawn weights and a
-// terminating boundary, and a per-vertex parameter map, each judged equivalent between the OpenCL
+// terminating boundary, a per-vertex parameter map, and two competing species, each judged equivalent between the OpenCL
 // backend and the reference at the harness's default settings (both arms run here; no stored
 // statistics), and the planted faults of the controls each judged different on the scene where the
 // control they break is strong:
@@ -10,6 +10,9 @@
 //   map-at-centroid       activation_map  (activation time alternating 0 / 1.5 s from vertex to
 //                                          vertex: the active fraction is convex in it, so the
 //                                          centroid's mean value deposits less than interpolation)
+//   species-matrix-transposed two_species (competing species, matrix [[1, -2], [0, 1]]: species 0
+//                                          shuns species 1; transposed it ignores it, and the
+//                                          harness measures species 0's layer)
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -49,7 +52,7 @@ TEST_P(ControlScene, OpenCLIsEquivalentToTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CompareControls, ControlScene,
-                         ::testing::Values("maps_bias", "stimuli", "sink_spawn", "activation_map"),
+                         ::testing::Values("maps_bias", "stimuli", "sink_spawn", "activation_map", "two_species"),
                          [](const auto& param_info) { return param_info.param; });
 
 struct FaultCase {
@@ -73,7 +76,8 @@ INSTANTIATE_TEST_SUITE_P(CompareControls, ControlFault,
                          ::testing::Values(FaultCase{"bias-farthest-copy", "maps_bias"},
                                            FaultCase{"stimulus-sign", "stimuli"},
                                            FaultCase{"spawn-weights-ignored", "sink_spawn"},
-                                           FaultCase{"map-at-centroid", "activation_map"}),
+                                           FaultCase{"map-at-centroid", "activation_map"},
+                                           FaultCase{"species-matrix-transposed", "two_species"}),
                          [](const auto& param_info) {
                            std::string name = param_info.param.fault + "_on_" + param_info.param.scene;
                            for (char& ch : name)

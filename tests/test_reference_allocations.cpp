@@ -157,6 +157,24 @@ void expect_steps_allocate_nothing(Integrator integrator) {
   EXPECT_EQ(counter.malloc_calls(), 0) << "malloc/calloc/realloc calls in 50 steps";
 }
 
+// Competing species too: the sensed sums and every species' deposits live in buffers sized once.
+TEST(ReferenceAllocations, TwoSpeciesStepAllocatesNothing) {
+  const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
+  const Scene scene = uniform_scene(Integrator::ForwardEuler);
+  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  SpeciesSet species;
+  species.species = {Species{300, params}, Species{200, params}};
+  species.sensing = {1.0, -0.5, -0.5, 1.0};
+  ReferenceSimulation sim(domain, species, SimulationControls{}, simulation_settings(scene));
+  sim.run(10);
+  AllocationCounter counter;
+  counter.arm();
+  for (int s = 0; s < 50; ++s) sim.step();
+  counter.disarm();
+  EXPECT_EQ(counter.new_calls(), 0) << "operator new calls in 50 steps";
+  EXPECT_EQ(counter.malloc_calls(), 0) << "malloc/calloc/realloc calls in 50 steps";
+}
+
 TEST(ReferenceAllocations, ForwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::ForwardEuler); }
 TEST(ReferenceAllocations, BackwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::BackwardEuler); }
 

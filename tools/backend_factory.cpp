@@ -64,15 +64,21 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
+    if (competing_species)
+      return std::make_unique<ReferenceSimulation>(domain, arrays.species, arrays.controls, simulation_settings(scene));
     return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
   }
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
+  if (competing_species)
+    return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.species, arrays.controls,
+                                                      simulation_settings(scene), options);
   return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, arrays.controls,
                                                     simulation_settings(scene), options);
 }

@@ -29,6 +29,7 @@
 #include "common/scene_json.hpp"
 #include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
+#include "common/species_statistics.hpp"
 #include "common/surface_domain.hpp"
 #include "common/texture_bake.hpp"
 #include "common/time_lapse.hpp"
@@ -165,7 +166,7 @@ int run_run(const RunOptions& o) {
     for (const std::string& note : feasible.maps_report.notes) std::cerr << "physarum run: " << note << "\n";
     std::cerr << "physarum run: " << feasible.maps_report.summary() << "\n";
   }
-  const SceneArrays arrays{vertex_parameters(given_scene, surface, maps), simulation_controls(given_scene, surface, maps)};
+  const SceneArrays arrays = scene_arrays(given_scene, surface, maps);
   const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
@@ -193,14 +194,36 @@ int run_run(const RunOptions& o) {
   const FieldColoring coloring = scene.colormap.mapping(U);
   PreviewOptions preview;
   preview.coloring = coloring;
+  // Competing species (common/species_statistics.hpp): each species' U and layer statistics beside
+  // the existing columns (which stay layer 0's, with the scene's U), and pictures in one colour per
+  // species, each layer coloured over its own species' levels.
+  const int species_layers = simulation.dynamic_layer_count();
+  const std::vector<double> species_U =
+      species_layers > 1 ? species_steady_states(scene, arrays.species, domain) : std::vector<double>{};
+  std::vector<FieldColoring> species_colorings;
+  for (const double Us : species_U) species_colorings.push_back(scene.colormap.mapping(Us));
+  auto species_statistics = [&] {
+    std::vector<FieldStatistics> per_species;
+    for (int layer = 0; layer < static_cast<int>(species_U.size()); ++layer)
+      per_species.push_back(simulation.field_statistics(species_U[static_cast<size_t>(layer)], layer));
+    return per_species;
+  };
+  auto stats_row = [&] {
+    return stats_csv_row(simulation.time(), simulation.field_statistics(U)) + species_stats_csv_values(species_statistics());
+  };
   // Pictures (preview and time-lapse frames) are drawn from the full-resolution mesh: every detail
   // the simulation resolved, not only its values at the input vertices.
-  auto picture_values = [&] { return full.vertex_values(simulation.field_values()); };
+  auto picture = [&] {
+    if (species_layers <= 1) return render_preview(full.mesh, full.vertex_values(simulation.field_values()), preview);
+    std::vector<InputVertexData<double>> layers;
+    for (int layer = 0; layer < species_layers; ++layer) layers.push_back(full.vertex_values(simulation.field_values(layer)));
+    return render_species_preview(full.mesh, layers, species_colorings, preview);
+  };
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  std::string stats = stats_csv_header() + "\n";
-  stats += stats_csv_row(simulation.time(), simulation.field_statistics(U)) + "\n";
+  std::string stats = stats_csv_header() + species_stats_csv_columns(species_layers) + "\n";
+  stats += stats_row() + "\n";
   ProgressBar progress(steps);
   const auto t0 = std::chrono::steady_clock::now();
   double stats_seconds = 0.0;
@@ -209,13 +232,13 @@ int run_run(const RunOptions& o) {
     if (s % stats_every == 0 || s == steps) {
       simulation.finish();
       const auto ts = std::chrono::steady_clock::now();
-      stats += stats_csv_row(simulation.time(), simulation.field_statistics(U)) + "\n";
+      stats += stats_row() + "\n";
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
     }
     if (time_lapse.due(s)) {
       simulation.finish();
       const auto tf = std::chrono::steady_clock::now();
-      time_lapse.add(render_preview(full.mesh, picture_values(), preview));
+      time_lapse.add(picture());
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
     }
     progress.update(s);
@@ -224,6 +247,7 @@ int run_run(const RunOptions& o) {
   // Throughput counts the simulation alone, not the statistics rows or the time-lapse frames.
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - stats_seconds;
   const FieldStatistics final_stats = simulation.field_statistics(U);
+  const std::vector<FieldStatistics> final_species_stats = species_statistics();
 
   // ---- outputs ----
   create_output_folder(o.out);
@@ -233,10 +257,26 @@ int run_run(const RunOptions& o) {
   const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, field);
   const InputVertexData<double> on_full = full.vertex_values(field);
   std::string written = "pheromone.ply, fields_full.ply";
-  write_field_ply((out / "pheromone.ply").string(), input, on_input, coloring);
-  write_fields_ply((out / "fields_full.ply").string(), full.mesh, {PlyField{"pheromone", on_full}}, coloring,
+  // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
+  // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
+  std::vector<InputVertexData<double>> species_on_input, species_on_full;
+  for (int layer = 0; species_layers > 1 && layer < species_layers; ++layer) {
+    const IntrinsicVertexData<double> values = simulation.field_values(layer);
+    species_on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
+    species_on_full.push_back(full.vertex_values(values));
+  }
+  std::vector<PlyField> input_fields{PlyField{"pheromone", on_input}}, full_fields{PlyField{"pheromone", on_full}};
+  for (size_t layer = 0; layer < species_on_input.size(); ++layer) {
+    input_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_input[layer]});
+    full_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_full[layer]});
+  }
+  write_fields_ply((out / "pheromone.ply").string(), input, input_fields, coloring, "pheromone per input vertex");
+  write_fields_ply((out / "fields_full.ply").string(), full.mesh, full_fields, coloring,
                    "pheromone per intrinsic vertex (full resolution)");
-  write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
+  if (species_layers > 1)
+    write_rgb_png((out / "preview.png").string(), render_species_preview(full.mesh, species_on_full, species_colorings, preview));
+  else
+    write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
   const SurfaceExportsWritten exports =
       write_surface_exports(out, input, domain, texels, field, on_input, coloring, o.texture);
   for (const std::string& name : exports.files) written += ", " + name;
@@ -266,6 +306,23 @@ int run_run(const RunOptions& o) {
   j["intrinsic_faces"] = domain.face_count;
   j["area"] = domain.total_area;
   j["respawns"] = c.respawns;
+  // Competing species: per species its agents, steady state U_i, and its layer's mean and coverage
+  // (the keys above are layer 0's); the preview's colour of each as #rrggbb.
+  for (size_t s = 0; s < final_species_stats.size(); ++s) {
+    const FieldStatistics& f = final_species_stats[s];
+    const std::array<double, 3> colour = species_colour(static_cast<int>(s));
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<unsigned>(std::lround(colour[0] * 255)),
+                  static_cast<unsigned>(std::lround(colour[1] * 255)), static_cast<unsigned>(std::lround(colour[2] * 255)));
+    j["species_layers"].push_back({{"species", s},
+                                   {"agents", arrays.species.species[s].agents},
+                                   {"U", f.U},
+                                   {"mean", f.mean},
+                                   {"coverage_0.5U", f.coverage[0]},
+                                   {"coverage_1U", f.coverage[1]},
+                                   {"coverage_2U", f.coverage[2]},
+                                   {"preview_colour", hex}});
+  }
   // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
   j["result_glb_vertices"] = exports.glb.vertices;
   j["result_glb_seam_splits"] = exports.glb.seam_splits;
@@ -297,7 +354,9 @@ Command add_run_command(CLI::App& parent) {
       "exact values), DIR/texture.png (the pheromone baked onto the mesh's UVs; not for meshes without UVs), "
       "DIR/result.glb (glTF 2.0 binary of the input mesh for any 3D viewer: linear vertex colours, the values as _PHEROMONE, UVs and the baked texture where the mesh has UVs), "
       "DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png (from the full-resolution "
-      "mesh) and DIR/run.json (parameters, device, timings). Example: physarum run tools/scenes/default.json --out out");
+      "mesh) and DIR/run.json (parameters, device, timings). Competing species ('species'): pheromone_0, pheromone_1, "
+      "... in the PLYs, stats.csv columns mean_i,U_i, run.json 'species_layers', one colour per species in the "
+      "pictures. Example: physarum run tools/scenes/default.json --out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "

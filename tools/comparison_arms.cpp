@@ -126,7 +126,7 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     } else {
       maps = cached_evaluate_maps(map_sources_of(a.scene), *a.surface, cache);
     }
-    a.arrays = SceneArrays{vertex_parameters(a.scene, *a.surface, *maps), simulation_controls(a.scene, *a.surface, *maps)};
+    a.arrays = scene_arrays(a.scene, *a.surface, *maps);
     a.scene = with_mean_parameters(a.scene, a.arrays.parameters, a.surface->domain);
   }
 

@@ -1,5 +1,5 @@
-// Runs every kernel of the agent, pheromone and statistics programs (and philox_check.cl) once on
-// a small problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
+// Runs every kernel of the agent, pheromone and statistics programs (competing species' included, and
+// philox_check.cl) once on a small problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
 // API checks. Exit 0 when every run finished and every canary is intact.
 //
 //   physarum_oclgrind_probe               the clean run
@@ -166,6 +166,63 @@ void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain
   check(damaged.empty(), label + ": canaries intact" + names);
 }
 
+// Three competing species (kernels/species.cl: -DPHYSARUM_SPECIES=3) of uneven sizes with their own
+// varying parameters, an asymmetric matrix with a negative entry, a read-stimulus and a write rate,
+// on a terminating boundary where the domain has one: every species path of the agent kernels, the
+// sensed-field kernel and the per-species deposit sub-buffers under the checker.
+void run_competing_species(const ComputeContext& compute, const SurfaceDomain& domain, int agents_per_work_item,
+                           const std::string& label) {
+  const int n = domain.vertex_count;
+  Scene scene;
+  scene.parameters[Param::sensor_distance] = 0.3;
+  scene.parameters[Param::sensor_angle] = 0.4;
+  scene.parameters[Param::move_rate] = 8.0;
+  scene.parameters[Param::turn_rate] = 3.0;
+  scene.parameters[Param::turn_frequency] = 120.0;
+  scene.parameters[Param::deposit_rate] = 1.0;
+  scene.parameters[Param::decay_rate] = 0.5;
+  scene.parameters[Param::diffuse_rate] = 0.01;
+  scene.parameters[Param::mean_lifetime] = 0.05;
+  scene.parameters[Param::activation_time] = 0.01;
+  SpeciesSet species;
+  const int sizes[3] = {101, 57, 143};
+  for (int s = 0; s < 3; ++s) {
+    VertexParameters params = VertexParameters::constant(scene.parameters, n);
+    for (int i = 0; i < n; ++i) {
+      params[Param::move_rate][static_cast<size_t>(i)] = 4.0 + s + 0.1 * (i % 7);
+      params[Param::decay_rate][static_cast<size_t>(i)] = 0.5 + 0.25 * s;
+    }
+    species.species.push_back(Species{sizes[s], params});
+  }
+  species.sensing = {1.0, -0.5, 0.2, 0.0, 1.0, -1.0, 0.7, 0.0, 1.0};
+  SimulationControls controls;
+  controls.read_stimulus.assign(static_cast<size_t>(n), 0.0);
+  controls.write_rate.assign(static_cast<size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    controls.read_stimulus[static_cast<size_t>(i)] = (i % 3 == 0) ? 0.5 : -0.25;
+    controls.write_rate[static_cast<size_t>(i)] = (i % 4 == 0) ? 0.25 : 0.0;
+  }
+  controls.boundary = BoundaryBehaviour::Terminate;
+  SimulationSettings settings;
+  settings.agents = 301;
+  settings.time_step = 0.02;
+  settings.seed = 9;
+  OpenCLSimulationOptions options;
+  options.agents_per_work_item = agents_per_work_item;
+  OpenCLSimulation sim(compute, domain, species, controls, settings, options);
+  sim.run(3);
+  check(sim.dynamic_layer_count() == 3, label + ": one layer per species");
+  for (int layer = 0; layer < 3; ++layer) {
+    const FieldStatistics stats = sim.field_statistics(1.0, layer);
+    check(std::isfinite(stats.mean) && stats.mean > 0.0,
+          label + ": layer " + std::to_string(layer) + " mean " + std::to_string(stats.mean));
+  }
+  const std::vector<std::string> damaged = sim.damaged_canaries();
+  std::string names;
+  for (const auto& d : damaged) names += " " + d;
+  check(damaged.empty(), label + ": canaries intact" + names);
+}
+
 void run_philox(const ComputeContext& compute) {
   const cl::Program p = build_program(compute.context, compute.device, "philox_check.cl", kernel_source("philox_check.cl"));
   const cl_uint n = 3;
@@ -232,6 +289,7 @@ int run(int argc, char** argv) {
                              "controls on a square, forward Euler" + lanes);
     run_agents_with_controls(compute, domain, Integrator::BackwardEuler, grouping,
                              "controls on a sphere, backward Euler" + lanes);
+    run_competing_species(compute, square, grouping, "three species on a square" + lanes);
   }
   run_philox(compute);
   return testing::probe_exit_status();
