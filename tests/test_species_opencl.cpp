@@ -11,6 +11,7 @@
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
+#include "loaded_scene.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -41,21 +42,8 @@ json square_scene() {
           {"seed", 3}};
 }
 
-struct Loaded {
-  Scene scene;
-  SceneSurface surface;
-  SceneArrays arrays;
-};
-
-Loaded load(const json& j) {
-  TempDir dir;
-  const std::string path = (dir.path / "scene.json").string();
-  std::ofstream(path) << j.dump(2);
-  Scene scene = load_scene(path);
-  SceneSurface surface = prepare_scene_surface(scene);
-  SceneArrays arrays = scene_arrays(scene, surface);
-  return Loaded{std::move(scene), std::move(surface), std::move(arrays)};
-}
+using Loaded = testing::LoadedScene;
+Loaded load(const json& j) { return testing::load_scene_json(j); }
 
 OpenCLSimulationOptions with_fault(const std::string& fault) {
   OpenCLSimulationOptions options;

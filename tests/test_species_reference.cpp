@@ -10,6 +10,7 @@
 #include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
 #include "reference/simulation.hpp"
+#include "loaded_scene.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -32,21 +33,8 @@ json square_scene(int agents) {
           {"max_circumradius", 0.04}, {"seed", 3}};
 }
 
-struct Loaded {
-  Scene scene;
-  SceneSurface surface;
-  SceneArrays arrays;
-};
-
-Loaded load(const json& j) {
-  TempDir dir;
-  const std::string path = (dir.path / "scene.json").string();
-  std::ofstream(path) << j.dump(2);
-  Scene scene = load_scene(path);
-  SceneSurface surface = prepare_scene_surface(scene);
-  SceneArrays arrays = scene_arrays(scene, surface);
-  return Loaded{std::move(scene), std::move(surface), std::move(arrays)};
-}
+using Loaded = testing::LoadedScene;
+Loaded load(const json& j) { return testing::load_scene_json(j); }
 
 TEST(SpeciesReference, OneSpeciesReadingItsOwnLayerIsTheBaseModelBitForBit) {
   json with = square_scene(300);

@@ -1,0 +1,33 @@
+#pragma once
+// A scene given as JSON in a test, loaded as `physarum run` loads a file: the scene, its surface and
+// the arrays (parameters, controls, species) the backends are built from.
+#include "common/scene.hpp"
+#include "common/scene_maps.hpp"
+#include "common/scene_surface.hpp"
+#include "test_support.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+#include <utility>
+
+namespace physarum::testing {
+
+struct LoadedScene {
+  Scene scene;
+  SceneSurface surface;
+  SceneArrays arrays;
+};
+
+inline LoadedScene load_scene_json(const nlohmann::json& j) {
+  TempDir dir;
+  const std::string path = (dir.path / "scene.json").string();
+  std::ofstream(path) << j.dump(2);
+  Scene scene = load_scene(path);
+  SceneSurface surface = prepare_scene_surface(scene);
+  SceneArrays arrays = scene_arrays(scene, surface);
+  return LoadedScene{std::move(scene), std::move(surface), std::move(arrays)};
+}
+
+}  // namespace physarum::testing
