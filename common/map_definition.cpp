@@ -1,6 +1,7 @@
 #include "common/map_definition.hpp"
 
 #include "common/errors.hpp"
+#include "common/inline_maps.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -83,7 +84,7 @@ struct MapContext {
       return value.get<double>();
     }
     if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
-    fail(what + " = " + value.dump() + " must be a map name or a number");
+    fail(what + " = " + value.dump() + " must be a map (a name or a definition) or a number");
   }
 
   // Only the fields in `allowed` may appear.
@@ -152,11 +153,11 @@ int step_count(const json& object, const MapContext& c) {
   return static_cast<int>(it->get<long long>());
 }
 
-// The operand of "gradient" and "slope": a scalar map's name (a number has no gradient).
+// The operand of "gradient" and "slope": a scalar map, by name or inline (a number has no gradient).
 MapOperand map_name_operand(const json& object, const MapContext& c, const char* key) {
   const json& value = object.at(key);
   if (!value.is_string() || value.get<std::string>().empty())
-    c.fail(in_quotes(key) + " = " + value.dump() + " must name a scalar map (a constant has no gradient)");
+    c.fail(in_quotes(key) + " = " + value.dump() + " must be a scalar map (its name or its definition; a constant has no gradient)");
   return value.get<std::string>();
 }
 
@@ -172,7 +173,7 @@ LaplaceSource laplace_source(const json& list, const MapContext& c) {
       if (it.key() != "region" && it.key() != "value")
         c.fail(at + ": unknown field \"" + it.key() + "\" (a region takes \"region\" and \"value\")");
     if (!entry.contains("region") || !entry.at("region").is_string() || entry.at("region").get<std::string>().empty())
-      c.fail(at + ": \"region\" must name a scalar map (its vertices with value >= 0.5 are held)");
+      c.fail(at + ": \"region\" must be a scalar map, by name or inline (its vertices with value >= 0.5 are held)");
     s.regions.push_back(LaplaceRegion{entry.at("region").get<std::string>(), c.number(entry, "value")});
   }
   return s;
@@ -409,10 +410,11 @@ const MapDefinition* MapSet::find(const std::string& name) const {
   return nullptr;
 }
 
-MapSet parse_maps(const json& maps, const std::string& folder, const std::string& where) {
-  if (maps.is_null()) return {};
-  if (!maps.is_object())
-    throw InputError(where + ": key 'maps' = " + maps.dump() + " must be an object of named maps ({\"NAME\": SOURCE, ...})");
+MapSet parse_maps(const json& given, const std::string& folder, const std::string& where) {
+  if (given.is_null()) return {};
+  if (!given.is_object())
+    throw InputError(where + ": key 'maps' = " + given.dump() + " must be an object of named maps ({\"NAME\": SOURCE, ...})");
+  const json maps = with_inline_maps_named(given);
 
   std::map<std::string, MapDefinition> by_name;
   std::vector<std::string> file_order;

@@ -102,7 +102,7 @@ TEST(MapToolsGradient, NormalisedGradientOfAFlatMapIsZero) {
 TEST(MapToolsGradient, BadGradientsAreRefusedNamingTheMap) {
   auto error_of = [](const json& maps) { return testing::input_error_of([&] { parse_maps(maps, ".", "scene.json"); }); };
   std::string e = error_of({{"g", {{"gradient", 2.0}}}});
-  EXPECT_NE(e.find("map 'g': \"gradient\" = 2.0 must name a scalar map"), std::string::npos) << e;
+  EXPECT_NE(e.find("map 'g': \"gradient\" = 2.0 must be a scalar map"), std::string::npos) << e;
   e = error_of({{"east", {{"direction", {1.0, 0.0, 0.0}}}}, {"g", {{"gradient", "east"}}}});
   EXPECT_NE(e.find("map 'g': reads map 'east', a vector map, where a scalar map is needed"), std::string::npos) << e;
   e = error_of({{"h", 1.0}, {"g", {{"gradient", "h"}, {"normalize", "yes"}}}});

@@ -136,7 +136,7 @@ TEST(MapToolsLaplace, BadSetupsAreRefusedNamingTheMapAndTheRegion) {
   e = error_of({{"f", {{"laplace", json::array({{{"region", "left"}}})}}}, {"left", left}});
   EXPECT_NE(e.find("missing \"value\""), std::string::npos) << e;
   e = error_of({{"f", {{"laplace", json::array({{{"region", 3}, {"value", 1.0}}})}}}});
-  EXPECT_NE(e.find("\"laplace\"[0]: \"region\" must name a scalar map"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"laplace\"[0]: \"region\" must be a scalar map, by name or inline"), std::string::npos) << e;
   e = error_of({{"f", {{"laplace", json::array({{{"region", "left"}, {"value", 1.0}, {"weight", 2}}})}}}, {"left", left}});
   EXPECT_NE(e.find("unknown field \"weight\""), std::string::npos) << e;
   e = error_of({{"f", laplace({{"ghost", 1.0}})}});
