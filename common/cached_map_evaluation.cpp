@@ -1,12 +1,12 @@
 #include "common/cached_map_evaluation.hpp"
 
 #include "common/content_hash.hpp"
+#include "common/inline_maps.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <set>
 
 namespace physarum {
@@ -115,11 +115,14 @@ std::string MapEvaluationReport::summary() const {
 std::map<std::string, MapCacheKey> map_cache_keys(const MapSources& sources, const SceneSurface& surface) {
   std::map<std::string, MapCacheKey> keys;
   if (sources.maps.empty() || !sources.given.is_object()) return keys;
+  // The definitions as parse_maps saw them: inline ones hoisted to maps of their own, with the same
+  // names (common/inline_maps.hpp), so each is keyed, cached and found like a named map.
+  const json named = with_inline_maps_named(sources.given);
   const json surface_part = surface_key(sources.surface, surface);
   std::map<std::string, std::uint64_t> file_hashes;  // each file hashed once
   for (const MapDefinition& m : sources.maps.in_dependency_order()) {
-    const auto given = sources.given.find(m.name);
-    if (given == sources.given.end()) continue;
+    const auto given = named.find(m.name);
+    if (given == named.end()) continue;
     json key;
     key["format"] = MapCache::kFormatVersion;
     key["build_xxh3"] = hex64(executable_hash());
@@ -199,37 +202,18 @@ EvaluatedMaps cached_evaluate_maps(const MapSources& sources, const SceneSurface
     return result;
   }
 
-  // The missing maps and every map they read, in dependency order: what evaluate_maps must compute.
-  std::set<std::string> needed;
-  std::function<void(const std::string&)> need = [&](const std::string& name) {
-    if (!needed.insert(name).second) return;
-    const MapDefinition* m = sources.maps.find(name);
-    const auto given = sources.given.is_object() ? sources.given.find(name) : sources.given.end();
-    for (const std::string& d : given != sources.given.end() ? maps_read(*m, *given, sources.maps) : m->dependencies()) need(d);
-  };
-  for (const std::string& name : missing) need(name);
-  std::vector<MapDefinition> subset;
-  for (const MapDefinition& m : sources.maps.in_dependency_order())
-    if (needed.count(m.name)) subset.push_back(m);
-  EvaluatedMaps computed = evaluate_maps(MapSet(std::move(subset)), surface, sources.where);
-
+  // Only the missing maps are computed; the cached ones they read are handed over as they are.
+  result = evaluate_maps(sources.maps, surface, sources.where, std::move(result));
   for (const MapDefinition& m : sources.maps.in_dependency_order()) {
-    if (!needed.count(m.name)) {
+    if (!missing.count(m.name)) {
       r.from_cache.push_back(m.name);
       continue;
     }
     r.computed.push_back(m.name);
     const auto key = keys.find(m.name);
-    std::string problem;
-    if (m.kind == MapKind::Scalar) {
-      auto& values = computed.scalar.at(m.name);
-      if (missing.count(m.name) && key != keys.end()) problem = cache.store_scalar(key->second, values);
-      result.scalar.insert_or_assign(m.name, std::move(values));
-    } else {
-      auto& values = computed.vector.at(m.name);
-      if (missing.count(m.name) && key != keys.end()) problem = cache.store_vector(key->second, values);
-      result.vector.insert_or_assign(m.name, std::move(values));
-    }
+    if (key == keys.end()) continue;
+    const std::string problem = m.kind == MapKind::Scalar ? cache.store_scalar(key->second, result.scalar.at(m.name))
+                                                          : cache.store_vector(key->second, result.vector.at(m.name));
     if (!problem.empty()) r.notes.push_back("map cache: map '" + m.name + "' not stored: " + problem);
   }
   return result;

@@ -14,11 +14,10 @@
 //                   names another map), recursively: changing a map re-keys every map that reads it.
 // The map's own name is not part of the key: two names for one definition share an entry.
 //
-// EVERY map is cached, cheap ones too. evaluate_maps cannot be handed values it does not compute, so
-// a map missing from the cache is evaluated together with every map it reads: were the cheap maps
-// left out, a cheap map reading an expensive one (a range over a geodesic distance) would recompute
-// the expensive one each time. With all of them cached a warm run evaluates nothing; the cache's
-// size budget bounds what this costs on disk.
+// Every map is cached, cheap ones too, and a miss computes only the maps missing: the cached maps
+// they read are handed to evaluate_maps as known values, so a cheap map over an expensive one (a
+// gradient of a geodesic distance whose "normalize" changed) does not recompute the expensive one.
+// Inline definitions are keyed as the maps parse_maps hoists them to (common/inline_maps.hpp).
 #include "common/map_cache.hpp"
 #include "common/map_evaluation.hpp"
 #include "common/scene.hpp"

@@ -352,8 +352,8 @@ const IntrinsicFaceData<std::array<double, 2>>& EvaluatedMaps::vector_map(const 
   return it->second;
 }
 
-EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, const std::string& where) {
-  EvaluatedMaps result;
+EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, const std::string& where, EvaluatedMaps known) {
+  EvaluatedMaps result = std::move(known);
   if (maps.empty()) return result;
   const SurfaceDomain& domain = surface.domain;
   const InputMesh& input = surface.input;
@@ -371,6 +371,7 @@ EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, con
   std::vector<ChordTriangle> chords;
   std::optional<IntrinsicFaceData<int>> under;
   for (const MapDefinition& map : maps.in_dependency_order()) {
+    if (result.scalar.count(map.name) || result.vector.count(map.name)) continue;  // known
     if (map.kind == MapKind::Scalar) {
       result.scalar.emplace(map.name, evaluate_scalar(e, map));
       continue;

@@ -49,7 +49,10 @@ struct EvaluatedMaps {
 // face) count is not the input mesh's, a property it does not have, an image that cannot be read,
 // a texture on a mesh without UVs, an axis along which the input is flat, a value that is not
 // finite.
-EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, const std::string& where);
+// `known` holds maps already evaluated (read from the map cache): they are taken as they are, and
+// only the others are computed, reading them where they depend on them.
+EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, const std::string& where,
+                            EvaluatedMaps known = {});
 
 // The maps on the INPUT mesh, as `physarum map` and `run --maps-out` write them: scalar maps per
 // input vertex (the intrinsic vertex sitting on it: the map evaluated at that vertex), vector maps

@@ -135,6 +135,27 @@ TEST_F(MapCacheTest, ChangingAMapRecomputesItAndEveryMapThatReadsIt) {
     EXPECT_NEAR(m.scalar.at("scaled")[surface_.input_to_intrinsic[v]], 2.0 + 2.0 * surface_.input.positions[static_cast<size_t>(v)].y(), 1e-12);
 }
 
+// Inline definitions (common/inline_maps.hpp) are maps of their own: cached like named ones, and a
+// change in the outer map alone leaves the inner one in the cache (a bias's "normalize" flag does
+// not recompute the distance under it).
+TEST_F(MapCacheTest, InlineMapsAreCachedAndAnOuterChangeKeepsTheInnerOne) {
+  const json maps = json::parse(R"({"corner": {"sphere": {"center": [0, 0, 0], "radius": 0.1}},
+      "away": {"gradient": {"geodesic_distance": {"from": "corner", "method": "fmm"}}}})");
+  MapEvaluationReport first, second, third;
+  evaluate(maps, first);
+  EXPECT_EQ(first.computed, (Names{"corner", "away_gradient", "away"}));
+  EXPECT_EQ(entries(), 3u);
+  evaluate(maps, second);
+  EXPECT_TRUE(second.computed.empty());
+  EXPECT_EQ(second.from_cache.size(), 3u);
+  json normalized = maps;
+  normalized["away"]["normalize"] = true;
+  const EvaluatedMaps m = evaluate(normalized, third);
+  EXPECT_EQ(third.computed, (Names{"away"}));
+  EXPECT_EQ(third.from_cache, (Names{"corner", "away_gradient"}));
+  expect_same_maps(m, uncached(normalized));
+}
+
 TEST_F(MapCacheTest, ChangingAReferencedFileRecomputesTheMapThatReadsIt) {
   MapEvaluationReport first, second;
   evaluate(five_maps(), first);
