@@ -5,7 +5,7 @@
 //                    pays instead of evaluating; compare BM_MapsProcedural, and for the map tools
 //                    their own benchmarks)
 // The entries live in a temporary folder, written once before timing.
-#include "bench/bench_support.hpp"
+#include "bench/map_bench_support.hpp"
 #include "common/cached_map_evaluation.hpp"
 #include "common/map_cache.hpp"
 #include "common/map_definition.hpp"
@@ -20,38 +20,9 @@
 namespace physarum::bench {
 namespace {
 
-const nlohmann::json& procedural_maps() {
-  static const nlohmann::json maps = nlohmann::json::parse(R"({
-        "ramp": {"axis": "y"},
-        "spot": {"sphere": {"center": [0.1, 0.3, 0.0], "radius": 0.2}, "falloff": 0.05},
-        "box": {"box": {"min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2]}},
-        "scale": {"map": "ramp", "range": [0.5, 1.5]},
-        "scaled_spot": {"product": ["scale", "spot"]},
-        "mix": {"max": ["scaled_spot", "box"]},
-        "east": {"direction": [1.0, 0.0, 0.0]}
-      })");
-  return maps;
-}
-
-struct Fixture {
-  const SceneSurface* surface = nullptr;
-  SurfaceSpec spec;
-};
-
-Fixture spot(benchmark::State& state) {
-  Fixture f;
-  const std::string mesh = mesh_spec("spot.obj");
-  if (mesh.empty()) {
-    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
-    return f;
-  }
-  f.spec = bench_surface(mesh, static_cast<double>(state.range(0)) / 10000.0);
-  f.surface = &surfaces().get(f.spec);
-  return f;
-}
 
 void BM_MapCacheKeys(benchmark::State& state) {
-  const Fixture f = spot(state);
+  const SpotSurface f = spot_surface(state);
   if (!f.surface) return;
   const MapSet maps = parse_maps(procedural_maps(), ".", "bench");
   const MapSources sources{maps, procedural_maps(), ".", f.spec, "bench"};
@@ -60,7 +31,7 @@ void BM_MapCacheKeys(benchmark::State& state) {
 }
 
 void BM_MapsFromCache(benchmark::State& state) {
-  const Fixture f = spot(state);
+  const SpotSurface f = spot_surface(state);
   if (!f.surface) return;
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("physarum_bench_map_cache_" + std::to_string(::getpid()));

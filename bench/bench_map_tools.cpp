@@ -8,7 +8,7 @@
 //   BM_Gradient         the normalised FE gradient of a map on every face
 //   BM_Elevation        the elevation proxy of spot's INPUT mesh (5.9k faces; one implicit step)
 // The triangulation is built once per process (bench_support.hpp) and not timed.
-#include "bench/bench_support.hpp"
+#include "bench/map_bench_support.hpp"
 #include "common/elevation_proxy.hpp"
 #include "common/laplace_interpolation.hpp"
 #include "common/scene_surface.hpp"
@@ -20,14 +20,6 @@
 namespace physarum::bench {
 namespace {
 
-const SceneSurface* spot(benchmark::State& state) {
-  const std::string spec = mesh_spec("spot.obj");
-  if (spec.empty()) {
-    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
-    return nullptr;
-  }
-  return &surfaces().get(bench_surface(spec, static_cast<double>(state.range(0)) / 10000.0));
-}
 
 // A smooth map with some structure: x of each intrinsic vertex's input location.
 IntrinsicVertexData<double> x_coordinate(const SceneSurface& s) {
@@ -42,7 +34,7 @@ IntrinsicVertexData<double> x_coordinate(const SceneSurface& s) {
 }
 
 void BM_LaplaceSolve(benchmark::State& state) {
-  const SceneSurface* s = spot(state);
+  const SceneSurface* s = spot_surface(state).surface;
   if (!s) return;
   const IntrinsicVertexData<double> x = x_coordinate(*s);
   double low = 1e300, high = -1e300;
@@ -60,7 +52,7 @@ void BM_LaplaceSolve(benchmark::State& state) {
 }
 
 void BM_DiffusionFactor(benchmark::State& state) {
-  const SceneSurface* s = spot(state);
+  const SceneSurface* s = spot_surface(state).surface;
   if (!s) return;
   for (auto _ : state) {
     const BackwardEulerDiffusion diffusion(s->domain, 1e-4);
@@ -70,7 +62,7 @@ void BM_DiffusionFactor(benchmark::State& state) {
 }
 
 void BM_DiffusionStep(benchmark::State& state) {
-  const SceneSurface* s = spot(state);
+  const SceneSurface* s = spot_surface(state).surface;
   if (!s) return;
   const BackwardEulerDiffusion diffusion(s->domain, 1e-4);
   const IntrinsicVertexData<double> x = x_coordinate(*s);
@@ -79,7 +71,7 @@ void BM_DiffusionStep(benchmark::State& state) {
 }
 
 void BM_Gradient(benchmark::State& state) {
-  const SceneSurface* s = spot(state);
+  const SceneSurface* s = spot_surface(state).surface;
   if (!s) return;
   const IntrinsicVertexData<double> x = x_coordinate(*s);
   for (auto _ : state) benchmark::DoNotOptimize(gradient_vector_map(s->domain, x, true));
@@ -87,7 +79,7 @@ void BM_Gradient(benchmark::State& state) {
 }
 
 void BM_Elevation(benchmark::State& state) {
-  const SceneSurface* s = spot(state);
+  const SceneSurface* s = spot_surface(state).surface;
   if (!s) return;
   for (auto _ : state) benchmark::DoNotOptimize(elevation_proxy(s->input, 0.005, 1, "bench"));
   state.counters["input_faces"] = s->input.triangle_count();

@@ -8,7 +8,7 @@
 //                      through the input-face overlap lists, projected into the face)
 // The triangulation is built once per process (bench_support.hpp) and not timed; the PLY file is
 // written once per benchmark, its reading is timed.
-#include "bench/bench_support.hpp"
+#include "bench/map_bench_support.hpp"
 #include "common/map_definition.hpp"
 #include "common/map_evaluation.hpp"
 #include "common/ply_writer.hpp"
@@ -23,36 +23,18 @@
 namespace physarum::bench {
 namespace {
 
-const SceneSurface* spot(benchmark::State& state) {
-  const std::string spec = mesh_spec("spot.obj");
-  if (spec.empty()) {
-    state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
-    return nullptr;
-  }
-  return &surfaces().get(bench_surface(spec, static_cast<double>(state.range(0)) / 10000.0));
-}
 
 void BM_MapsProcedural(benchmark::State& state) {
-  const SceneSurface* surface = spot(state);
+  const SceneSurface* surface = spot_surface(state).surface;
   if (!surface) return;
-  const MapSet maps = parse_maps(
-      nlohmann::json::parse(R"({
-        "ramp": {"axis": "y"},
-        "spot": {"sphere": {"center": [0.1, 0.3, 0.0], "radius": 0.2}, "falloff": 0.05},
-        "box": {"box": {"min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2]}},
-        "scale": {"map": "ramp", "range": [0.5, 1.5]},
-        "scaled_spot": {"product": ["scale", "spot"]},
-        "mix": {"max": ["scaled_spot", "box"]},
-        "east": {"direction": [1.0, 0.0, 0.0]}
-      })"),
-      ".", "bench");
+  const MapSet maps = parse_maps(procedural_maps(), ".", "bench");
   for (auto _ : state) benchmark::DoNotOptimize(evaluate_maps(maps, *surface, "bench"));
   state.counters["intrinsic_faces"] = surface->domain.face_count;
   state.counters["intrinsic_vertices"] = surface->domain.vertex_count;
 }
 
 void BM_MapsPly(benchmark::State& state) {
-  const SceneSurface* surface = spot(state);
+  const SceneSurface* surface = spot_surface(state).surface;
   if (!surface) return;
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("physarum_bench_maps_" + std::to_string(::getpid()));

@@ -11,6 +11,7 @@
 #include "common/scene_surface.hpp"
 #include "common/texture_bake.hpp"
 #include "common/texture_image.hpp"
+#include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -36,19 +37,6 @@ EvaluatedMaps evaluate(const json& maps, const SceneSurface& surface, const std:
   return evaluate_maps(parse_maps(maps, folder, "scene.json"), surface, "scene.json");
 }
 
-
-// The intrinsic vertices' positions in input coordinates, computed here from the barycentrics.
-std::vector<Eigen::Vector3d> intrinsic_positions(const SceneSurface& s) {
-  std::vector<Eigen::Vector3d> p(static_cast<size_t>(s.domain.vertex_count));
-  for (int v = 0; v < s.domain.vertex_count; ++v) {
-    const SurfacePoint& l = s.domain.vertex_location[v];
-    const auto& t = s.input.triangles[static_cast<size_t>(l.face)];
-    p[static_cast<size_t>(v)] = l.barycentric[0] * s.input.positions[t[0]] + l.barycentric[1] * s.input.positions[t[1]] +
-                                l.barycentric[2] * s.input.positions[t[2]];
-  }
-  return p;
-}
-
 // ---- regions and ramps: known values at known points ------------------------------------------------
 
 TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
@@ -62,7 +50,7 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
        {"above", {{"half_space", {{"point", {0.0, 0.75, 0.0}}, {"normal", {0.0, 2.0, 0.0}}}}}},
        {"ramp_x", {{"axis", "x"}}}},
       s);
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   int checked_falloff_middle = 0, checked_falloff_quarter = 0;
   for (size_t v = 0; v < p.size(); ++v) {
     const double r = (p[v] - Eigen::Vector3d(0.5, 0.5, 0.0)).norm();
@@ -251,7 +239,7 @@ TEST(Maps, PlyVertexPropertyReproducesALinearFunctionOnSpot) {
   // Each intrinsic vertex lies in one flat input face, where barycentric interpolation of a linear
   // function is exact; what remains is the PLY's float32 storage of the corner values (relative
   // 2^-24, so 6e-8 of the largest |f|) and double rounding: 1e-6 of the largest |f| bounds both.
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   ASSERT_GT(s.domain.vertex_count, s.input.vertex_count());  // the refinement inserted vertices
   double worst = 0.0;
   for (size_t v = 0; v < p.size(); ++v) worst = std::max(worst, std::abs(m.scalar_map("f")[v] - linear_function(p[v])));
@@ -308,7 +296,7 @@ TEST(Maps, TextureReproducesALinearFunctionOnSpot) {
   // exactly (bilinear interpolation reproduces a linear function), up to the 16-bit quantisation
   // of the texels: 0.5 / 65535 = 7.6e-6. Other vertices (their footprint straddles UV edges, seams
   // or uncovered texels) are not judged here.
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   int exact = 0;
   double worst = 0.0;
   for (int v = 0; v < s.domain.vertex_count; ++v) {
@@ -357,7 +345,7 @@ TEST(Maps, DirectionHasTheRightAngleInEachFaceOfTheSquare) {
   const EvaluatedMaps m = evaluate({{"d", {{"direction", {3.0, 4.0, 0.0}}}}}, s);
   const auto& v = m.vector_map("d");
   ASSERT_EQ(static_cast<int>(v.size()), s.domain.face_count);
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   for (int f = 0; f < s.domain.face_count; ++f) {
     // The angle in the face's frame is the direction's angle minus that of the face's first edge
     // (corner 0 to corner 1, read off the corners' input positions; the square is CCW seen from +z).
@@ -384,7 +372,7 @@ TEST(Maps, TowardPointsFromEachFaceToThePoint) {
   const SceneSurface s = surface_of("shape:square", 0.05, 4.0);
   const Eigen::Vector3d c(0.3, 0.6, 0.0);
   const EvaluatedMaps m = evaluate({{"in", {{"toward", {0.3, 0.6, 0.0}}}}, {"out", {{"away_from", {0.3, 0.6, 0.0}}}}}, s);
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   for (int f = 0; f < s.domain.face_count; ++f) {
     const auto& fv = s.domain.face_vertices[static_cast<size_t>(f)];
     const Eigen::Vector3d centroid = (p[static_cast<size_t>(fv[0])] + p[static_cast<size_t>(fv[1])] + p[static_cast<size_t>(fv[2])]) / 3.0;
@@ -406,7 +394,7 @@ TEST(Maps, DirectionIsTangentWithItsProjectedLengthOnACurvedSurface) {
   const Eigen::Vector3d d(1.0, 0.5, -0.25);
   const EvaluatedMaps m = evaluate({{"d", {{"direction", {1.0, 0.5, -0.25}}}}}, s);
   const auto& v = m.vector_map("d");
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   int in_one_facet = 0;
   for (int f = 0; f < s.domain.face_count; ++f) {
     const auto& fv = s.domain.face_vertices[static_cast<size_t>(f)];
@@ -453,7 +441,7 @@ TEST(Maps, PlyFaceVectorIsReadUnderEachFace) {
   write_fields_ply((dir.path / "flow.ply").string(), s.input, {PlyField{"w", zeros}},
                    {PlyFaceField{"flow_x", x}, PlyFaceField{"flow_y", y}, PlyFaceField{"flow_z", z}}, {}, "test");
   const EvaluatedMaps m = evaluate({{"flow", {{"ply", "flow.ply"}, {"face_property", "flow"}}}}, s, dir.path.string());
-  const std::vector<Eigen::Vector3d> p = intrinsic_positions(s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   for (int f = 0; f < s.domain.face_count; ++f) {
     const auto& fv = s.domain.face_vertices[static_cast<size_t>(f)];
     const double cx = (p[fv[0]].x() + p[fv[1]].x() + p[fv[2]].x()) / 3;
