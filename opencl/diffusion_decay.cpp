@@ -137,11 +137,17 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
     rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
     rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
     rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
-    if (!diagonal_only_)
+    const bool on_host = options.implicit_solver == ImplicitSolver::HostCholesky ||
+                         (options.implicit_solver == ImplicitSolver::Automatic && compute.device.type == "CPU");
+    if (diagonal_only_) {
+    } else if (on_host) {
+      host_solver_ = std::make_unique<HostCholeskySolve>(compute, system.system);
+    } else {
       solver_ = std::make_unique<DeviceConjugateGradients>(
           compute, system.system, system.inverse_diagonal,
           ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
           options.build_options);
+    }
   }
 
   statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
@@ -288,11 +294,13 @@ void OpenCLDiffusionDecay::diagonal_step() {
 void OpenCLDiffusionDecay::backward_step() {
   // b = B u, then S x = b with x = u (the previous field: a good first guess, and the solution is
   // written in place).
+  const DeviceBuffer& b = host_solver_ ? host_solver_->right_hand_side() : solver_->right_hand_side();
   set_arguments(kernels_->csr_multiply, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_,
-                rhs_value_, u_, solver_->right_hand_side());
+                rhs_value_, u_, b);
   compute_.queue.enqueueNDRangeKernel(kernels_->csr_multiply, cl::NullRange, cl::NDRange(group_count_ * group_),
                                       cl::NDRange(group_));
-  last_solve_ = solver_->solve(u_);
+  if (host_solver_) host_solver_->solve(u_);
+  else last_solve_ = solver_->solve(u_);
 }
 
 // ---- summaries ----

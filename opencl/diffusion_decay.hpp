@@ -15,6 +15,7 @@
 #include "opencl/device_buffer.hpp"
 #include "opencl/field_model.hpp"
 #include "opencl/field_statistics.hpp"
+#include "opencl/host_cholesky_solve.hpp"
 
 #include <memory>
 #include <string>
@@ -22,7 +23,14 @@
 
 namespace physarum::opencl {
 
+// How the backward-Euler system is solved: conjugate gradients on the device, or a Cholesky factor on
+// the host (opencl/host_cholesky_solve.hpp). Automatic takes the host factor where the device is a
+// CPU (its memory is the host's; measured faster there at every size, see the README) and CG on
+// every other device.
+enum class ImplicitSolver { Automatic, DeviceConjugateGradients, HostCholesky };
+
 struct OpenCLDiffusionDecayOptions {
+  ImplicitSolver implicit_solver = ImplicitSolver::Automatic;
   // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system,
   // common/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
   double cg_relative_tolerance = 1e-6;
@@ -77,7 +85,9 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   // Bytes one forward-Euler sub-step reads and writes at the least (its matrix once, u in and out):
   // the memory traffic a roofline sets against the bandwidth. 0 for backward Euler.
   double forward_bytes_per_sub_step() const { return forward_bytes_per_sub_step_; }
+  // The last backward-Euler CG solve (iterations 0 when the host factor solves the system).
   const ConjugateGradientReport& last_solve() const { return last_solve_; }
+  bool solves_on_host() const { return host_solver_ != nullptr; }
 
   // ---- summaries, reduced on the device ----
   double total_amount() const override;  // sum_i m_i u_i
@@ -122,7 +132,8 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   // Backward Euler: S x = B u (common/pheromone_operators.hpp); B here, S in the solver (absent when
   // the system is diagonal).
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;
-  std::unique_ptr<DeviceConjugateGradients> solver_;
+  std::unique_ptr<DeviceConjugateGradients> solver_;   // one of these two
+  std::unique_ptr<HostCholeskySolve> host_solver_;
   // Written by kernels: canary-guarded.
   DeviceBuffer u_, scratch_, amount_;
   // The write rate (empty buffer and has_write_rate_ false when none).

@@ -107,12 +107,12 @@ struct StepPair {
 };
 
 StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1,
-                  const SurfaceDomain& d = sphere_domain()) {
+                  const SurfaceDomain& d = sphere_domain(), const OpenCLDiffusionDecayOptions& options = {}) {
   // The time step is chosen relative to the stability bound so the sub-step count is known.
   testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   const double dt = dt_in_stable_steps * probe.stable_time_step();
   testing::ReferenceField reference(d, params, integrator, dt);
-  OpenCLDiffusionDecay device(compute(), d, params, integrator, dt);
+  OpenCLDiffusionDecay device(compute(), d, params, integrator, dt, options);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 11, 0.1, 1.0);
   reference.set_concentration(u0);
   device.set_concentration(as_device(u0));
@@ -191,9 +191,12 @@ TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
   const Case cases[] = {{"uniform", uniform_rates(n, 0.01, 0.5)},
                         {"varying (row-scaled)", varying_rates(n, 0.01, 0.5, 7)},
                         {"some zero diffusion", mixed}};
+  OpenCLDiffusionDecayOptions cg, host;
+  cg.implicit_solver = ImplicitSolver::DeviceConjugateGradients;
+  host.implicit_solver = ImplicitSolver::HostCholesky;
   for (const Case& c : cases) {
     // 50 stable steps: far beyond forward Euler's limit, so the implicit solve does real work.
-    const StepPair r = one_step(c.params, Integrator::BackwardEuler, 50.0);
+    const StepPair r = one_step(c.params, Integrator::BackwardEuler, 50.0, 1, sphere_domain(), cg);
     const auto [diff, at] = max_difference(r.device, r.reference);
     EXPECT_LE(diff, 1e-4 * max_abs(r.reference)) << c.name << ": at vertex " << at;
     EXPECT_TRUE(r.solve.converged) << c.name << ": " << r.solve.iterations << " iterations, residual "
@@ -201,7 +204,24 @@ TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
     EXPECT_GT(r.solve.iterations, 1) << c.name;
     EXPECT_LE(r.solve.relative_residual, 1e-6) << c.name;
     EXPECT_TRUE(r.damaged.empty()) << c.name << ": canaries overwritten in: " << joined(r.damaged);
+    // The host's float Cholesky factor (what a CPU device uses): as close as the CG's tolerance.
+    const StepPair h = one_step(c.params, Integrator::BackwardEuler, 50.0, 1, sphere_domain(), host);
+    const auto [host_diff, host_at] = max_difference(h.device, h.reference);
+    EXPECT_LE(host_diff, 1e-5 * max_abs(h.reference)) << c.name << ": host solve, at vertex " << host_at;
+    EXPECT_EQ(h.solve.iterations, 0) << c.name;
+    EXPECT_TRUE(h.damaged.empty()) << c.name << ": canaries overwritten in: " << joined(h.damaged);
   }
+}
+
+// PoCL is a CPU device: Automatic solves there with the host factor; asked for, CG runs anyway.
+TEST(OpenCLDiffusionDecay, AutomaticSolverIsTheHostFactorOnACpuDevice) {
+  const SurfaceDomain& d = sphere_domain();
+  const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.5);
+  OpenCLDiffusionDecay automatic(compute(), d, params, Integrator::BackwardEuler, 1.0);
+  EXPECT_EQ(automatic.solves_on_host(), compute().device.type == "CPU");
+  OpenCLDiffusionDecayOptions cg;
+  cg.implicit_solver = ImplicitSolver::DeviceConjugateGradients;
+  EXPECT_FALSE(OpenCLDiffusionDecay(compute(), d, params, Integrator::BackwardEuler, 1.0, cg).solves_on_host());
 }
 
 TEST(OpenCLDiffusionDecay, BackwardWithoutDiffusionIsTheExactDecayFactor) {

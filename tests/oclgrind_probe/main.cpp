@@ -44,6 +44,7 @@ DeviceVertexData<double> ramp(int n) {
 void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    Integrator integrator, double dt, const std::string& label) {
   OpenCLDiffusionDecayOptions options;
+  options.implicit_solver = ImplicitSolver::DeviceConjugateGradients;  // the CG kernels are under test
   options.cg_max_iterations = 64;  // oclgrind interprets every work-item: keep the solve short
   options.cg_check_interval = 8;
   OpenCLDiffusionDecay field(compute, domain, params, integrator, dt, options);

@@ -1,0 +1,35 @@
+#include "opencl/host_cholesky_solve.hpp"
+
+#include "common/errors.hpp"
+
+#include <Eigen/SparseCholesky>
+
+namespace physarum::opencl {
+
+struct HostCholeskySolve::Factor {
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<float>> llt;
+};
+
+HostCholeskySolve::~HostCholeskySolve() = default;
+
+HostCholeskySolve::HostCholeskySolve(const ComputeContext& compute, const CsrMatrix& system)
+    : compute_(compute), n_(system.rows), factor_(std::make_unique<Factor>()), host_(static_cast<size_t>(system.rows)) {
+  // S is symmetric, so its CSR rows are its CSC columns.
+  const Eigen::SparseMatrix<float> s = system.to_eigen().cast<float>();
+  factor_->llt.compute(s);
+  if (factor_->llt.info() != Eigen::Success)
+    throw InputError("opencl pheromone: the backward-Euler system could not be factorised on the host (LLT)");
+  b_ = allocate_written<cl_float>(compute, "backward Euler right-hand side", static_cast<size_t>(n_));
+}
+
+void HostCholeskySolve::solve(const DeviceBuffer& x) {
+  const size_t bytes = host_.size() * sizeof(float);
+  compute_.queue.enqueueReadBuffer(b_.buffer, CL_TRUE, 0, bytes, host_.data());
+  Eigen::Map<Eigen::VectorXf> v(host_.data(), n_);
+  v = factor_->llt.solve(v);
+  // In order after every launch before it; host_ is not touched again before the next solve's
+  // blocking read, which runs after this write.
+  compute_.queue.enqueueWriteBuffer(x.buffer, CL_FALSE, 0, bytes, host_.data());
+}
+
+}  // namespace physarum::opencl
