@@ -3,7 +3,9 @@
 // simulation numbers it (opencl::in_device_vertex_order). Counters: vertices per second, the
 // forward-Euler sub-steps per step (finer meshes need more for stability), and for the OpenCL forward
 // step the bytes per second its sub-step matrix and fields move, to set against the machine's
-// bandwidth (`physarum bench` prints both as a roofline).
+// bandwidth (`physarum bench` prints both as a roofline). The backward step three ways: the reference,
+// the OpenCL field as it runs here (a CPU device: the host's float Cholesky factor,
+// opencl/host_cholesky_solve.hpp) and the OpenCL field with device conjugate gradients (a GPU's path).
 #include "bench/bench_backends.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
@@ -16,8 +18,13 @@
 namespace physarum::bench {
 namespace {
 
+// Backend argument 2: the OpenCL field with its backward-Euler system solved by conjugate gradients
+// on the device even where the automatic choice is the host's Cholesky factor (a CPU device).
+constexpr int kOpenCLWithDeviceCG = 2;
+
 void BM_PheromoneStep(benchmark::State& state) {
-  const auto backend = static_cast<Backend>(state.range(0));
+  const bool device_cg = state.range(0) == kOpenCLWithDeviceCG;
+  const auto backend = device_cg ? kOpenCL : static_cast<Backend>(state.range(0));
   const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
   const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
   if (!domain) return;
@@ -27,7 +34,9 @@ void BM_PheromoneStep(benchmark::State& state) {
   double bytes_per_sub_step = 0.0;
   if (backend == kOpenCL) {
     const SurfaceDomain device_domain = opencl::in_device_vertex_order(*domain);
-    opencl::OpenCLDiffusionDecay field(compute(), device_domain, params, integrator, scene.time_step);
+    opencl::OpenCLDiffusionDecayOptions options;
+    if (device_cg) options.implicit_solver = opencl::ImplicitSolver::DeviceConjugateGradients;
+    opencl::OpenCLDiffusionDecay field(compute(), device_domain, params, integrator, scene.time_step, options);
     field.fill(1.0);
     for (auto _ : state) {
       field.step();
@@ -41,7 +50,7 @@ void BM_PheromoneStep(benchmark::State& state) {
     for (auto _ : state) model.step(u);
     sub_steps = model.sub_steps();
   }
-  state.SetLabel(backend == kOpenCL ? "opencl" : "reference");
+  state.SetLabel(device_cg ? "opencl, device CG" : backend == kOpenCL ? "opencl" : "reference");
   state.counters["vertices_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
   state.counters["vertices"] = domain->vertex_count;
@@ -51,9 +60,14 @@ void BM_PheromoneStep(benchmark::State& state) {
         bytes_per_sub_step * sub_steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}.
+// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}; the
+// device-CG variant for backward Euler only, from 3k to 1.3M vertices.
 BENCHMARK(BM_PheromoneStep)
     ->ArgsProduct({{kReference, kOpenCL}, {0, 1}, {400, 150, 50, 25, 20}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_PheromoneStep)
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG}, {1}, {1000, 150, 50, 20, 14}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
