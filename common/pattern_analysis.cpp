@@ -50,15 +50,22 @@ PatternAnalysis analyze_pattern(const InputMesh& mesh, const InputVertexData<dou
                                 const PatternAnalysisOptions& options) {
   PatternAnalysis a;
   a.threshold_given = options.threshold.has_value();
-  a.threshold = options.threshold ? *options.threshold : default_pattern_threshold(mesh, field);
-  const PatternSegmentation segmentation = segment_pattern(mesh, field, a.threshold);
+  a.below = options.below;
+  // Below the threshold is above it for the negated field.
+  const double sign = options.below ? -1.0 : 1.0;
+  InputVertexData<double> segmented = field;
+  for (size_t v = 0; v < segmented.size(); ++v) segmented[v] *= sign;
+  const double threshold = options.threshold ? sign * *options.threshold : default_pattern_threshold(mesh, segmented);
+  a.threshold = sign * threshold;
+  const PatternSegmentation segmentation = segment_pattern(mesh, segmented, threshold);
   a.field_min = *std::min_element(field.values().begin(), field.values().end());
   a.field_max = *std::max_element(field.values().begin(), field.values().end());
   if (segmentation.regions.empty()) {
     const std::string why = a.field_min == a.field_max ? "the field is constant (" + std::to_string(a.field_min) + ")"
+                            : options.below            ? "its minimum is " + std::to_string(a.field_min)
                                                        : "its maximum is " + std::to_string(a.field_max);
-    throw InputError(mesh.source + ": nothing to segment: no value exceeds the threshold " + std::to_string(a.threshold) +
-                     " (" + why + ")");
+    throw InputError(mesh.source + ": nothing to segment: no value is " + (options.below ? "below" : "above") +
+                     " the threshold " + std::to_string(a.threshold) + " (" + why + ")");
   }
   for (const auto& t : mesh.triangles) {
     const auto& p = mesh.positions;
@@ -157,7 +164,10 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
   return nlohmann::json{
       {"field", field_name},
       {"threshold", a.threshold},
-      {"threshold_rule", a.threshold_given ? "given (--threshold)" : "area-weighted mean + 0.5 std"},
+      {"threshold_rule", a.threshold_given ? "given (--threshold)"
+                         : a.below         ? "area-weighted mean - 0.5 std"
+                                           : "area-weighted mean + 0.5 std"},
+      {"regions_are", a.below ? "below the threshold" : "above the threshold"},
       {"spot_count", spot_count},
       {"stripe_count", stripe_count},
       {"region_count", a.regions.size()},

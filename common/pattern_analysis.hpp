@@ -19,7 +19,10 @@
 namespace physarum {
 
 struct PatternAnalysisOptions {
-  std::optional<double> threshold;               // none: default_pattern_threshold
+  std::optional<double> threshold;               // none: default_pattern_threshold (mean - 0.5 std when below)
+  // Segment {field < threshold} instead: the cells between the strands of a network, the gaps between
+  // stripes (the analysis of the negated field, reported in the field's own units).
+  bool below = false;
   const FaceDirectionField* direction = nullptr; // optional; must outlive the call
 };
 
@@ -37,6 +40,7 @@ struct AnalysedRegion {
 struct PatternAnalysis {
   double threshold = 0.0;
   bool threshold_given = false;
+  bool below = false;  // the regions are where the field is below the threshold
   double field_min = 0.0, field_max = 0.0;
   double surface_area = 0.0;
   std::vector<AnalysedRegion> regions;  // spots and stripes, in segmentation order

@@ -101,6 +101,24 @@ TEST(PatternAnalysis, DisksHaveAreaPiRSquaredConvergingWithRefinement) {
   EXPECT_LT(worst, coarse_error / 16.0);
 }
 
+// ---- --below: the complement of four disks is one region with four holes ----
+TEST(PatternAnalysis, BelowSegmentsTheComplement) {
+  const Bumps bumps{{{0.27, 0.31, 0}, {0.71, 0.26, 0}, {0.33, 0.74, 0}, {0.68, 0.69, 0}}, 0.06};
+  const double r = 0.09;
+  const InputMesh mesh = square_grid(96);
+  PatternAnalysisOptions options;
+  options.threshold = bumps.level_of_radius(r);
+  options.below = true;
+  const PatternAnalysis a = analyze_pattern(mesh, sample(mesh, bumps), options);
+  ASSERT_EQ(a.regions.size(), 1u);
+  EXPECT_DOUBLE_EQ(a.threshold, bumps.level_of_radius(r)) << "reported in the field's own units";
+  EXPECT_EQ(a.regions[0].holes, 4);
+  EXPECT_TRUE(a.regions[0].touches_boundary);
+  const double exact = 1.0 - 4.0 * M_PI * r * r;
+  EXPECT_NEAR(a.regions[0].area, exact, 4.0 * 0.2 * std::pow(1.0 / (96 * r), 2) * M_PI * r * r);
+  EXPECT_NEAR(a.regions[0].contour_length, 4.0 * 2.0 * M_PI * r, 0.01 * 4.0 * 2.0 * M_PI * r);
+}
+
 // ---- ellipses: aspect a/b, orientation theta, area pi a b, angle to a direction field ----
 TEST(PatternAnalysis, EllipseHasAspectAOverBAndOrientationTheta) {
   const InputMesh mesh = square_grid(128);
