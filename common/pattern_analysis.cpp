@@ -51,6 +51,9 @@ PatternAnalysis analyze_pattern(const InputMesh& mesh, const InputVertexData<dou
   PatternAnalysis a;
   a.threshold_given = options.threshold.has_value();
   a.below = options.below;
+  if (!(options.min_area >= 0.0) || !std::isfinite(options.min_area))
+    throw InputError(mesh.source + ": the minimum region area must be a finite number >= 0");
+  a.min_area = options.min_area;
   // Below the threshold is above it for the negated field.
   const double sign = options.below ? -1.0 : 1.0;
   InputVertexData<double> segmented = field;
@@ -78,6 +81,10 @@ PatternAnalysis analyze_pattern(const InputMesh& mesh, const InputVertexData<dou
   std::vector<int> spot_region;
   for (const PatternRegion& region : segmentation.regions) {
     if (!(region.area > 0.0)) continue;  // a single vertex exactly grazing the threshold's level
+    if (region.area < options.min_area) {
+      ++a.dropped_regions;
+      continue;
+    }
     AnalysedRegion r;
     r.area = region.area;
     r.shape = spot_shape(mesh, region);
@@ -171,6 +178,8 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
       {"spot_count", spot_count},
       {"stripe_count", stripe_count},
       {"region_count", a.regions.size()},
+      {"min_area", a.min_area},
+      {"dropped_regions", a.dropped_regions},
       {"spots", spots},
       {"spacing", {{"mean", number_or_null(spacing.mean)}, {"std", number_or_null(spacing.std)}, {"count", spacings.size()}, {"pairs", pairs}}},
       {"stripe_width", {{"mean", number_or_null(width.mean)}, {"std", number_or_null(width.std)}, {"count", widths.size()}}},

@@ -23,6 +23,9 @@ struct PatternAnalysisOptions {
   // Segment {field < threshold} instead: the cells between the strands of a network, the gaps between
   // stripes (the analysis of the negated field, reported in the field's own units).
   bool below = false;
+  // Regions smaller than this (in the mesh's units squared) are left out of every measure and counted
+  // in dropped_regions: specks of noise that graze the threshold.
+  double min_area = 0.0;
   const FaceDirectionField* direction = nullptr; // optional; must outlive the call
 };
 
@@ -43,12 +46,14 @@ struct PatternAnalysis {
   bool below = false;  // the regions are where the field is below the threshold
   double field_min = 0.0, field_max = 0.0;
   double surface_area = 0.0;
+  double min_area = 0.0;
+  int dropped_regions = 0;  // smaller than min_area
   std::vector<AnalysedRegion> regions;  // spots and stripes, in segmentation order
   std::vector<SpotPair> pairs;          // neighbouring regions (stripes included) and their distance
 };
 
 // Throws InputError (naming mesh.source) when the field does not fit the mesh, is not finite, or
-// nothing lies above the threshold (a constant field, or a threshold above its maximum).
+// nothing is on the chosen side of the threshold (a constant field, or a threshold beyond its range).
 PatternAnalysis analyze_pattern(const InputMesh& mesh, const InputVertexData<double>& field,
                                 const PatternAnalysisOptions& options);
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace physarum {
@@ -21,10 +22,13 @@ Histogram make_histogram(const std::vector<double>& values) {
   Histogram h;
   if (finite.empty()) return h;
   double lo = *std::min_element(finite.begin(), finite.end()), hi = *std::max_element(finite.begin(), finite.end());
-  if (hi == lo) {
-    const double half = 0.5e-9 * (std::abs(lo) + 1.0);
-    lo -= half;
-    hi += half;
+  // Values that (nearly) agree get one readable bin 10 % of their size wide: the chart's axis ticks
+  // need a range they can divide.
+  if (hi - lo <= 1e-6 * std::max(std::abs(lo), std::abs(hi))) {
+    const double half = 0.05 * (std::max(std::abs(lo), std::abs(hi)) > 0.0 ? std::max(std::abs(lo), std::abs(hi)) : 1.0);
+    const double middle = 0.5 * (lo + hi);
+    lo = middle - half;
+    hi = middle + half;
   }
   const int bins = std::min(50, static_cast<int>(std::ceil(std::log2(static_cast<double>(finite.size())))) + 1);
   h.counts.assign(static_cast<size_t>(bins), 0);
@@ -44,7 +48,13 @@ void write_histograms_png(const std::string& path, const std::vector<HistogramPa
       const HistogramPanel& panel = panels[p];
       const Histogram h = make_histogram(panel.values);
       PlotSeries outline;
-      outline.label = "count";
+      double mean = 0.0;
+      int finite = 0;
+      for (double v : panel.values)
+        if (std::isfinite(v)) mean += v, ++finite;
+      char label[96];
+      std::snprintf(label, sizeof label, "%d values, mean %.4g", finite, finite > 0 ? mean / finite : 0.0);
+      outline.label = label;
       outline.color = {0.12f, 0.35f, 0.65f};
       std::string title = panel.title;
       if (h.counts.empty()) {

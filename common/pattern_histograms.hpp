@@ -14,8 +14,8 @@ struct Histogram {
 };
 
 // Equal-width bins over [min, max] of the finite values; Sturges' rule for their number
-// (ceil(log2 n) + 1, at most 50). A single distinct value gets one bin of width 1e-9 x (|v| + 1)
-// around it. Empty values give an empty histogram.
+// (ceil(log2 n) + 1, at most 50). Values that agree to 1e-6 get a range 10 % of their size wide
+// around them (1 wide around 0). Empty values give an empty histogram.
 Histogram make_histogram(const std::vector<double>& values);
 
 struct HistogramPanel {

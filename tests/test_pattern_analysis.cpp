@@ -177,6 +177,20 @@ TEST(PatternAnalysis, HexagonalLatticeHasSpacingS) {
   EXPECT_EQ(six, 9) << "the 3 x 3 interior spots have six neighbours";
 }
 
+TEST(PatternAnalysis, MinAreaLeavesOutSmallerRegions) {
+  // Disks of radius 0.05 and 0.1 (areas 0.00785 and 0.0314): a bound between them keeps the large one.
+  const Bumps small{{{0.25, 0.25, 0}}, 0.05}, large{{{0.7, 0.7, 0}}, 0.1};
+  const InputMesh mesh = square_grid(64);
+  const auto field = sample(mesh, [&](const Eigen::Vector3d& p) { return small(p) + large(p); });
+  PatternAnalysisOptions options;
+  options.threshold = std::exp(-0.5);  // each bump's level at one sigma: radii 0.05 and 0.1
+  options.min_area = 0.015;
+  const PatternAnalysis a = analyze_pattern(mesh, field, options);
+  ASSERT_EQ(a.regions.size(), 1u);
+  EXPECT_EQ(a.dropped_regions, 1);
+  EXPECT_NEAR(a.regions[0].area, M_PI * 0.01, 0.01 * M_PI * 0.01);
+}
+
 // ---- stripes: parallel bands across the square, a stadium, a ring ----
 TEST(PatternAnalysis, ParallelStripesHaveWidthHalfThePeriod) {
   const double period = 0.25;
@@ -274,6 +288,10 @@ TEST(PatternAnalysis, HistogramCountsEveryValueInSturgesBins) {
   EXPECT_EQ(h.counts, (std::vector<int>{1, 2, 0, 3, 4}));  // bins of width 0.6 from 1 to 4
   EXPECT_DOUBLE_EQ(h.edges.front(), 1.0);
   EXPECT_DOUBLE_EQ(h.edges.back(), 4.0);
+  const Histogram same = make_histogram({2.0, 2.0, 2.0});  // one value: a drawable range around it
+  EXPECT_EQ(same.counts, (std::vector<int>{0, 3, 0}));
+  EXPECT_DOUBLE_EQ(same.edges.front(), 1.9);
+  EXPECT_DOUBLE_EQ(same.edges.back(), 2.1);
 }
 
 // ---- the command on a run folder ----

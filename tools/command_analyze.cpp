@@ -1,4 +1,4 @@
-// `physarum analyze RUN_DIR [--field NAME] [--threshold T] [--below] [--direction MAP.ply NAME] [--out DIR]`:
+// `physarum analyze RUN_DIR [--field NAME] [--threshold T] [--below] [--min-area A] [--direction MAP.ply NAME] [--out DIR]`:
 // pattern analysis of a finished run (issue 21). The field is read back from the run's finest result
 // (RUN_DIR/fields_full.ply: every intrinsic vertex, exact values; else pheromone.ply on the input
 // mesh), segmented into spots and stripes and measured (common/pattern_analysis.hpp):
@@ -37,6 +37,7 @@ struct AnalyzeOptions {
   std::string field;                   // "" = run.json's preview_morphogen, else "pheromone"
   std::optional<double> threshold;     // none: the area-weighted mean + 0.5 std (- 0.5 std with --below)
   bool below = false;                  // segment where the field is below the threshold
+  double min_area = 0.0;               // leave out smaller regions
   std::vector<std::string> direction;  // {MAP.ply, NAME} or empty
   std::string out;                     // "" = RUN_DIR
 };
@@ -92,6 +93,7 @@ int run_analyze(const AnalyzeOptions& o) {
   PatternAnalysisOptions options;
   options.threshold = o.threshold;
   options.below = o.below;
+  options.min_area = o.min_area;
   options.direction = direction ? &*direction : nullptr;
   const PatternAnalysis analysis = analyze_pattern(ply.mesh, field, options);
   nlohmann::json j = pattern_analysis_json(analysis, field_name);
@@ -143,6 +145,10 @@ Command add_analyze_command(CLI::App& parent) {
   app->add_flag("--below", options->below,
                "Segment where the field is BELOW the threshold (default threshold: mean - 0.5 standard deviations): "
                "the cells between a network's strands, the gaps between stripes");
+  app->add_option("--min-area", options->min_area,
+                  "Leave out regions smaller than this area (mesh units squared; specks of noise at the threshold)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app->add_option("--direction", options->direction,
                   "MAP.ply NAME: a vector map (face properties NAME_x, NAME_y, NAME_z, as `physarum map` writes) to "
                   "measure each spot's orientation against")
