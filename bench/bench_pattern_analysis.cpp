@@ -1,7 +1,7 @@
 // Pattern analysis (`physarum analyze`, common/pattern_analysis.hpp) of a hexagonal lattice of
 // Gaussian spots (spacing 0.1, so ~100 spots) on the unit square cut into N x N cells, N = 128 .. 512
-// (33k .. 526k vertices). The spacing is the costly part: one fast-marching run for the Voronoi
-// labels plus one per spot with a neighbour, so the time grows as spots x vertices.
+// (17k .. 263k vertices). The spacing is the costly part: one fast-marching run for the Voronoi
+// labels over the whole surface, then one per spot over its own and its neighbours' cells.
 //   BM_SegmentPattern  the clipping and connected regions alone
 //   BM_AnalyzePattern  everything analysis.json reports
 #include "common/pattern_analysis.hpp"

@@ -6,9 +6,11 @@
 #include "common/surface_domain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 #include <utility>
 
 namespace physarum {
@@ -66,26 +68,57 @@ void pairs_on_piece(const InputMesh& piece, const std::vector<int>& local, const
       if (label[v] != label[static_cast<size_t>(w)])
         touching.emplace(std::min(label[v], label[static_cast<size_t>(w)]), std::max(label[v], label[static_cast<size_t>(w)]));
 
-  // Distances: fast marching from each spot that has a neighbour, read at the other centre.
-  std::map<int, IntrinsicVertexData<double>> from_spot;
-  auto distance_from = [&](int s) -> const IntrinsicVertexData<double>& {
-    auto it = from_spot.find(s);
-    if (it == from_spot.end())
-      it = from_spot.emplace(s, fmm.distance({local[static_cast<size_t>(all_spots[static_cast<size_t>(s)].centre_vertex)]})).first;
-    return it->second;
-  };
-  auto at_centre = [&](const IntrinsicVertexData<double>& d, int s) {
-    const SpotShape& spot = all_spots[static_cast<size_t>(s)];
-    const auto& t = mesh.triangles[static_cast<size_t>(spot.centre_face)];
-    double value = 0.0;
-    for (int k = 0; k < 3; ++k)
-      value += spot.centre_barycentric[k] * d[static_cast<size_t>(local[static_cast<size_t>(t[static_cast<size_t>(k)])])];
-    return value;
-  };
+  // Distances: fast marching from each spot over its own cell and its neighbours' cells only (the
+  // triangles with a corner in them), which holds the geodesic to every neighbour that runs through
+  // their shared border, and keeps the cost near a few whole-surface runs instead of one per spot.
+  std::map<int, std::vector<int>> adjacent;
   for (const auto& [a, b] : touching) {
-    const double ab = at_centre(distance_from(a), b), ba = at_centre(distance_from(b), a);
-    out.push_back({a, b, 0.5 * (ab + ba)});
+    adjacent[a].push_back(b);
+    adjacent[b].push_back(a);
   }
+  std::map<std::pair<int, int>, double> one_way;  // (from, to): from's centre to to's centre
+  for (const auto& [s, others] : adjacent) {
+    std::set<int> cells(others.begin(), others.end());
+    cells.insert(s);
+    InputMesh window;
+    window.source = piece.source;
+    std::vector<int> window_id(n, -1);
+    for (const auto& t : piece.triangles) {
+      bool inside = false;
+      for (int c : t) inside = inside || cells.count(label[static_cast<size_t>(c)]) > 0;
+      if (!inside) continue;
+      std::array<int, 3> corners{};
+      for (int k = 0; k < 3; ++k) {
+        int& id = window_id[static_cast<size_t>(t[static_cast<size_t>(k)])];
+        if (id < 0) {
+          id = window.vertex_count();
+          window.positions.push_back(piece.positions[static_cast<size_t>(t[static_cast<size_t>(k)])]);
+          window.file_vertex.push_back(t[static_cast<size_t>(k)]);
+        }
+        corners[static_cast<size_t>(k)] = id;
+      }
+      window.triangles.push_back(corners);
+    }
+    const IntrinsicMesh window_intrinsic = intrinsic_mesh_from_input(window);
+    const SurfaceDomain window_domain = build_surface_domain(window_intrinsic);
+    const FastMarchingGeodesics window_fmm(window_domain);
+    const int source = window_id[static_cast<size_t>(local[static_cast<size_t>(all_spots[static_cast<size_t>(s)].centre_vertex)])];
+    const IntrinsicVertexData<double> d = window_fmm.distance({source});
+    for (int b : others) {
+      // The other centre, interpolated in its triangle. Its corners all lie in the window: one of
+      // them is b's start vertex, which carries b's label (b has a cell, or it would touch nothing).
+      const SpotShape& spot = all_spots[static_cast<size_t>(b)];
+      const auto& t = mesh.triangles[static_cast<size_t>(spot.centre_face)];
+      double value = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const int id = window_id[static_cast<size_t>(local[static_cast<size_t>(t[static_cast<size_t>(k)])])];
+        if (id < 0) throw std::logic_error("spot spacing: a neighbour's centre triangle lies outside the window");
+        value += spot.centre_barycentric[k] * d[static_cast<size_t>(id)];
+      }
+      one_way[{s, b}] = value;
+    }
+  }
+  for (const auto& [a, b] : touching) out.push_back({a, b, 0.5 * (one_way.at({a, b}) + one_way.at({b, a}))});
 }
 
 }  // namespace

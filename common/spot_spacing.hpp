@@ -8,7 +8,10 @@
 // measured by fast marching from each of the two centres (starting at the centre triangle's corner
 // nearest the centre) to the other centre (interpolated in its triangle), and the two are averaged:
 // exact on a flat surface up to the offset of the start corner from the true centre (at most
-// about half an edge), first order on curved ones.
+// about half an edge), first order on curved ones. Each spot's run covers only the triangles that
+// touch its own cell or its neighbours' cells: a geodesic to a neighbour that crosses their shared
+// border stays inside (always so for a lattice; a pair whose cells meet only far off their segment
+// gets the shortest path inside the window), and the whole costs a few surface-wide runs, not one per spot.
 //
 // Pieces of the surface are treated separately (a spot has no neighbour across a gap), so a piece
 // without spots, which fast marching could not reach, costs nothing.
