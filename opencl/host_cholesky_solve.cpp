@@ -8,6 +8,7 @@ namespace physarum::opencl {
 
 struct HostCholeskySolve::Factor {
   Eigen::SimplicialLLT<Eigen::SparseMatrix<float>> llt;
+  Eigen::VectorXf permuted;  // P b, then the solution in the factor's order
 };
 
 HostCholeskySolve::~HostCholeskySolve() = default;
@@ -19,14 +20,21 @@ HostCholeskySolve::HostCholeskySolve(const ComputeContext& compute, const CsrMat
   factor_->llt.compute(s);
   if (factor_->llt.info() != Eigen::Success)
     throw InputError("opencl pheromone: the backward-Euler system could not be factorised on the host (LLT)");
+  factor_->permuted.resize(n_);
   b_ = allocate_written<cl_float>(compute, "backward Euler right-hand side", static_cast<size_t>(n_));
 }
 
 void HostCholeskySolve::solve(const DeviceBuffer& x) {
   const size_t bytes = host_.size() * sizeof(float);
   compute_.queue.enqueueReadBuffer(b_.buffer, CL_TRUE, 0, bytes, host_.data());
-  Eigen::Map<Eigen::VectorXf> v(host_.data(), n_);
-  v = factor_->llt.solve(v);
+  // P S P^-1 = L L^T, solved in place in buffers sized once (Eigen's solve() allocates per call).
+  Factor& f = *factor_;
+  const Eigen::VectorXi& p = f.llt.permutationP().indices();  // empty: no permutation
+  const bool permuted = p.size() == n_;
+  for (int i = 0; i < n_; ++i) f.permuted[permuted ? p[i] : i] = host_[static_cast<size_t>(i)];
+  f.llt.matrixL().solveInPlace(f.permuted);
+  f.llt.matrixU().solveInPlace(f.permuted);
+  for (int i = 0; i < n_; ++i) host_[static_cast<size_t>(i)] = f.permuted[permuted ? p[i] : i];
   // In order after every launch before it; host_ is not touched again before the next solve's
   // blocking read, which runs after this write.
   compute_.queue.enqueueWriteBuffer(x.buffer, CL_FALSE, 0, bytes, host_.data());
