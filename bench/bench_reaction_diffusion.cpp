@@ -1,0 +1,159 @@
+// Reaction-diffusion on the OpenCL backend (opencl/reaction_diffusion.hpp): Gray-Scott, two
+// morphogens, on flat square grids of 32^2 .. 1000^2 cells (10^3 .. 10^6 vertices; every interior
+// vertex has six neighbours, as on a regular triangle mesh, so every row fits the ELL width and
+// the grid's row-by-row numbering is already local).
+//
+//   BM_RdExplicitStep   one explicit sub-step; counters: vertices, bytes the step must move
+//                       (OpenCLReactionDiffusion::bytes_per_sub_step) per second, and that as a
+//                       fraction of the device's measured STREAM-triad bandwidth (opencl/memory_bandwidth):
+//                       the step is bandwidth-bound, so this is its roofline fraction.
+//   BM_RdImexStep       one IMEX step (dt = 10x the explicit stability bound) with the device's
+//                       conjugate gradients (warm-started) or the host factorization, against
+//   BM_RdImexHostOnly   the same step done entirely on the host in double (right-hand side and
+//                       SimplicialLDLT solves), what a host reference backend pays.
+#include "bench/bench_backends.hpp"
+#include "common/reaction_diffusion_system.hpp"
+#include "opencl/memory_bandwidth.hpp"
+#include "opencl/reaction_diffusion.hpp"
+#include "tests/pheromone_test_meshes.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <map>
+#include <random>
+
+namespace physarum::bench {
+namespace {
+
+const SurfaceDomain& grid_domain(int cells) {
+  static std::map<int, SurfaceDomain> domains;
+  auto found = domains.find(cells);
+  if (found == domains.end())
+    found = domains.emplace(cells, testing::make_domain(testing::make_square_grid(cells))).first;
+  return found->second;
+}
+
+double triad_bandwidth() {
+  static const double bytes_per_second = [] {
+    opencl::DeviceTriad triad(compute());
+    return triad.bytes_per_second(5);
+  }();
+  return bytes_per_second;
+}
+
+// The explicit forward-Euler stability bound of diffusion rate D (Gershgorin on M^-1 L).
+double stable_step(const SurfaceDomain& domain, double D) {
+  double worst = 0.0;
+  const CsrMatrix& L = domain.laplacian;
+  for (int i = 0; i < domain.vertex_count; ++i)
+    for (int e = L.row_start[i]; e < L.row_start[i + 1]; ++e)
+      if (L.column[e] == i) worst = std::max(worst, 2.0 * L.value[e] / domain.vertex_mass[i]);
+  return 2.0 / (D * worst);
+}
+
+// Pearson's Gray-Scott (D_u = 2e-5, D_v = 1e-5 on the unit square scaled to the grid, F = 0.04,
+// k = 0.06), near (1, 0) with noise.
+ReactionDiffusionSystem gray_scott(const SurfaceDomain& domain, ReactionIntegrator integrator, double dt) {
+  const size_t n = static_cast<size_t>(domain.vertex_count);
+  ReactionDiffusionSystem s;
+  s.morphogens = {"u", "v"};
+  s.reaction = {"-u*v^2 + F*(1-u)", "u*v^2 - (F+k)*v"};
+  s.coefficient_names = {"F", "k"};
+  s.coefficients = {IntrinsicVertexData<double>(n, 0.04), IntrinsicVertexData<double>(n, 0.06)};
+  for (double D : {2e-5, 1e-5}) {
+    CsrMatrix K = domain.laplacian;
+    for (double& v : K.value) v *= D;
+    s.stiffness.push_back(K);
+  }
+  s.mass = domain.vertex_mass;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> noise(0.0, 0.05);
+  s.initial = {IntrinsicVertexData<double>(n), IntrinsicVertexData<double>(n)};
+  for (size_t i = 0; i < n; ++i) {
+    s.initial[0][i] = 1.0 - noise(rng);
+    s.initial[1][i] = noise(rng);
+  }
+  s.integrator = integrator;
+  s.time_step = dt;
+  s.substeps = 1;
+  return s;
+}
+
+void BM_RdExplicitStep(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  const ReactionDiffusionSystem s =
+      gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5));
+  opencl::OpenCLReactionDiffusion rd(compute(), domain, s);
+  rd.run(2);
+  rd.finish();
+  for (auto _ : state) {
+    rd.step();
+    rd.finish();
+  }
+  const double bytes = rd.bytes_per_sub_step();
+  const double bandwidth = triad_bandwidth();
+  state.counters["vertices"] = domain.vertex_count;
+  state.counters["bytes_per_step"] = bytes;
+  state.counters["bytes_per_s"] =
+      benchmark::Counter(bytes * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["triad_bytes_per_s"] = bandwidth;
+  state.SetLabel(compute().device.type);
+  // The fraction is computed by the reporter from bytes_per_s / triad_bytes_per_s; also as a
+  // counter here so one run prints it.
+  state.counters["bound_fraction"] = benchmark::Counter(bytes * static_cast<double>(state.iterations()) / bandwidth,
+                                                        benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RdExplicitStep)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_RdImexStep(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(1)));
+  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  opencl::OpenCLReactionDiffusionOptions options;
+  options.imex_solver =
+      state.range(0) == 0 ? opencl::ImexSolver::DeviceConjugateGradients : opencl::ImexSolver::HostFactorization;
+  opencl::OpenCLReactionDiffusion rd(compute(), domain, s, options);
+  rd.run(2);  // warm: the first solve starts further from its answer
+  for (auto _ : state) {
+    rd.step();
+    rd.finish();
+  }
+  state.SetLabel(state.range(0) == 0 ? "device CG" : "host factorization");
+  state.counters["vertices"] = domain.vertex_count;
+  if (state.range(0) == 0) state.counters["cg_iterations"] = rd.last_solve().iterations;
+}
+BENCHMARK(BM_RdImexStep)
+    ->ArgsProduct({{0, 1}, {31, 100, 316, 1000}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_RdImexHostOnly(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const int n = domain.vertex_count;
+  const double h = s.time_step;
+  std::vector<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> factors(2);
+  for (int m = 0; m < 2; ++m) {
+    Eigen::SparseMatrix<double> A = s.stiffness[static_cast<size_t>(m)].to_eigen() * h;
+    for (int i = 0; i < n; ++i) A.coeffRef(i, i) += s.mass[i];
+    factors[static_cast<size_t>(m)].compute(A);
+  }
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(s.initial[0].data(), n);
+  Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(s.initial[1].data(), n);
+  Eigen::VectorXd bu(n), bv(n);
+  for (auto _ : state) {
+    for (int i = 0; i < n; ++i) {
+      const double uvv = u[i] * v[i] * v[i];
+      bu[i] = s.mass[i] * (u[i] + h * (-uvv + 0.04 * (1 - u[i])));
+      bv[i] = s.mass[i] * (v[i] + h * (uvv - 0.1 * v[i]));
+    }
+    u = factors[0].solve(bu);
+    v = factors[1].solve(bv);
+    benchmark::DoNotOptimize(u.data());
+  }
+  state.SetLabel("host only, double");
+  state.counters["vertices"] = n;
+}
+BENCHMARK(BM_RdImexHostOnly)->Arg(31)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace physarum::bench
