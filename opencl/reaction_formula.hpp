@@ -13,8 +13,10 @@
 //   power   := primary ('^' unary)?            right-associative: a^b^c = a^(b^c); -a^2 = -(a^2)
 //   primary := number | name | name '(' sum (',' sum)* ')' | '(' sum ')'
 // Functions: exp, log and ln (natural), sqrt, abs, sin, cos, tanh (one argument), min, max (two).
-// `^` with an integer literal exponent of magnitude <= 64 becomes pown (exact repeated product, and
-// defined for a negative base as muparser's std::pow is); any other exponent becomes pow.
+// `^` with an integer literal exponent becomes a product of the base with itself (magnitude <= 8;
+// 1 / product for a negative one; 1 for 0): PoCL runs pown as an out-of-line call that stops its
+// vectoriser, and a product is defined for a negative base as muparser's std::pow is. Magnitudes
+// 9 .. 64 become pown; any other exponent becomes pow.
 #include <map>
 #include <string>
 
