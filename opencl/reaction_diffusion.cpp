@@ -331,32 +331,38 @@ void OpenCLReactionDiffusion::explicit_step() {
 
 void OpenCLReactionDiffusion::imex_step() {
   const size_t un = static_cast<size_t>(vertex_count_);
+  const size_t all_bytes = static_cast<size_t>(morphogen_count_) * stride_ * sizeof(cl_float);
   for (int s = 0; s < substeps_; ++s) {
     set_arguments(kernels_->imex_rhs, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), mass_,
                   coefficients_, fixed_, coupling_, static_cast<cl_float>(sub_step_), u_, rhs_);
     compute_.queue.enqueueNDRangeKernel(kernels_->imex_rhs, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
-    for (int m = 0; m < morphogen_count_; ++m) {
-      const size_t offset = static_cast<size_t>(m) * stride_ * sizeof(cl_float);
-      if (imex_solver_ == ImexSolver::DeviceConjugateGradients) {
+    if (imex_solver_ == ImexSolver::DeviceConjugateGradients) {
+      for (int m = 0; m < morphogen_count_; ++m) {
         // x starts from the previous step's values: the warm start.
-        compute_.queue.enqueueCopyBuffer(rhs_.buffer, solvers_[m]->right_hand_side().buffer, offset, 0,
-                                         un * sizeof(cl_float));
+        compute_.queue.enqueueCopyBuffer(rhs_.buffer, solvers_[m]->right_hand_side().buffer,
+                                         static_cast<size_t>(m) * stride_ * sizeof(cl_float), 0, un * sizeof(cl_float));
         last_solve_ = solvers_[m]->solve(u_views_[m]);
-      } else {
-        HostFactorizations& f = *factorizations_;
-        f.b.resize(un);
-        f.u.resize(un);
-        compute_.queue.enqueueReadBuffer(rhs_.buffer, CL_TRUE, offset, un * sizeof(cl_float), f.b.data());
-        // The held values as they are: m_i u_i / m_i rounds, and a held value must not move at all.
-        if (has_fixed_) compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, offset, un * sizeof(cl_float), f.u.data());
-        f.rhs = Eigen::Map<const Eigen::VectorXf>(f.b.data(), vertex_count_).cast<double>();
-        f.solution = f.factor[m]->solve(f.rhs);
-        for (size_t i = 0; i < un; ++i)
-          if (!fixed_host_[i]) f.u[i] = static_cast<float>(f.solution[static_cast<Eigen::Index>(i)]);
-        compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, offset, un * sizeof(cl_float), f.u.data());
-        last_solve_ = {};
       }
+      continue;
     }
+    // Host factorization: every morphogen's right-hand side in one read and the results in one write
+    // (each blocking transfer is a round trip that costs more than a small solve).
+    HostFactorizations& f = *factorizations_;
+    f.b.resize(all_bytes / sizeof(cl_float));
+    f.u.resize(all_bytes / sizeof(cl_float));
+    compute_.queue.enqueueReadBuffer(rhs_.buffer, CL_FALSE, 0, all_bytes, f.b.data());
+    // The held values as they are: m_i u_i / m_i rounds, and a held value must not move at all.
+    if (has_fixed_) compute_.queue.enqueueReadBuffer(u_.buffer, CL_FALSE, 0, all_bytes, f.u.data());
+    compute_.queue.finish();
+    for (int m = 0; m < morphogen_count_; ++m) {
+      const size_t offset = static_cast<size_t>(m) * stride_;
+      f.rhs = Eigen::Map<const Eigen::VectorXf>(f.b.data() + offset, vertex_count_).cast<double>();
+      f.solution = f.factor[m]->solve(f.rhs);
+      for (size_t i = 0; i < un; ++i)
+        if (!fixed_host_[i]) f.u[offset + i] = static_cast<float>(f.solution[static_cast<Eigen::Index>(i)]);
+    }
+    compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, all_bytes, f.u.data());
+    last_solve_ = {};
   }
 }
 
