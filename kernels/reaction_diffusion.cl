@@ -9,6 +9,8 @@
  *   RD_REACTIONS          statements rd_r[m] = R_m(rd_u[0..], coefficients), one per morphogen:
  *                         the user's formulas translated by opencl/reaction_formula.cpp
  *   RD_HAS_FIXED          only when some vertices are Dirichlet (held) vertices
+ *   RD_SHARED_WEIGHTS     only when every K_m is c_m K_0 (isotropic morphogens), with
+ *   RD_WEIGHT_SCALES      {c_0, c_1, ...}: the explicit sub-step then reads morphogen 0's weights only
  * so the kinetics are compiled code, not interpreted.
  *
  * Layout: every per-vertex array is padded to `stride` (the padded launch size) and morphogen m's
@@ -49,6 +51,19 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
     rd_u[m] = u_in[m * stride + i];
     diffusion[m] = 0.0f;
   }
+#ifdef RD_SHARED_WEIGHTS
+  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. */
+  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
+#pragma unroll
+  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
+    const int j = column[k * stride + i];
+    const float w = value[k * stride + i];
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] += w * u_in[m * stride + j];
+  }
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
+#else
 #pragma unroll
   for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
     const int j = column[k * stride + i];
@@ -56,6 +71,7 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
     for (uint m = 0; m < RD_MORPHOGENS; ++m)
       diffusion[m] += value[(RD_STIFFNESS_OF(m) * PHYSARUM_ELL_WIDTH + k) * stride + i] * u_in[m * stride + j];
   }
+#endif
   RD_LOAD_COEFFICIENTS
   RD_REACTIONS
   (void)coefficients;
@@ -83,11 +99,20 @@ __kernel void rd_explicit_overflow(const uint count, const uint stride, const ui
   if (j >= count) return;
   const int i = row[j];
   const int end = row_start[j + 1];
+#ifdef RD_SHARED_WEIGHTS
+  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
+  (void)entries;
+#endif
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
     float sum = 0.0f;
+#ifdef RD_SHARED_WEIGHTS
+    for (int e = row_start[j]; e < end; ++e) sum += value[e] * u_in[m * stride + column[e]];
+    sum *= rd_scale[RD_STIFFNESS_OF(m)];
+#else
     for (int e = row_start[j]; e < end; ++e)
       sum += value[RD_STIFFNESS_OF(m) * entries + e] * u_in[m * stride + column[e]];
+#endif
     u_out[m * stride + i] += sum;
   }
 }

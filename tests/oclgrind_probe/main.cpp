@@ -258,10 +258,10 @@ void run_fault_demo(const ComputeContext& compute) {
 }
 
 // Gray-Scott with F varying per vertex (a coefficient buffer), every fifth vertex held (the
-// Dirichlet paths), two explicit sub-steps (the double buffer both ways) or two IMEX steps with the
-// device's conjugate gradients.
+// Dirichlet paths), two explicit sub-steps (the double buffer both ways; shared or per-morphogen
+// weights) or two IMEX steps with the device's conjugate gradients.
 void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& domain, ReactionIntegrator integrator,
-                            const std::string& label) {
+                            const std::string& label, bool proportional_stiffness = true) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
   ReactionDiffusionSystem s;
@@ -282,6 +282,9 @@ void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& 
     for (double& v : K.value) v *= D;
     s.stiffness.push_back(K);
   }
+  // Not multiples of one another (as anisotropy makes them): each morphogen's own weights.
+  if (!proportional_stiffness)
+    for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 1.0 + 0.5 * ((e * 7) % 3);
   s.mass = domain.vertex_mass;
   s.integrator = integrator;
   s.time_step = integrator == ReactionIntegrator::Explicit ? 0.2 : 1.0;
@@ -325,6 +328,8 @@ int run(int argc, char** argv) {
   run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
   run_reaction_diffusion(compute, domain, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, held vertices");
   run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, rows past the ELL width");
+  run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit,
+                         "reaction-diffusion, explicit, rows past the ELL width, own weights per morphogen", false);
   run_reaction_diffusion(compute, domain, ReactionIntegrator::Imex, "reaction-diffusion, IMEX by device CG");
   const SurfaceDomain square = testing::make_domain(testing::make_square_grid(8));
   for (int grouping : {1, 4}) {
