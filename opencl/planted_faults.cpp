@@ -19,6 +19,11 @@ const std::vector<PlantedFault>& planted_faults() {
       {"spawn-weights-ignored", "PHYSARUM_FAULT_SPAWN_WEIGHTS_IGNORED", "(re)spawn uniform by area, spawn weights ignored"},
       {"species-matrix-transposed", "PHYSARUM_FAULT_SPECIES_MATRIX_TRANSPOSED",
        "species i senses with column i of the sensing matrix instead of row i"},
+      // Reaction-diffusion (opencl/reaction_diffusion.hpp).
+      {"rd-swap-diffusion", "PHYSARUM_FAULT_RD_SWAP_DIFFUSION",
+       "reaction-diffusion: the first two morphogens diffuse with each other's stiffness (D_u and D_v exchanged)"},
+      {"rd-no-feed", "PHYSARUM_FAULT_RD_NO_FEED",
+       "reaction-diffusion: the feed term F (1 - u) dropped (coefficient F read as 0 in the first formula)"},
   };
   return faults;
 }

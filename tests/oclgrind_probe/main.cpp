@@ -1,5 +1,5 @@
-// Runs every kernel of the agent, pheromone and statistics programs (competing species' included, and
-// philox_check.cl) once on a small problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
+// Runs every kernel of the agent, pheromone, reaction-diffusion and statistics programs (competing species'
+// included, and philox_check.cl) once on a small problem, for tests/test_oclgrind.cpp, which runs this program under oclgrind's race, memory and
 // API checks. Exit 0 when every run finished and every canary is intact.
 //
 //   physarum_oclgrind_probe               the clean run
@@ -15,6 +15,7 @@
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/simulation.hpp"
 #include "opencl/program_cache.hpp"
+#include "opencl/reaction_diffusion.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "probe_checks.hpp"
 
@@ -257,6 +258,51 @@ void run_fault_demo(const ComputeContext& compute) {
   check(true, "fault demo ran (oclgrind must report an invalid write)");
 }
 
+// Gray-Scott with F varying per vertex (a coefficient buffer), every fifth vertex held (the
+// Dirichlet paths), two explicit sub-steps (the double buffer both ways; shared or per-morphogen
+// weights) or two IMEX steps with the device's conjugate gradients.
+void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& domain, ReactionIntegrator integrator,
+                            const std::string& label, bool proportional_stiffness = true) {
+  const int n = domain.vertex_count;
+  const size_t un = static_cast<size_t>(n);
+  ReactionDiffusionSystem s;
+  s.morphogens = {"u", "v"};
+  s.reaction = {"-u*v^2 + F*(1-u)", "u*v^2 - (F+k)*v"};
+  s.coefficient_names = {"F", "k"};
+  s.coefficients = {IntrinsicVertexData<double>(un), IntrinsicVertexData<double>(un, 0.06)};
+  s.initial = {IntrinsicVertexData<double>(un), IntrinsicVertexData<double>(un)};
+  s.fixed.assign(un, 0);
+  for (int i = 0; i < n; ++i) {
+    s.coefficients[0][static_cast<size_t>(i)] = 0.03 + 0.0001 * (i % 50);
+    s.initial[0][static_cast<size_t>(i)] = 1.0 - 0.5 * ((i * 37) % 101) / 100.0;
+    s.initial[1][static_cast<size_t>(i)] = 0.25 * ((i * 53) % 97) / 96.0;
+    if (i % 5 == 0) s.fixed[static_cast<size_t>(i)] = 1;
+  }
+  for (double D : {2e-3, 1e-3}) {
+    CsrMatrix K = domain.laplacian;
+    for (double& v : K.value) v *= D;
+    s.stiffness.push_back(K);
+  }
+  // Not multiples of one another (as anisotropy makes them): each morphogen's own weights.
+  if (!proportional_stiffness)
+    for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 1.0 + 0.5 * ((e * 7) % 3);
+  s.mass = domain.vertex_mass;
+  s.integrator = integrator;
+  s.time_step = integrator == ReactionIntegrator::Explicit ? 0.2 : 1.0;
+  s.substeps = integrator == ReactionIntegrator::Explicit ? 2 : 1;
+  OpenCLReactionDiffusionOptions options;
+  options.imex_solver = ImexSolver::DeviceConjugateGradients;
+  options.cg_max_iterations = 64;
+  OpenCLReactionDiffusion rd(compute, domain, s, options);
+  rd.run(2);
+  bool finite = true;
+  for (int m = 0; m < 2; ++m)
+    for (double x : rd.field_values(m)) finite = finite && std::isfinite(x);
+  const FieldStatistics stats = rd.field_statistics(0.5, 1);
+  check(finite && std::isfinite(stats.mean), label + ": morphogens finite (mean v " + std::to_string(stats.mean) + ")");
+  check(rd.damaged_canaries().empty(), label + ": canaries intact");
+}
+
 int run(int argc, char** argv) {
   const ComputeContext compute = make_compute_context("");
   std::printf("device: %s\n", compute.device.describe().c_str());
@@ -281,6 +327,11 @@ int run(int argc, char** argv) {
   run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
   run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
   run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
+  run_reaction_diffusion(compute, domain, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, held vertices");
+  run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, rows past the ELL width");
+  run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit,
+                         "reaction-diffusion, explicit, rows past the ELL width, own weights per morphogen", false);
+  run_reaction_diffusion(compute, domain, ReactionIntegrator::Imex, "reaction-diffusion, IMEX by device CG");
   const SurfaceDomain square = testing::make_domain(testing::make_square_grid(8));
   for (int grouping : {1, 4}) {
     const std::string lanes = ", " + std::to_string(grouping) + " agent(s) per work-item";

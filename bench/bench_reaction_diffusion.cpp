@@ -1,0 +1,166 @@
+// Reaction-diffusion on the OpenCL backend (opencl/reaction_diffusion.hpp): Gray-Scott, two
+// morphogens, on flat square grids of 32^2 .. 1000^2 cells (10^3 .. 10^6 vertices; every interior
+// vertex has six neighbours, as on a regular triangle mesh, so every row fits the ELL width and
+// the grid's row-by-row numbering is already local).
+//
+//   BM_RdExplicitStep   one explicit sub-step; counters: vertices, bytes the step must move
+//                       (OpenCLReactionDiffusion::bytes_per_sub_step) per second, and that as a
+//                       fraction of the device's measured STREAM-triad bandwidth (opencl/memory_bandwidth):
+//                       the step is bandwidth-bound, so this is its roofline fraction.
+//   BM_RdImexStep       one IMEX step (dt = 10x the explicit stability bound) with the device's
+//                       conjugate gradients (warm-started) or the host factorization, against
+//   BM_RdImexHostOnly   the same step done entirely on the host in double (right-hand side and
+//                       SimplicialLDLT solves), what a host reference backend pays.
+#include "bench/bench_backends.hpp"
+#include "common/reaction_diffusion_system.hpp"
+#include "opencl/memory_bandwidth.hpp"
+#include "opencl/reaction_diffusion.hpp"
+#include "tests/pheromone_test_meshes.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <map>
+#include <random>
+
+namespace physarum::bench {
+namespace {
+
+const SurfaceDomain& grid_domain(int cells) {
+  static std::map<int, SurfaceDomain> domains;
+  auto found = domains.find(cells);
+  if (found == domains.end())
+    found = domains.emplace(cells, testing::make_domain(testing::make_square_grid(cells))).first;
+  return found->second;
+}
+
+// The device's triad bandwidth now: measured right beside each timing, because the machine is
+// shared and its bandwidth moves with the load (a bound measured minutes apart is not a bound).
+double triad_bandwidth() {
+  static opencl::DeviceTriad triad(compute());
+  return triad.bytes_per_second(3);
+}
+
+// The explicit forward-Euler stability bound of diffusion rate D (Gershgorin on M^-1 L).
+double stable_step(const SurfaceDomain& domain, double D) {
+  double worst = 0.0;
+  const CsrMatrix& L = domain.laplacian;
+  for (int i = 0; i < domain.vertex_count; ++i)
+    for (int e = L.row_start[i]; e < L.row_start[i + 1]; ++e)
+      if (L.column[e] == i) worst = std::max(worst, 2.0 * L.value[e] / domain.vertex_mass[i]);
+  return 2.0 / (D * worst);
+}
+
+// Pearson's Gray-Scott (D_u = 2e-5, D_v = 1e-5 on the unit square, F = 0.04, k = 0.06) from a
+// rough state (u in [0.3, 1], v in [0, 0.5] at random), far from any steady state, so an implicit
+// solve has real work to do in every timed step (near (1, 0) the warm start alone converges).
+ReactionDiffusionSystem gray_scott(const SurfaceDomain& domain, ReactionIntegrator integrator, double dt) {
+  const size_t n = static_cast<size_t>(domain.vertex_count);
+  ReactionDiffusionSystem s;
+  s.morphogens = {"u", "v"};
+  s.reaction = {"-u*v^2 + F*(1-u)", "u*v^2 - (F+k)*v"};
+  s.coefficient_names = {"F", "k"};
+  s.coefficients = {IntrinsicVertexData<double>(n, 0.04), IntrinsicVertexData<double>(n, 0.06)};
+  for (double D : {2e-5, 1e-5}) {
+    CsrMatrix K = domain.laplacian;
+    for (double& v : K.value) v *= D;
+    s.stiffness.push_back(K);
+  }
+  s.mass = domain.vertex_mass;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(0.3, 1.0), v(0.0, 0.5);
+  s.initial = {IntrinsicVertexData<double>(n), IntrinsicVertexData<double>(n)};
+  for (size_t i = 0; i < n; ++i) {
+    s.initial[0][i] = u(rng);
+    s.initial[1][i] = v(rng);
+  }
+  s.integrator = integrator;
+  s.time_step = dt;
+  s.substeps = 1;
+  return s;
+}
+
+void BM_RdExplicitStep(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  const ReactionDiffusionSystem s =
+      gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5));
+  opencl::OpenCLReactionDiffusion rd(compute(), domain, s);
+  rd.run(2);
+  rd.finish();
+  for (auto _ : state) {
+    rd.step();
+    rd.finish();
+  }
+  const double bytes = rd.bytes_per_sub_step();
+  const double bandwidth = triad_bandwidth();  // right after the timing (see triad_bandwidth)
+  state.counters["vertices"] = domain.vertex_count;
+  state.counters["bytes_per_step"] = bytes;
+  state.counters["bytes_per_s"] =
+      benchmark::Counter(bytes * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["triad_bytes_per_s"] = bandwidth;
+  state.SetLabel(compute().device.type);
+  // bytes_per_s / triad_bytes_per_s: the roofline fraction (a rate counter divides by the time).
+  state.counters["bound_fraction"] = benchmark::Counter(bytes * static_cast<double>(state.iterations()) / bandwidth,
+                                                        benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RdExplicitStep)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_RdImexStep(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(1)));
+  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  opencl::OpenCLReactionDiffusionOptions options;
+  options.imex_solver =
+      state.range(0) == 0 ? opencl::ImexSolver::DeviceConjugateGradients : opencl::ImexSolver::HostFactorization;
+  // Each timed step starts from the rough state again (set_field is not timed), so every step
+  // solves from the same distance: the warm start is the previous values, as in a run.
+  opencl::OpenCLReactionDiffusion rd(compute(), domain, s, options);
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    rd.set_field(s.initial[0], 0);
+    rd.set_field(s.initial[1], 1);
+    rd.finish();
+    state.ResumeTiming();
+    rd.step();
+    rd.finish();
+    iterations = rd.last_solve().iterations;
+  }
+  state.SetLabel(state.range(0) == 0 ? "device CG" : "host factorization");
+  state.counters["vertices"] = domain.vertex_count;
+  if (state.range(0) == 0) state.counters["cg_iterations"] = iterations;
+}
+BENCHMARK(BM_RdImexStep)
+    ->ArgsProduct({{0, 1}, {31, 100, 316, 1000}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_RdImexHostOnly(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const int n = domain.vertex_count;
+  const double h = s.time_step;
+  std::vector<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> factors(2);
+  for (int m = 0; m < 2; ++m) {
+    Eigen::SparseMatrix<double> A = s.stiffness[static_cast<size_t>(m)].to_eigen() * h;
+    for (int i = 0; i < n; ++i) A.coeffRef(i, i) += s.mass[i];
+    factors[static_cast<size_t>(m)].compute(A);
+  }
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(s.initial[0].data(), n);
+  Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(s.initial[1].data(), n);
+  Eigen::VectorXd bu(n), bv(n);
+  for (auto _ : state) {
+    for (int i = 0; i < n; ++i) {
+      const double uvv = u[i] * v[i] * v[i];
+      bu[i] = s.mass[i] * (u[i] + h * (-uvv + 0.04 * (1 - u[i])));
+      bv[i] = s.mass[i] * (v[i] + h * (uvv - 0.1 * v[i]));
+    }
+    u = factors[0].solve(bu);
+    v = factors[1].solve(bv);
+    benchmark::DoNotOptimize(u.data());
+  }
+  state.SetLabel("host only, double");
+  state.counters["vertices"] = n;
+}
+BENCHMARK(BM_RdImexHostOnly)->Arg(31)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace physarum::bench

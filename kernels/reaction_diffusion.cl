@@ -1,0 +1,151 @@
+/* Reaction-diffusion on the device (opencl/reaction_diffusion.hpp; the equations are those of
+ * common/reaction_diffusion_system.hpp): explicit sub-steps fused over all morphogens, and the
+ * right-hand side of the IMEX step. float32 throughout: not every device has fp64.
+ *
+ * The host prepends a generated prelude (opencl/reaction_diffusion.cpp) that defines
+ *   RD_MORPHOGENS         the number of morphogens, 2..4
+ *   RD_LOAD_COEFFICIENTS  statements reading the coefficients that vary per vertex into locals
+ *                         rd_c0, rd_c1, ... (uniform ones are float literals inside the formulas)
+ *   RD_REACTIONS          statements rd_r[m] = R_m(rd_u[0..], coefficients), one per morphogen:
+ *                         the user's formulas translated by opencl/reaction_formula.cpp
+ *   RD_HAS_FIXED          only when some vertices are Dirichlet (held) vertices
+ *   RD_SHARED_WEIGHTS     only when every K_m is c_m K_0 (isotropic morphogens), with
+ *   RD_WEIGHT_SCALES      {c_0, c_1, ...}: the explicit sub-step then reads morphogen 0's weights only
+ * so the kinetics are compiled code, not interpreted.
+ *
+ * Layout: every per-vertex array is padded to `stride` (the padded launch size) and morphogen m's
+ * values are the block [m * stride, (m + 1) * stride) of one buffer; coefficient c's values are the
+ * block c of `coefficients`. Every kernel runs on the padded size, hence the `i < n` guards on
+ * writes (padding rows read valid, zero-weighted entries). */
+#include "device_types.h"
+
+#ifndef RD_MORPHOGENS
+#error "reaction_diffusion.cl needs the generated prelude (RD_MORPHOGENS, RD_REACTIONS, ...)"
+#endif
+
+/* The planted fault rd-swap-diffusion (opencl/planted_faults.hpp): morphogens 0 and 1 diffuse with
+ * each other's stiffness. */
+#ifdef PHYSARUM_FAULT_RD_SWAP_DIFFUSION
+#define RD_STIFFNESS_OF(m) ((m) < 2 ? ((m) ^ 1) : (m))
+#else
+#define RD_STIFFNESS_OF(m) (m)
+#endif
+
+/* One forward Euler sub-step of every morphogen at row i:
+ *   u_m' = u_m + (W_m u_m)_i + h R_m(u(i)),   W_m = -h diag(1/mass) K_m,
+ * W_m assembled on the host in hybrid ELL + CSR form (opencl/hybrid_matrix.hpp) with one column
+ * array shared by all morphogens (their stiffness matrices share the Laplacian's pattern) and one
+ * block of values per morphogen: value[(m * PHYSARUM_ELL_WIDTH + k) * stride + i]. One launch reads
+ * the columns once for all morphogens, every morphogen's values once, u in and writes u out; the
+ * reaction costs no memory traffic beyond the mapped coefficients. Rows of held vertices have zero
+ * weights on the host and skip the reaction here, so they keep their value exactly.
+ * rd_explicit_overflow then adds the entries of the few rows longer than the ELL width. */
+__kernel void rd_explicit_substep(const uint n, const uint stride, __global const int* column,
+                                  __global const float* value, __global const float* coefficients,
+                                  __global const uchar* fixed, const float h, __global const float* u_in,
+                                  __global float* u_out) {
+  const uint i = get_global_id(0);
+  float rd_u[RD_MORPHOGENS], rd_r[RD_MORPHOGENS], diffusion[RD_MORPHOGENS];
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) {
+    rd_u[m] = u_in[m * stride + i];
+    diffusion[m] = 0.0f;
+  }
+#ifdef RD_SHARED_WEIGHTS
+  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. */
+  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
+#pragma unroll
+  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
+    const int j = column[k * stride + i];
+    const float w = value[k * stride + i];
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] += w * u_in[m * stride + j];
+  }
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
+#else
+#pragma unroll
+  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
+    const int j = column[k * stride + i];
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m)
+      diffusion[m] += value[(RD_STIFFNESS_OF(m) * PHYSARUM_ELL_WIDTH + k) * stride + i] * u_in[m * stride + j];
+  }
+#endif
+  RD_LOAD_COEFFICIENTS
+  RD_REACTIONS
+  (void)coefficients;
+  if (i >= n) return;
+#ifdef RD_HAS_FIXED
+  if (fixed[i]) {
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[m * stride + i] = rd_u[m];
+    return;
+  }
+#else
+  (void)fixed;
+#endif
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[m * stride + i] = rd_u[m] + diffusion[m] + h * rd_r[m];
+}
+
+/* The rest of the sub-step: each row with more than PHYSARUM_ELL_WIDTH entries adds its remaining
+ * ones, for every morphogen (CSR, one work-item per long row, so no two work-items touch one
+ * vertex). Morphogen m's values are the block m of `value`, `entries` long. */
+__kernel void rd_explicit_overflow(const uint count, const uint stride, const uint entries, __global const int* row,
+                                   __global const int* row_start, __global const int* column,
+                                   __global const float* value, __global const float* u_in, __global float* u_out) {
+  const uint j = get_global_id(0);
+  if (j >= count) return;
+  const int i = row[j];
+  const int end = row_start[j + 1];
+#ifdef RD_SHARED_WEIGHTS
+  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
+  (void)entries;
+#endif
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) {
+    float sum = 0.0f;
+#ifdef RD_SHARED_WEIGHTS
+    for (int e = row_start[j]; e < end; ++e) sum += value[e] * u_in[m * stride + column[e]];
+    sum *= rd_scale[RD_STIFFNESS_OF(m)];
+#else
+    for (int e = row_start[j]; e < end; ++e)
+      sum += value[RD_STIFFNESS_OF(m) * entries + e] * u_in[m * stride + column[e]];
+#endif
+    u_out[m * stride + i] += sum;
+  }
+}
+
+/* The right-hand side of the IMEX step, (M + dt K_m) u_m' = M (u_m + dt R_m(u)) + c_m, for every
+ * morphogen at row i. Held vertices get the row m_i u_m' = m_i u_m (the host put m_i on their
+ * diagonal and removed their columns from the other rows, so the system stays symmetric), and c_m
+ * (`coupling`, block m) is what those removed columns contributed: -dt sum_{j held} (K_m)_ij u_j,
+ * constant while the held values are. */
+__kernel void rd_imex_rhs(const uint n, const uint stride, __global const float* mass,
+                          __global const float* coefficients, __global const uchar* fixed,
+                          __global const float* coupling, const float dt, __global const float* u,
+                          __global float* b) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  float rd_u[RD_MORPHOGENS], rd_r[RD_MORPHOGENS];
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u[m * stride + i];
+  RD_LOAD_COEFFICIENTS
+  RD_REACTIONS
+  (void)coefficients;
+  const float m_i = mass[i];
+#ifdef RD_HAS_FIXED
+  if (fixed[i]) {
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) b[m * stride + i] = m_i * rd_u[m];
+    return;
+  }
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) b[m * stride + i] = m_i * (rd_u[m] + dt * rd_r[m]) + coupling[m * stride + i];
+#else
+  (void)fixed, (void)coupling;
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) b[m * stride + i] = m_i * (rd_u[m] + dt * rd_r[m]);
+#endif
+}

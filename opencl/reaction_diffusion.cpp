@@ -1,0 +1,478 @@
+#include "opencl/reaction_diffusion.hpp"
+
+#include "common/errors.hpp"
+#include "kernels/device_types.h"
+#include "opencl/hybrid_matrix.hpp"
+#include "opencl/kernel_arguments.hpp"
+#include "opencl/kernel_sources.hpp"
+#include "opencl/opencl_error.hpp"
+#include "opencl/program_cache.hpp"
+#include "opencl/reaction_formula.hpp"
+#include "opencl/work_group_size.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace physarum::opencl {
+
+struct OpenCLReactionDiffusion::Kernels {
+  cl::Kernel substep, overflow, imex_rhs;
+};
+
+// One factorization of (M + h K_m), Dirichlet rows eliminated, per morphogen.
+struct OpenCLReactionDiffusion::HostFactorizations {
+  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> factor;
+  std::vector<float> b, u;                 // staging for one morphogen's right-hand side and result
+  Eigen::VectorXd rhs, solution;
+};
+
+namespace {
+
+const char* const kWho = "opencl reaction-diffusion";
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+bool uniform(const IntrinsicVertexData<double>& v) {
+  return std::all_of(v.begin(), v.end(), [&](double x) { return x == v[0]; });
+}
+
+void check_system(const SurfaceDomain& domain, const ReactionDiffusionSystem& s) {
+  const int n = domain.vertex_count;
+  const size_t un = static_cast<size_t>(n);
+  const std::string who = kWho;
+  const size_t count = s.morphogens.size();
+  if (count < 2 || count > 4)
+    throw InputError(who + ": " + std::to_string(count) + " morphogens (2 to 4 are supported)");
+  if (s.reaction.size() != count)
+    throw InputError(who + ": " + std::to_string(s.reaction.size()) + " reaction formulas for " +
+                     std::to_string(count) + " morphogens");
+  if (s.coefficients.size() != s.coefficient_names.size())
+    throw InputError(who + ": " + std::to_string(s.coefficients.size()) + " coefficient arrays for " +
+                     std::to_string(s.coefficient_names.size()) + " coefficient names");
+  std::set<std::string> names;
+  for (const auto* list : {&s.morphogens, &s.coefficient_names})
+    for (const std::string& name : *list) {
+      if (!is_identifier(name))
+        throw InputError(who + ": '" + name + "' is not a usable name (letters, digits, '_', not starting with a digit)");
+      if (!names.insert(name).second) throw InputError(who + ": the name '" + name + "' is given twice");
+    }
+  if (s.stiffness.size() != count || s.initial.size() != count)
+    throw InputError(who + ": " + std::to_string(s.stiffness.size()) + " stiffness matrices and " +
+                     std::to_string(s.initial.size()) + " initial states for " + std::to_string(count) + " morphogens");
+  if (s.mass.size() != un)
+    throw InputError(who + ": " + std::to_string(s.mass.size()) + " masses for " + std::to_string(n) + " vertices");
+  for (int i = 0; i < n; ++i)
+    if (!(s.mass[i] > 0.0) || !std::isfinite(s.mass[i]))
+      throw InputError(who + ": vertex " + std::to_string(i) + " has lumped mass " + std::to_string(s.mass[i]) +
+                       " (must be > 0)");
+  for (size_t c = 0; c < s.coefficients.size(); ++c) {
+    if (s.coefficients[c].size() != un)
+      throw InputError(who + ": coefficient '" + s.coefficient_names[c] + "' has " +
+                       std::to_string(s.coefficients[c].size()) + " values for " + std::to_string(n) + " vertices");
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(s.coefficients[c][i]))
+        throw InputError(who + ": coefficient '" + s.coefficient_names[c] + "' is not finite at vertex " + std::to_string(i));
+  }
+  for (size_t m = 0; m < count; ++m) {
+    const CsrMatrix& K = s.stiffness[m];
+    if (K.rows != n || K.cols != n || K.row_start.size() != un + 1)
+      throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' is " + std::to_string(K.rows) + " x " +
+                       std::to_string(K.cols) + " for " + std::to_string(n) + " vertices");
+    if (K.row_start != s.stiffness[0].row_start || K.column != s.stiffness[0].column)
+      throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' has another sparsity pattern than that of '" +
+                       s.morphogens[0] + "' (all share the Laplacian's)");
+    for (double v : K.value)
+      if (!std::isfinite(v)) throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' has a non-finite entry");
+    if (s.initial[m].size() != un)
+      throw InputError(who + ": the initial state of '" + s.morphogens[m] + "' has " +
+                       std::to_string(s.initial[m].size()) + " values for " + std::to_string(n) + " vertices");
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(s.initial[m][i]))
+        throw InputError(who + ": the initial state of '" + s.morphogens[m] + "' is not finite at vertex " +
+                         std::to_string(i));
+  }
+  if (!s.fixed.empty() && s.fixed.size() != un)
+    throw InputError(who + ": " + std::to_string(s.fixed.size()) + " held-vertex flags for " + std::to_string(n) +
+                     " vertices");
+  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
+    throw InputError(who + ": time step " + std::to_string(s.time_step) + " must be > 0");
+  if (s.substeps < 1) throw InputError(who + ": substeps " + std::to_string(s.substeps) + " must be >= 1");
+}
+
+bool has_option(const std::string& options, const std::string& define) {
+  return options.find("-D" + define) != std::string::npos;
+}
+
+}  // namespace
+
+OpenCLReactionDiffusion::~OpenCLReactionDiffusion() = default;
+
+OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, const SurfaceDomain& domain,
+                                                 const ReactionDiffusionSystem& system,
+                                                 const OpenCLReactionDiffusionOptions& options)
+    : compute_(compute), options_(options), integrator_(system.integrator) {
+  check_system(domain, system);
+  const int n = domain.vertex_count;
+  const size_t un = static_cast<size_t>(n);
+  vertex_count_ = n;
+  morphogen_count_ = static_cast<int>(system.morphogens.size());
+  const size_t M = static_cast<size_t>(morphogen_count_);
+  time_step_ = system.time_step;
+  substeps_ = system.substeps;
+  sub_step_ = time_step_ / substeps_;
+  mass_host_ = system.mass;
+  stiffness_ = system.stiffness;
+  fixed_host_ = system.fixed;
+  has_fixed_ = std::any_of(fixed_host_.begin(), fixed_host_.end(), [](std::uint8_t f) { return f != 0; });
+  if (fixed_host_.empty()) fixed_host_.assign(un, 0);
+  // The planted fault rd-swap-diffusion in the IMEX systems (the explicit kernel swaps on its own).
+  if (has_option(options.build_options, "PHYSARUM_FAULT_RD_SWAP_DIFFUSION") && integrator_ == ReactionIntegrator::Imex)
+    std::swap(stiffness_[0], stiffness_[1]);
+
+  // ---- the kinetics as OpenCL C ----
+  std::vector<size_t> varying;  // coefficients read per vertex, in slot order
+  std::map<std::string, std::string> names;
+  for (size_t m = 0; m < M; ++m) names[system.morphogens[m]] = "rd_u[" + std::to_string(m) + "]";
+  for (size_t c = 0; c < system.coefficient_names.size(); ++c) {
+    if (uniform(system.coefficients[c]) && !system.coefficients[c].empty()) {
+      names[system.coefficient_names[c]] = float_literal(system.coefficients[c][0]);
+    } else {
+      names[system.coefficient_names[c]] = "rd_c" + std::to_string(varying.size());
+      varying.push_back(c);
+    }
+  }
+  std::string reactions;
+  for (size_t m = 0; m < M; ++m) {
+    std::map<std::string, std::string> formula_names = names;
+    // The planted fault rd-no-feed: Gray-Scott's feed term F (1 - u) dropped from the first formula.
+    if (m == 0 && has_option(options.build_options, "PHYSARUM_FAULT_RD_NO_FEED") && formula_names.count("F"))
+      formula_names["F"] = "0.0f";
+    translated_.push_back(translate_reaction_formula(system.reaction[m], formula_names,
+                                                     std::string(kWho) + ": the reaction of morphogen '" +
+                                                         system.morphogens[m] + "'"));
+    reactions += "rd_r[" + std::to_string(m) + "] = " + translated_.back() + "; ";
+  }
+  std::string loads;
+  for (size_t slot = 0; slot < varying.size(); ++slot)
+    loads += "const float rd_c" + std::to_string(slot) + " = coefficients[" + std::to_string(slot) + "u * stride + i]; ";
+  // Isotropic morphogens have stiffness D_m L: when every K_m is c_m K_0, the explicit sub-step
+  // reads one set of weights for all of them and scales each morphogen's sum by c_m, a third fewer
+  // bytes per vertex for two morphogens (bench_reaction_diffusion).
+  std::vector<double> weight_scale(M, 1.0);
+  bool shared_weights = integrator_ == ReactionIntegrator::Explicit;
+  const std::vector<double>& K0 = system.stiffness[0].value;
+  const auto reference = std::find_if(K0.begin(), K0.end(), [](double v) { return v != 0.0; });
+  if (reference == K0.end()) shared_weights = false;
+  for (size_t m = 1; m < M && shared_weights; ++m) {
+    const std::vector<double>& Km = system.stiffness[m].value;
+    const double c = Km[static_cast<size_t>(reference - K0.begin())] / *reference;
+    for (size_t e = 0; e < K0.size() && shared_weights; ++e)
+      shared_weights = std::abs(Km[e] - c * K0[e]) <= 1e-12 * std::max(std::abs(Km[e]), std::abs(c * K0[e]));
+    weight_scale[m] = c;
+  }
+  std::string scales;
+  for (size_t m = 0; m < M; ++m) scales += (m ? ", " : "") + float_literal(weight_scale[m]);
+  const std::string prelude = "#define RD_MORPHOGENS " + std::to_string(M) + "\n#define RD_LOAD_COEFFICIENTS " + loads +
+                              "\n#define RD_REACTIONS " + reactions + "\n" + (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
+                              (shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + scales + "}\n" : "");
+
+  // ---- program and launch sizes ----
+  kernels_ = std::make_unique<Kernels>();
+  try {
+    const cl::Program program = build_program(compute.context, compute.device, "reaction_diffusion.cl",
+                                              prelude + kernel_source("reaction_diffusion.cl"), options.build_options);
+    kernels_->substep = cl::Kernel(program, "rd_explicit_substep");
+    kernels_->overflow = cl::Kernel(program, "rd_explicit_overflow");
+    kernels_->imex_rhs = cl::Kernel(program, "rd_imex_rhs");
+    group_ = common_work_group_size({&kernels_->substep, &kernels_->overflow, &kernels_->imex_rhs}, compute.device, 256);
+  } catch (const cl::Error& e) {
+    throw device_error("preparing the reaction-diffusion kernels (reaction_diffusion.cl) on " +
+                           compute.device.device_name,
+                       e.err());
+  }
+  // Morphogen blocks start on the device's sub-buffer alignment, so each can be a sub-buffer.
+  const size_t align_floats =
+      std::max<size_t>(1, compute.device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / (8 * sizeof(cl_float)));
+  const size_t unit = std::max(group_, align_floats);
+  stride_ = (un + unit - 1) / unit * unit;
+
+  // ---- buffers ----
+  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+  std::vector<float> coefficient_values(std::max<size_t>(1, varying.size() * stride_), 0.0f);
+  for (size_t slot = 0; slot < varying.size(); ++slot)
+    for (size_t i = 0; i < un; ++i)
+      coefficient_values[slot * stride_ + i] = static_cast<float>(system.coefficients[varying[slot]][i]);
+  coefficients_ = upload_buffer(compute, "reaction coefficients", coefficient_values, kRead, false);
+  fixed_ = upload_buffer(compute, "held vertices", has_fixed_ ? fixed_host_ : std::vector<std::uint8_t>(1, 0), kRead,
+                         false);
+  std::vector<float> mass(stride_, 0.0f);
+  for (size_t i = 0; i < un; ++i) mass[i] = static_cast<float>(system.mass[i]);
+  mass_ = upload_buffer(compute, "vertex mass", mass, kRead, false);
+  u_ = allocate_written<cl_float>(compute, "morphogens", M * stride_);
+  scratch_ = allocate_written<cl_float>(compute, "morphogens scratch", M * stride_);
+  compute.queue.enqueueFillBuffer(u_.buffer, 0.0f, 0, u_.payload_bytes);
+  compute.queue.enqueueFillBuffer(scratch_.buffer, 0.0f, 0, scratch_.payload_bytes);
+  for (size_t m = 0; m < M; ++m) {
+    cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
+    DeviceBuffer view;
+    view.buffer = u_.buffer.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region);
+    view.name = "morphogen '" + system.morphogens[m] + "'";
+    view.payload_bytes = region.size;
+    u_views_.push_back(view);
+  }
+
+  if (integrator_ == ReactionIntegrator::Explicit) {
+    // W_m = -h M^-1 K_m, rows of held vertices zero; in hybrid form with one ELL row per padded row.
+    std::vector<HybridMatrix> hybrid;
+    for (size_t m = 0; m < M; ++m) {
+      CsrMatrix W = system.stiffness[m];
+      for (int i = 0; i < n; ++i)
+        for (int e = W.row_start[i]; e < W.row_start[i + 1]; ++e)
+          W.value[e] = fixed_host_[i] ? 0.0 : -sub_step_ * W.value[e] / system.mass[i];
+      hybrid.push_back(to_hybrid(W, static_cast<int>(stride_)));
+    }
+    // One block of weights per morphogen, or only morphogen 0's when they are shared.
+    std::vector<float> values, overflow_values;
+    for (size_t m = 0; m < (shared_weights ? 1 : M); ++m) {
+      values.insert(values.end(), hybrid[m].value.begin(), hybrid[m].value.end());
+      overflow_values.insert(overflow_values.end(), hybrid[m].overflow_value.begin(), hybrid[m].overflow_value.end());
+    }
+    const double weight_blocks = shared_weights ? 1.0 : static_cast<double>(M);
+    const HybridMatrix& shape = hybrid[0];
+    overflow_rows_ = shape.overflow_rows();
+    overflow_entries_ = static_cast<int>(shape.overflow_column.size());
+    if (overflow_values.empty()) overflow_values.push_back(0.0f);  // a buffer may not be empty
+    auto non_empty = [](std::vector<int> v) { return v.empty() ? std::vector<int>{0} : v; };
+    column_ = upload_buffer(compute, "reaction-diffusion ELL columns", shape.column, kRead, false);
+    value_ = upload_buffer(compute, "reaction-diffusion ELL values", values, kRead, false);
+    overflow_row_ = upload_buffer(compute, "reaction-diffusion overflow rows", non_empty(shape.overflow_row), kRead, false);
+    overflow_start_ = upload_buffer(compute, "reaction-diffusion overflow starts", shape.overflow_start, kRead, false);
+    overflow_column_ =
+        upload_buffer(compute, "reaction-diffusion overflow columns", non_empty(shape.overflow_column), kRead, false);
+    overflow_value_ = upload_buffer(compute, "reaction-diffusion overflow values", overflow_values, kRead, false);
+    const double ell = static_cast<double>(shape.column.size());
+    bytes_per_sub_step_ = 4.0 * (ell * (1.0 + weight_blocks) +
+                                 static_cast<double>(shape.overflow_row.size() + shape.overflow_start.size()) +
+                                 static_cast<double>(overflow_entries_) * (1.0 + weight_blocks) +
+                                 2.0 * static_cast<double>(M) * static_cast<double>(overflow_rows_) +
+                                 2.0 * static_cast<double>(M * un) + static_cast<double>(varying.size() * un)) +
+                          (has_fixed_ ? static_cast<double>(un) : 0.0);
+  } else {
+    imex_solver_ = options.imex_solver;
+    if (imex_solver_ == ImexSolver::Automatic)
+      imex_solver_ = compute.device.type == "CPU" ? ImexSolver::HostFactorization : ImexSolver::DeviceConjugateGradients;
+    rhs_ = allocate_written<cl_float>(compute, "IMEX right-hand sides", M * stride_);
+    coupling_ = has_fixed_ ? allocate_written<cl_float>(compute, "Dirichlet coupling", M * stride_)
+                           : allocate_written<cl_float>(compute, "Dirichlet coupling", 1);
+    if (imex_solver_ == ImexSolver::HostFactorization) factorizations_ = std::make_unique<HostFactorizations>();
+    for (size_t m = 0; m < M; ++m) {
+      // S = M + h K_m with the held vertices' rows and columns replaced by m_i on the diagonal.
+      const CsrMatrix& K = stiffness_[m];
+      std::vector<Eigen::Triplet<double>> entries;
+      for (int i = 0; i < n; ++i) {
+        if (fixed_host_[i]) {
+          entries.emplace_back(i, i, system.mass[i]);
+          continue;
+        }
+        entries.emplace_back(i, i, system.mass[i]);
+        for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e)
+          if (!fixed_host_[K.column[e]]) entries.emplace_back(i, K.column[e], sub_step_ * K.value[e]);
+      }
+      Eigen::SparseMatrix<double, Eigen::RowMajor> S(n, n);
+      S.setFromTriplets(entries.begin(), entries.end());
+      if (imex_solver_ == ImexSolver::HostFactorization) {
+        auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+        factor->compute(Eigen::SparseMatrix<double>(S));
+        if (factor->info() != Eigen::Success)
+          throw InputError(std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
+                           "' is not positive definite (a stiffness matrix that is not positive semi-definite?)");
+        factorizations_->factor.push_back(std::move(factor));
+      } else {
+        std::vector<double> inverse_diagonal(un);
+        for (int i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / S.coeff(i, i);
+        solvers_.push_back(std::make_unique<DeviceConjugateGradients>(
+            compute, CsrMatrix::from_eigen(S), inverse_diagonal,
+            ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
+            options.build_options));
+      }
+    }
+  }
+
+  statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
+  for (size_t m = 0; m < M; ++m) set_field(system.initial[m], static_cast<int>(m));
+}
+
+std::string OpenCLReactionDiffusion::device_name() const { return compute_.device.describe(); }
+
+// ---- time ----
+
+void OpenCLReactionDiffusion::step() {
+  try {
+    if (integrator_ == ReactionIntegrator::Explicit) explicit_step();
+    else imex_step();
+  } catch (const cl::Error& e) {
+    throw device_error("reaction-diffusion step on " + compute_.device.device_name, e.err());
+  }
+  ++steps_taken_;
+}
+
+void OpenCLReactionDiffusion::run(long long steps) {
+  for (long long s = 0; s < steps; ++s) step();
+}
+
+void OpenCLReactionDiffusion::finish() { compute_.queue.finish(); }
+
+void OpenCLReactionDiffusion::explicit_step() {
+  const cl::Buffer* from = &u_.buffer;
+  const cl::Buffer* to = &scratch_.buffer;
+  const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(overflow_rows_), group_));
+  for (int s = 0; s < substeps_; ++s) {
+    set_arguments(kernels_->substep, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), column_, value_,
+                  coefficients_, fixed_, static_cast<cl_float>(sub_step_), *from, *to);
+    compute_.queue.enqueueNDRangeKernel(kernels_->substep, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
+    if (overflow_rows_ > 0) {
+      set_arguments(kernels_->overflow, static_cast<cl_uint>(overflow_rows_), static_cast<cl_uint>(stride_),
+                    static_cast<cl_uint>(overflow_entries_), overflow_row_, overflow_start_, overflow_column_,
+                    overflow_value_, *from, *to);
+      compute_.queue.enqueueNDRangeKernel(kernels_->overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
+    }
+    std::swap(from, to);
+  }
+  // An odd count ends in scratch: one device-side copy, so u_ (and its sub-buffers) stays current.
+  if (from != &u_.buffer) compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
+}
+
+void OpenCLReactionDiffusion::imex_step() {
+  const size_t un = static_cast<size_t>(vertex_count_);
+  const size_t all_bytes = static_cast<size_t>(morphogen_count_) * stride_ * sizeof(cl_float);
+  for (int s = 0; s < substeps_; ++s) {
+    set_arguments(kernels_->imex_rhs, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), mass_,
+                  coefficients_, fixed_, coupling_, static_cast<cl_float>(sub_step_), u_, rhs_);
+    compute_.queue.enqueueNDRangeKernel(kernels_->imex_rhs, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
+    if (imex_solver_ == ImexSolver::DeviceConjugateGradients) {
+      for (int m = 0; m < morphogen_count_; ++m) {
+        // x starts from the previous step's values: the warm start.
+        compute_.queue.enqueueCopyBuffer(rhs_.buffer, solvers_[m]->right_hand_side().buffer,
+                                         static_cast<size_t>(m) * stride_ * sizeof(cl_float), 0, un * sizeof(cl_float));
+        last_solve_ = solvers_[m]->solve(u_views_[m]);
+      }
+      continue;
+    }
+    // Host factorization: every morphogen's right-hand side in one read and the results in one write
+    // (each blocking transfer is a round trip that costs more than a small solve).
+    HostFactorizations& f = *factorizations_;
+    f.b.resize(all_bytes / sizeof(cl_float));
+    f.u.resize(all_bytes / sizeof(cl_float));
+    compute_.queue.enqueueReadBuffer(rhs_.buffer, CL_FALSE, 0, all_bytes, f.b.data());
+    // The held values as they are: m_i u_i / m_i rounds, and a held value must not move at all.
+    if (has_fixed_) compute_.queue.enqueueReadBuffer(u_.buffer, CL_FALSE, 0, all_bytes, f.u.data());
+    compute_.queue.finish();
+    for (int m = 0; m < morphogen_count_; ++m) {
+      const size_t offset = static_cast<size_t>(m) * stride_;
+      f.rhs = Eigen::Map<const Eigen::VectorXf>(f.b.data() + offset, vertex_count_).cast<double>();
+      f.solution = f.factor[m]->solve(f.rhs);
+      for (size_t i = 0; i < un; ++i)
+        if (!fixed_host_[i]) f.u[offset + i] = static_cast<float>(f.solution[static_cast<Eigen::Index>(i)]);
+    }
+    compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, all_bytes, f.u.data());
+    last_solve_ = {};
+  }
+}
+
+// The held vertices' columns moved to the right-hand side: c_m,i = -h sum_{j held} (K_m)_ij u_m,j,
+// for the rows that are not held. Recomputed whenever the held values may change (set/fill).
+void OpenCLReactionDiffusion::update_dirichlet_coupling() {
+  if (!has_fixed_ || integrator_ != ReactionIntegrator::Imex) return;
+  const size_t un = static_cast<size_t>(vertex_count_);
+  std::vector<float> coupling(static_cast<size_t>(morphogen_count_) * stride_, 0.0f);
+  for (int m = 0; m < morphogen_count_; ++m) {
+    const IntrinsicVertexData<double> u = field_values(m);
+    const CsrMatrix& K = stiffness_[m];
+    for (size_t i = 0; i < un; ++i) {
+      if (fixed_host_[i]) continue;
+      double sum = 0.0;
+      for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e)
+        if (fixed_host_[K.column[e]]) sum += K.value[e] * u[K.column[e]];
+      coupling[static_cast<size_t>(m) * stride_ + i] = static_cast<float>(-sub_step_ * sum);
+    }
+  }
+  compute_.queue.enqueueWriteBuffer(coupling_.buffer, CL_TRUE, 0, coupling.size() * sizeof(float), coupling.data());
+}
+
+// ---- layers ----
+
+void OpenCLReactionDiffusion::check_morphogen(int layer, const char* what) const {
+  check_layer_index(layer, layer_count(), kWho, what);
+}
+
+int OpenCLReactionDiffusion::add_static_layer(const IntrinsicVertexData<double>& values) {
+  const int index = layer_count();
+  check_layer_values(values, vertex_count_, index, kWho, "add_static_layer");
+  static_fields_.push_back(std::make_unique<OpenCLStaticField>(compute_, "static field layer " + std::to_string(index),
+                                                               DeviceVertexData<double>(mass_host_.values()),
+                                                               DeviceVertexData<double>(values.values())));
+  return index;
+}
+
+IntrinsicVertexData<double> OpenCLReactionDiffusion::field_values(int layer) const {
+  check_morphogen(layer, "field_values");
+  if (layer >= morphogen_count_)
+    return IntrinsicVertexData<double>(static_fields_[static_cast<size_t>(layer - morphogen_count_)]->concentration().values());
+  std::vector<float> values(static_cast<size_t>(vertex_count_));
+  compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+                                   values.size() * sizeof(cl_float), values.data());
+  return IntrinsicVertexData<double>(std::vector<double>(values.begin(), values.end()));
+}
+
+void OpenCLReactionDiffusion::set_field(const IntrinsicVertexData<double>& values, int layer) {
+  check_morphogen(layer, "set_field");
+  check_layer_values(values, vertex_count_, layer, kWho, "set_field");
+  if (layer >= morphogen_count_) {
+    static_fields_[static_cast<size_t>(layer - morphogen_count_)]->set_concentration(
+        DeviceVertexData<double>(values.values()));
+    return;
+  }
+  const std::vector<float> floats(values.begin(), values.end());
+  compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+                                    floats.size() * sizeof(cl_float), floats.data());
+  update_dirichlet_coupling();
+}
+
+void OpenCLReactionDiffusion::fill_field(double value, int layer) {
+  check_morphogen(layer, "fill_field");
+  check_layer_value(value, layer, kWho, "fill_field");
+  if (layer >= morphogen_count_) {
+    static_fields_[static_cast<size_t>(layer - morphogen_count_)]->fill(value);
+    return;
+  }
+  compute_.queue.enqueueFillBuffer(u_.buffer, static_cast<cl_float>(value),
+                                   static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+                                   static_cast<size_t>(vertex_count_) * sizeof(cl_float));
+  update_dirichlet_coupling();
+}
+
+FieldStatistics OpenCLReactionDiffusion::field_statistics(double U, int layer) const {
+  check_morphogen(layer, "field_statistics");
+  if (layer >= morphogen_count_) return static_fields_[static_cast<size_t>(layer - morphogen_count_)]->statistics(U);
+  return statistics_->compute(u_views_[static_cast<size_t>(layer)].buffer, U);
+}
+
+std::vector<std::string> OpenCLReactionDiffusion::damaged_canaries() const {
+  std::vector<std::string> damaged = statistics_->damaged_canaries();
+  for (const DeviceBuffer* b : {&u_, &scratch_, &rhs_, &coupling_})
+    if (b->guarded && !canary_intact(compute_, *b)) damaged.push_back(b->name);
+  for (const auto& solver : solvers_)
+    for (const std::string& name : solver->damaged_canaries()) damaged.push_back(name);
+  for (const auto& field : static_fields_)
+    for (const std::string& name : field->damaged_canaries()) damaged.push_back(name);
+  return damaged;
+}
+
+}  // namespace physarum::opencl

@@ -1,0 +1,150 @@
+#pragma once
+// A reaction-diffusion system (common/reaction_diffusion_system.hpp) advanced on an OpenCL device,
+// as a SimulationBackend whose dynamic layers are the morphogens (layer m = morphogen m) and which
+// has no agents. The morphogens stay on the device; the host reads them only on demand.
+//
+//   Explicit: each step is `substeps` forward-Euler sub-steps
+//               u_m += h (-(K_m u_m)_i / mass_i + R_m(u)_i),   h = time_step / substeps,
+//             one fused launch per sub-step for all morphogens (kernels/reaction_diffusion.cl:
+//             neighbours through the shared sparsity pattern, kinetics inline), double-buffered,
+//             plus a small launch for the rows longer than the ELL width.
+//   IMEX:     (M + h K_m) u_m' = M (u_m + h R_m(u)) per morphogen: the right-hand side on the device,
+//             the solve either by Jacobi-preconditioned conjugate gradients on the device
+//             (opencl/conjugate_gradients.hpp, warm-started from the previous step's values) or by a
+//             sparse Cholesky factorization on the host, made once (see ImexSolver).
+//
+// The formulas are compiled into the program (opencl/reaction_formula.hpp): a coefficient with one
+// value everywhere becomes a float literal, a varying one a per-vertex buffer read. Held (`fixed`)
+// vertices keep their values exactly, in both integrators.
+//
+// Vertices are in the domain's (= the system's) order; there is no device renumbering here.
+#include "common/reaction_diffusion_system.hpp"
+#include "common/simulation_backend.hpp"
+#include "common/surface_domain.hpp"
+#include "opencl/compute_context.hpp"
+#include "opencl/conjugate_gradients.hpp"
+#include "opencl/device_buffer.hpp"
+#include "opencl/field_statistics.hpp"
+#include "opencl/static_field.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace physarum::opencl {
+
+// Who solves the IMEX step's linear systems.
+enum class ImexSolver {
+  // The host factorization where the device is the host's CPU (PoCL): there the factorization's
+  // two triangular solves beat tens of CG iterations at every size (bench_reaction_diffusion); on a
+  // GPU the values never leave the device and CG's bandwidth-bound iterations run at its speed.
+  Automatic,
+  DeviceConjugateGradients,
+  HostFactorization,
+};
+
+struct OpenCLReactionDiffusionOptions {
+  ImexSolver imex_solver = ImexSolver::Automatic;
+  // Device CG stops when ||b - S x|| <= tolerance ||b|| (1e-6: about 10 float ulps).
+  double cg_relative_tolerance = 1e-6;
+  int cg_max_iterations = 1000;
+  int cg_check_interval = 8;
+  // Extra OpenCL build options (the differential harness plants faults with -D flags,
+  // opencl/planted_faults.hpp: rd-swap-diffusion, rd-no-feed).
+  std::string build_options;
+};
+
+class OpenCLReactionDiffusion final : public SimulationBackend {
+ public:
+  // Checks the system (2 to 4 morphogens with one formula each, every per-vertex array one value per
+  // domain vertex and finite, masses > 0, stiffness matrices n x n sharing one sparsity pattern,
+  // time step > 0, substeps >= 1, formulas that parse over the morphogen and coefficient names),
+  // throwing InputError saying what and where; translates the formulas, builds the program and
+  // uploads the operators and the initial state. DeviceError when the device refuses.
+  OpenCLReactionDiffusion(const ComputeContext& compute, const SurfaceDomain& domain,
+                          const ReactionDiffusionSystem& system, const OpenCLReactionDiffusionOptions& options = {});
+  ~OpenCLReactionDiffusion() override;
+  OpenCLReactionDiffusion(const OpenCLReactionDiffusion&) = delete;
+  OpenCLReactionDiffusion& operator=(const OpenCLReactionDiffusion&) = delete;
+
+  // One time step (see the header comment): explicit steps only enqueue; IMEX waits for its solves.
+  void step() override;
+  void run(long long steps) override;
+  void finish() override;
+
+  int layer_count() const override { return morphogen_count_ + static_cast<int>(static_fields_.size()); }
+  int dynamic_layer_count() const override { return morphogen_count_; }
+  int add_static_layer(const IntrinsicVertexData<double>& values) override;
+  IntrinsicVertexData<double> field_values(int layer = 0) const override;
+  // Setting a morphogen sets its held vertices too (they keep the new values from then on).
+  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
+  void fill_field(double value, int layer = 0) override;
+  FieldStatistics field_statistics(double U, int layer = 0) const override;
+
+  double time() const override { return static_cast<double>(steps_taken_) * time_step_; }
+  long long steps_taken() const override { return steps_taken_; }
+  std::vector<int> agent_faces() const override { return {}; }
+  SimulationCounters counters() const override { return {}; }
+  std::string backend_name() const override { return "opencl"; }
+  std::string device_name() const override;
+
+  // ---- for tests and benchmarks ----
+  // The OpenCL C expressions the formulas were compiled to, one per morphogen.
+  const std::vector<std::string>& translated_reactions() const { return translated_; }
+  // The IMEX solver in use (Automatic resolved); meaningless for the explicit integrator.
+  ImexSolver imex_solver() const { return imex_solver_; }
+  const ConjugateGradientReport& last_solve() const { return last_solve_; }
+  // Bytes one explicit sub-step reads and writes at the least: the shared columns and every
+  // morphogen's values of the hybrid matrix, u in and out, the varying coefficients and the held
+  // flags (when any): the memory traffic a roofline sets against the bandwidth.
+  double bytes_per_sub_step() const { return bytes_per_sub_step_; }
+  int substeps() const { return substeps_; }
+  std::vector<std::string> damaged_canaries() const;
+
+ private:
+  struct Kernels;
+  void explicit_step();
+  void imex_step();
+  void update_dirichlet_coupling();
+  void check_morphogen(int layer, const char* what) const;
+
+  ComputeContext compute_;
+  OpenCLReactionDiffusionOptions options_;
+  ReactionIntegrator integrator_;
+  int vertex_count_ = 0;
+  int morphogen_count_ = 0;
+  double time_step_ = 0.0;
+  int substeps_ = 1;
+  double sub_step_ = 0.0;
+  long long steps_taken_ = 0;
+  bool has_fixed_ = false;
+  std::vector<std::string> translated_;
+
+  std::unique_ptr<Kernels> kernels_;
+  std::size_t group_ = 1;
+  std::size_t stride_ = 1;  // padded per-vertex length of every array (a multiple of group_)
+  // Explicit: hybrid matrices W_m = -h M^-1 K_m (columns shared, values per morphogen).
+  int overflow_rows_ = 0;
+  int overflow_entries_ = 0;
+  double bytes_per_sub_step_ = 0.0;
+  DeviceBuffer column_, value_, overflow_row_, overflow_start_, overflow_column_, overflow_value_;
+  // Per vertex: varying coefficients (block per coefficient), held flags, masses.
+  DeviceBuffer coefficients_, fixed_, mass_;
+  std::vector<std::uint8_t> fixed_host_;
+  std::vector<CsrMatrix> stiffness_;  // kept for the Dirichlet coupling (IMEX with held vertices)
+  // State: u (block per morphogen) and the other half of the double buffer; b for IMEX.
+  DeviceBuffer u_, scratch_, rhs_, coupling_;
+  std::vector<DeviceBuffer> u_views_;  // sub-buffers of u_, one per morphogen (statistics, CG)
+  // IMEX.
+  ImexSolver imex_solver_ = ImexSolver::Automatic;
+  std::vector<std::unique_ptr<DeviceConjugateGradients>> solvers_;
+  struct HostFactorizations;
+  std::unique_ptr<HostFactorizations> factorizations_;
+  ConjugateGradientReport last_solve_;
+
+  IntrinsicVertexData<double> mass_host_;
+  std::unique_ptr<DeviceFieldStatistics> statistics_;
+  std::vector<std::unique_ptr<OpenCLStaticField>> static_fields_;
+};
+
+}  // namespace physarum::opencl
