@@ -163,10 +163,21 @@ TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
   EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
 }
 
+TEST(SweepFailures, ABadVariantIsRefusedBeforeAnyJobExists) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=100,-5" + kRunOptions +
+                                       " --out " + quoted(dir.path / "s"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("variant 1 {\"agents\":-5}"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "jobs.jsonl"));
+}
+
+// A job that fails only when it runs (far more agents than memory holds: refused by the run).
 TEST(SweepFailures, AFailedJobIsReportedAndTheOthersStillRun) {
   TempDir dir;
   std::ofstream(dir.path / "scene.json") << kScene;
-  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=-5,100" + kRunOptions +
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=2000000000,100" + kRunOptions +
                                        " --out " + quoted(dir.path / "s") + " --run --jobs 2");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.err.find("job 0 (run_0000) failed (exit code 1)"), std::string::npos) << r.err;

@@ -57,6 +57,9 @@ TEST(SceneOverrides, LoadSceneAppliesNestedOverridesWithItsChecks) {
   testing::TempDir dir;
   const auto path = dir.path / "scene.json";
   std::ofstream(path) << R"({"mesh": "shape:sphere", "agents": 10, "time_step": 0.01,
+    "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+    "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+    "mean_lifetime": 1.0, "activation_time": 0.2,
     "maps": {"east": {"direction": [1, 0, 0]}}, "bias": {"direction": "east", "strength": 10}})";
   const Scene s = load_scene(path.string(), json{{"bias.strength", 40.0}, {"agents", 25}});
   EXPECT_EQ(s.agents, 25);

@@ -154,6 +154,7 @@ int run_sweep(const SweepOptions& o) {
     plan = read_sweep_plan(o.target);
   } else {
     plan = make_sweep_plan(o.target, o.vary, o.csv, o.seeds, run_options(o), o.out);
+    check_sweep_variants(plan);
     write_sweep_plan(plan);
   }
   const std::vector<SweepJob> jobs = read_sweep_jobs(plan.folder);

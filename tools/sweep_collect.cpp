@@ -88,7 +88,7 @@ ContactSheet contact_sheet_for(const SweepPlan& plan, const std::vector<SweepJob
   if (L.seeds > 1) {
     std::string seeds;
     for (std::size_t s = 0; s < plan.seeds.size(); ++s) seeds += (s ? ", " : "") + std::to_string(plan.seeds[s]);
-    sheet.title += "    seeds " + seeds + " side by side";
+    sheet.title += (sheet.title.empty() ? "" : "    ") + std::string("seeds ") + seeds;
   }
   L.rows = static_cast<int>(sheet.row_labels.size());
   L.columns = static_cast<int>(sheet.column_labels.size());

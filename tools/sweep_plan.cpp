@@ -2,6 +2,7 @@
 
 #include "common/atomic_write.hpp"
 #include "common/errors.hpp"
+#include "common/scene.hpp"
 #include "common/scene_overrides.hpp"
 
 #include <cstdio>
@@ -224,6 +225,17 @@ SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::strin
   const std::uint32_t first = scene_seed(plan.scene);
   for (int k = 0; k < seeds; ++k) plan.seeds.push_back(first + static_cast<std::uint32_t>(k));
   return plan;
+}
+
+void check_sweep_variants(const SweepPlan& plan) {
+  for (int v = 0; v < plan.variant_count(); ++v) {
+    const nlohmann::ordered_json overrides = plan.variant(v);
+    try {
+      load_scene(plan.scene, nlohmann::json(overrides));
+    } catch (const InputError& e) {
+      throw InputError("variant " + std::to_string(v) + " " + overrides.dump() + ": " + e.what());
+    }
+  }
 }
 
 namespace {

@@ -73,6 +73,10 @@ void read_variant_csv(const std::string& path, std::vector<std::string>& keys, s
 SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::string>& vary, const std::string& csv,
                           int seeds, const std::vector<std::string>& run_options, const std::string& folder);
 
+// Reads every variant as a scene (load_scene with its overrides), so a misspelt key or a value out of
+// range is refused before any job exists, naming the variant. Cheap: no surface is built.
+void check_sweep_variants(const SweepPlan& plan);
+
 // Writes DIR/sweep.json and DIR/jobs.jsonl (and creates DIR/logs). A folder that already holds a
 // sweep keeps it when it is the same one (so re-running the command resumes) and is refused with
 // InputError when it is another.
