@@ -1,4 +1,5 @@
 #include "common/scene.hpp"
+#include "common/scene_overrides.hpp"
 
 #include "common/errors.hpp"
 #include "common/scene_keys.hpp"
@@ -429,8 +430,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   buffer << file.rdbuf();
   if (file.bad()) throw InputError(path + ": cannot read the scene file");
   json j = parse_scene_text(buffer.str(), path);
-  if (!overrides.is_object()) throw InputError(path + ": scene overrides must be a JSON object");
-  for (auto it = overrides.begin(); it != overrides.end(); ++it) j[it.key()] = it.value();
+  apply_scene_overrides(j, overrides, path);
 
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (!find_scene_key(it.key()))

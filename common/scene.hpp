@@ -76,8 +76,8 @@ struct Scene {
 
 // Parses and validates a scene file. A relative "mesh" path, and the files the maps read, are
 // resolved against the scene file's folder.
-// `overrides` (a JSON object of scene keys) replaces or adds keys of the file before it is read, with
-// the same checks (the harness's --arm key=value).
+// `overrides` (scene keys, nested ones as dotted paths: common/scene_overrides.hpp) replaces or adds
+// keys of the file before it is read, with the same checks (compare's --arm, run's --set).
 Scene load_scene(const std::string& path, const nlohmann::json& overrides = nlohmann::json::object());
 
 // Validates a scene built in code (the same checks as load_scene): the values, and that every map a

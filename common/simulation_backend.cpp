@@ -1,6 +1,7 @@
 #include "common/simulation_backend.hpp"
 
 #include "common/errors.hpp"
+#include "common/simulation_state.hpp"
 #include "common/surface_domain.hpp"
 #include "common/vertex_parameters.hpp"
 
@@ -54,6 +55,30 @@ SimulationSettings simulation_settings(const Scene& scene) {
   s.seed = scene.seed;
   s.integrator = scene.integrator;
   return s;
+}
+
+void check_state_fits(const SimulationState& state, int layer_count, int vertex_count, int agent_count, int face_count,
+                      const std::string& who) {
+  const std::string what = who + ": restore_state: ";
+  if (state.steps_taken < 0) throw InputError(what + "step count " + std::to_string(state.steps_taken) + " is negative");
+  if (!std::isfinite(state.time)) throw InputError(what + "the time is not finite");
+  if (static_cast<int>(state.layers.size()) != layer_count)
+    throw InputError(what + "the state has " + std::to_string(state.layers.size()) + " field layers, this simulation " +
+                     std::to_string(layer_count));
+  for (int layer = 0; layer < layer_count; ++layer)
+    check_layer_values(state.layers[static_cast<size_t>(layer)], vertex_count, layer, who, "restore_state");
+  const Agents& a = state.agents;
+  const size_t n = static_cast<size_t>(a.count());
+  if (a.count() != agent_count)
+    throw InputError(what + "the state has " + std::to_string(a.count()) + " agents, this simulation " +
+                     std::to_string(agent_count));
+  if (a.position.size() != n || a.heading.size() != n || a.age.size() != n || a.exposure.size() != n ||
+      a.exposure_threshold.size() != n || a.time_since_decision.size() != n || a.accumulated_turn.size() != n)
+    throw InputError(what + "the agents' attribute arrays differ in length");
+  for (size_t i = 0; i < n; ++i)
+    if (a.face[i] < 0 || a.face[i] >= face_count)
+      throw InputError(what + "agent " + std::to_string(i) + " stands on face " + std::to_string(a.face[i]) + " of " +
+                       std::to_string(face_count));
 }
 
 }  // namespace physarum

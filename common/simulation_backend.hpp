@@ -22,6 +22,7 @@ SimulationSettings simulation_settings(const Scene& scene);
 
 struct SurfaceDomain;
 struct VertexParameters;
+struct SimulationState;  // common/simulation_state.hpp
 // The checks every backend makes on its inputs: every agent parameter map has one value per vertex,
 // agents >= 0, time_step > 0 and finite, turn_frequency > 0 everywhere. Throws InputError whose
 // message starts with `who` ("simulation", "opencl simulation").
@@ -36,6 +37,13 @@ void check_layer_index(int layer, int layer_count, const std::string& who, const
 void check_layer_values(const IntrinsicVertexData<double>& values, int vertex_count, int layer,
                         const std::string& who, const std::string& what);
 void check_layer_value(double value, int layer, const std::string& who, const std::string& what);
+
+// The checks every backend makes in restore_state before it changes anything: one layer per layer
+// of the backend with one finite value per vertex, `agent_count` agents with every attribute array
+// of that length, each on a face in [0, face_count), a step count >= 0 and a finite time. Throws
+// InputError whose message starts with `who` and says what does not fit.
+void check_state_fits(const SimulationState& state, int layer_count, int vertex_count, int agent_count, int face_count,
+                      const std::string& who);
 
 // Running totals for throughput figures (run.json). Face crossings are the unit of work of an
 // agent step: each costs one dependent read of a face record.
@@ -91,6 +99,15 @@ class SimulationBackend {
   // The intrinsic face every agent is on, in agent-id order.
   virtual std::vector<int> agent_faces() const = 0;
   virtual SimulationCounters counters() const = 0;
+
+  // ---- checkpoints (common/simulation_state.hpp, common/checkpoint.hpp) ----
+  // The whole evolving state, after every enqueued step has finished (a device backend reads its
+  // buffers back). restore_state(save_state()) on a backend built from the same scene, surface and
+  // settings continues bit for bit as the saved one would have. restore_state throws InputError when
+  // the state does not fit this backend (layer count, values per layer, agent count, an agent on a
+  // face that does not exist), and changes nothing then.
+  virtual SimulationState save_state() const = 0;
+  virtual void restore_state(const SimulationState& state) = 0;
 
   virtual std::string backend_name() const = 0;  // "reference", "opencl"
   virtual std::string device_name() const = 0;   // a human-readable description

@@ -1,5 +1,7 @@
 #include "opencl/simulation.hpp"
 
+#include "common/simulation_state.hpp"
+
 #include "common/errors.hpp"
 #include "opencl/agent_order.hpp"
 #include "opencl/agent_parameters.hpp"
@@ -465,6 +467,39 @@ SimulationCounters OpenCLSimulation::counters() const {
   }
   c.agent_steps = steps_taken_ * settings_.agents;
   return c;
+}
+
+SimulationState OpenCLSimulation::save_state() const {
+  compute_.queue.finish();
+  SimulationState state;
+  state.steps_taken = steps_taken_;
+  state.time = time();
+  for (int layer = 0; layer < layer_count(); ++layer) state.layers.push_back(field_values(layer));
+  if (settings_.agents > 0) state.agents = read_agents();
+  state.counters = counters();
+  return state;
+}
+
+void OpenCLSimulation::restore_state(const SimulationState& state) {
+  check_state_fits(state, layer_count(), domain_.vertex_count, settings_.agents, domain_.face_count, "opencl simulation");
+  try {
+    compute_.queue.finish();
+    for (int layer = 0; layer < layer_count(); ++layer) set_field(state.layers[static_cast<size_t>(layer)], layer);
+    if (settings_.agents > 0) write_agents(state.agents);
+    // The counters are partial sums per work-group that counters() adds up: the totals go into the
+    // first group's slots, so the sum (all anyone reads) is the saved one.
+    std::vector<cl_ulong> partial(agent_groups_ * PHYSARUM_COUNTERS, 0);
+    partial[PHYSARUM_COUNTER_MOVE_CROSSINGS] = static_cast<cl_ulong>(state.counters.face_crossings);
+    partial[PHYSARUM_COUNTER_SENSOR_CROSSINGS] = static_cast<cl_ulong>(state.counters.sensor_face_crossings);
+    partial[PHYSARUM_COUNTER_BOUNDARY_HITS] = static_cast<cl_ulong>(state.counters.boundary_hits);
+    partial[PHYSARUM_COUNTER_RESPAWNS] = static_cast<cl_ulong>(state.counters.respawns);
+    compute_.queue.enqueueWriteBuffer(group_counters_.buffer, CL_TRUE, 0, partial.size() * sizeof(cl_ulong), partial.data());
+    // A step leaves the deposit accumulator cleared (the field model empties it); a fresh one is
+    // cleared too, so nothing else needs resetting.
+  } catch (const cl::Error& e) {
+    throw device_error("restoring a saved state on " + compute_.device.device_name, e.err());
+  }
+  steps_taken_ = state.steps_taken;
 }
 
 std::string OpenCLSimulation::device_name() const {

@@ -107,6 +107,11 @@ class OpenCLSimulation final : public SimulationBackend {
   FieldStatistics field_statistics(double U, int layer = 0) const override;
   std::vector<int> agent_faces() const override;
   SimulationCounters counters() const override;
+  // Reads back / uploads every layer, the agents (in id order, domain faces) and the counters; the
+  // agents come back in id order, so after a restore their memory order differs from the saved
+  // run's until the next sort, which changes no result (agent_order.hpp).
+  SimulationState save_state() const override;
+  void restore_state(const SimulationState& state) override;
   std::string backend_name() const override { return "opencl"; }
   std::string device_name() const override;
 

@@ -1,5 +1,7 @@
 #include "reference/simulation.hpp"
 
+#include "common/simulation_state.hpp"
+
 #include "common/agent_model.hpp"
 #include "common/directional_bias.hpp"
 #include "common/domain_sampling.hpp"
@@ -192,6 +194,29 @@ void ReferenceSimulation::fill_field(double value, int layer) {
   check_layer_value(value, layer, "simulation", "fill_field");
   IntrinsicVertexData<double>& f = layers_[static_cast<size_t>(layer)];
   f.assign(f.size(), value);
+}
+
+SimulationState ReferenceSimulation::save_state() const {
+  SimulationState state;
+  state.steps_taken = steps_taken_;
+  state.time = time_;
+  state.layers = layers_;
+  state.agents = agents_;
+  state.counters = counters_;
+  return state;
+}
+
+// Copied element by element into the buffers sized at construction (step() keeps allocating
+// nothing afterwards). The per-step scratch (deposit amounts, sensed sums, trace segments) is
+// rewritten before it is read in every step, so it is not part of the state.
+void ReferenceSimulation::restore_state(const SimulationState& state) {
+  check_state_fits(state, layer_count(), domain_.vertex_count, agents_.count(), domain_.face_count, "simulation");
+  for (size_t layer = 0; layer < layers_.size(); ++layer)
+    std::copy(state.layers[layer].begin(), state.layers[layer].end(), layers_[layer].begin());
+  agents_ = state.agents;
+  counters_ = state.counters;
+  steps_taken_ = state.steps_taken;
+  time_ = state.time;
 }
 
 FieldStatistics ReferenceSimulation::field_statistics(double U, int layer) const {

@@ -99,6 +99,8 @@ class ReferenceSimulation final : public SimulationBackend {
   void fill_field(double value, int layer = 0) override;
   FieldStatistics field_statistics(double U, int layer = 0) const override;
   std::vector<int> agent_faces() const override { return agents_.face; }
+  SimulationState save_state() const override;
+  void restore_state(const SimulationState& state) override;
   std::string backend_name() const override { return "reference"; }
   std::string device_name() const override { return "CPU (serial reference, 1 thread)"; }
   // Species 0's hazard rate 1/tau per vertex (common/agent_model.hpp).

@@ -1,5 +1,6 @@
-// `physarum run SCENE.json [--backend auto|reference|opencl] [--steps N | --sim-time T] [--seed S] [--out DIR]
-//  [--frames K] [--texture-size N] [--texture-margin PX] [--texture-format png|png16|exr]`:
+// `physarum run SCENE.json [--set KEY=VALUE ...] [--backend auto|reference|opencl] [--steps N | --sim-time T]
+//  [--seed S] [--out DIR] [--frames K] [--texture-size N] [--texture-margin PX] [--texture-format png|png16|exr]
+//  [--checkpoint-every T]`, or `physarum run --resume DIR`:
 // grows a pattern on a surface and writes (the README's "The command line")
 //   DIR/pheromone.ply    the input mesh with the field at its vertices,
 //   DIR/fields_full.ply  the result at full resolution: every intrinsic vertex at its place on the
@@ -12,10 +13,16 @@
 //   DIR/stats.csv and DIR/run.json;
 // with --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
+// With --checkpoint-every T, DIR/checkpoint.bin holds the whole state every T simulated seconds
+// (common/checkpoint.hpp), replaced atomically; `physarum run --resume DIR` continues from it bit for
+// bit (same build, backend and device; the scene unchanged) and writes what the uninterrupted run
+// would have written. The checkpoint is removed once the run's outputs are complete.
+//
 // Everything that can fail on bad input (scene, mesh, triangulation, the UV map) happens before DIR
 // is touched, so a bad scene exits 1 with its message and writes nothing; every file is written under
 // a temporary name and renamed, so a reader never sees a half-written one.
 #include "common/atomic_write.hpp"
+#include "common/checkpoint.hpp"
 #include "common/color_map_json.hpp"
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
@@ -28,6 +35,7 @@
 #include "common/scene.hpp"
 #include "common/scene_json.hpp"
 #include "common/scene_maps.hpp"
+#include "common/simulation_state.hpp"
 #include "common/scene_surface.hpp"
 #include "common/species_statistics.hpp"
 #include "common/surface_domain.hpp"
@@ -38,6 +46,7 @@
 #include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
 #include "tools/feasible_surface.hpp"
+#include "tools/run_options.hpp"
 #include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
@@ -57,18 +66,6 @@
 namespace physarum::cli {
 namespace {
 
-struct RunOptions {
-  std::string scene;
-  std::string backend = "auto";
-  std::string device;  // --device SPEC (auto or opencl); "" = $PHYSARUM_DEVICE or the default choice
-  std::optional<long long> steps;
-  std::optional<double> sim_time;
-  std::optional<std::uint32_t> seed;
-  std::string out = "out";
-  int frames = 0;  // --frames K: a time-lapse of K pictures (0 = none)
-  TextureSettings texture;  // --texture-size, --texture-margin, --texture-format
-  std::string maps_out;  // --maps-out FILE: the scene's named maps on the input mesh ("" = none)
-};
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
 constexpr long long kStatsRows = 100;
@@ -141,14 +138,24 @@ AutoBackend choose_backend(const std::string& requested, const std::string& devi
   return a;
 }
 
-int run_run(const RunOptions& o) {
+// The checkpoint a resumed run continues from, checked for corruption; the options come from it.
+struct Resume {
+  Checkpoint checkpoint;
+  std::string path;
+};
+
+int run_simulation(const RunOptions& o, const std::optional<Resume>& resume) {
   if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
+  if (o.checkpoint_every && !(*o.checkpoint_every > 0.0)) throw UsageError("--checkpoint-every must be > 0");
+  if (o.checkpoint_every && o.frames > 0)
+    throw UsageError("--frames does not go with --checkpoint-every: the frames drawn before a stop are not in the "
+                     "checkpoint, so a resumed run's time-lapse would miss them");
   o.texture.check();
 
   // ---- everything that can reject the input, before any output exists ----
-  Scene given_scene = load_scene(o.scene);
+  Scene given_scene = load_scene(o.scene, o.overrides());
   if (o.seed) given_scene.seed = *o.seed;
   if (!o.maps_out.empty() && given_scene.maps.empty())
     throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
@@ -220,14 +227,43 @@ int run_run(const RunOptions& o) {
     return render_species_preview(full.mesh, layers, species_colorings, preview);
   };
 
+  // ---- checkpoints: what identifies this run, and where it starts ----
+  CheckpointHeader identity;
+  identity.build_id = checkpoint_build_id();
+  identity.backend = simulation.backend_name();
+  identity.device = simulation.device_name();
+  identity.scene_hash = scene_identity_hash(o, given_scene.mesh);
+  const std::filesystem::path checkpoint_path = std::filesystem::path(o.out) / "checkpoint.bin";
+  const long long checkpoint_interval =
+      o.checkpoint_every ? std::max<long long>(1, std::llround(*o.checkpoint_every / scene.time_step)) : 0;
+  long long first_step = 1;
+  double seconds_before = 0.0;  // simulation seconds of the run before its last checkpoint
+  std::string stats;
+  if (resume) {
+    check_checkpoint_matches(resume->checkpoint.header, identity, resume->path);
+    if (resume->checkpoint.header.step >= steps)
+      throw InputError(resume->path + ": the checkpoint is at step " + std::to_string(resume->checkpoint.header.step) +
+                       " of " + std::to_string(steps) + ": nothing is left to run");
+    simulation.restore_state(resume->checkpoint.state);
+    stats = resume->checkpoint.header.run.at("stats").get<std::string>();
+    seconds_before = resume->checkpoint.header.run.at("seconds").get<double>();
+    first_step = resume->checkpoint.header.step + 1;
+    std::cerr << "physarum run: resuming " << o.out << " at step " << resume->checkpoint.header.step << " of " << steps << "\n";
+  } else {
+    stats = stats_csv_header() + species_stats_csv_columns(species_layers) + "\n";
+    stats += stats_row() + "\n";
+  }
+  if (checkpoint_interval > 0) create_output_folder(o.out);
+  long long checkpoints_written = 0;
+  double checkpoint_seconds = 0.0;
+  std::size_t checkpoint_bytes_written = 0;
+
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  std::string stats = stats_csv_header() + species_stats_csv_columns(species_layers) + "\n";
-  stats += stats_row() + "\n";
   ProgressBar progress(steps);
   const auto t0 = std::chrono::steady_clock::now();
   double stats_seconds = 0.0;
-  for (long long s = 1; s <= steps; ++s) {
+  for (long long s = first_step; s <= steps; ++s) {
     simulation.step();
     if (s % stats_every == 0 || s == steps) {
       simulation.finish();
@@ -241,11 +277,27 @@ int run_run(const RunOptions& o) {
       time_lapse.add(picture());
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
     }
+    if (checkpoint_interval > 0 && s % checkpoint_interval == 0 && s < steps) {
+      const auto tc = std::chrono::steady_clock::now();
+      CheckpointHeader header = identity;
+      header.step = s;
+      header.run = {{"options", run_options_json(o)},
+                    {"stats", stats},
+                    {"seconds", seconds_before + std::chrono::duration<double>(tc - t0).count() - stats_seconds -
+                                    checkpoint_seconds}};
+      const std::string bytes = checkpoint_bytes(header, simulation.save_state());
+      write_text_file_atomically(checkpoint_path.string(), bytes);
+      ++checkpoints_written;
+      checkpoint_bytes_written = bytes.size();
+      checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
+    }
     progress.update(s);
   }
   simulation.finish();
-  // Throughput counts the simulation alone, not the statistics rows or the time-lapse frames.
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - stats_seconds;
+  // Throughput counts the simulation alone, not the statistics rows, the time-lapse frames or the
+  // checkpoints; a resumed run adds the seconds before its checkpoint.
+  const double seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                         stats_seconds - checkpoint_seconds;
   const FieldStatistics final_stats = simulation.field_statistics(U);
   const std::vector<FieldStatistics> final_species_stats = species_statistics();
 
@@ -333,7 +385,17 @@ int run_run(const RunOptions& o) {
   j["parameters"] = scene_parameters_json(scene);
   // The colours as used (stops, levels in multiples of U): `physarum render` re-colours with it.
   j["colormap"] = color_map_settings_json(scene.colormap);
+  if (resume) j["resumed_from_step"] = resume->checkpoint.header.step;
+  if (checkpoint_interval > 0)
+    j["checkpoints"] = {{"every_steps", checkpoint_interval},
+                        {"written", checkpoints_written},
+                        {"bytes", checkpoint_bytes_written},
+                        {"seconds_per_checkpoint",
+                         checkpoints_written > 0 ? checkpoint_seconds / static_cast<double>(checkpoints_written) : 0.0}};
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
+  // The outputs are complete: the checkpoint has nothing left to protect.
+  std::error_code ignored;
+  std::filesystem::remove(checkpoint_path, ignored);
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
             << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
@@ -341,6 +403,29 @@ int run_run(const RunOptions& o) {
             << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}"
             << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
   return 0;
+}
+
+int run_run(const RunOptions& given) {
+  if (given.resume.empty()) {
+    if (given.scene.empty()) throw UsageError("give a scene file (or --resume DIR)");
+    return run_simulation(given, std::nullopt);
+  }
+  // A resume is the stopped run itself: its options all come from the checkpoint. A scene given
+  // beside --resume must be the same one (its identity hash is checked against the checkpoint's).
+  if (!given.sets.empty() || given.steps || given.sim_time || given.seed || given.frames > 0 || given.checkpoint_every ||
+      !given.maps_out.empty())
+    throw UsageError("--resume DIR continues the run with the options it was started with; give no other run "
+                     "option beside it (the scene, to check it is the same, is allowed)");
+  Resume resume;
+  resume.path = (std::filesystem::path(given.resume) / "checkpoint.bin").string();
+  if (!std::filesystem::exists(resume.path))
+    throw InputError(resume.path + ": no checkpoint to resume from (was the run started with --checkpoint-every, "
+                                   "and has it finished already? A finished run removes its checkpoint)");
+  resume.checkpoint = read_checkpoint(resume.path);
+  RunOptions o = run_options_from_json(resume.checkpoint.header.run.at("options"), resume.path);
+  if (!given.scene.empty()) o.scene = given.scene;
+  o.out = given.resume;
+  return run_simulation(o, resume);
 }
 
 }  // namespace
@@ -363,8 +448,19 @@ Command add_run_command(CLI::App& parent) {
       "'mesh' is a file path relative to the scene file or shape:NAME (tools/scenes/ has examples; README.md "
       "lists every key). Exit codes: 0 success, 1 bad input (nothing is written), 2 usage error.");
   app->add_option("scene", options->scene,
-                  "Scene file (JSON), e.g. tools/scenes/default.json, the built-in default scene (a sphere)")
-      ->required();
+                  "Scene file (JSON), e.g. tools/scenes/default.json, the built-in default scene (a sphere); "
+                  "required unless --resume");
+  app->add_option("--set", options->sets,
+                  "Override a scene key, KEY=VALUE (repeatable). VALUE is JSON where it parses (90, true, [0.5,1.5], "
+                  "{\"map\":\"ramp\"}), else a string; KEY may be nested with dots: maps.ramp.range=[0.5,1.5], "
+                  "bias.strength=40, read_stimuli.0.weight=-0.5 (a number after a dot indexes a list)");
+  app->add_option("--checkpoint-every", options->checkpoint_every,
+                  "Write DIR/checkpoint.bin (the whole state) every T simulated seconds, replacing the previous one "
+                  "atomically; removed when the run finishes. A stopped run continues with --resume DIR");
+  app->add_option("--resume", options->resume,
+                  "Continue the stopped run in DIR from DIR/checkpoint.bin, bit for bit as if never stopped (same "
+                  "build, backend and device; a checkpoint of another scene, build, backend or device, or a corrupted "
+                  "one, is refused). Takes every option from the checkpoint");
   app->add_option("--backend", options->backend,
                   "Simulation backend: auto (OpenCL where a device exists, else the reference), reference or opencl")
       ->check(CLI::IsMember({"auto", "reference", "opencl"}))

@@ -23,5 +23,6 @@ Command add_render_command(CLI::App& parent);
 Command add_colormap_command(CLI::App& parent);
 Command add_map_command(CLI::App& parent);
 Command add_analyze_command(CLI::App& parent);
+Command add_sweep_command(CLI::App& parent);
 
 }  // namespace physarum::cli

@@ -1,6 +1,7 @@
 #include "tools/comparison_arms.hpp"
 
 #include "common/errors.hpp"
+#include "common/scene_overrides.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/feasible_surface.hpp"
 
@@ -52,8 +53,7 @@ ArmSpec parse_arm(const std::string& text) {
       spec.device = value;
     } else {
       if (spec.scene_overrides.contains(key)) throw UsageError("--arm '" + text + "': key '" + key + "' given twice");
-      nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
-      spec.scene_overrides[key] = parsed.is_discarded() ? nlohmann::json(value) : parsed;
+      spec.scene_overrides[key] = parse_scene_value(value);
     }
   }
   if (text.empty()) throw UsageError("--arm: empty (expected key=value[,key=value...])");

@@ -1,0 +1,151 @@
+// `physarum run --checkpoint-every T` and `physarum run --resume DIR` as a user meets them: a run
+// killed with SIGKILL at a random moment and resumed writes byte for byte what the uninterrupted run
+// writes (both backends); a corrupted checkpoint and one of another scene are refused with a clear
+// message and nothing written.
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <fcntl.h>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+namespace physarum::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Small enough for seconds, long enough (a few thousand steps) to be killed mid-way.
+const char* kScene = R"({
+  "mesh": "shape:sphere", "scale_to_area": 1.0, "agents": 400, "time_step": 0.01,
+  "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+  "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+  "mean_lifetime": 0.5, "activation_time": 0.2, "integrator": "forward", "seed": 5
+})";
+constexpr int kSteps = 2000;
+
+std::string bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Starts `physarum ARGS...` (output discarded) and SIGKILLs it a random while after its first
+// checkpoint appears. Returns false when it finished before the kill.
+bool run_and_kill(const std::vector<std::string>& args, const fs::path& checkpoint, unsigned seed) {
+  std::vector<std::string> words{PHYSARUM_EXE};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls before exec: this test process may hold OpenCL's threads.
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(checkpoint) && std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::mt19937 random(seed);
+  std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 150)(random)));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+class ResumeCommand : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    std::ofstream(dir_.path / "scene.json") << kScene;
+    const CommandResult probe = run_physarum("run " + quoted(dir_.path / "scene.json") + " --backend " + GetParam() +
+                                             " --steps 1 --texture-size 16 --out " + quoted(dir_.path / "probe"));
+    if (probe.exit_code != 0 && probe.err.find("device error") != std::string::npos)
+      GTEST_SKIP() << "no OpenCL device: " << probe.err;
+    ASSERT_EQ(probe.exit_code, 0) << probe.err;
+  }
+  std::vector<std::string> run_args(const fs::path& out) const {
+    return {"run", (dir_.path / "scene.json").string(), "--backend", GetParam(), "--steps", std::to_string(kSteps),
+            "--texture-size", "16", "--out", out.string()};
+  }
+  TempDir dir_;
+};
+
+TEST_P(ResumeCommand, KilledRunResumesToTheUninterruptedRunsBytes) {
+  std::string whole_args;
+  for (const std::string& a : run_args(dir_.path / "whole")) whole_args += quoted(fs::path(a)) + " ";
+  const CommandResult whole = run_physarum(whole_args);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+
+  const unsigned seed = std::random_device{}();
+  const fs::path killed = dir_.path / "killed";
+  std::vector<std::string> args = run_args(killed);
+  args.insert(args.end(), {"--checkpoint-every", "0.05"});  // every 5 steps
+  ASSERT_TRUE(run_and_kill(args, killed / "checkpoint.bin", seed))
+      << "the run finished before it could be killed (kill delay seed " << seed << ")";
+  ASSERT_TRUE(fs::exists(killed / "checkpoint.bin"));
+  ASSERT_FALSE(fs::exists(killed / "run.json"));
+
+  const CommandResult resumed = run_physarum("run --resume " + quoted(killed));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  for (const char* file : {"pheromone.ply", "fields_full.ply", "stats.csv", "preview.png"})
+    EXPECT_TRUE(bytes_of(killed / file) == bytes_of(dir_.path / "whole" / file))
+        << file << " differs from the uninterrupted run's (kill delay seed " << seed << ")";
+  std::ifstream in(killed / "run.json");
+  const auto j = nlohmann::json::parse(in);
+  const long long from = j["resumed_from_step"].get<long long>();
+  EXPECT_GT(from, 0);
+  EXPECT_LT(from, kSteps);
+  EXPECT_EQ(from % 5, 0);
+  EXPECT_EQ(j["steps"], kSteps);
+  EXPECT_FALSE(fs::exists(killed / "checkpoint.bin")) << "a finished run removes its checkpoint";
+}
+
+TEST_P(ResumeCommand, CorruptedOrForeignCheckpointsAreRefused) {
+  const fs::path killed = dir_.path / "killed";
+  std::vector<std::string> args = run_args(killed);
+  args.insert(args.end(), {"--checkpoint-every", "0.05"});
+  ASSERT_TRUE(run_and_kill(args, killed / "checkpoint.bin", 7));
+  const std::string good = bytes_of(killed / "checkpoint.bin");
+
+  // One flipped byte in the middle of the state.
+  std::string bad = good;
+  bad[bad.size() / 2] = static_cast<char>(bad[bad.size() / 2] ^ 0x01);
+  std::ofstream(killed / "checkpoint.bin", std::ios::binary) << bad;
+  const CommandResult corrupted = run_physarum("run --resume " + quoted(killed));
+  EXPECT_EQ(corrupted.exit_code, 1);
+  EXPECT_NE(corrupted.err.find("corrupted"), std::string::npos) << corrupted.err;
+  EXPECT_FALSE(fs::exists(killed / "run.json"));
+
+  // Another scene (the same file with one parameter changed) given with the checkpoint.
+  std::ofstream(killed / "checkpoint.bin", std::ios::binary) << good;
+  std::string other = kScene;
+  other.replace(other.find("\"deposit_rate\": 1.0"), 19, "\"deposit_rate\": 2.0");
+  std::ofstream(dir_.path / "other.json") << other;
+  const CommandResult foreign = run_physarum("run " + quoted(dir_.path / "other.json") + " --resume " + quoted(killed));
+  EXPECT_EQ(foreign.exit_code, 1);
+  EXPECT_NE(foreign.err.find("another scene"), std::string::npos) << foreign.err;
+  EXPECT_FALSE(fs::exists(killed / "run.json"));
+
+  // The intact checkpoint still resumes.
+  EXPECT_EQ(run_physarum("run --resume " + quoted(killed)).exit_code, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ResumeCommand, ::testing::Values("reference", "opencl"));
+
+}  // namespace
+}  // namespace physarum::testing

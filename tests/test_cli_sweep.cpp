@@ -1,0 +1,200 @@
+// `physarum sweep` as a user runs it: a 3 x 2 grid x 2 seeds plans 12 jobs with the right values,
+// --run runs each exactly once (a second --run skips them all), the Slurm script is valid bash and
+// runs its task 0 when SLURM_ARRAY_TASK_ID=0 is set by hand, GNU parallel's file holds one runnable
+// `physarum run` per line, a failing job is reported without stopping the others, and --collect
+// gives one CSV row per job and a contact sheet of the grid's size.
+#include "test_support.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace physarum::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Tiny runs (a few hundred agents, a few steps, a small texture): a job takes a fraction of a second.
+const char* kScene = R"({
+  "mesh": "shape:sphere", "scale_to_area": 1.0, "agents": 200, "time_step": 0.01,
+  "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+  "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
+  "mean_lifetime": 1.0, "activation_time": 0.2, "integrator": "forward", "seed": 3
+})";
+const char* kRunOptions = " --steps 4 --backend reference --texture-size 16";
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> lines;
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+int shell(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class SweepCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    std::ofstream(dir_->path / "scene.json") << kScene;
+    plan_ = run_physarum("sweep " + quoted(dir_->path / "scene.json") +
+                         " --vary turn_rate=90,180,360 --vary sensor_angle=22.5,45 --seeds 2" + kRunOptions +
+                         " --out " + quoted(sweep()) + " --emit slurm --emit parallel");
+    first_ = run_physarum("sweep " + quoted(sweep()) + " --run --jobs 2");
+    for (int i = 0; i < 12; ++i) mtimes_.push_back(fs::last_write_time(run_json(i)));
+    second_ = run_physarum("sweep " + quoted(sweep()) + " --run --jobs 2");
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static fs::path sweep() { return dir_->path / "sweep"; }
+  static fs::path run_json(int i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "run_%04d", i);
+    return sweep() / name / "run.json";
+  }
+  static inline TempDir* dir_ = nullptr;
+  static inline CommandResult plan_, first_, second_;
+  static inline std::vector<fs::file_time_type> mtimes_;
+};
+
+TEST_F(SweepCommand, PlansTwelveJobsWithTheRightValues) {
+  ASSERT_EQ(plan_.exit_code, 0) << plan_.err;
+  const std::vector<std::string> lines = lines_of(sweep() / "jobs.jsonl");
+  ASSERT_EQ(lines.size(), 12u);
+  // The grid spelled out independently: the first key slowest, the seeds (3, 4: the scene's seed on)
+  // innermost.
+  int i = 0;
+  std::set<std::string> outs;
+  for (const double turn_rate : {90.0, 180.0, 360.0})
+    for (const double sensor_angle : {22.5, 45.0})
+      for (const int seed : {3, 4}) {
+        const auto j = nlohmann::json::parse(lines[static_cast<size_t>(i)]);
+        EXPECT_EQ(j["index"], i);
+        EXPECT_EQ(j["overrides"]["turn_rate"].get<double>(), turn_rate) << lines[static_cast<size_t>(i)];
+        EXPECT_EQ(j["overrides"]["sensor_angle"].get<double>(), sensor_angle) << lines[static_cast<size_t>(i)];
+        EXPECT_EQ(j["overrides"].size(), 2u);
+        EXPECT_EQ(j["seed"], seed);
+        outs.insert(j["out"].get<std::string>());
+        const auto args = j["args"].get<std::vector<std::string>>();
+        EXPECT_EQ(args.front(), "run");
+        EXPECT_NE(std::find(args.begin(), args.end(), "--seed"), args.end());
+        ++i;
+      }
+  EXPECT_EQ(outs.size(), 12u) << "every job has its own output folder";
+}
+
+TEST_F(SweepCommand, RunTwiceRunsEachJobOnce) {
+  ASSERT_EQ(first_.exit_code, 0) << first_.err;
+  EXPECT_NE(first_.out.find("ran 12, skipped 0"), std::string::npos) << first_.out;
+  ASSERT_EQ(second_.exit_code, 0) << second_.err;
+  EXPECT_NE(second_.out.find("ran 0, skipped 12"), std::string::npos) << second_.out;
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(fs::last_write_time(run_json(i)), mtimes_[static_cast<size_t>(i)]) << "job " << i;
+  // Each run simulated its own variant and seed: job 9 is turn_rate 360, sensor_angle 22.5, seed 4.
+  std::ifstream in(run_json(9));
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["parameters"]["turn_rate"].get<double>(), 360.0, 1e-9) << j["parameters"].dump();
+  EXPECT_NEAR(j["parameters"]["sensor_angle"].get<double>(), 22.5, 1e-9) << j["parameters"].dump();
+  EXPECT_EQ(j["parameters"]["seed"], 4);
+}
+
+TEST_F(SweepCommand, SlurmScriptIsValidAndRunsItsTaskZero) {
+  const fs::path script = sweep() / "sweep.slurm";
+  ASSERT_TRUE(fs::exists(script));
+  EXPECT_EQ(shell("bash -n " + quoted(script)), 0);
+  std::stringstream text;
+  text << std::ifstream(script).rdbuf();
+  EXPECT_NE(text.str().find("#SBATCH --array=0-11\n"), std::string::npos) << text.str();
+
+  // A fresh sweep of the same grid, so task 0 has something to do.
+  const fs::path fresh = dir_->path / "slurm";
+  ASSERT_EQ(run_physarum("sweep " + quoted(dir_->path / "scene.json") +
+                         " --vary turn_rate=90,180,360 --vary sensor_angle=22.5,45 --seeds 2" + kRunOptions + " --out " +
+                         quoted(fresh) + " --emit slurm")
+                .exit_code,
+            0);
+  EXPECT_EQ(shell("SLURM_ARRAY_TASK_ID=0 bash " + quoted(fresh / "sweep.slurm") + " >/dev/null 2>&1"), 0);
+  EXPECT_TRUE(fs::exists(fresh / "run_0000" / "run.json"));
+  EXPECT_FALSE(fs::exists(fresh / "run_0001"));
+  // Without the variable the script refuses instead of guessing a task.
+  EXPECT_NE(shell("env -u SLURM_ARRAY_TASK_ID bash " + quoted(fresh / "sweep.slurm") + " >/dev/null 2>&1"), 0);
+}
+
+TEST_F(SweepCommand, ParallelFileHoldsOneRunnableRunPerLine) {
+  const std::vector<std::string> lines = lines_of(sweep() / "jobs.txt");
+  ASSERT_EQ(lines.size(), 12u);
+  for (const std::string& line : lines) EXPECT_NE(line.find(" run "), std::string::npos) << line;
+  // Line 5 run by hand (as GNU parallel would) into a folder of its own writes a run there.
+  const fs::path elsewhere = dir_->path / "by_hand";
+  std::string line = lines[5];
+  line = line.substr(0, line.rfind("--out ")) + "--out " + quoted(elsewhere);
+  EXPECT_EQ(shell(line + " >/dev/null 2>&1"), 0) << line;
+  EXPECT_TRUE(fs::exists(elsewhere / "run.json"));
+}
+
+TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
+  const CommandResult r = run_physarum("sweep --collect " + quoted(sweep()) + " --thumbnail 40");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> rows = lines_of(sweep() / "sweep.csv");
+  ASSERT_EQ(rows.size(), 13u);  // header + 12 runs
+  EXPECT_EQ(rows[0].rfind("index,turn_rate,sensor_angle,seed,out,status,", 0), 0u) << rows[0];
+  EXPECT_NE(rows[0].find(",final_mean"), std::string::npos) << rows[0];
+  EXPECT_NE(rows[0].find(",agent_steps_per_second"), std::string::npos) << rows[0];
+  EXPECT_EQ(rows[10].rfind("9,360,22.5,4,", 0), 0u) << rows[10];
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_NE(rows[i].find(",done,"), std::string::npos) << rows[i];
+
+  // 3 rows (turn_rate) x 2 columns (sensor_angle), 2 seeds per cell, 40 px thumbnails, 8 px gaps,
+  // a 48 px header, and row labels as wide as "turn_rate=360" (13 characters at 9 px + 16 px).
+  auto in = OIIO::ImageInput::open((sweep() / "contact_sheet.png").string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, (13 * 9 + 16) + 2 * (2 * 40 + 8) + 8);
+  EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
+}
+
+TEST(SweepFailures, ABadVariantIsRefusedBeforeAnyJobExists) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=100,-5" + kRunOptions +
+                                       " --out " + quoted(dir.path / "s"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("variant 1 {\"agents\":-5}"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "jobs.jsonl"));
+}
+
+// A job that fails only when it runs (far more agents than memory holds: refused by the run).
+TEST(SweepFailures, AFailedJobIsReportedAndTheOthersStillRun) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=2000000000,100" + kRunOptions +
+                                       " --out " + quoted(dir.path / "s") + " --run --jobs 2");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("job 0 (run_0000) failed (exit code 1)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "run_0000" / "run.json"));
+  EXPECT_TRUE(fs::exists(dir.path / "s" / "run_0001" / "run.json"));
+}
+
+TEST(SweepFailures, AnotherSweepIntoTheSameFolderIsRefused) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  const std::string plan = "sweep " + quoted(dir.path / "scene.json") + kRunOptions + " --out " + quoted(dir.path / "s");
+  ASSERT_EQ(run_physarum(plan + " --vary turn_rate=90,180").exit_code, 0);
+  EXPECT_EQ(run_physarum(plan + " --vary turn_rate=90,180").exit_code, 0);  // the same sweep: kept
+  const CommandResult other = run_physarum(plan + " --vary turn_rate=45");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_NE(other.err.find("already holds another sweep"), std::string::npos) << other.err;
+}
+
+}  // namespace
+}  // namespace physarum::testing
