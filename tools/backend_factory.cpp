@@ -1,7 +1,10 @@
 #include "tools/backend_factory.hpp"
 
 #include "common/errors.hpp"
+#include "common/map_evaluation.hpp"
+#include "common/reaction_diffusion_build.hpp"
 #include "reference/agents.hpp"
+#include "reference/reaction_diffusion.hpp"
 #include "reference/simulation.hpp"
 
 #include "opencl/opencl_api.hpp"
@@ -64,6 +67,9 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  if (is_reaction_diffusion(scene))
+    throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
+                     "(make_backend with a SceneSurface, or make_reaction_diffusion_backend), not the agent arrays");
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
@@ -86,7 +92,27 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SceneSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  if (is_reaction_diffusion(scene)) {
+    const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
+    return make_reaction_diffusion_backend(backend, compute, build_reaction_diffusion_system(scene, surface, maps));
+  }
   return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
+}
+
+std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
+                                                                   const opencl::ComputeContext* /*compute*/,
+                                                                   ReactionDiffusionSystem system) {
+  if (backend != BackendChoice::Reference)
+    throw UsageError("the OpenCL backend does not run reaction-diffusion scenes yet; use --backend reference");
+  // Per vertex: the morphogens, their reaction terms and the stiffness rows (about 7 entries of 12
+  // bytes per morphogen), checked like the agent model's surface.
+  const double vertices = static_cast<double>(system.mass.size());
+  MemoryNeed need;
+  need.host_bytes = vertices * static_cast<double>(system.morphogens.size()) * (3 * sizeof(double) + 7 * 12.0);
+  need.breakdown = format_bytes(need.host_bytes) + " for " + format_number(vertices) + " vertices x " +
+                   std::to_string(system.morphogens.size()) + " morphogens";
+  check_memory("reaction-diffusion", need, available_host_memory_bytes());
+  return std::make_unique<ReferenceReactionDiffusion>(std::move(system));
 }
 
 std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,

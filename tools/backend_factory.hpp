@@ -5,6 +5,7 @@
 // physarum_backends (CMakeLists.txt), so that bench/ and tests/ link it without the tools' commands.
 // Before anything is allocated it estimates the memory the agents and the surface need on the host
 // and on the device and refuses (InputError) what does not fit.
+#include "common/reaction_diffusion_system.hpp"
 #include "common/run_feasibility.hpp"
 #include "common/scene.hpp"
 #include "common/scene_maps.hpp"
@@ -39,6 +40,15 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options = {});
+
+// A reaction-diffusion system's backend (common/reaction_diffusion_build.hpp builds the system from
+// a scene). The reference advances it (reference/reaction_diffusion.hpp); the OpenCL backend does not
+// run reaction-diffusion yet (UsageError). The make_backend overloads above take a reaction-diffusion
+// scene too: the one from a SceneSurface builds its system (evaluating the scene's maps), the one
+// from SceneArrays refuses it (the arrays are the agent model's).
+std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
+                                                                   const opencl::ComputeContext* compute,
+                                                                   ReactionDiffusionSystem system);
 
 // The same for a workload: its surface from `surfaces` (built there once per SurfaceSpec), its scene
 // on its backend.

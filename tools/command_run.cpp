@@ -38,6 +38,7 @@
 #include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
 #include "tools/feasible_surface.hpp"
+#include "tools/run_reaction_diffusion.hpp"
 #include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
@@ -153,6 +154,11 @@ int run_run(const RunOptions& o) {
   if (!o.maps_out.empty() && given_scene.maps.empty())
     throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, given_scene);
+  if (is_reaction_diffusion(given_scene)) {
+    if (!o.maps_out.empty()) throw UsageError("--maps-out is not available for a reaction-diffusion scene yet (use `physarum map`)");
+    if (!o.device.empty()) throw UsageError("--device: reaction-diffusion scenes run on the reference backend");
+    return run_reaction_diffusion(given_scene, ReactionDiffusionRunOptions{o.scene, o.backend, steps, o.out, o.frames, o.texture});
+  }
   TimeLapse time_lapse(o.frames, steps);
 
   // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
