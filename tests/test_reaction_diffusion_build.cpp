@@ -110,9 +110,9 @@ TEST(ReactionDiffusionBuild, InitialStateAndDirichletRegionFollowTheirMaps) {
                       {"time_step", 1.0},
                       {"model", "gray-scott"},
                       {"maps",
-                       {{"centre", {{"box", {{"min", {0.4, 0.4, -1.0}}, {"max", {0.6, 0.6, 1.0}}}}}}},
-                        {"left", {{"half_space", {{"point", {0.1, 0.0, 0.0}}, {"normal", {-1.0, 0.0, 0.0}}}}}}}}},
-                      {"initial", {{"noise", 0.01}, {"seed_region", {{"map", "centre"}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}}},
+                       {{"centre", {{"box", {{"min", {0.4, 0.4, -1.0}}, {"max", {0.6, 0.6, 1.0}}}}}},
+                        {"left", {{"half_space", {{"point", {0.1, 0.0, 0.0}}, {"normal", {-1.0, 0.0, 0.0}}}}}}}},
+                      {"initial", {{"noise", 0.01}, {"seed_region", {{"map", "centre"}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}},
                       {"dirichlet", {{"map", "left"}, {"values", {{"v", 0.0}}}}}};
   const auto rd = load_rd_system(scene);
   const auto& centre = rd.maps.scalar_map("centre");

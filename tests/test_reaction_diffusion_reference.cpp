@@ -224,7 +224,7 @@ TEST(ReactionDiffusionReference, DirichletVerticesNeverMove) {
                         {"time_step", 1.0},
                         {"integrator", integrator},
                         {"model", "gray-scott"},
-                        {"maps", {{"band", {{"box", {{"min", {0.0, 0.0, -1.0}}, {"max", {0.2, 1.0, 1.0}}}}}}}}},
+                        {"maps", {{"band", {{"box", {{"min", {0.0, 0.0, -1.0}}, {"max", {0.2, 1.0, 1.0}}}}}}}},
                         {"initial", {{"noise", 0.05}}},
                         {"dirichlet", {{"map", "band"}, {"values", {{"u", 1.0}, {"v", 0.3}}}}}};
     const auto rd = load_rd_system(scene);
