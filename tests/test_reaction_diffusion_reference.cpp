@@ -131,6 +131,7 @@ TEST(ReactionDiffusionReference, SphericalHarmonicsGrowAndDecayAtTheLinearStabil
     Eigen::Matrix2d j;
     j << -F, 0.0, 0.0, -(F + k);
     const HarmonicGrowth g = harmonic_growth(scene, 3, j, {1.0, 0.0}, {Du, Dv}, 0.5, 5.0);
+    RecordProperty("gray_scott_l3_measured", std::to_string(g.measured));
     EXPECT_NEAR(g.predicted, -(F + k) - 12 * Dv, 1e-12);
     EXPECT_NEAR(g.measured, g.predicted, 0.02 * std::abs(g.predicted)) << "predicted " << g.predicted;
   }
@@ -146,6 +147,8 @@ TEST(ReactionDiffusionReference, SphericalHarmonicsGrowAndDecayAtTheLinearStabil
     Eigen::Matrix2d j;
     j << -4.0, -4.0, 4.0, 3.0;
     const HarmonicGrowth g = harmonic_growth(scene, 4, j, {4.0, 4.0}, {Du, Dv}, 0.5, 4.0);
+    RecordProperty("turing_l4_predicted", std::to_string(g.predicted));
+    RecordProperty("turing_l4_measured", std::to_string(g.measured));
     EXPECT_GT(g.predicted, 0.1);
     EXPECT_NEAR(g.measured, g.predicted, 0.02 * std::abs(g.predicted)) << "predicted " << g.predicted;
   }
@@ -177,8 +180,11 @@ TEST(ReactionDiffusionReference, TuringThresholdSeparatesDecayFromGrowth) {
     sim.run(600);  // 30 s more
     return variance(sim.field(0), rd.system.mass) / v0;
   };
-  EXPECT_LT(variance_growth(0.9 * r_critical), 0.5);  // decays
-  EXPECT_GT(variance_growth(1.1 * r_critical), 5.0);  // grows
+  const double below = variance_growth(0.9 * r_critical), above = variance_growth(1.1 * r_critical);
+  RecordProperty("variance_ratio_below", std::to_string(below));
+  RecordProperty("variance_ratio_above", std::to_string(above));
+  EXPECT_LT(below, 0.5);  // decays
+  EXPECT_GT(above, 5.0);  // grows
 }
 
 TEST(ReactionDiffusionReference, ExplicitSubstepsKeepAStepBeyondTheLimitStable) {
