@@ -31,6 +31,10 @@ enum class RandomPurpose : std::uint32_t {
   // toward, block 0, first uniform. Purposes of their own, so the base model's draws stay as they were.
   InitialSpawnCorner = 6,  // counter step 0
   RespawnCorner = 7,       // counter step n
+  // Reaction-diffusion initial states (common/reaction_diffusion_build.hpp), counter step 0; the
+  // stream is the intrinsic vertex (noise) or the spot (spot centres), not an agent.
+  ReactionNoise = 8,       // block = morphogen: first uniform, the vertex's noise draw
+  ReactionSpot = 9,        // block 0: first uniform, the spot centre's place in the mass distribution
 };
 
 inline PhiloxWords agent_random_words(std::uint32_t seed, std::uint32_t agent, std::uint32_t step, RandomPurpose purpose,

@@ -103,6 +103,14 @@ struct Reader {
   }
 };
 
+// The keys of the agent model alone: its count, its parameters (Table 1), the controls and species.
+std::vector<std::string> agent_model_keys() {
+  std::vector<std::string> keys = {"agents", "read_stimuli", "write_stimuli", "spawn_weight", "bias",
+                                   "spawn_heading", "boundary", "species", "sensing"};
+  for (const ParameterSpec& p : kParameterTable) keys.emplace_back(p.key);
+  return keys;
+}
+
 // ---- maps and controls ------------------------------------------------------------------------------
 
 [[noreturn]] void fail_key(const std::string& source, std::string_view key, const std::string& problem) {
@@ -441,6 +449,16 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   const Reader read{j, path};
   Scene scene;
   scene.source = path;
+  scene.reaction_diffusion = read_reaction_diffusion(j, path);
+  const bool reaction_diffusion = scene.reaction_diffusion.has_value();
+  if (reaction_diffusion) {
+    // The agent model's keys mean nothing to a reaction-diffusion system: refused rather than
+    // silently ignored, so a half-converted scene does not run as something it is not.
+    for (const std::string& key : agent_model_keys())
+      if (j.contains(key))
+        throw InputError(path + ": key '" + key + "' belongs to the agent model (\"physarum\"), and this scene's " +
+                         "\"model\" is \"" + scene.reaction_diffusion->model + "\"");
+  }
 
   const std::string mesh = *read.string("mesh");
   if (mesh.empty()) throw InputError(path + ": key 'mesh' = \"\" is empty (give a file path or shape:NAME)");
@@ -461,8 +479,12 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   scene.min_angle_deg = read.number("min_angle").value_or(0.0);
 
   // With "species" the top-level count may be left out: it is then the species' sum.
-  scene.species = read_species(j, path);
-  if (scene.species.given() && !j.contains("agents")) {
+  if (!reaction_diffusion) scene.species = read_species(j, path);
+  if (reaction_diffusion) {
+    scene.agents = 0;
+  } else if (!j.contains("agents") && !scene.species.given()) {
+    throw InputError(path + ": required key 'agents' is missing");
+  } else if (scene.species.given() && !j.contains("agents")) {
     long long total = 0;
     for (const SpeciesSpec& species : scene.species.species) total += species.agents;
     if (total > static_cast<long long>(std::numeric_limits<int>::max()))
@@ -479,6 +501,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
     scene.maps_given = *it;
   }
   for (const ParameterSpec& p : kParameterTable) {
+    if (reaction_diffusion) break;  // no agent model
     if (auto map = read_parameter_map(j, p, path, p.key)) {
       scene.parameter_maps[static_cast<size_t>(p.id)] = *map;
       scene.parameters[p.id] = std::numeric_limits<double>::quiet_NaN();
@@ -490,7 +513,14 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
     scene.parameters[p.id] = value * p.file_to_si;
   }
 
-  if (auto integrator = read.string("integrator")) {
+  if (auto integrator = read.string("integrator"); integrator && reaction_diffusion) {
+    if (*integrator == "forward") scene.reaction_diffusion->integrator = ReactionIntegrator::Explicit;
+    else if (*integrator == "imex") scene.reaction_diffusion->integrator = ReactionIntegrator::Imex;
+    else
+      throw InputError(path + ": key 'integrator' = \"" + *integrator +
+                       "\" is out of range (a reaction-diffusion model takes \"forward\" (explicit, automatic "
+                       "sub-steps) or \"imex\" (implicit diffusion, explicit reaction))");
+  } else if (integrator) {
     if (*integrator == "forward") scene.integrator = Integrator::ForwardEuler;
     else if (*integrator == "backward") scene.integrator = Integrator::BackwardEuler;
     else
@@ -504,7 +534,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   if (auto it = j.find("colormap"); it != j.end() && !it->is_null())
     scene.colormap = resolve_color_map(*it, std::filesystem::path(path).parent_path().string(), path + ": key 'colormap'");
 
-  scene.controls = read_controls(j, path);
+  if (!reaction_diffusion) scene.controls = read_controls(j, path);
 
   ComparisonSettings& c = scene.comparison;
   c.burn_in = read.number("compare_burn_in").value_or(c.burn_in);
@@ -532,8 +562,16 @@ void validate_scene(const Scene& scene) {
   if (scene.scale_to_area) check_range(s, "scale_to_area", *scene.scale_to_area);
   if (scene.max_circumradius) check_range(s, "max_circumradius", *scene.max_circumradius);
   check_range(s, "min_angle", scene.min_angle_deg);
-  check_range(s, "agents", scene.agents);
   check_range(s, "time_step", scene.time_step);
+  if (scene.steps) check_range(s, "steps", static_cast<double>(*scene.steps));
+  if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
+  if (scene.steps && scene.sim_time)
+    throw InputError(where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
+  if (scene.reaction_diffusion) {
+    validate_reaction_diffusion(*scene.reaction_diffusion, scene.maps, s);
+    return;
+  }
+  check_range(s, "agents", scene.agents);
   for (const ParameterSpec& p : kParameterTable) {
     if (const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)]) {
       // The message shows the value, as a number's would: a typo'd number written as text reads as
@@ -545,10 +583,6 @@ void validate_scene(const Scene& scene) {
     if (p.null_means_infinite && value == kInfinity) continue;
     check_range(s, p.key, value / p.file_to_si);
   }
-  if (scene.steps) check_range(s, "steps", static_cast<double>(*scene.steps));
-  if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
-  if (scene.steps && scene.sim_time)
-    throw InputError(where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
   validate_controls(scene);
   validate_species(scene);
 }

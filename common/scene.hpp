@@ -7,6 +7,7 @@
 #include "common/map_definition.hpp"
 #include "common/model_parameters.hpp"
 #include "common/scene_controls.hpp"
+#include "common/scene_reaction_diffusion.hpp"
 #include "common/scene_species.hpp"
 
 #include <array>
@@ -41,6 +42,12 @@ struct ComparisonSettings {
 
 struct Scene {
   std::string source;  // the scene file, for messages ("" when built in code)
+
+  // ---- field model ----
+  // Set when "model" is a reaction-diffusion system (common/scene_reaction_diffusion.hpp); then the
+  // agent model's keys (agents, its parameters, the controls, species) are not used and may not be
+  // given. Empty: the agent model ("physarum", the default).
+  std::optional<ReactionDiffusionSpec> reaction_diffusion;
 
   // ---- surface ----
   std::string mesh;                        // resolved file path, or "shape:NAME"
@@ -83,6 +90,9 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides = nloh
 // Validates a scene built in code (the same checks as load_scene): the values, and that every map a
 // parameter or control names exists in scene.maps and is of the kind needed.
 void validate_scene(const Scene& scene);
+
+// True for a reaction-diffusion scene (scene.reaction_diffusion set).
+inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion.has_value(); }
 
 // True when some model parameter is given by a map.
 bool has_parameter_maps(const Scene& scene);

@@ -38,9 +38,34 @@ std::vector<SceneKey> build_keys() {
       // Refinement by circumcenter insertion terminates for angle bounds up to about 30 degrees.
       setting("min_angle", K::Number, false, ValueRange{0.0, false, 30.0, false}, "deg", "0 (off)",
               "refine faces with a smaller angle"),
-      setting("agents", K::Integer, true, ValueRange{1.0, false, 2147483647.0, false}, "", "",
+      setting("agents", K::Integer, false, ValueRange{1.0, false, 2147483647.0, false}, "", "required (physarum)",
               "number of agents N"),
       setting("time_step", K::Number, true, kPositive, "s", "", "time step dt"),
+      // ---- the field model (common/scene_reaction_diffusion.hpp) ----
+      setting("model", K::String, false, {}, "", "\"physarum\"",
+              "the field model: the agent model, a named reaction-diffusion model (common/reaction_models.cpp) "
+              "or custom kinetics (\"reaction\"); a reaction-diffusion scene takes none of the agent keys",
+              "\"physarum\", \"gray-scott\", \"gierer-meinhardt\", \"turing\", \"activator-substrate\", \"custom\""),
+      setting("parameters", K::Object, false, {}, "", "the model's",
+              "reaction-diffusion coefficients (F, k, rho, ...): numbers or scalar map names",
+              "{\"NAME\": number or SCALAR_MAP, ...}"),
+      setting("morphogens", K::Object, false, {}, "m^2/s", "the model's",
+              "per morphogen: diffusion rate (along the anisotropy direction; across = ratio x it), initial value",
+              "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x, \"anisotropy\": {\"direction\": VECTOR_MAP, "
+              "\"ratio\": r > 0}}, ...}"),
+      setting("reaction", K::Object, false, {}, "", "the model's",
+              "custom kinetics: one formula per morphogen (2 to 4; layer order = alphabetical), over the "
+              "morphogens and parameters; + - * / ^, exp log sqrt abs min max sin cos tanh",
+              "{\"u\": \"-u*v^2 + F*(1-u)\", \"v\": \"u*v^2 - (F+k)*v\"}"),
+      setting("initial", K::Object, false, {}, "", "uniform",
+              "reaction-diffusion initial state beyond the uniform one: noise, a seed region, random spots",
+              "{\"noise\": a >= 0, \"seed_region\": {\"map\": SCALAR_MAP, \"values\": {..}}, \"spots\": {\"count\": n, "
+              "\"radius\": m, \"values\": {..}}}"),
+      setting("dirichlet", K::Object, false, {}, "", "none (no-flux)",
+              "reaction-diffusion: morphogens held fixed where the map is >= 0.5, at the given values",
+              "{\"map\": SCALAR_MAP, \"values\": {\"u\": x, ...}}"),
+      setting("preview_morphogen", K::String, false, {}, "", "the second morphogen",
+              "reaction-diffusion: the morphogen preview.png, texture.png and result.glb show", "a morphogen name"),
       setting("maps", K::Object, false, {}, "", "",
               "named surface maps the parameters and controls below refer to (README \"Surface maps\"; "
               "common/map_definition.hpp); coordinates are the input mesh's, before scale_to_area",
@@ -79,8 +104,10 @@ std::vector<SceneKey> build_keys() {
   const ComparisonSettings c;  // the harness's documented defaults, shown as they are in code
   const auto shown = [](double v) { return ValueRange::number(v); };
   const std::vector<SceneKey> rest = {
-      setting("integrator", K::String, false, {}, "", "\"forward\"", "time integration of the pheromone PDE",
-              "\"forward\" or \"backward\" (Euler)"),
+      setting("integrator", K::String, false, {}, "", "\"forward\"",
+              "time integration of the pheromone PDE; of a reaction-diffusion system: explicit with automatic "
+              "sub-steps, or implicit diffusion with explicit reaction",
+              "\"forward\" or \"backward\" (Euler); reaction-diffusion: \"forward\" or \"imex\""),
       setting("seed", K::Integer, false, ValueRange{0.0, false, 4294967295.0, false}, "", "1", "random seed"),
       setting("steps", K::Integer, false, ValueRange{1.0, false, 1.0e15, false}, "", "",
               "run length in steps (at most one of steps, sim_time)"),

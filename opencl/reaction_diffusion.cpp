@@ -1,6 +1,7 @@
 #include "opencl/reaction_diffusion.hpp"
 
 #include "common/errors.hpp"
+#include "common/simulation_state.hpp"
 #include "kernels/device_types.h"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
@@ -473,6 +474,20 @@ std::vector<std::string> OpenCLReactionDiffusion::damaged_canaries() const {
   for (const auto& field : static_fields_)
     for (const std::string& name : field->damaged_canaries()) damaged.push_back(name);
   return damaged;
+}
+
+SimulationState OpenCLReactionDiffusion::save_state() const {
+  SimulationState state;
+  state.steps_taken = steps_taken_;
+  state.time = time();
+  for (int layer = 0; layer < layer_count(); ++layer) state.layers.push_back(field_values(layer));
+  return state;
+}
+
+void OpenCLReactionDiffusion::restore_state(const SimulationState& state) {
+  check_state_fits(state, layer_count(), vertex_count_, 0, 0, kWho);
+  for (int layer = 0; layer < layer_count(); ++layer) set_field(state.layers[static_cast<size_t>(layer)], layer);
+  steps_taken_ = state.steps_taken;
 }
 
 }  // namespace physarum::opencl

@@ -83,6 +83,10 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
 
   double time() const override { return static_cast<double>(steps_taken_) * time_step_; }
   long long steps_taken() const override { return steps_taken_; }
+  // The layers and the step count (the time follows from it): no agents, and nothing else carries
+  // over a step (the CG's first guess is the layer itself).
+  SimulationState save_state() const override;
+  void restore_state(const SimulationState& state) override;
   std::vector<int> agent_faces() const override { return {}; }
   SimulationCounters counters() const override { return {}; }
   std::string backend_name() const override { return "opencl"; }

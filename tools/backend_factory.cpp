@@ -1,7 +1,11 @@
 #include "tools/backend_factory.hpp"
 
 #include "common/errors.hpp"
+#include "common/map_evaluation.hpp"
+#include "common/reaction_diffusion_build.hpp"
 #include "reference/agents.hpp"
+#include "reference/reaction_diffusion.hpp"
+#include "opencl/reaction_diffusion.hpp"
 #include "reference/simulation.hpp"
 
 #include "opencl/opencl_api.hpp"
@@ -64,6 +68,9 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  if (is_reaction_diffusion(scene))
+    throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
+                     "(make_backend with a SceneSurface, or make_reaction_diffusion_backend), not the agent arrays");
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
@@ -86,7 +93,52 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SceneSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLSimulationOptions& options) {
+  if (is_reaction_diffusion(scene)) {
+    const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
+    return make_reaction_diffusion_backend(backend, compute, surface.domain, build_reaction_diffusion_system(scene, surface, maps),
+                                           options);
+  }
   return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
+}
+
+std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
+                                                                   const opencl::ComputeContext* compute,
+                                                                   const SurfaceDomain& domain,
+                                                                   ReactionDiffusionSystem system,
+                                                                   const opencl::OpenCLSimulationOptions& options) {
+  // Per vertex: the morphogens, their reaction terms and the stiffness rows (about 7 entries of 12
+  // bytes per morphogen), checked like the agent model's surface; the device holds them in float.
+  const double vertices = static_cast<double>(system.mass.size());
+  MemoryNeed need;
+  need.host_bytes = vertices * static_cast<double>(system.morphogens.size()) * (3 * sizeof(double) + 7 * 12.0);
+  need.breakdown = format_bytes(need.host_bytes) + " for " + format_number(vertices) + " vertices x " +
+                   std::to_string(system.morphogens.size()) + " morphogens";
+  check_memory("reaction-diffusion", need, available_host_memory_bytes());
+  if (backend == BackendChoice::Reference) return std::make_unique<ReferenceReactionDiffusion>(std::move(system));
+  if (!compute) throw std::logic_error("make_reaction_diffusion_backend: the OpenCL backend needs a compute context");
+  opencl::OpenCLReactionDiffusionOptions rd;
+  rd.build_options = options.build_options;
+  return std::make_unique<opencl::OpenCLReactionDiffusion>(*compute, domain, system, rd);
+}
+
+ChosenBackend choose_backend(const std::string& requested, const std::string& device) {
+  ChosenBackend a;
+  if (requested != "auto") {
+    a.backend = parse_backend_choice(requested);
+    a.compute = compute_context_for(a.backend, device);
+    return a;
+  }
+  const bool asked_for_a_device = !device.empty() || std::getenv("PHYSARUM_DEVICE") != nullptr;
+  try {
+    a.compute = opencl::make_compute_context(device);
+    a.backend = BackendChoice::OpenCL;
+    a.why = a.compute->device.device_name;
+  } catch (const DeviceError& e) {
+    if (asked_for_a_device) throw;
+    a.backend = BackendChoice::Reference;
+    a.why = std::string("no OpenCL device: ") + e.what();
+  }
+  return a;
 }
 
 std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,

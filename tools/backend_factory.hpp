@@ -5,6 +5,7 @@
 // physarum_backends (CMakeLists.txt), so that bench/ and tests/ link it without the tools' commands.
 // Before anything is allocated it estimates the memory the agents and the surface need on the host
 // and on the device and refuses (InputError) what does not fit.
+#include "common/reaction_diffusion_system.hpp"
 #include "common/run_feasibility.hpp"
 #include "common/scene.hpp"
 #include "common/scene_maps.hpp"
@@ -39,6 +40,27 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options = {});
+
+// A reaction-diffusion system's backend (common/reaction_diffusion_build.hpp builds the system from
+// a scene, on `domain`): the reference (reference/reaction_diffusion.hpp) or the OpenCL backend
+// (opencl/reaction_diffusion.hpp, with `options`' planted faults), after the memory check. The
+// make_backend overload from a SceneSurface takes a reaction-diffusion scene too (it evaluates the
+// scene's maps and builds the system); the one from SceneArrays refuses it (they are the agent model's).
+std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
+                                                                   const opencl::ComputeContext* compute,
+                                                                   const SurfaceDomain& domain,
+                                                                   ReactionDiffusionSystem system,
+                                                                   const opencl::OpenCLSimulationOptions& options = {});
+
+// The backend a run uses. "auto" takes the OpenCL backend where a device exists and the reference
+// otherwise; it falls back only when nobody asked for a device (no `device`, no $PHYSARUM_DEVICE):
+// a device that was asked for and is missing stays an error.
+struct ChosenBackend {
+  BackendChoice backend = BackendChoice::Reference;
+  std::optional<opencl::ComputeContext> compute;
+  std::string why;  // for "auto": the device found, or why there is none
+};
+ChosenBackend choose_backend(const std::string& requested, const std::string& device);
 
 // The same for a workload: its surface from `surfaces` (built there once per SurfaceSpec), its scene
 // on its backend.

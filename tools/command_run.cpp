@@ -47,6 +47,7 @@
 #include "tools/commands.hpp"
 #include "tools/feasible_surface.hpp"
 #include "tools/run_options.hpp"
+#include "tools/run_reaction_diffusion.hpp"
 #include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
@@ -109,34 +110,6 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_draw_{};
 };
 
-// The backend a run uses. --backend auto takes the OpenCL backend where a device exists and the
-// reference otherwise; it falls back only when nobody asked for a device (no --device, no
-// $PHYSARUM_DEVICE): a device that was asked for and is missing stays an error.
-struct AutoBackend {
-  BackendChoice backend = BackendChoice::Reference;
-  std::optional<opencl::ComputeContext> compute;
-  std::string why;  // for --backend auto: the device found, or why there is none
-};
-
-AutoBackend choose_backend(const std::string& requested, const std::string& device) {
-  AutoBackend a;
-  if (requested != "auto") {
-    a.backend = parse_backend_choice(requested);
-    a.compute = compute_context_for(a.backend, device);
-    return a;
-  }
-  const bool asked_for_a_device = !device.empty() || std::getenv("PHYSARUM_DEVICE") != nullptr;
-  try {
-    a.compute = opencl::make_compute_context(device);
-    a.backend = BackendChoice::OpenCL;
-    a.why = a.compute->device.device_name;
-  } catch (const DeviceError& e) {
-    if (asked_for_a_device) throw;
-    a.backend = BackendChoice::Reference;
-    a.why = std::string("no OpenCL device: ") + e.what();
-  }
-  return a;
-}
 
 // The checkpoint a resumed run continues from, checked for corruption; the options come from it.
 struct Resume {
@@ -160,6 +133,12 @@ int run_simulation(const RunOptions& o, const std::optional<Resume>& resume) {
   if (!o.maps_out.empty() && given_scene.maps.empty())
     throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, given_scene);
+  if (is_reaction_diffusion(given_scene)) {
+    if (!o.maps_out.empty()) throw UsageError("--maps-out is not available for a reaction-diffusion scene yet (use `physarum map`)");
+    if (o.checkpoint_every)
+      throw UsageError("--checkpoint-every is not available for a reaction-diffusion scene yet");
+    return run_reaction_diffusion(given_scene, ReactionDiffusionRunOptions{o.scene, o.backend, o.device, steps, o.out, o.frames, o.texture});
+  }
   TimeLapse time_lapse(o.frames, steps);
 
   // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
@@ -184,7 +163,7 @@ int run_simulation(const RunOptions& o, const std::optional<Resume>& resume) {
     texels = locate_texels(input, domain, o.texture.size, o.texture.size);
   else
     std::cerr << "physarum run: note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
-  const AutoBackend chosen = choose_backend(o.backend, o.device);
+  const ChosenBackend chosen = choose_backend(o.backend, o.device);
   const BackendChoice choice = chosen.backend;
   const std::optional<opencl::ComputeContext>& compute = chosen.compute;
   if (o.backend == "auto") std::cerr << "physarum run: " << to_string(choice) << " backend (auto: " << chosen.why << ")\n";

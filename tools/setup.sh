@@ -11,7 +11,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo oclgrind
   libeigen3-dev libopenmesh-dev libopenimageio-dev libgtest-dev libbenchmark-dev
   librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core libboost-math-dev
-  libtinygltf-dev libsuitesparse-dev libopenblas0-pthread libxxhash-dev python3-venv
+  libtinygltf-dev libsuitesparse-dev libopenblas0-pthread libxxhash-dev libmuparser-dev python3-venv
 )
 
 missing=()
