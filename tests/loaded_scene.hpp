@@ -20,11 +20,16 @@ struct LoadedScene {
   SceneArrays arrays;
 };
 
-inline LoadedScene load_scene_json(const nlohmann::json& j) {
+// The scene alone, read from a file written with `j` (the file's checks and defaults apply).
+inline Scene scene_from_json(const nlohmann::json& j) {
   TempDir dir;
   const std::string path = (dir.path / "scene.json").string();
   std::ofstream(path) << j.dump(2);
-  Scene scene = load_scene(path);
+  return load_scene(path);
+}
+
+inline LoadedScene load_scene_json(const nlohmann::json& j) {
+  Scene scene = scene_from_json(j);
   SceneSurface surface = prepare_scene_surface(scene);
   SceneArrays arrays = scene_arrays(scene, surface);
   return LoadedScene{std::move(scene), std::move(surface), std::move(arrays)};

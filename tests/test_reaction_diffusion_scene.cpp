@@ -13,7 +13,7 @@ namespace physarum {
 namespace {
 
 using nlohmann::json;
-using testing::load_rd_scene;
+using testing::scene_from_json;
 
 json base(json extra) {
   json j = {{"mesh", "shape:square"}, {"time_step", 1.0}};
@@ -24,7 +24,7 @@ json base(json extra) {
 // The message of the InputError loading `j` throws ("" when none).
 std::string error_of(const json& j) {
   try {
-    load_rd_scene(j);
+    scene_from_json(j);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -39,7 +39,7 @@ double coefficient(const ReactionDiffusionSpec& spec, const std::string& name) {
 }
 
 TEST(ReactionDiffusionScene, NamedModelNeedsNoAgentKeysAndTakesThePapersDefaults) {
-  const Scene scene = load_rd_scene(base({{"model", "gray-scott"}}));
+  const Scene scene = scene_from_json(base({{"model", "gray-scott"}}));
   ASSERT_TRUE(is_reaction_diffusion(scene));
   const ReactionDiffusionSpec& rd = *scene.reaction_diffusion;
   ASSERT_EQ(rd.morphogens.size(), 2u);
@@ -77,7 +77,7 @@ TEST(ReactionDiffusionScene, NamedModelFormulasHaveTheirUniformSteadyStates) {
 }
 
 TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
-  const Scene scene = load_rd_scene(base({{"model", "gray-scott"},
+  const Scene scene = scene_from_json(base({{"model", "gray-scott"},
                                           {"parameters", {{"F", 0.03}}},
                                           {"morphogens", {{"v", {{"diffusion", 3e-5}, {"initial", 0.5}}}}},
                                           {"integrator", "imex"},
@@ -92,7 +92,7 @@ TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
 }
 
 TEST(ReactionDiffusionScene, CustomKineticsTakeTheMorphogensInAlphabeticalOrder) {
-  const Scene scene = load_rd_scene(base({{"reaction", {{"w", "-w + a*u"}, {"u", "a - u"}, {"v", "u - v"}}},
+  const Scene scene = scene_from_json(base({{"reaction", {{"w", "-w + a*u"}, {"u", "a - u"}, {"v", "u - v"}}},
                                           {"parameters", {{"a", 2.0}}},
                                           {"morphogens", {{"u", {{"diffusion", 1e-4}}},
                                                           {"v", {{"diffusion", 0.0}}},
