@@ -26,14 +26,17 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-// Labels of the combinations of axes [first, last): "k=v" for one axis, "k1=v1, k2=v2" for more.
-std::vector<std::string> combination_labels(const std::vector<SweepAxis>& axes, std::size_t first, std::size_t last) {
+// Labels of the combinations of axes [first, last): "k=v" for one axis, "k1=v1, k2=v2" for more;
+// with_keys false: the values only (column labels, under a title that names the keys: a cell is
+// narrower than "key=value").
+std::vector<std::string> combination_labels(const std::vector<SweepAxis>& axes, std::size_t first, std::size_t last,
+                                            bool with_keys = true) {
   std::vector<std::string> labels{""};
   for (std::size_t a = first; a < last; ++a) {
     std::vector<std::string> next;
     for (const std::string& prefix : labels)
       for (const nlohmann::json& v : axes[a].values)
-        next.push_back(prefix + (prefix.empty() ? "" : ", ") + axes[a].key + "=" + value_text(v));
+        next.push_back(prefix + (prefix.empty() ? "" : ", ") + (with_keys ? axes[a].key + "=" : "") + value_text(v));
     labels = std::move(next);
   }
   return labels;
@@ -76,7 +79,7 @@ ContactSheet contact_sheet_for(const SweepPlan& plan, const std::vector<SweepJob
   } else {
     const std::size_t row_axes = plan.axes.size() / 2;
     sheet.row_labels = combination_labels(plan.axes, 0, row_axes);
-    sheet.column_labels = combination_labels(plan.axes, row_axes, plan.axes.size());
+    sheet.column_labels = combination_labels(plan.axes, row_axes, plan.axes.size(), false);
     if (plan.axes.empty()) sheet.column_labels = {""};
     std::string rows, columns;
     for (std::size_t a = 0; a < plan.axes.size(); ++a) {
