@@ -9,7 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace physarum::testing {
 
@@ -27,6 +29,18 @@ inline LoadedReactionDiffusion load_rd_system(const nlohmann::json& j) {
   r.maps = evaluate_maps(r.scene.maps, r.surface, "test");
   r.system = build_reaction_diffusion_system(r.scene, r.surface, r.maps);
   return r;
+}
+
+// The intrinsic vertices' positions on the simulated (scaled) surface, from their barycentrics.
+inline std::vector<Eigen::Vector3d> vertex_positions(const SceneSurface& surface) {
+  std::vector<Eigen::Vector3d> p;
+  for (const SurfacePoint& s : surface.domain.vertex_location) {
+    const auto& t = surface.simulated.triangles[static_cast<size_t>(s.face)];
+    p.push_back(s.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
+                s.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
+                s.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])]);
+  }
+  return p;
 }
 
 }  // namespace physarum::testing

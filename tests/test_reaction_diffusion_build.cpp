@@ -14,18 +14,7 @@ namespace {
 
 using nlohmann::json;
 using testing::load_rd_system;
-
-// Intrinsic vertex positions on the simulated surface.
-std::vector<Eigen::Vector3d> vertex_positions(const SceneSurface& surface) {
-  std::vector<Eigen::Vector3d> p;
-  for (const SurfacePoint& s : surface.domain.vertex_location) {
-    const auto& t = surface.simulated.triangles[static_cast<size_t>(s.face)];
-    p.push_back(s.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
-                s.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
-                s.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])]);
-  }
-  return p;
-}
+using testing::vertex_positions;
 
 double quadratic_form(const CsrMatrix& k, const std::vector<double>& u) {
   std::vector<double> ku;

@@ -16,17 +16,7 @@ namespace {
 
 using nlohmann::json;
 using testing::load_rd_system;
-
-std::vector<Eigen::Vector3d> vertex_positions(const SceneSurface& surface) {
-  std::vector<Eigen::Vector3d> p;
-  for (const SurfacePoint& s : surface.domain.vertex_location) {
-    const auto& t = surface.simulated.triangles[static_cast<size_t>(s.face)];
-    p.push_back(s.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
-                s.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
-                s.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])]);
-  }
-  return p;
-}
+using testing::vertex_positions;
 
 double max_deviation(const IntrinsicVertexData<double>& u, double value) {
   double d = 0.0;
