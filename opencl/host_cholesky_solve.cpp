@@ -35,9 +35,8 @@ void HostCholeskySolve::solve(const DeviceBuffer& x) {
   f.llt.matrixL().solveInPlace(f.permuted);
   f.llt.matrixU().solveInPlace(f.permuted);
   for (int i = 0; i < n_; ++i) host_[static_cast<size_t>(i)] = f.permuted[permuted ? p[i] : i];
-  // In order after every launch before it; host_ is not touched again before the next solve's
-  // blocking read, which runs after this write.
-  compute_.queue.enqueueWriteBuffer(x.buffer, CL_FALSE, 0, bytes, host_.data());
+  // Blocking: host_ must outlive the copy (a copy within the host's RAM on a CPU device).
+  compute_.queue.enqueueWriteBuffer(x.buffer, CL_TRUE, 0, bytes, host_.data());
 }
 
 }  // namespace physarum::opencl

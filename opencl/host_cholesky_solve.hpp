@@ -31,7 +31,7 @@ class HostCholeskySolve {
 
   // b: the caller's kernels write the right-hand side here before solve().
   const DeviceBuffer& right_hand_side() const { return b_; }
-  // x = S^-1 b: reads b (waiting for the queue), solves on the host, enqueues the write of x.
+  // x = S^-1 b: reads b (waiting for the queue), solves on the host, writes x (waiting for the copy).
   void solve(const DeviceBuffer& x);
 
  private:
@@ -40,7 +40,7 @@ class HostCholeskySolve {
   int n_ = 0;
   std::unique_ptr<Factor> factor_;
   DeviceBuffer b_;
-  std::vector<float> host_;  // b, then x; kept alive until the write of x has run
+  std::vector<float> host_;  // b, then x
 };
 
 }  // namespace physarum::opencl
