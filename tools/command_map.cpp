@@ -30,6 +30,7 @@
 #include "common/scene_maps.hpp"
 #include "common/scene_surface.hpp"
 #include "tools/commands.hpp"
+#include "tools/refinement_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -59,8 +60,8 @@ struct MapOptions {
   // one map on a mesh
   std::string kind, value, name, maps_file;
   std::vector<std::string> args;
-  std::optional<double> scale_to_area, max_circumradius, max_circumradius_rel;
-  double min_angle_deg = 0.0;
+  std::optional<double> scale_to_area;
+  RefinementFlags refinement;
 };
 
 bool is_scene_file(const std::string& input) {
@@ -241,14 +242,13 @@ int run_one_map(const MapOptions& o) {
   SurfaceSpec spec;
   spec.mesh = o.input;
   spec.scale_to_area = o.scale_to_area;
-  spec.min_angle_deg = o.min_angle_deg;
+  spec.min_angle_deg = o.refinement.min_angle_deg;
   InputMesh input = load_mesh(o.input);
-  spec.max_circumradius = o.max_circumradius;
-  if (o.max_circumradius_rel) {
+  {
     // A fraction of the bounding-box diagonal of the surface as simulated (after --scale-to-area).
     const InputMeshStatistics statistics = compute_statistics(input);
     const double scale = o.scale_to_area ? std::sqrt(*o.scale_to_area / statistics.area) : 1.0;
-    spec.max_circumradius = *o.max_circumradius_rel * statistics.bounding_box_diagonal * scale;
+    spec.max_circumradius = o.refinement.absolute_max_circumradius(statistics.bounding_box_diagonal * scale);
   }
   const SceneSurface surface = prepare_surface(std::move(input), spec, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
@@ -274,7 +274,7 @@ int run_map(const MapOptions& o) {
     if (!o.args.empty()) mesh_only.push_back("--arg");
     if (!o.maps_file.empty()) mesh_only.push_back("--maps");
     if (!o.name.empty()) mesh_only.push_back("--name");
-    if (o.scale_to_area || o.max_circumradius || o.max_circumradius_rel || o.min_angle_deg > 0)
+    if (o.scale_to_area || o.refinement.any())
       mesh_only.push_back("the surface options");
     if (!mesh_only.empty()) {
       std::string list;
@@ -331,15 +331,7 @@ Command add_map_command(CLI::App& parent) {
   app->add_option("--name", options->name, "The property name of the one map (default: the kind)");
   app->add_option("--scale-to-area", options->scale_to_area, "Rescale the mesh to this area first (as a scene's scale_to_area)")
       ->check(CLI::PositiveNumber);
-  auto* abs = app->add_option("--max-circumradius", options->max_circumradius,
-                              "Refine until no intrinsic face has a larger circumradius (after --scale-to-area)")
-                  ->check(CLI::PositiveNumber);
-  auto* rel = app->add_option("--max-circumradius-rel", options->max_circumradius_rel,
-                              "Like --max-circumradius, as a fraction of the bounding-box diagonal")
-                  ->check(CLI::PositiveNumber);
-  abs->excludes(rel);
-  app->add_option("--min-angle", options->min_angle_deg, "Also refine faces with a smaller angle (degrees)")
-      ->check(CLI::Range(0.0, 30.0));
+  add_refinement_flags(app, options->refinement, "Refine until no intrinsic face has a larger circumradius (after --scale-to-area)");
   return {app, [options] { return run_map(*options); }};
 }
 

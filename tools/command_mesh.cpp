@@ -6,6 +6,7 @@
 #include "common/mesh_loading.hpp"
 #include "common/surface_domain.hpp"
 #include "tools/commands.hpp"
+#include "tools/refinement_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -20,9 +21,7 @@ namespace {
 
 struct MeshOptions {
   std::string mesh;
-  double max_circumradius = 0.0;      // absolute; 0 = not given
-  double max_circumradius_rel = 0.0;  // fraction of the bounding-box diagonal; 0 = not given
-  double min_angle_deg = 0.0;
+  RefinementFlags refinement;
   int eigenvalues = 0;
   size_t max_insertions = 10'000'000;
   bool json = false;
@@ -37,12 +36,11 @@ int run_mesh(const MeshOptions& o) {
   IntrinsicTriangulation triangulation(input);
   triangulation.flip_to_delaunay();
   RefinementOptions refinement;
-  refinement.max_circumradius = std::numeric_limits<double>::infinity();
-  if (o.max_circumradius > 0) refinement.max_circumradius = o.max_circumradius;
-  if (o.max_circumradius_rel > 0) refinement.max_circumradius = o.max_circumradius_rel * in.bounding_box_diagonal;
-  refinement.min_angle_deg = o.min_angle_deg;
+  refinement.max_circumradius =
+      o.refinement.absolute_max_circumradius(in.bounding_box_diagonal).value_or(std::numeric_limits<double>::infinity());
+  refinement.min_angle_deg = o.refinement.min_angle_deg;
   refinement.max_insertions = o.max_insertions;
-  if (o.max_circumradius > 0 || o.max_circumradius_rel > 0 || o.min_angle_deg > 0) triangulation.refine(refinement);
+  if (o.refinement.any()) triangulation.refine(refinement);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   std::vector<double> lambda;
@@ -102,15 +100,7 @@ Command add_mesh_command(CLI::App& parent) {
   app->add_option("MESH", options->mesh,
                   "Mesh file (OBJ, OFF, PLY, STL) or a built-in surface shape:NAME (square, disk, sphere, "
                   "skinny-sphere, torus, octagonal-prism)")->required();
-  auto* abs = app->add_option("--max-circumradius", options->max_circumradius,
-                              "Refine until no intrinsic face has a larger circumradius (input units)")
-                  ->check(CLI::PositiveNumber);
-  auto* rel = app->add_option("--max-circumradius-rel", options->max_circumradius_rel,
-                              "Like --max-circumradius, as a fraction of the bounding-box diagonal")
-                  ->check(CLI::PositiveNumber);
-  abs->excludes(rel);
-  app->add_option("--min-angle", options->min_angle_deg, "Also refine faces with a smaller angle (degrees)")
-      ->check(CLI::Range(0.0, 30.0));
+  add_refinement_flags(app, options->refinement, "Refine until no intrinsic face has a larger circumradius (input units)");
   app->add_option("--max-insertions", options->max_insertions, "Budget of vertex insertions during refinement")
       ->check(CLI::PositiveNumber);
   app->add_option("--eigenvalues", options->eigenvalues, "Print the K smallest eigenvalues of L x = lambda M x")
