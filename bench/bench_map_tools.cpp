@@ -2,7 +2,10 @@
 // refined to ~50k and ~1.07M intrinsic faces (max circumradius 10 and 2.2 mm). Targets (issue 20):
 // a Laplace solve on ~10^6 faces in <= 2 s.
 //   BM_LaplaceSolve     two regions (spot's head and tail, half-spaces) held at 0 and 1: the reduced
-//                       system's assembly, sparse Cholesky factorization and solve
+//                       system's assembly, sparse Cholesky factorization and solve; second argument
+//                       0: METIS orders the system in every call, 1: the surface's Laplacian ordering
+//                       is computed once (ordering_s, as a scene's map tools share it:
+//                       common/surface_solvers.hpp) and each call restricts it
 //   BM_DiffusionFactor  factoring M + h L (once per step size; shared by any number of steps)
 //   BM_DiffusionStep    one backward-Euler step with the factor reused (a solve)
 //   BM_Gradient         the normalised FE gradient of a map on every face
@@ -14,8 +17,13 @@
 #include "common/scene_surface.hpp"
 #include "common/surface_diffusion.hpp"
 #include "common/surface_gradient.hpp"
+#include "common/surface_solvers.hpp"
 
 #include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <optional>
+#include <vector>
 
 namespace physarum::bench {
 namespace {
@@ -46,7 +54,13 @@ void BM_LaplaceSolve(benchmark::State& state) {
     if (x[v] < low + 0.1 * (high - low)) regions[0].vertices.push_back(v);
     if (x[v] > high - 0.1 * (high - low)) regions[1].vertices.push_back(v);
   }
-  for (auto _ : state) benchmark::DoNotOptimize(laplace_interpolation(s->domain, regions, "bench"));
+  std::optional<std::vector<int>> ordering;
+  if (state.range(1) == 1) {
+    const auto start = std::chrono::steady_clock::now();
+    ordering = laplacian_fill_reducing_ordering(s->domain);
+    state.counters["ordering_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(laplace_interpolation(s->domain, regions, "bench", ordering ? &*ordering : nullptr));
   state.counters["intrinsic_faces"] = s->domain.face_count;
   state.counters["held_vertices"] = static_cast<double>(regions[0].vertices.size() + regions[1].vertices.size());
 }
@@ -85,7 +99,7 @@ void BM_Elevation(benchmark::State& state) {
   state.counters["input_faces"] = s->input.triangle_count();
 }
 
-BENCHMARK(BM_LaplaceSolve)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LaplaceSolve)->Args({100, 0})->Args({100, 1})->Args({22, 0})->Args({22, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DiffusionFactor)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DiffusionStep)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gradient)->Arg(100)->Arg(22)->Unit(benchmark::kMillisecond);

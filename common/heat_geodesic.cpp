@@ -118,7 +118,7 @@ double mean_intrinsic_edge_length(const SurfaceDomain& domain) {
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
-HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor)
+HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor, const std::vector<int>* ordering)
     : domain_(domain), factors_(std::make_unique<Factorizations>()) {
   if (!(time_factor > 0.0) || !std::isfinite(time_factor))
     throw std::invalid_argument("HeatGeodesicSolver: the time factor must be finite and > 0");
@@ -132,7 +132,7 @@ HeatGeodesicSolver::HeatGeodesicSolver(const SurfaceDomain& domain, double time_
   heat = time_ * SparseMatrix(domain.laplacian.to_eigen());  // symmetric: storage order is free
   for (int v = 0; v < n; ++v) heat.coeffRef(v, v) += domain.vertex_mass[static_cast<size_t>(v)];
   heat.makeCompressed();
-  f.cholesky = std::make_unique<SharedCholesky>(heat);
+  f.cholesky = std::make_unique<SharedCholesky>(heat, ordering);
   auto factor = [&](const SparseMatrix& a, const char* what) {
     try {
       return CholeskyFactor{f.cholesky.get(), f.cholesky->factor(a, what)};

@@ -26,6 +26,7 @@
 
 #include <memory>
 #include <vector>
+#include <vector>
 
 namespace physarum {
 
@@ -34,7 +35,9 @@ class HeatGeodesicSolver {
   // Factors M + tL (and its Dirichlet restriction when the surface has a boundary) and L with one
   // vertex pinned per connected piece. time_factor (m) must be > 0 (std::invalid_argument otherwise;
   // scenes check it first). InputError when a factorization fails (a domain with degenerate faces).
-  explicit HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor = 1.0);
+  // `ordering`, when given, is the Laplacian's fill-reducing order (common/surface_solvers.hpp),
+  // used instead of running METIS here.
+  explicit HeatGeodesicSolver(const SurfaceDomain& domain, double time_factor = 1.0, const std::vector<int>* ordering = nullptr);
   ~HeatGeodesicSolver();
   HeatGeodesicSolver(const HeatGeodesicSolver&) = delete;
   HeatGeodesicSolver& operator=(const HeatGeodesicSolver&) = delete;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 namespace physarum {
@@ -36,7 +37,7 @@ SurfaceComponents surface_components(const SurfaceDomain& domain) {
 }
 
 IntrinsicVertexData<double> laplace_interpolation(const SurfaceDomain& domain, const std::vector<DirichletRegion>& regions,
-                                                  const std::string& where) {
+                                                  const std::string& where, const std::vector<int>* ordering) {
   const int n = domain.vertex_count;
   if (regions.empty()) throw InputError(where + ": Laplace interpolation needs at least one region with a value");
 
@@ -105,7 +106,9 @@ IntrinsicVertexData<double> laplace_interpolation(const SurfaceDomain& domain, c
   system.setFromTriplets(triplets.begin(), triplets.end());
   // CHOLMOD's supernodal factorization (shared_cholesky.hpp): at a million faces it is several times
   // faster than a simplicial one.
-  SharedCholesky solver(system);
+  std::optional<std::vector<int>> free_ordering;
+  if (ordering) free_ordering = restricted_ordering(*ordering, free_index);
+  SharedCholesky solver(system, free_ordering ? &*free_ordering : nullptr);
   try {
     solver.factor(system, "the Laplace system");
   } catch (const std::runtime_error&) {

@@ -29,9 +29,10 @@ struct DirichletRegion {
 // there is no region; a region holds no vertex; a vertex lies in two regions with different values
 // (both named, with the vertex); a value is not finite; a connected component of the surface holds
 // no fixed vertex (its values would be undetermined: the message gives the component's size and one
-// of its vertices).
+// of its vertices). `ordering`, when given, is the Laplacian's fill-reducing order
+// (common/surface_solvers.hpp), restricted here to the free vertices instead of running METIS.
 IntrinsicVertexData<double> laplace_interpolation(const SurfaceDomain& domain, const std::vector<DirichletRegion>& regions,
-                                                  const std::string& where);
+                                                  const std::string& where, const std::vector<int>* ordering = nullptr);
 
 // The connected components of the intrinsic triangulation: one label 0..count-1 per vertex, numbered
 // in order of each component's lowest vertex.

@@ -33,7 +33,7 @@ struct Evaluation {
   const std::string& where;
   const EvaluatedMaps& done;  // the maps evaluated so far (every dependency, by the sort)
   const std::vector<Vec3>& vertex_position;
-  GeodesicSolvers* geodesic;  // kept across the maps of one surface (null where no map tool runs)
+  SurfaceSolvers* solvers;  // kept across the maps of one surface (null where no map is computed)
 
   const InputMesh& input() const { return surface.input; }
   int vertex_count() const { return surface.domain.vertex_count; }
@@ -180,17 +180,17 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
           const SeedSurface seeds{domain, e.vertex_position, [&](const std::string& name) -> const IntrinsicVertexData<double>& {
                                     return e.done.scalar_map(name);
                                   }};
-          out = geodesic_distance(s, seeds, *e.geodesic, e.where + ": key 'maps': map '" + map.name + "'");
+          out = geodesic_distance(s, seeds, *e.solvers, e.where + ": key 'maps': map '" + map.name + "'");
         } else if constexpr (std::is_same_v<S, DiffuseSource>) {
           try {
-            out = diffuse_on_surface(domain, e.operand(s.operand), s.time, s.steps);
+            out = diffuse_on_surface(domain, e.operand(s.operand), s.time, s.steps, &e.solvers->laplacian_ordering());
           } catch (const InputError& error) {
             e.fail(map.name, error.what());
           }
         } else if constexpr (std::is_same_v<S, LaplaceSource>) {
           std::vector<DirichletRegion> regions;
           for (const LaplaceRegion& r : s.regions) regions.push_back(DirichletRegion{r.region, region_vertices(e, r.region), r.value});
-          out = laplace_interpolation(domain, regions, e.where + ": key 'maps': map '" + map.name + "'");
+          out = laplace_interpolation(domain, regions, e.where + ": key 'maps': map '" + map.name + "'", &e.solvers->laplacian_ordering());
         } else if constexpr (std::is_same_v<S, ElevationSource>) {
           // On the input mesh, then carried to the intrinsic vertices as a PLY vertex map is.
           const ElevationProxy proxy = elevation_proxy(input, s.time, s.steps, e.where + ": key 'maps': map '" + map.name + "'");
@@ -364,8 +364,8 @@ EvaluatedMaps evaluate_maps(const MapSet& maps, const SceneSurface& surface, con
     vertex_position[static_cast<size_t>(v)] =
         p.barycentric[0] * input.positions[t[0]] + p.barycentric[1] * input.positions[t[1]] + p.barycentric[2] * input.positions[t[2]];
   }
-  GeodesicSolvers geodesic(domain);
-  const Evaluation e{surface, where, result, vertex_position, &geodesic};
+  SurfaceSolvers solvers(domain);
+  const Evaluation e{surface, where, result, vertex_position, &solvers};
 
   // The chord triangles and the face location serve every vector map; built only when one exists.
   std::vector<ChordTriangle> chords;

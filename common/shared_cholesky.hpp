@@ -8,6 +8,7 @@
 #include <Eigen/SparseCore>
 
 #include <memory>
+#include <vector>
 
 namespace physarum {
 
@@ -15,7 +16,9 @@ class SharedCholesky {
  public:
   // Analyses the pattern of `pattern` (compressed, column major, both triangles stored; only the lower
   // one is read). Every matrix factored later must have exactly this pattern (explicit zeros count).
-  explicit SharedCholesky(const Eigen::SparseMatrix<double>& pattern);
+  // With `ordering` (a permutation of the rows: ordering[k] is the k-th row eliminated), METIS is
+  // skipped and that ordering is used: the symbolic analysis then costs a small fraction of it.
+  explicit SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>* ordering = nullptr);
   ~SharedCholesky();
   SharedCholesky(const SharedCholesky&) = delete;
   SharedCholesky& operator=(const SharedCholesky&) = delete;
@@ -25,11 +28,20 @@ class SharedCholesky {
   int factor(const Eigen::SparseMatrix<double>& matrix, const char* what);
   // x with matrix(index) x = b. Not thread-safe (CHOLMOD's workspace is shared).
   Eigen::VectorXd solve(int index, const Eigen::VectorXd& b) const;
+  // The elimination order the analysis chose (METIS, postordered): reusable for this pattern and,
+  // through restricted_ordering, for its principal submatrices.
+  std::vector<int> ordering() const;
 
  private:
   struct State;
   std::unique_ptr<State> state_;
 };
+
+// `ordering` (a permutation of 0..n-1) restricted to the rows kept in a principal submatrix:
+// new_index[v] is row v's index in the submatrix, or < 0 where v is dropped. The kept rows keep
+// their relative order, which for a nested-dissection order is again one (a separator minus some
+// vertices still separates).
+std::vector<int> restricted_ordering(const std::vector<int>& ordering, const std::vector<int>& new_index);
 
 // One of a SharedCholesky's factorizations, as something that solves.
 struct CholeskyFactor {

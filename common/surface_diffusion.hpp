@@ -20,14 +20,17 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 namespace physarum {
 
 // The factorized backward-Euler step of one step size, reused for any number of steps and maps.
 class BackwardEulerDiffusion {
  public:
-  // Factors M + step L once. InputError when step <= 0 or is not finite, or the factorization fails.
-  BackwardEulerDiffusion(const SurfaceDomain& domain, double step);
+  // Factors M + step L once (in `ordering`, the Laplacian's fill-reducing order when the caller
+  // has it: common/surface_solvers.hpp). InputError when step <= 0 or is not finite, or the
+  // factorization fails.
+  BackwardEulerDiffusion(const SurfaceDomain& domain, double step, const std::vector<int>* ordering = nullptr);
 
   // One step: u_{k+1} from u_k (one value per intrinsic vertex).
   IntrinsicVertexData<double> step(const IntrinsicVertexData<double>& u) const;
@@ -40,6 +43,6 @@ class BackwardEulerDiffusion {
 // `u` diffused for `time` in `steps` equal backward-Euler steps. InputError when time <= 0, steps <
 // 1, or u has not one value per intrinsic vertex.
 IntrinsicVertexData<double> diffuse_on_surface(const SurfaceDomain& domain, const IntrinsicVertexData<double>& u,
-                                               double time, int steps = 1);
+                                               double time, int steps = 1, const std::vector<int>* ordering = nullptr);
 
 }  // namespace physarum

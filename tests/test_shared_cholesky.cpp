@@ -44,5 +44,29 @@ TEST(SharedCholesky, RefusesAnotherPatternAndIndefiniteMatrices) {
   EXPECT_THROW(shared.factor(indefinite, "indefinite"), std::runtime_error);
 }
 
+// A given ordering is used as given (the factorization's ordering() is it, up to CHOLMOD's postorder
+// of the elimination tree, which a path's reversed order already is) and the solve is still exact;
+// a principal submatrix factors in the restricted order.
+TEST(SharedCholesky, AGivenOrderingIsUsedAndRestricts) {
+  const Eigen::SparseMatrix<double> a = path(40, 0.1, 1.0);
+  std::vector<int> reversed(40);
+  for (int i = 0; i < 40; ++i) reversed[static_cast<size_t>(i)] = 39 - i;
+  SharedCholesky shared(a, &reversed);
+  EXPECT_EQ(shared.ordering(), reversed);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(40, -1.0, 2.0);
+  const Eigen::VectorXd x = shared.solve(shared.factor(a, "a"), rhs);
+  EXPECT_LT((x - Eigen::MatrixXd(a).ldlt().solve(rhs)).norm(), 1e-10 * x.norm());
+
+  // Keep the even rows: they are numbered 0..19 in the submatrix, in reversed order.
+  std::vector<int> new_index(40, -1);
+  for (int i = 0; i < 40; i += 2) new_index[static_cast<size_t>(i)] = i / 2;
+  const std::vector<int> restricted = restricted_ordering(reversed, new_index);
+  ASSERT_EQ(restricted.size(), 20u);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(restricted[static_cast<size_t>(k)], 19 - k);
+
+  const std::vector<int> too_short(39, 0);
+  EXPECT_THROW(SharedCholesky(a, &too_short), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace physarum
