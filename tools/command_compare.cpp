@@ -272,6 +272,15 @@ int run_compare(const CompareOptions& o) {
       throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
                        " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
                        " (it would change nothing)");
+    // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
+    // a model without F (turing, ...) runs unchanged.
+    if (rd && o.fault == "rd-no-feed") {
+      bool has_feed = false;
+      for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
+      if (!has_feed)
+        throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
+                         ") has no feed coefficient F (it would change nothing)");
+    }
   }
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
