@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 #include "common/field_statistics.hpp"
+#include "common/harmonic_bands.hpp"
 #include "common/spectral_metrics.hpp"
 
 #include <algorithm>
@@ -18,9 +19,6 @@ constexpr double kPi = 3.14159265358979323846;
 // are a few d apart), and 1/4 .. 4 d brackets it from the strands' width to the network's cells.
 constexpr double kDetailScales[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 constexpr double kCoarsestDetailScale = 4.0;
-// Fewest manifold harmonics in one band: a band's power then varies by well under its margin from
-// seed to seed (the power of k independent modes has a relative spread of about sqrt(2 / k)).
-constexpr int kMinModesPerBand = 16;
 
 std::string metres(double v) {
   char text[32];
@@ -52,23 +50,10 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
   for (const char* name : {"coverage_0.5U", "coverage_1U", "coverage_2U"})
     metrics_.push_back({name, MarginKind::Absolute, c.margin_coverage});
 
-  // Harmonic bands hold equal NUMBERS of consecutive non-constant eigenpairs (not equal widths of
-  // sqrt(lambda)): on a surface the mode count grows like sqrt(lambda)^2, so equal-width bands put
-  // a handful of modes in the lowest band, whose power then swings by half its value from seed to
-  // seed, and a comparison would need hundreds of seeds to say anything about it.
-  //
-  // A band must hold whole eigenspaces: within a repeated eigenvalue (symmetric shapes have many)
-  // the solver may return any orthonormal basis, and only the projection onto the WHOLE eigenspace
-  // is the same from one run to the next. So band edges move up to the next gap in the spectrum,
-  // and the top cluster is dropped when it reaches the last computed eigenvalue (the solver may
-  // have returned only part of it).
-  //
-  // Only the modes at the pattern's scale or finer (wavelength 2 pi / sqrt(lambda) at most 4 d)
-  // are used, in bands of at least kMinModesPerBand modes: there they add how the power is spread
-  // over the scales the detail energies summarise. Modes above the pattern's scale see only how its
-  // cells happen to be laid out on the surface, which is metastable and differs from seed to seed
-  // by as much as a third, and a band of a few modes swings as much: no affordable number of seeds
-  // decides either. Without enough such modes among the computed eigenpairs, no bands.
+  // Harmonic bands (common/harmonic_bands.hpp: equal mode counts, whole eigenspaces): only the
+  // modes at the pattern's scale or finer (wavelength 2 pi / sqrt(lambda) at most 4 d), where they
+  // add how the power is spread over the scales the detail energies summarise. Without enough such
+  // modes among the computed eigenpairs, no bands.
   if (!same_discretisation) {
     left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ");
   } else {
@@ -77,33 +62,21 @@ ComparisonMetrics::ComparisonMetrics(const SceneSurface& surface, const Scene& s
     const int computed = static_cast<int>(lambda.size());
     const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
     const double lambda_pattern = (2.0 * kPi / pattern_scale) * (2.0 * kPi / pattern_scale);
-    const double tie = 1e-6 * lambda_max;
-    int first = 0, end = computed;
-    while (first < computed && (lambda[first] <= 1e-8 * lambda_max || lambda[first] < lambda_pattern)) ++first;
-    while (first > 0 && first < computed && lambda[first] - lambda[first - 1] <= tie) ++first;  // whole eigenspaces
-    while (end > first && lambda[computed - 1] - lambda[end - 1] <= tie) --end;
-    const int usable = end - first;
-    const int bands = std::min<int>(c.spectrum_bands, usable / kMinModesPerBand);
-    if (bands < 1) {
+    const HarmonicBandAssignment assignment = assign_harmonic_bands(lambda, lambda_pattern, c.spectrum_bands);
+    if (assignment.bands < 1) {
       // Weyl's law, N(lambda) ~ area lambda / (4 pi): the modes above the pattern's scale, plus one band.
       const double needed = domain_.total_area * lambda_pattern / (4.0 * kPi) + kMinModesPerBand + 1;
       const double shortest = lambda_max > 0.0 ? 2.0 * kPi / std::sqrt(lambda_max) : INFINITY;
-      left_out_.push_back("harmonic bands: " + std::to_string(usable) + " of the " + std::to_string(computed) +
+      left_out_.push_back("harmonic bands: " + std::to_string(assignment.usable) + " of the " + std::to_string(computed) +
                           " eigenpairs (shortest wavelength " + metres(shortest) + ") lie at the pattern's scale 4 d = " +
                           metres(pattern_scale) + " or finer, fewer than the " + std::to_string(kMinModesPerBand) +
                           " a band needs (compare_eigenpairs of about " +
                           std::to_string(static_cast<long long>(std::ceil(needed))) + " would give one)");
     } else {
-      harmonic_band_of_mode_.assign(static_cast<size_t>(computed), -1);
-      int band = 0;
-      for (int k = first; k < end; ++k) {
-        const bool cluster_starts = k == first || lambda[k] - lambda[k - 1] > tie;
-        while (cluster_starts && band + 1 < bands && (k - first) >= (band + 1) * usable / bands) ++band;
-        harmonic_band_of_mode_[static_cast<size_t>(k)] = band;
-      }
-      for (int b = 1; b <= bands; ++b)
+      harmonic_band_of_mode_ = assignment.band_of_mode;
+      for (int b = 1; b <= assignment.bands; ++b)
         metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
-      harmonic_bands_ = bands;
+      harmonic_bands_ = assignment.bands;
     }
   }
 

@@ -548,7 +548,28 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   c.margin_detail = read.number("compare_margin_detail").value_or(c.margin_detail);
   c.spectrum_bands = static_cast<int>(read.integer("compare_bands").value_or(c.spectrum_bands));
   c.eigenpairs = static_cast<int>(read.integer("compare_eigenpairs").value_or(c.eigenpairs));
-  if (c.sample_interval > c.duration)
+  if (reaction_diffusion) {
+    // A reaction-diffusion scene's run is its own time scale: by default the comparison discards the
+    // first half of the run (the pattern forming from its initial state) and averages the second
+    // half, sampled 20 times (enough samples that the time average is smooth, few enough that the
+    // snapshots' spectra cost little beside the run). Keys given in the file win.
+    std::optional<double> run_time = scene.sim_time;
+    if (!run_time && scene.steps) run_time = static_cast<double>(*scene.steps) * scene.time_step;
+    const bool burn_in_given = j.contains("compare_burn_in"), duration_given = j.contains("compare_duration");
+    if (run_time) {
+      if (!burn_in_given) c.burn_in = duration_given ? std::max(0.0, *run_time - c.duration) : 0.5 * *run_time;
+      if (!duration_given) c.duration = std::max(scene.time_step, *run_time - c.burn_in);
+    }
+    if (!run_time && !(burn_in_given && duration_given)) {
+      // No run length at all: the agent model's defaults are seconds of ITS dynamics and mean
+      // nothing for a reaction's, so there is nothing to compare over (physarum compare says so;
+      // physarum run takes --steps).
+      c.burn_in = 0.0;
+      c.duration = 0.0;
+    }
+    if (!j.contains("compare_sample_interval")) c.sample_interval = std::max(scene.time_step, c.duration / 20.0);
+  }
+  if (c.sample_interval > c.duration && !(reaction_diffusion && c.duration == 0.0))
     throw InputError(path + ": key 'compare_sample_interval' = " + std::to_string(c.sample_interval) +
                      " is longer than 'compare_duration' = " + std::to_string(c.duration) + " (no sample would be taken)");
 

@@ -16,6 +16,13 @@
 // them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
 // statistics, 2 on usage errors.
 //
+// Reaction-diffusion scenes (model gray-scott, turing, ...): the same test on their own metric set
+// (common/reaction_diffusion_metrics.hpp: each morphogen's mean and variance / mean^2, coverage of
+// the preview morphogen above fractions of its range, band shares of its spectrum), each seed a
+// system built with that seed, run for the scene's steps: by default the first half is the burn-in
+// and the second half is averaged (compare_burn_in / compare_duration override). Their planted
+// faults are rd-swap-diffusion and rd-no-feed; stored reference statistics are refused.
+//
 // Stored reference statistics: `--store-reference FILE --seeds 100` runs only the reference and
 // writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
 // runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
@@ -97,13 +104,13 @@ nlohmann::ordered_json comparable_parameters(const Scene& scene) {
   return p;
 }
 
-std::vector<std::string> metric_names(const ComparisonMetrics& metrics) {
+std::vector<std::string> metric_names(const std::vector<MetricInfo>& metrics) {
   std::vector<std::string> names;
-  for (const MetricInfo& m : metrics.metrics()) names.push_back(m.name);
+  for (const MetricInfo& m : metrics) names.push_back(m.name);
   return names;
 }
 
-void store_reference(const std::string& path, const Scene& scene, const ComparisonMetrics& metrics,
+void store_reference(const std::string& path, const Scene& scene, const std::vector<MetricInfo>& metrics,
                      const Matrix& values) {
   nlohmann::ordered_json j;
   j["generated_by"] = "physarum compare --store-reference";
@@ -113,7 +120,7 @@ void store_reference(const std::string& path, const Scene& scene, const Comparis
   write_text_file_atomically(path, j.dump(1) + "\n");
 }
 
-Matrix load_reference(const std::string& path, const Scene& scene, const ComparisonMetrics& metrics) {
+Matrix load_reference(const std::string& path, const Scene& scene, const std::vector<MetricInfo>& metrics) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the stored reference statistics");
   nlohmann::json j;
@@ -130,7 +137,7 @@ Matrix load_reference(const std::string& path, const Scene& scene, const Compari
     throw InputError(path + ": stored with other metrics than this build measures" + regenerate);
   Matrix values = j.at("values").get<Matrix>();
   for (const auto& row : values)
-    if (row.size() != metrics.metrics().size()) throw InputError(path + ": a row has the wrong length" + regenerate);
+    if (row.size() != metrics.size()) throw InputError(path + ": a row has the wrong length" + regenerate);
   if (values.size() < 2) throw InputError(path + ": fewer than 2 stored seeds" + regenerate);
   return values;
 }
@@ -251,6 +258,30 @@ int run_compare(const CompareOptions& o) {
     throw UsageError("--store-reference runs only the reference: it takes neither --reference-stats, --fault nor --arm");
   if (!o.reference_stats.empty() && !o.arms.empty())
     throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
+  {
+    // What this harness cannot do with a reaction-diffusion scene, refused before anything runs.
+    const Scene scene = load_scene(o.scene);
+    const bool rd = scene.reaction_diffusion.has_value();
+    if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
+      throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
+                       "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
+    // A planted fault of the other model would change nothing, and the harness would rightly call
+    // the arms equivalent: a power check that proves nothing.
+    const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
+    if (!o.fault.empty() && rd != rd_fault)
+      throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
+                       " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
+                       " (it would change nothing)");
+    // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
+    // a model without F (turing, ...) runs unchanged.
+    if (rd && o.fault == "rd-no-feed") {
+      bool has_feed = false;
+      for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
+      if (!has_feed)
+        throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
+                         ") has no feed coefficient F (it would change nothing)");
+    }
+  }
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   ArmsRequest request;
@@ -266,17 +297,17 @@ int run_compare(const CompareOptions& o) {
     const int seeds = o.max_seeds.value_or(kStoredSeeds);
     run_batch(arms, tasks_for(0, 0, seeds), jobs, {&values}, "reference");
     if (show_progress()) std::cerr << "\n";
-    store_reference(o.store_reference, arms[0].scene, *arms[0].metrics, values);
+    store_reference(o.store_reference, arms[0].scene, arms[0].metrics, values);
     std::cout << "physarum compare: stored " << seeds << " reference seeds of " << o.scene << " in "
               << o.store_reference << "\n";
     return 0;
   }
 
   const Arm &A = arms[0], &B = arms[1];
-  const std::vector<MetricInfo>& info = A.metrics->metrics();
+  const std::vector<MetricInfo>& info = A.metrics;
   // The two backends on one scene: the analytic row is judged too, where the scene's mean is U.
-  const bool analytic = o.arms.empty() && steady_mean_is_U(A.scene);
-  std::vector<std::string> names = metric_names(*A.metrics);
+  const bool analytic = o.arms.empty() && !A.reaction_diffusion() && steady_mean_is_U(A.scene);
+  std::vector<std::string> names = metric_names(A.metrics);
   if (analytic) names.push_back(kAnalyticMetric);
   int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
 
@@ -284,7 +315,7 @@ int run_compare(const CompareOptions& o) {
   const bool stored = !o.reference_stats.empty();
   Matrix a_values, b_values, fresh_reference;
   if (stored) {
-    b_values = load_reference(o.reference_stats, B.scene, *B.metrics);
+    b_values = load_reference(o.reference_stats, B.scene, B.metrics);
     // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
     if (max_seeds > static_cast<int>(b_values.size())) {
       max_seeds = static_cast<int>(b_values.size());
@@ -359,6 +390,19 @@ int run_compare(const CompareOptions& o) {
                         {"faces", arm.surface->domain.face_count},
                         {"agents", arm.scene.agents},
                         {"time_step", arm.scene.time_step}});
+  if (A.reaction_diffusion()) {
+    // What a seed of a reaction-diffusion arm ran: the run length is the scene's, not the agent
+    // model's compare defaults, so the report says it.
+    const ComparisonSettings& c = A.scene.comparison;
+    for (size_t i = 0; i < arms.size(); ++i) {
+      const ReactionDiffusionSpec& rd = *arms[i].scene.reaction_diffusion;
+      arm_list[i].erase("agents");
+      arm_list[i]["model"] = rd.model;
+      arm_list[i]["integrator"] = rd.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+      arm_list[i]["preview_morphogen"] = rd.preview_morphogen;
+    }
+    report["run_length"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval}};
+  }
   report["arms"] = arm_list;
   report["seeds"] = {{A.label, a_values.size()}, {B.label, b_values.size()}};
   report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
@@ -371,7 +415,7 @@ int run_compare(const CompareOptions& o) {
   // How this run went (the rest of the report is the same whatever the threads and the machine's load).
   report["run"] = {{"jobs", jobs},
                    {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
-  report["left_out"] = A.metrics->left_out();
+  report["left_out"] = A.left_out;
   if (!unsettled.empty()) report["unsettled"] = unsettled;
   report["reference_source"] = stored ? o.reference_stats : "run here";
   if (stored) report["drift"] = {{"fresh_reference_seeds", fresh_reference.size()}, {"drift", drift}, {"metrics", drift_rows}};
@@ -395,7 +439,7 @@ int run_compare(const CompareOptions& o) {
         csv << "\n";
       }
     write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
-    write_comparison_plot((out / "spectra.png").string(), metric_names(*A.metrics), b_values, a_values);
+    write_comparison_plot((out / "spectra.png").string(), metric_names(A.metrics), b_values, a_values);
   }
   if (drift)
     throw InputError(o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "

@@ -1,12 +1,16 @@
 #include "tools/comparison_arms.hpp"
 
 #include "common/errors.hpp"
+#include "common/map_evaluation.hpp"
+#include "common/reaction_diffusion_build.hpp"
+#include "common/reaction_diffusion_metrics.hpp"
 #include "common/scene_overrides.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/feasible_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -29,10 +33,100 @@ auto surface_key(const Scene& s) {
   return std::make_tuple(s.mesh, s.scale_to_area.value_or(-1.0), s.max_circumradius.value_or(-1.0), s.min_angle_deg);
 }
 
-std::vector<std::string> names(const ComparisonMetrics& m) {
+std::vector<std::string> names(const std::vector<MetricInfo>& metrics) {
   std::vector<std::string> n;
-  for (const MetricInfo& info : m.metrics()) n.push_back(info.name);
+  for (const MetricInfo& info : metrics) n.push_back(info.name);
   return n;
+}
+
+// Agent-model arms: each arm's surface (checked for feasibility, built once where the arms share
+// one), its maps and per-vertex parameters evaluated once for all its seeds, and its metrics.
+void prepare_agent_model_arms(std::vector<Arm>& arms) {
+  // Surfaces, built once where the arms share one, and the maps of each arm's scene on its surface,
+  // evaluated once for all its seeds (through the map cache).
+  const MapCache cache = MapCache::from_environment();
+  std::vector<std::shared_ptr<const SceneArrays>> arrays(arms.size());
+  for (size_t i = 0; i < arms.size(); ++i) {
+    Arm& a = arms[i];
+    for (size_t j = 0; j < i; ++j)
+      if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
+    std::optional<EvaluatedMaps> maps;
+    if (!a.surface) {
+      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache);
+      a.surface = std::make_shared<const SceneSurface>(std::move(feasible.surface));
+      maps = std::move(feasible.maps);
+    } else {
+      maps = cached_evaluate_maps(map_sources_of(a.scene), *a.surface, cache);
+    }
+    arrays[i] = std::make_shared<const SceneArrays>(scene_arrays(a.scene, *a.surface, *maps));
+    a.scene = with_mean_parameters(a.scene, arrays[i]->parameters, a.surface->domain);
+  }
+
+  // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
+  ArmsShare share;
+  share.discretisation =
+      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
+  for (const Arm& a : arms) share.coarsest_edge_length = std::max(share.coarsest_edge_length, mean_edge_length(a.surface->domain));
+  std::vector<std::shared_ptr<const ComparisonMetrics>> metrics(arms.size());
+  for (size_t i = 0; i < arms.size(); ++i) {
+    if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
+        arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
+        arms[i].scene.comparison.spectrum_bands == arms[0].scene.comparison.spectrum_bands)
+      metrics[i] = metrics[0];  // the eigenpairs and smoothers are computed once (run length, dt
+                                          // and U are each arm's own: measure_seed)
+    else
+      metrics[i] = std::make_shared<const ComparisonMetrics>(*arms[i].surface, arms[i].scene, share);
+    arms[i].metrics = metrics[i]->metrics();
+    arms[i].left_out = metrics[i]->left_out();
+    arms[i].measure = [arrays = arrays[i], metrics = metrics[i]](const Arm& arm, const Scene& seeded,
+                                                                 const opencl::ComputeContext* compute) {
+      const auto sim = make_backend(arm.backend, compute, arm.surface->domain, seeded, *arrays, arm.options);
+      return metrics->measure_seed(*sim, seeded);
+    };
+  }
+
+}
+
+// Reaction-diffusion arms: the surface (built once where shared) and maps as `physarum run` builds
+// them, then per seed the system with that seed's noise and spots. The pattern scale that picks the
+// spectral metrics is the continuum system's, taken from the arm judged against, so that two arms
+// on different triangulations measure the same metric set.
+void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
+  std::vector<std::shared_ptr<const EvaluatedMaps>> maps(arms.size());
+  for (size_t i = 0; i < arms.size(); ++i) {
+    Arm& a = arms[i];
+    for (size_t j = 0; j < i; ++j)
+      if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
+    if (!a.surface)
+      a.surface = std::make_shared<const SceneSurface>(
+          prepare_scene_surface(a.scene, [](const std::string& line) { std::cerr << line << "\n"; }));
+    maps[i] = std::make_shared<const EvaluatedMaps>(evaluate_maps(a.scene.maps, *a.surface, a.scene.source));
+  }
+  const Arm& baseline = arms.back();
+  std::vector<double> uniform;
+  for (const MorphogenSpec& m : baseline.scene.reaction_diffusion->morphogens) uniform.push_back(m.initial);
+  const double pattern_scale = reaction_diffusion_pattern_scale(
+      build_reaction_diffusion_system(baseline.scene, *baseline.surface, *maps.back()), baseline.surface->domain, uniform);
+
+  ArmsShare share;
+  share.discretisation = arms.size() == 1 || arms[0].surface == arms[1].surface;
+  std::vector<std::shared_ptr<const ReactionDiffusionMetrics>> metrics(arms.size());
+  for (size_t i = 0; i < arms.size(); ++i) {
+    const ComparisonSettings &c = arms[i].scene.comparison, &c0 = arms[0].scene.comparison;
+    if (i > 0 && arms[i].surface == arms[0].surface && c.eigenpairs == c0.eigenpairs && c.spectrum_bands == c0.spectrum_bands &&
+        arms[i].scene.reaction_diffusion->preview_morphogen == arms[0].scene.reaction_diffusion->preview_morphogen)
+      metrics[i] = metrics[0];  // the eigenpairs are computed once
+    else
+      metrics[i] = std::make_shared<const ReactionDiffusionMetrics>(*arms[i].surface, arms[i].scene, pattern_scale, share);
+    arms[i].metrics = metrics[i]->metrics();
+    arms[i].left_out = metrics[i]->left_out();
+    arms[i].measure = [maps = maps[i], metrics = metrics[i]](const Arm& arm, const Scene& seeded,
+                                                             const opencl::ComputeContext* compute) {
+      const auto sim = make_reaction_diffusion_backend(arm.backend, compute, arm.surface->domain,
+                                                       build_reaction_diffusion_system(seeded, *arm.surface, *maps), arm.options);
+      return metrics->measure_seed(*sim, seeded);
+    };
+  }
 }
 
 }  // namespace
@@ -63,8 +157,7 @@ ArmSpec parse_arm(const std::string& text) {
 std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* stream) const {
   Scene s = scene;
   s.seed = seed(index);
-  const auto sim = make_backend(backend, stream ? stream : compute ? &*compute : nullptr, surface->domain, s, arrays, options);
-  return metrics->measure_seed(*sim, s);
+  return measure(*this, s, stream ? stream : compute ? &*compute : nullptr);
 }
 
 std::vector<Arm> make_arms(const ArmsRequest& request) {
@@ -93,8 +186,8 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
       nlohmann::json overrides = spec.scene_overrides;
       // Fig. 10c: another agent count with the deposit rescaled so that U (Eq. 5) stays the same.
       // (A deposit rate given by a map is left as it is: its values are per vertex.)
-      if (overrides.contains("agents") && overrides["agents"].is_number_integer() && !overrides.contains("deposit_rate") &&
-          !base.parameter_maps[static_cast<size_t>(Param::deposit_rate)]) {
+      if (!base.reaction_diffusion && overrides.contains("agents") && overrides["agents"].is_number_integer() &&
+          !overrides.contains("deposit_rate") && !base.parameter_maps[static_cast<size_t>(Param::deposit_rate)]) {
         const double agents = overrides["agents"].get<double>();
         if (agents > 0)
           overrides["deposit_rate"] =
@@ -111,41 +204,9 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   for (size_t i = 0; i < arms.size(); ++i)
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
 
-  // Surfaces, built once where the arms share one, and the maps of each arm's scene on its surface,
-  // evaluated once for all its seeds (through the map cache).
-  const MapCache cache = MapCache::from_environment();
-  for (size_t i = 0; i < arms.size(); ++i) {
-    Arm& a = arms[i];
-    for (size_t j = 0; j < i; ++j)
-      if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
-    std::optional<EvaluatedMaps> maps;
-    if (!a.surface) {
-      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache);
-      a.surface = std::make_shared<const SceneSurface>(std::move(feasible.surface));
-      maps = std::move(feasible.maps);
-    } else {
-      maps = cached_evaluate_maps(map_sources_of(a.scene), *a.surface, cache);
-    }
-    a.arrays = scene_arrays(a.scene, *a.surface, *maps);
-    a.scene = with_mean_parameters(a.scene, a.arrays.parameters, a.surface->domain);
-  }
-
-  // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
-  ArmsShare share;
-  share.discretisation =
-      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
-  for (const Arm& a : arms) share.coarsest_edge_length = std::max(share.coarsest_edge_length, mean_edge_length(a.surface->domain));
-  for (size_t i = 0; i < arms.size(); ++i) {
-    if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
-        arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
-        arms[i].scene.comparison.spectrum_bands == arms[0].scene.comparison.spectrum_bands)
-      arms[i].metrics = arms[0].metrics;  // the eigenpairs and smoothers are computed once (run length, dt
-                                          // and U are each arm's own: measure_seed)
-    else
-      arms[i].metrics = std::make_shared<const ComparisonMetrics>(
-          *arms[i].surface, arms[i].scene, share);
-  }
-  if (arms.size() == 2 && names(*arms[0].metrics) != names(*arms[1].metrics))
+  if (base.reaction_diffusion) prepare_reaction_diffusion_arms(arms);
+  else prepare_agent_model_arms(arms);
+  if (arms.size() == 2 && names(arms[0].metrics) != names(arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
                      "' measure different metric sets (their flatness or spectral reach differs); compare arms "
                      "that differ in discretisation or settings of one surface");

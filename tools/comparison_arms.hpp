@@ -5,6 +5,9 @@
 // (max_circumradius, time_step, agents, integrator, backend, device, ...), so claims such as "the
 // pattern no longer changes once the triangulation is fine enough" become commands with verdicts.
 //
+// Reaction-diffusion scenes are compared the same way (their own metric set; an --arm may set
+// integrator, max_circumradius, time_step, backend, device and the like).
+//
 // An arm's seeds never overlap the other's: arm 0 runs seeds scene.seed + i, arm 1 scene.seed +
 // 100000 + i (the reference arm's numbering, which stored statistics depend on).
 #include "common/comparison_metrics.hpp"
@@ -18,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,19 +44,29 @@ ArmSpec parse_arm(const std::string& text);
 
 constexpr std::uint32_t kSecondArmSeedOffset = 100000;
 
+// One arm of a comparison: a scene, the backend that runs it, and how one seed of it is run and
+// measured. The agent model and reaction-diffusion systems differ only in that last part (their
+// metric sets, common/comparison_metrics.hpp and common/reaction_diffusion_metrics.hpp, and how a
+// fresh simulation is built), so it is a function of the arm; the seed numbering, the threads that
+// run the seeds (tools/seed_runner.hpp) and the verdict (tools/command_compare.cpp) are shared.
 struct Arm {
   std::string label;
-  // The arm's scene; a parameter given by a map holds its mean over the surface (with_mean_parameters:
-  // what U and the metrics' length scales read), its per-vertex values are in `arrays`.
+  // The arm's scene. Agent model: a parameter given by a map holds its mean over the surface
+  // (with_mean_parameters: what U and the metrics' length scales read).
   Scene scene;
   BackendChoice backend = BackendChoice::Reference;
   std::shared_ptr<const SceneSurface> surface;
-  SceneArrays arrays;  // the scene's maps evaluated on `surface` once, for every seed
-  std::shared_ptr<const ComparisonMetrics> metrics;
+  std::vector<MetricInfo> metrics;     // what measure returns, in order, with the margins
+  std::vector<std::string> left_out;   // metrics of the documented set this scene cannot judge, and why
   std::optional<opencl::ComputeContext> compute;  // OpenCL arms
   opencl::OpenCLSimulationOptions options;        // OpenCL arms: planted faults
   std::uint32_t seed_offset = 0;
+  // Builds a fresh simulation of `seeded` (the arm's scene with one seed) on `arm`'s backend, with
+  // its planted faults (`compute`: the OpenCL context or queue to run it on, null for the reference),
+  // and returns its time-averaged metrics. Safe to call from several threads at once.
+  std::function<std::vector<double>(const Arm& arm, const Scene& seeded, const opencl::ComputeContext* compute)> measure;
 
+  bool reaction_diffusion() const { return scene.reaction_diffusion.has_value(); }
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
   // Runs seed `index` from a fresh simulation and returns its time-averaged metrics; an OpenCL arm
   // runs it on `stream` (a queue of its context) when given, else on its context's own queue.
@@ -69,7 +83,10 @@ struct ArmsRequest {
 
 // The arms in order (0: the arm judged, 1: the arm it is judged against, whose means set relative
 // margins). Surfaces that are the same are built once; when the arms differ in surface or agent
-// count, the metrics tied to one discretisation are left out (ArmsShare). `agents` in an --arm
+// count, the metrics tied to one discretisation are left out (ArmsShare). A reaction-diffusion
+// scene gets reaction-diffusion arms: each seed builds the system with its own seed (its noise and
+// spots) and is measured by common/reaction_diffusion_metrics.hpp, with the pattern scale of the
+// arm judged against. `agents` in an --arm
 // without `deposit_rate` rescales the deposit so that U (Eq. 5) stays the scene's, as the paper's
 // agent-count study does (Fig. 10c). Throws InputError when the arms' metric sets differ.
 std::vector<Arm> make_arms(const ArmsRequest& request);
