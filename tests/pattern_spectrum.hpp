@@ -2,15 +2,16 @@
 // The dominant wavenumber of a grown pattern, for the reaction-diffusion known-answer tests: where
 // the power spectrum of a field peaks, estimated below the spectrum's bin width, on a flat surface
 // (the radially averaged 2D FFT spectrum of common/spectral_metrics.hpp) and on a sphere (the power
-// per spherical-harmonic degree, projected here with Boost.Math's Y_lm so the reference owes nothing
-// to the discrete Laplacian under test). Also the "connectivity Laplacian" a graph-based tool
-// diffuses with, to show what the cotan Laplacian buys.
+// per spherical-harmonic degree, projected here on Y_lm from Boost.Math's associated Legendre
+// functions, so the reference owes nothing to the discrete Laplacian under test). Also the
+// "connectivity Laplacian" a graph-based tool diffuses with, to show what the cotan Laplacian buys.
 #include "common/reaction_diffusion_system.hpp"
 #include "common/scene_surface.hpp"
 #include "common/spectral_metrics.hpp"
 #include "common/surface_domain.hpp"
 
-#include <boost/math/special_functions/spherical_harmonic.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/special_functions/legendre.hpp>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -85,23 +86,37 @@ inline std::vector<double> spherical_degree_power(const std::vector<Eigen::Vecto
   double area = 0.0, mean = 0.0;
   for (size_t i = 0; i < field.size(); ++i) area += mass[i], mean += mass[i] * field[i];
   mean /= area;
-  std::vector<double> theta(field.size()), phi(field.size());
+  const size_t degrees = static_cast<size_t>(max_degree) + 1;
+  // Y_lm = N_lm P_l^m(cos theta) e^{i m phi} with N_lm = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!);
+  // P_l^m over l by Boost's three-term recurrence (legendre_next) from P_m^m, so each vertex costs
+  // O(max_degree^2) rather than a fresh Legendre evaluation per (l, m).
+  std::vector<std::complex<double>> c(degrees * degrees, 0.0);  // c[l * degrees + m], m <= l
+  std::vector<double> norm(degrees * degrees, 0.0);
+  for (unsigned l = 0; l < degrees; ++l)
+    for (unsigned m = 0; m <= l; ++m)
+      norm[l * degrees + m] = std::sqrt((2.0 * l + 1.0) / (4.0 * std::numbers::pi) *
+                                        boost::math::tgamma_ratio(static_cast<double>(l - m + 1), static_cast<double>(l + m + 1)));
   for (size_t i = 0; i < field.size(); ++i) {
     const Eigen::Vector3d& p = position[i];
-    theta[i] = std::acos(std::clamp(p.z() / p.norm(), -1.0, 1.0));
-    phi[i] = std::atan2(p.y(), p.x());
-  }
-  std::vector<double> power(static_cast<size_t>(max_degree) + 1, 0.0);
-  for (int l = 0; l <= max_degree; ++l) {
-    double sum = 0.0;
-    // A real field has c_{l,-m} = (-1)^m conj(c_lm): the negative orders add what the positive do.
-    for (int m = 0; m <= l; ++m) {
-      std::complex<double> c = 0.0;
-      for (size_t i = 0; i < field.size(); ++i)
-        c += mass[i] * (field[i] - mean) * std::conj(boost::math::spherical_harmonic(l, m, theta[i], phi[i]));
-      sum += (m == 0 ? 1.0 : 2.0) * std::norm(c);
+    const double x = std::clamp(p.z() / p.norm(), -1.0, 1.0), phi = std::atan2(p.y(), p.x());
+    const double w = mass[i] * (field[i] - mean);
+    for (unsigned m = 0; m <= static_cast<unsigned>(max_degree); ++m) {
+      const std::complex<double> rotation = w * std::polar(1.0, -static_cast<double>(m) * phi);
+      double previous = 0.0, current = boost::math::legendre_p(static_cast<int>(m), static_cast<int>(m), x);
+      for (unsigned l = m; l <= static_cast<unsigned>(max_degree); ++l) {
+        c[l * degrees + m] += rotation * (norm[l * degrees + m] * current);
+        const double next = boost::math::legendre_next(l, m, x, current, previous);
+        previous = current;
+        current = next;
+      }
     }
-    power[static_cast<size_t>(l)] = sum / (2.0 * l + 1.0);
+  }
+  std::vector<double> power(degrees, 0.0);
+  for (size_t l = 0; l < degrees; ++l) {
+    // A real field has c_{l,-m} = (-1)^m conj(c_lm): the negative orders add what the positive do.
+    double sum = std::norm(c[l * degrees]);
+    for (size_t m = 1; m <= l; ++m) sum += 2.0 * std::norm(c[l * degrees + m]);
+    power[l] = sum / (2.0 * static_cast<double>(l) + 1.0);
   }
   return power;
 }

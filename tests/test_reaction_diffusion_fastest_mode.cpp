@@ -10,11 +10,11 @@
 // so it grows at sigma(q^2) = the largest real part of that matrix's eigenvalues; the fastest mode
 // q* maximises sigma. From white noise every mode starts with the same expected power and after time
 // t has it times exp(2 sigma(q) t): the expected spectrum peaks at q* at every t, and sharpens with t.
-// The run stays linear (noise 1e-9, grown by exp(sigma* t) ~ 1e7), so no nonlinear wavelength
+// The run stays linear (noise 1e-9, grown by exp(sigma* t) ~ 5e6 at t = 20), so no nonlinear wavelength
 // selection moves the peak.
 //
 // Tolerance 15 % (the issue's): the spectrum's bins are 1/side apart (12 % of q* on the square,
-// degrees 9 and 10 are 10 % apart on the sphere) and sigma is flat near q*, so the peak of one noise
+// degrees 8 and 9 are 11 % apart on the sphere) and sigma is flat near q*, so the peak of one noise
 // realisation wanders by a fraction of a bin; the sub-bin centroid brings it to a few percent.
 #include "pattern_spectrum.hpp"
 #include "reaction_diffusion_scene.hpp"

@@ -32,8 +32,8 @@ using nlohmann::json;
 
 constexpr double kDu = 2e-3, kDv = 1e-3;  // on the unit sphere: a spot spreads over a few rings in tens of steps
 
-// The most negative off-diagonal... i.e. the most positive off-diagonal of K = the most negative
-// cotan weight: returns its row (the spike's vertex) and its value (> 0 when a weight is negative).
+// The most positive off-diagonal entry of K, i.e. the most negative cotan weight (K_ij = -D w_ij):
+// its row (where the spike goes) and its value (> 0 exactly when some weight is negative).
 std::pair<int, double> most_negative_weight(const CsrMatrix& k) {
   std::pair<int, double> worst{-1, -std::numeric_limits<double>::infinity()};
   for (int i = 0; i < k.rows; ++i)
