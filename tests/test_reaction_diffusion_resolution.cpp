@@ -17,15 +17,20 @@
 // invade (1, 0) from the seeds and fill the square with a labyrinth of one well-defined period.
 // D_v = 2e-5 m^2/s gives about 0.21 m on the 1 m square (radius ~4.8 cycles per side), resolved by
 // 7 (coarse, circumradius 0.017 m, ~2,100 vertices) and 10 (fine, 0.012 m, ~4,200) vertices per
-// wavelength. t = 2500 (IMEX, dt = 2: dt (F + k) = 0.23, the explicit reaction well inside its
-// range), about 290 reaction times 1 / (F + k): the stripes cover the square (v > 0.1 on ~2/3 of
-// it, the stripes' duty cycle).
+// wavelength. IMEX, dt = 2 (dt (F + k) = 0.23, the explicit reaction well inside its range). By
+// t = 2500 (290 reaction times 1 / (F + k)) the stripes cover the square (v > 0.1 on ~2/3 of it, the
+// stripes' duty cycle); the wavelengths are compared at t = 5000, when the labyrinth has settled
+// (earlier, the still-moving fronts make the agreement depend on the seed layout: see Validation).
+// Margin: this CI pair measures 0.1945 vs 0.2029 m (4.3 %); 7 vertices per wavelength is the edge
+// of what 5 % allows (P1 dispersion alone is ~(2 pi / 7)^2 / 24 = 3 % in wavenumber). The Validation
+// suite's finer pair (10 and 14 per wavelength) agrees within 2.6 % for five other seed fields.
 #include "pattern_spectrum.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "reference/reaction_diffusion.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -38,6 +43,8 @@ using nlohmann::json;
 
 constexpr double kDv = 2e-5, kDu = 2 * kDv;
 constexpr double kCoarse = 0.017, kFine = 0.012;  // max_circumradius, m
+constexpr int kSettledSteps = 2500;                // t = 5000: the labyrinth has settled
+constexpr int kGrownSteps = 1250;                  // t = 2500: it has filled the square
 
 // The smooth random field w(x) = sqrt(2 / n) sum_j cos(k_j . x + phase_j), |k_j| fixed: mean 0,
 // variance 1, a function of the position only (the same at every refinement).
@@ -69,7 +76,7 @@ struct Level {
 };
 
 // Pearson's square at one refinement, seeded as described above.
-Level coral_square(double max_circumradius) {
+Level coral_square(double max_circumradius, unsigned seed_field = 7) {
   const json scene = {{"mesh", "shape:square"},
                       {"max_circumradius", max_circumradius},
                       {"time_step", 2.0},
@@ -80,23 +87,23 @@ Level coral_square(double max_circumradius) {
   Level level{testing::load_rd_system(scene), 0};
   level.vertices = level.rd.surface.domain.vertex_count;
   const auto xy = planar_vertex_coordinates(level.rd.surface.domain, level.rd.surface.simulated);
-  const PlaneWaveField w(2.0 * std::numbers::pi / 0.5, 12, 7);
+  const PlaneWaveField w(2.0 * std::numbers::pi / 0.5, 12, seed_field);
   for (size_t i = 0; i < xy.size(); ++i)
     if (w(xy[i]) > 0.5) level.rd.system.initial[0][i] = 0.5, level.rd.system.initial[1][i] = 0.25;
   return level;
 }
 
-// The dominant wavelength (m) of u after t = 2500.
-double grown_wavelength(const Level& level, const ReactionDiffusionSystem& system) {
+// The dominant wavelength (m) of u after `steps` steps (dt = 2).
+double grown_wavelength(const Level& level, const ReactionDiffusionSystem& system, int steps) {
   ReferenceReactionDiffusion sim(system);
-  sim.run(1250);
+  sim.run(steps);
   return 2.0 * std::numbers::pi / testing::radial_peak(level.rd.surface, sim.field(0), 128, 3).wavenumber;
 }
 
 TEST(ReactionDiffusionResolution, GrayScottWavelengthIsTheSameAtTwoRefinements) {
   const Level coarse = coral_square(kCoarse), fine = coral_square(kFine);
   ASSERT_GT(fine.vertices, 1.8 * coarse.vertices);
-  const double a = grown_wavelength(coarse, coarse.rd.system), b = grown_wavelength(fine, fine.rd.system);
+  const double a = grown_wavelength(coarse, coarse.rd.system, kSettledSteps), b = grown_wavelength(fine, fine.rd.system, kSettledSteps);
   RecordProperty("vertices", std::to_string(coarse.vertices) + " " + std::to_string(fine.vertices));
   RecordProperty("wavelength_coarse", std::to_string(a));
   RecordProperty("wavelength_fine", std::to_string(b));
@@ -108,16 +115,42 @@ TEST(ReactionDiffusionResolution, GrayScottWavelengthIsTheSameAtTwoRefinements) 
 
 TEST(ReactionDiffusionResolution, ConnectivityLaplacianWavelengthChangesWithRefinement) {
   // The same two runs with the graph Laplacian, its scale fixed on the coarse mesh: the wavelength
-  // follows the edge length (fine edges are 0.7 of the coarse ones), so the check above fails.
+  // follows the edge length (fine edges are 0.7 of the coarse ones), so the check above fails; the
+  // effect (~30 %) is plain by t = 2500 already.
   const Level coarse = coral_square(kCoarse), fine = coral_square(kFine);
   const double scale = testing::connectivity_scale_matching(coarse.rd.surface.domain);
   ReactionDiffusionSystem graph_coarse = coarse.rd.system, graph_fine = fine.rd.system;
   testing::use_connectivity_laplacian(graph_coarse, coarse.rd.surface.domain, {kDu, kDv}, scale);
   testing::use_connectivity_laplacian(graph_fine, fine.rd.surface.domain, {kDu, kDv}, scale);
-  const double a = grown_wavelength(coarse, graph_coarse), b = grown_wavelength(fine, graph_fine);
+  const double a = grown_wavelength(coarse, graph_coarse, kGrownSteps), b = grown_wavelength(fine, graph_fine, kGrownSteps);
   RecordProperty("wavelength_coarse", std::to_string(a));
   RecordProperty("wavelength_fine", std::to_string(b));
   EXPECT_GT(std::abs(b / a - 1.0), 0.05);
+}
+
+// Validation (label `validation`): the two checks above for five more seed fields at a finer pair of
+// levels (10 and 14 vertices per wavelength), so the CI case is not a lucky layout. Measured: at the
+// CI levels the five seeds agree within 0.2 to 4.4 % at t = 5000 (and only within 7 % at t = 2500,
+// before the labyrinth settles); at these levels within 2.6 % (102 s on 2 busy cores). Every seed must pass both checks.
+TEST(ValidationReactionDiffusionResolution, FlatSquareAgreementHoldsForOtherSeedFields) {
+  double worst_cotan = 0.0, least_graph = 1e9;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    SCOPED_TRACE("seed field " + std::to_string(seed));
+    const Level coarse = coral_square(0.012, seed), fine = coral_square(0.0085, seed);
+    const double cotan = grown_wavelength(fine, fine.rd.system, kSettledSteps) /
+                         grown_wavelength(coarse, coarse.rd.system, kSettledSteps);
+    const double scale = testing::connectivity_scale_matching(coarse.rd.surface.domain);
+    ReactionDiffusionSystem graph_coarse = coarse.rd.system, graph_fine = fine.rd.system;
+    testing::use_connectivity_laplacian(graph_coarse, coarse.rd.surface.domain, {kDu, kDv}, scale);
+    testing::use_connectivity_laplacian(graph_fine, fine.rd.surface.domain, {kDu, kDv}, scale);
+    const double graph = grown_wavelength(fine, graph_fine, kGrownSteps) / grown_wavelength(coarse, graph_coarse, kGrownSteps);
+    EXPECT_NEAR(cotan, 1.0, 0.05);
+    EXPECT_GT(std::abs(graph - 1.0), 0.05);
+    worst_cotan = std::max(worst_cotan, std::abs(cotan - 1.0));
+    least_graph = std::min(least_graph, std::abs(graph - 1.0));
+  }
+  RecordProperty("worst_cotan_deviation", std::to_string(worst_cotan));
+  RecordProperty("least_connectivity_deviation", std::to_string(least_graph));
 }
 
 // ---- a curved surface ----
@@ -162,10 +195,11 @@ SphereLevel coral_sphere(std::optional<double> max_circumradius) {
   return level;
 }
 
-// The dominant wavenumber (rad/m) of u after t = 2500, peak searched over degrees 5 to 24.
+// The dominant wavenumber (rad/m) of u after t = 2500 (agreement is already 0.03 % there), peak
+// searched over degrees 5 to 24.
 double grown_sphere_wavenumber(const SphereLevel& level) {
   ReferenceReactionDiffusion sim(level.rd.system);
-  sim.run(1250);
+  sim.run(kGrownSteps);
   return testing::spherical_peak(level.position, level.rd.system.mass, sim.field(0), 1.0, 24, 5).wavenumber;
 }
 
