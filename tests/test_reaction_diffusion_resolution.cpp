@@ -22,7 +22,7 @@
 // stripes' duty cycle); the wavelengths are compared at t = 5000, when the labyrinth has settled
 // (earlier, the still-moving fronts make the agreement depend on the seed layout: see Validation).
 // Margin: this CI pair measures 0.1945 vs 0.2029 m (4.3 %); 7 vertices per wavelength is the edge
-// of what 5 % allows (P1 dispersion alone is ~(2 pi / 7)^2 / 24 = 3 % in wavenumber). The Validation
+// of what 5 % allows (P1 dispersion alone is ~(2 pi / 7)^2 / 24 = 3.4 % in wavenumber). The Validation
 // suite's finer pair (10 and 14 per wavelength) agrees within 2.6 % for five other seed fields.
 #include "pattern_spectrum.hpp"
 #include "reaction_diffusion_scene.hpp"
@@ -131,7 +131,8 @@ TEST(ReactionDiffusionResolution, ConnectivityLaplacianWavelengthChangesWithRefi
 // Validation (label `validation`): the two checks above for five more seed fields at a finer pair of
 // levels (10 and 14 vertices per wavelength), so the CI case is not a lucky layout. Measured: at the
 // CI levels the five seeds agree within 0.2 to 4.4 % at t = 5000 (and only within 7 % at t = 2500,
-// before the labyrinth settles); at these levels within 2.6 % (102 s on 2 busy cores). Every seed must pass both checks.
+// before the labyrinth settles); at these levels within 2.6 % (102 s on 2 busy cores). Every seed
+// must pass both checks.
 TEST(ValidationReactionDiffusionResolution, FlatSquareAgreementHoldsForOtherSeedFields) {
   double worst_cotan = 0.0, least_graph = 1e9;
   for (unsigned seed = 1; seed <= 5; ++seed) {
