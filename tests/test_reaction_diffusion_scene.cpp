@@ -50,7 +50,7 @@ TEST(ReactionDiffusionScene, NamedModelNeedsNoAgentKeysAndTakesThePapersDefaults
   EXPECT_EQ(coefficient(rd, "k"), 0.06);
   EXPECT_EQ(std::get<double>(rd.morphogens[0].diffusion), 2e-5);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].diffusion), 1e-5);
-  EXPECT_EQ(rd.morphogens[0].initial, 1.0);
+  EXPECT_EQ(std::get<double>(rd.morphogens[0].initial), 1.0);
   EXPECT_EQ(rd.morphogens[1].initial, 0.0);
   EXPECT_EQ(rd.preview_morphogen, "v");  // the second by default
   EXPECT_EQ(rd.integrator, ReactionIntegrator::Explicit);
