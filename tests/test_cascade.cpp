@@ -41,7 +41,7 @@ json first_stage() {
           {"model", "gray-scott"},
           {"parameters", {{"F", 0.035}, {"k", 0.065}}},
           {"morphogens", {{"u", {{"diffusion", 8e-5}, {"initial", 1.0}}}, {"v", {{"diffusion", 4e-5}, {"initial", 0.0}}}}},
-          {"initial", {{"noise", 0.01}, {"spots", {{"count", 3}, {"radius", 0.1}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}}},
+          {"initial", {{"noise", 0.01}, {"spots", {{"count", 3}, {"radius", 0.1}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}},
           {"time_step", 1.0},
           {"integrator", "imex"},
           {"seed", 1}};
@@ -54,7 +54,7 @@ json second_stage(const fs::path& first_fields) {
                {"first_v", {{"fields_full", first_fields.string()}, {"property", "v"}}},
                {"large_spots", {{"threshold", "first_v"}, {"at", kSpotThreshold}}}};
   s["morphogens"] = {{"u", {{"diffusion", 2e-5}, {"initial", "first_u"}}}, {"v", {{"diffusion", 1e-5}, {"initial", "first_v"}}}};
-  s["initial"] = {{"noise", 0.01}, {"spots", {{"count", 16}, {"radius", 0.03}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}};
+  s["initial"] = {{"noise", 0.01}, {"spots", {{"count", 16}, {"radius", 0.03}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}};
   s["dirichlet"] = {{"map", "large_spots"}};
   s["seed"] = 2;
   return s;
