@@ -326,6 +326,11 @@ const std::vector<SourceKind>& source_kinds() {
          }
          return s;
        }},
+      {"fields_full", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"fields_full", "property"});
+         return FieldsFullSource{c.file(o, "fields_full"), c.text(o, "property")};
+       }},
       // "ply" comes in two kinds, told apart by the second field (see source_kind_of).
       {"ply", MapKind::Scalar,
        [](const json& o, const MapContext& c) -> MapSource {

@@ -9,6 +9,11 @@
 //   scalar sources
 //     5.0                                         a constant
 //     {"ply": FILE, "property": NAME}             a per-vertex property of a PLY on the input mesh
+//     {"fields_full": FILE, "property": NAME}     a property of an earlier run's fields_full.ply, read
+//                                                  exactly at every intrinsic vertex: the run must be on
+//                                                  the same surface (mesh, scale_to_area,
+//                                                  max_circumradius, min_angle), which is checked
+//                                                  (cascaded patterns: a stage seeded from the last)
 //     {"texture": FILE, "channel": "r|g|b|a|luma"} an image, sampled through the input's UVs
 //     {"sphere": {"center": [x,y,z], "radius": r}, "falloff": w}     regions: 1 inside, 0 outside,
 //     {"box": {"min": [x,y,z], "max": [x,y,z]}, "falloff": w}        smooth over w outside when
@@ -69,6 +74,10 @@ struct ConstantSource {
 };
 struct PlyVertexSource {
   std::string path;  // resolved
+  std::string property;
+};
+struct FieldsFullSource {
+  std::string path;  // resolved: an earlier run's fields_full.ply
   std::string property;
 };
 enum class TextureChannel { Red, Green, Blue, Alpha, Luma };
@@ -157,7 +166,7 @@ struct GradientSource {
   bool normalize = false;
 };
 
-using MapSource = std::variant<ConstantSource, PlyVertexSource, TextureSource, RegionSource, AxisRampSource,
+using MapSource = std::variant<ConstantSource, PlyVertexSource, FieldsFullSource, TextureSource, RegionSource, AxisRampSource,
                                RangeSource, InvertSource, ThresholdSource, ClampSource, CombineSource,
                                DirectionSource, RadialSource, PlyFaceVectorSource, GeodesicDistanceSource,
                                DiffuseSource, LaplaceSource, ElevationSource, SlopeSource, GradientSource>;

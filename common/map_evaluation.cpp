@@ -99,6 +99,45 @@ InputVertexData<double> ply_vertex_values(const Evaluation& e, const std::string
                    ": a PLY map must be on the input mesh's own vertices");
 }
 
+// The values of an earlier run's fields_full.ply (common/full_resolution_mesh.hpp: vertex v is
+// intrinsic vertex v, placed on the input surface) at this scene's intrinsic vertices, as stored: no
+// interpolation, so a cascade's frozen layer holds exactly the first stage's values. Only a run on
+// the same surface has the same intrinsic vertices; the count and every position are checked (to a
+// millionth of the input's size, as the file stores floats), and another surface is refused.
+IntrinsicVertexData<double> fields_full_values(const Evaluation& e, const std::string& name, const FieldsFullSource& s) {
+  const PlyFields ply = read_ply_fields(s.path);
+  const std::vector<double>& column = [&]() -> const std::vector<double>& {
+    try {
+      return ply.property(s.property);
+    } catch (const InputError& error) {
+      e.fail(name, error.what());
+    }
+  }();
+  const std::string same_surface =
+      ": \"fields_full\" reads a run on this scene's own surface (the same mesh, scale_to_area, max_circumradius "
+      "and min_angle); for a run on another surface, read its pheromone.ply with {\"ply\": FILE, \"property\": NAME}";
+  const int n = e.vertex_count();
+  if (static_cast<int>(column.size()) != n)
+    e.fail(name, s.path + " has " + std::to_string(column.size()) + " vertices, but this scene's intrinsic triangulation has " +
+                     std::to_string(n) + same_surface);
+  const InputMesh& input = e.input();
+  Vec3 low = input.positions[0], high = input.positions[0];
+  for (const Vec3& p : input.positions) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const double tolerance = 1e-6 * (high - low).norm();
+  for (int v = 0; v < n; ++v) {
+    const double off = (ply.mesh.positions[static_cast<size_t>(v)] - e.vertex_position[static_cast<size_t>(v)]).norm();
+    if (!(off <= tolerance))
+      e.fail(name, s.path + ": vertex " + std::to_string(v) + " lies " + std::to_string(off) +
+                       " away from this scene's intrinsic vertex " + std::to_string(v) + same_surface);
+  }
+  IntrinsicVertexData<double> values(static_cast<size_t>(n));
+  std::copy(column.begin(), column.end(), values.begin());
+  return values;
+}
+
 // The intrinsic vertices a region holds (a Laplace region): where the scalar map `region` is >= 0.5,
 // the middle of a region map's 0 outside / 1 inside. The one place a region becomes vertices.
 std::vector<int> region_vertices(const Evaluation& e, const std::string& region) {
@@ -130,6 +169,8 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
             const auto& t = input.triangles[static_cast<size_t>(p.face)];
             out[v] = p.barycentric[0] * on_input[t[0]] + p.barycentric[1] * on_input[t[1]] + p.barycentric[2] * on_input[t[2]];
           }
+        } else if constexpr (std::is_same_v<S, FieldsFullSource>) {
+          out = fields_full_values(e, map.name, s);
         } else if constexpr (std::is_same_v<S, TextureSource>) {
           if (input.uvs.empty())
             e.fail(map.name, "\"texture\" needs texture coordinates (UVs), and " + input.source + " has none");

@@ -145,16 +145,26 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
   }
 
   // ---- initial state ----
-  for (const MorphogenSpec& m : spec.morphogens) system.initial.emplace_back(static_cast<size_t>(n), m.initial);
+  for (const MorphogenSpec& m : spec.morphogens)
+    system.initial.push_back(per_vertex(m.initial, maps, n, scene, "morphogens." + m.name + ".initial", false));
   auto set_value = [&](const MorphogenValues& values, size_t vertex, double weight) {
     for (const auto& [name, value] : values) {
       double& x = system.initial[static_cast<size_t>(spec.morphogen_index(name))][vertex];
       x = (1.0 - weight) * x + weight * value;
     }
   };
+  // The held vertices first: noise skips them, so a held vertex keeps exactly its initial (or given)
+  // value — a cascade's frozen layer is the earlier run's, bit for bit.
+  if (spec.dirichlet) {
+    const IntrinsicVertexData<double>& region = maps.scalar_map(spec.dirichlet->map);
+    system.fixed.assign(static_cast<size_t>(n), 0);
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v) system.fixed[v] = region[v] >= 0.5 ? 1 : 0;
+  }
+  auto held = [&](size_t v) { return !system.fixed.empty() && system.fixed[v] != 0; };
   if (spec.initial.seed_region) {
     const IntrinsicVertexData<double>& w = maps.scalar_map(spec.initial.seed_region->map);
-    for (size_t i = 0; i < static_cast<size_t>(n); ++i) set_value(spec.initial.seed_region->values, i, std::clamp(w[i], 0.0, 1.0));
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i)
+      if (!held(i)) set_value(spec.initial.seed_region->values, i, std::clamp(w[i], 0.0, 1.0));
   }
   if (spec.initial.spots) {
     // Positions of the intrinsic vertices on the simulated (scaled) surface, for the spot radius.
@@ -176,25 +186,20 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
       const size_t centre = static_cast<size_t>(
           std::min<std::ptrdiff_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u * total) - cumulative.begin(), n - 1));
       for (size_t v = 0; v < static_cast<size_t>(n); ++v)
-        if ((position[v] - position[centre]).squaredNorm() <= r2) set_value(spec.initial.spots->values, v, 1.0);
+        if (!held(v) && (position[v] - position[centre]).squaredNorm() <= r2) set_value(spec.initial.spots->values, v, 1.0);
     }
   }
   if (spec.initial.noise > 0.0)
     for (size_t m = 0; m < count; ++m)
       for (size_t v = 0; v < static_cast<size_t>(n); ++v)
-        system.initial[m][v] += spec.initial.noise *
-                                (2.0 * first_uniform(random_words(scene.seed, static_cast<std::uint32_t>(v), 0,
-                                                                  static_cast<std::uint32_t>(RandomPurpose::ReactionNoise),
-                                                                  static_cast<std::uint32_t>(m))) - 1.0);
-  if (spec.dirichlet) {
-    const IntrinsicVertexData<double>& region = maps.scalar_map(spec.dirichlet->map);
-    system.fixed.assign(static_cast<size_t>(n), 0);
+        if (!held(v))
+          system.initial[m][v] += spec.initial.noise *
+                                  (2.0 * first_uniform(random_words(scene.seed, static_cast<std::uint32_t>(v), 0,
+                                                                    static_cast<std::uint32_t>(RandomPurpose::ReactionNoise),
+                                                                    static_cast<std::uint32_t>(m))) - 1.0);
+  if (spec.dirichlet)
     for (size_t v = 0; v < static_cast<size_t>(n); ++v)
-      if (region[v] >= 0.5) {
-        system.fixed[v] = 1;
-        set_value(spec.dirichlet->values, v, 1.0);
-      }
-  }
+      if (held(v)) set_value(spec.dirichlet->values, v, 1.0);
 
   // ---- time ----
   system.integrator = spec.integrator;

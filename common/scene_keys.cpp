@@ -50,8 +50,9 @@ std::vector<SceneKey> build_keys() {
               "reaction-diffusion coefficients (F, k, rho, ...): numbers or scalar map names",
               "{\"NAME\": number or SCALAR_MAP, ...}"),
       setting("morphogens", K::Object, false, {}, "m^2/s", "the model's",
-              "per morphogen: diffusion rate (along the anisotropy direction; across = ratio x it), initial value",
-              "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x, \"anisotropy\": {\"direction\": VECTOR_MAP, "
+              "per morphogen: diffusion rate (along the anisotropy direction; across = ratio x it), initial value "
+              "(a number, or a scalar map such as an earlier run's field: a cascade)",
+              "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x or SCALAR_MAP, \"anisotropy\": {\"direction\": VECTOR_MAP, "
               "\"ratio\": r > 0}}, ...}"),
       setting("reaction", K::Object, false, {}, "", "the model's",
               "custom kinetics: one formula per morphogen (2 to 4; layer order = alphabetical), over the "
@@ -62,14 +63,17 @@ std::vector<SceneKey> build_keys() {
               "{\"noise\": a >= 0, \"seed_region\": {\"map\": SCALAR_MAP, \"values\": {..}}, \"spots\": {\"count\": n, "
               "\"radius\": m, \"values\": {..}}}"),
       setting("dirichlet", K::Object, false, {}, "", "none (no-flux)",
-              "reaction-diffusion: morphogens held fixed where the map is >= 0.5, at the given values",
+              "reaction-diffusion: every morphogen held fixed where the map is >= 0.5, at the given values or else at "
+              "its initial state (no noise there): with an earlier run's field as \"initial\", a frozen first "
+              "layer that the next pattern grows around (Turk's cascade)",
               "{\"map\": SCALAR_MAP, \"values\": {\"u\": x, ...}}"),
       setting("preview_morphogen", K::String, false, {}, "", "the second morphogen",
               "reaction-diffusion: the morphogen preview.png, texture.png and result.glb show", "a morphogen name"),
       setting("maps", K::Object, false, {}, "", "",
               "named surface maps the parameters and controls below refer to (README \"Surface maps\"; "
               "common/map_definition.hpp); coordinates are the input mesh's, before scale_to_area",
-              "{\"NAME\": SOURCE, ...}: a number, ply, texture, sphere, box, half_space, axis, map+range, invert, "
+              "{\"NAME\": SOURCE, ...}: a number, ply, fields_full (an earlier run's fields_full.ply on the same "
+              "surface, exact), texture, sphere, box, half_space, axis, map+range, invert, "
               "threshold, clamp, sum, product, min, max (scalar); direction, toward, away_from, ply face_property (vector)"),
   };
   for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));

@@ -98,7 +98,7 @@ void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_re
     m.diffusion = number_or_map(*d, source, key + ".diffusion");
   else if (diffusion_required)
     fail(source, key, "missing \"diffusion\" (m^2/s: a number >= 0 or a scalar map name)");
-  if (const auto i = entry.find("initial"); i != entry.end()) m.initial = finite_number(*i, source, key + ".initial");
+  if (const auto i = entry.find("initial"); i != entry.end()) m.initial = number_or_map(*i, source, key + ".initial");
   if (const auto a = entry.find("anisotropy"); a != entry.end() && !a->is_null()) {
     const std::string akey = key + ".anisotropy";
     only_fields(*a, {"direction", "ratio"}, source, akey);
@@ -286,7 +286,7 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
     } else {
       check_map(key + ".diffusion", std::get<std::string>(m.diffusion), MapKind::Scalar);
     }
-    if (!std::isfinite(m.initial)) fail(source, key + ".initial", "must be finite");
+    if (const auto* map = std::get_if<std::string>(&m.initial)) check_map(key + ".initial", *map, MapKind::Scalar);
     if (m.anisotropy) {
       check_map(key + ".anisotropy.direction", m.anisotropy->direction, MapKind::Vector);
       if (!(m.anisotropy->ratio > 0.0) || !std::isfinite(m.anisotropy->ratio))
@@ -330,7 +330,7 @@ nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec
     const MorphogenSpec& g = spec.morphogens[m];
     oj entry;
     entry["diffusion"] = operand(g.diffusion);
-    entry["initial"] = g.initial;
+    entry["initial"] = operand(g.initial);
     if (g.anisotropy) entry["anisotropy"] = {{"direction", g.anisotropy->direction}, {"ratio", g.anisotropy->ratio}};
     entry["reaction"] = spec.reaction[m];
     morphogens[g.name] = entry;

@@ -12,13 +12,18 @@
 //   "reaction": {"u": "-u*v^2 + F*(1-u)", ...}    custom kinetics, 2..4 morphogens; the layer order is
 //                                                  the ALPHABETICAL order of the names (a JSON object has
 //                                                  no order of its own)
-//   "morphogens": {"u": {"diffusion": 2e-5 | MAP, "initial": 1.0,
+//   "morphogens": {"u": {"diffusion": 2e-5 | MAP, "initial": 1.0 | MAP,
 //                        "anisotropy": {"direction": VECTOR_MAP, "ratio": r}}}
 //                  "diffusion" is the rate ALONG the direction, ratio x it the rate across (r > 0;
 //                  r = 1 is isotropic)
 //   "initial": {"noise": a, "seed_region": {"map": MAP, "values": {"u": 0.5}},
 //               "spots": {"count": n, "radius": r, "values": {"v": 0.25}}}
-//   "dirichlet": {"map": MAP, "values": {"u": 0, "v": 30}}   vertices where MAP >= 0.5 are held fixed
+//   "dirichlet": {"map": MAP, "values": {"u": 0, "v": 30}}   vertices where MAP >= 0.5 are held fixed, at
+//                                                            the values given, the others at their initial
+//                                                            state (no noise: a held vertex is exactly it)
+// A cascade (Turk 1992) is a morphogen's "initial" read from an earlier run ({"fields_full": ...} in
+// common/map_definition.hpp) with "dirichlet" over the earlier pattern's spots and no "values": the
+// first layer stays frozen while the next grows between its spots.
 //   "preview_morphogen": "v"                                   default: the second morphogen
 #include "common/map_definition.hpp"
 #include "common/reaction_diffusion_system.hpp"
@@ -40,7 +45,7 @@ struct AnisotropySpec {
 struct MorphogenSpec {
   std::string name;
   MapOperand diffusion = 0.0;  // m^2/s along the direction (isotropic: everywhere), number or scalar map
-  double initial = 0.0;        // the uniform starting value
+  MapOperand initial = 0.0;    // the starting value: a number, or a scalar map (an earlier run's field)
   std::optional<AnisotropySpec> anisotropy;
 };
 

@@ -4,6 +4,7 @@
 // malformed --arg or a mesh/scene mix-up, one picture per map of a scene, and the map cache seen
 // from the command line ("from cache" on a second run, nothing stored with PHYSARUM_NO_CACHE=1).
 #include "common/ply_reader.hpp"
+#include "cache_environment.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -22,6 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using testing::CacheEnvironment;
 using testing::CommandResult;
 using testing::quoted;
 using testing::run_physarum;
@@ -35,28 +37,6 @@ std::array<int, 3> image_shape(const fs::path& p) {
 }
 
 // Every child process of this test gets its own cache folder (or none), restored afterwards.
-class CacheEnvironment {
- public:
-  explicit CacheEnvironment(const fs::path& folder, bool off = false) {
-    save("PHYSARUM_CACHE_DIR");
-    save("PHYSARUM_NO_CACHE");
-    ::setenv("PHYSARUM_CACHE_DIR", folder.c_str(), 1);
-    if (off) ::setenv("PHYSARUM_NO_CACHE", "1", 1);
-    else ::unsetenv("PHYSARUM_NO_CACHE");
-  }
-  ~CacheEnvironment() {
-    for (const auto& [name, value] : saved_)
-      if (value) ::setenv(name.c_str(), value->c_str(), 1);
-      else ::unsetenv(name.c_str());
-  }
-
- private:
-  void save(const std::string& name) {
-    const char* v = std::getenv(name.c_str());
-    saved_.emplace_back(name, v ? std::optional<std::string>(v) : std::nullopt);
-  }
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
-};
 
 class MapCommand : public ::testing::Test {
  protected:

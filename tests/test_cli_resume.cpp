@@ -2,6 +2,7 @@
 // killed with SIGKILL at a random moment and resumed writes byte for byte what the uninterrupted run
 // writes (both backends); a corrupted checkpoint and one of another scene are refused with a clear
 // message and nothing written.
+#include "killed_run.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -29,44 +30,6 @@ const char* kScene = R"({
   "mean_lifetime": 0.5, "activation_time": 0.2, "integrator": "forward", "seed": 5
 })";
 constexpr int kSteps = 2000;
-
-std::string bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Starts `physarum ARGS...` (output discarded) and SIGKILLs it a random while after its first
-// checkpoint appears. Returns false when it finished before the kill.
-bool run_and_kill(const std::vector<std::string>& args, const fs::path& checkpoint, unsigned seed) {
-  std::vector<std::string> words{PHYSARUM_EXE};
-  words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // Only async-signal-safe calls before exec: this test process may hold OpenCL's threads.
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(null, STDERR_FILENO);
-    ::execv(argv[0], argv.data());
-    _exit(127);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(checkpoint) && std::chrono::steady_clock::now() < deadline) {
-    int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  std::mt19937 random(seed);
-  std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 150)(random)));
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
-}
 
 class ResumeCommand : public ::testing::TestWithParam<std::string> {
  protected:

@@ -50,8 +50,8 @@ TEST(ReactionDiffusionScene, NamedModelNeedsNoAgentKeysAndTakesThePapersDefaults
   EXPECT_EQ(coefficient(rd, "k"), 0.06);
   EXPECT_EQ(std::get<double>(rd.morphogens[0].diffusion), 2e-5);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].diffusion), 1e-5);
-  EXPECT_EQ(rd.morphogens[0].initial, 1.0);
-  EXPECT_EQ(rd.morphogens[1].initial, 0.0);
+  EXPECT_EQ(std::get<double>(rd.morphogens[0].initial), 1.0);
+  EXPECT_EQ(std::get<double>(rd.morphogens[1].initial), 0.0);
   EXPECT_EQ(rd.preview_morphogen, "v");  // the second by default
   EXPECT_EQ(rd.integrator, ReactionIntegrator::Explicit);
 }
@@ -86,7 +86,7 @@ TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
   EXPECT_EQ(coefficient(rd, "F"), 0.03);
   EXPECT_EQ(coefficient(rd, "k"), 0.06);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].diffusion), 3e-5);
-  EXPECT_EQ(rd.morphogens[1].initial, 0.5);
+  EXPECT_EQ(std::get<double>(rd.morphogens[1].initial), 0.5);
   EXPECT_EQ(rd.integrator, ReactionIntegrator::Imex);
   EXPECT_EQ(rd.preview_morphogen, "u");
 }
@@ -103,7 +103,7 @@ TEST(ReactionDiffusionScene, CustomKineticsTakeTheMorphogensInAlphabeticalOrder)
   EXPECT_EQ(rd.morphogens[0].name, "u");
   EXPECT_EQ(rd.morphogens[2].name, "w");
   EXPECT_EQ(rd.reaction[2], "-w + a*u");
-  EXPECT_EQ(rd.morphogens[2].initial, 3.0);
+  EXPECT_EQ(std::get<double>(rd.morphogens[2].initial), 3.0);
 }
 
 TEST(ReactionDiffusionScene, AFormulaWithAnUnknownNameIsRefusedWithItsPosition) {

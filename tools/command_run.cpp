@@ -47,6 +47,7 @@
 #include "tools/commands.hpp"
 #include "tools/feasible_surface.hpp"
 #include "tools/run_options.hpp"
+#include "tools/resume_point.hpp"
 #include "tools/run_reaction_diffusion.hpp"
 #include "tools/surface_exports.hpp"
 
@@ -111,13 +112,7 @@ class ProgressBar {
 };
 
 
-// The checkpoint a resumed run continues from, checked for corruption; the options come from it.
-struct Resume {
-  Checkpoint checkpoint;
-  std::string path;
-};
-
-int run_simulation(const RunOptions& o, const std::optional<Resume>& resume) {
+int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume) {
   if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
@@ -133,12 +128,7 @@ int run_simulation(const RunOptions& o, const std::optional<Resume>& resume) {
   if (!o.maps_out.empty() && given_scene.maps.empty())
     throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, given_scene);
-  if (is_reaction_diffusion(given_scene)) {
-    if (!o.maps_out.empty()) throw UsageError("--maps-out is not available for a reaction-diffusion scene yet (use `physarum map`)");
-    if (o.checkpoint_every)
-      throw UsageError("--checkpoint-every is not available for a reaction-diffusion scene yet");
-    return run_reaction_diffusion(given_scene, ReactionDiffusionRunOptions{o.scene, o.backend, o.device, steps, o.out, o.frames, o.texture});
-  }
+  if (is_reaction_diffusion(given_scene)) return run_reaction_diffusion(given_scene, o, steps, resume);
   TimeLapse time_lapse(o.frames, steps);
 
   // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
@@ -395,7 +385,7 @@ int run_run(const RunOptions& given) {
       !given.maps_out.empty())
     throw UsageError("--resume DIR continues the run with the options it was started with; give no other run "
                      "option beside it (the scene, to check it is the same, is allowed)");
-  Resume resume;
+  ResumePoint resume;
   resume.path = (std::filesystem::path(given.resume) / "checkpoint.bin").string();
   if (!std::filesystem::exists(resume.path))
     throw InputError(resume.path + ": no checkpoint to resume from (was the run started with --checkpoint-every, "

@@ -4,16 +4,38 @@
 # re-colouring with the colour map extracted from the shipped exemplar image; the flat sign and disk
 # of the control scenes are shown face-on (physarum render's front view), spot_scale from the side.
 # The map-tool scenes sea_fan and ginkgo (flat fans) are shown face-on too.
+# Reaction-diffusion: fandisk_gray_scott (needs ../shared/meshes) and petal_stripes keep their
+# preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
+# pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
+# (about 2 minutes on two cores).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 physarum=${PHYSARUM:-./build/physarum}
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes cascade pearson_map)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
+  if [ "$scene" = cascade ]; then
+    "$physarum" run tools/scenes/cascade_first.json --backend opencl --out "$work/cascade_first" > /dev/null
+    fields="$(cd "$work" && pwd)/cascade_first/fields_full.ply"
+    "$physarum" run tools/scenes/cascade_second.json --backend opencl --out "$work/cascade_second" \
+      --set "maps.first_u.fields_full=$fields" --set "maps.first_v.fields_full=$fields" > /dev/null
+    cp "$work/cascade_first/preview.png" docs/gallery/cascade_first.png
+    cp "$work/cascade_second/preview.png" docs/gallery/cascade_second.png
+    echo "docs/gallery/cascade_first.png docs/gallery/cascade_second.png"
+    continue
+  fi
+  if [ "$scene" = pearson_map ]; then
+    "$physarum" sweep tools/scenes/pearson_map.json --vary parameters.F=0.01,0.018,0.026,0.034,0.042,0.05 \
+      --vary parameters.k=0.047,0.051,0.055,0.059,0.063,0.067 --backend opencl --out "$work/pearson_map" --run > /dev/null
+    "$physarum" sweep --collect "$work/pearson_map" > /dev/null
+    cp "$work/pearson_map/contact_sheet.png" docs/gallery/pearson_map.png
+    echo "docs/gallery/pearson_map.png"
+    continue
+  fi
   "$physarum" run "tools/scenes/$scene.json" --backend opencl --texture-size 1024 --out "$work/$scene" > /dev/null
   if [ "$scene" = sign ] || [ "$scene" = branching ] || [ "$scene" = sea_fan ] || [ "$scene" = ginkgo ]; then
     "$physarum" render "$work/$scene" --views 3 --out "$work/$scene/views" > /dev/null

@@ -1,10 +1,14 @@
 #include "tools/run_reaction_diffusion.hpp"
 
 #include "common/atomic_write.hpp"
+#include "common/cached_map_evaluation.hpp"
+#include "common/checkpoint.hpp"
 #include "common/errors.hpp"
 #include "common/field_transfer.hpp"
 #include "common/full_resolution_mesh.hpp"
+#include "common/map_cache.hpp"
 #include "common/map_evaluation.hpp"
+#include "common/scene_maps.hpp"
 #include "common/ply_writer.hpp"
 #include "common/preview_image.hpp"
 #include "common/reaction_diffusion_build.hpp"
@@ -12,6 +16,7 @@
 #include "common/texture_bake.hpp"
 #include "common/time_lapse.hpp"
 #include "tools/backend_factory.hpp"
+#include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -62,15 +67,22 @@ std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexDa
   return row;
 }
 
-int run_reaction_diffusion(const Scene& scene, const ReactionDiffusionRunOptions& o) {
+int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
   const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
-  TimeLapse time_lapse(o.frames, o.steps);
+  TimeLapse time_lapse(o.frames, steps);
 
   // ---- everything that can reject the input, before any output exists ----
   const SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   const SurfaceDomain& domain = surface.domain;
-  const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
+  // Through the map cache, as the agent model's maps: a geodesic distance or a direction field is
+  // the slow part of a flower scene's start, and a sweep runs the same maps many times.
+  MapEvaluationReport maps_report;
+  const EvaluatedMaps maps = cached_evaluate_maps(map_sources_of(scene), surface, MapCache::from_environment(), &maps_report);
+  if (!scene.maps.empty()) {
+    for (const std::string& note : maps_report.notes) std::cerr << "physarum run: " << note << "\n";
+    std::cerr << "physarum run: " << maps_report.summary() << "\n";
+  }
   ReactionDiffusionSystem system = build_reaction_diffusion_system(scene, surface, maps);
   const int substeps = system.substeps;
   const std::vector<std::string> morphogens = system.morphogens;
@@ -89,6 +101,8 @@ int run_reaction_diffusion(const Scene& scene, const ReactionDiffusionRunOptions
   const std::unique_ptr<SimulationBackend> backend =
       make_reaction_diffusion_backend(chosen.backend, chosen.compute ? &*chosen.compute : nullptr, domain, std::move(system));
   SimulationBackend& simulation = *backend;
+  // Written now, not with the results: a user checking the maps of a long run sees them at once.
+  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, input, maps_on_input(scene.maps, surface, maps, o.scene));
 
   auto layers = [&] {
     std::vector<IntrinsicVertexData<double>> all;
@@ -108,25 +122,70 @@ int run_reaction_diffusion(const Scene& scene, const ReactionDiffusionRunOptions
     return render_preview(full.mesh, full.vertex_values(values), preview);
   };
 
+  // ---- checkpoints: what identifies this run, and where it starts ----
+  CheckpointHeader identity;
+  identity.build_id = checkpoint_build_id();
+  identity.backend = simulation.backend_name();
+  identity.device = simulation.device_name();
+  identity.scene_hash = scene_identity_hash(o, scene.mesh);
+  const std::filesystem::path checkpoint_path = std::filesystem::path(o.out) / "checkpoint.bin";
+  const long long checkpoint_interval =
+      o.checkpoint_every ? std::max<long long>(1, std::llround(*o.checkpoint_every / scene.time_step)) : 0;
+  long long first_step = 1;
+  double seconds_before = 0.0;  // simulation seconds of the run before its last checkpoint
+  std::string stats;
+  if (resume) {
+    check_checkpoint_matches(resume->checkpoint.header, identity, resume->path);
+    if (resume->checkpoint.header.step >= steps)
+      throw InputError(resume->path + ": the checkpoint is at step " + std::to_string(resume->checkpoint.header.step) +
+                       " of " + std::to_string(steps) + ": nothing is left to run");
+    simulation.restore_state(resume->checkpoint.state);
+    stats = resume->checkpoint.header.run.at("stats").get<std::string>();
+    seconds_before = resume->checkpoint.header.run.at("seconds").get<double>();
+    first_step = resume->checkpoint.header.step + 1;
+    std::cerr << "physarum run: resuming " << o.out << " at step " << resume->checkpoint.header.step << " of " << steps << "\n";
+  } else {
+    stats = morphogen_stats_header(morphogens) + "\n";
+    stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
+  }
+  if (checkpoint_interval > 0) create_output_folder(o.out);
+  long long checkpoints_written = 0;
+  double checkpoint_seconds = 0.0;
+  std::size_t checkpoint_bytes_written = 0;
+
   // ---- simulate ----
-  const long long stats_every = std::max<long long>(1, o.steps / kStatsRows);
-  std::string stats = morphogen_stats_header(morphogens) + "\n";
-  stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
+  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
   const auto t0 = std::chrono::steady_clock::now();
-  double side_seconds = 0.0;
-  for (long long s = 1; s <= o.steps; ++s) {
+  double side_seconds = 0.0;  // statistics rows, frames and checkpoints: not simulation
+  for (long long s = first_step; s <= steps; ++s) {
     simulation.step();
-    if (s % stats_every == 0 || s == o.steps || time_lapse.due(s)) {
+    if (s % stats_every == 0 || s == steps || time_lapse.due(s)) {
       simulation.finish();  // the steps enqueued so far count as simulation, not as the reading below
       const auto ts = std::chrono::steady_clock::now();
-      if (s % stats_every == 0 || s == o.steps)
+      if (s % stats_every == 0 || s == steps)
         stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
       if (time_lapse.due(s)) time_lapse.add(picture());
       side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
     }
+    if (checkpoint_interval > 0 && s % checkpoint_interval == 0 && s < steps) {
+      const auto tc = std::chrono::steady_clock::now();
+      CheckpointHeader header = identity;
+      header.step = s;
+      header.run = {{"options", run_options_json(o)},
+                    {"stats", stats},
+                    {"seconds", seconds_before + std::chrono::duration<double>(tc - t0).count() - side_seconds -
+                                    checkpoint_seconds}};
+      const std::string bytes = checkpoint_bytes(header, simulation.save_state());
+      write_text_file_atomically(checkpoint_path.string(), bytes);
+      ++checkpoints_written;
+      checkpoint_bytes_written = bytes.size();
+      checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
+    }
   }
   simulation.finish();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - side_seconds;
+  // A resumed run adds the seconds before its checkpoint.
+  const double seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                         side_seconds - checkpoint_seconds;
   for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
     for (const double x : simulation.field_values(m))
       if (!std::isfinite(x))
@@ -173,11 +232,11 @@ int run_reaction_diffusion(const Scene& scene, const ReactionDiffusionRunOptions
   j["model"] = spec.model;
   j["morphogens"] = morphogens;
   j["preview_morphogen"] = spec.preview_morphogen;
-  j["steps"] = o.steps;
+  j["steps"] = steps;
   j["time_step"] = scene.time_step;
   j["sim_time"] = simulation.time();
   j["seconds"] = seconds;
-  j["steps_per_second"] = seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0;
+  j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
   j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
   j["substeps"] = substeps;
   j["seed"] = scene.seed;
@@ -189,17 +248,28 @@ int run_reaction_diffusion(const Scene& scene, const ReactionDiffusionRunOptions
   j["intrinsic_vertices"] = domain.vertex_count;
   j["intrinsic_faces"] = domain.face_count;
   j["area"] = domain.total_area;
-  j["scene_file"] = o.scene_path;
+  j["scene_file"] = o.scene;
   j["surface"] = surface_spec_json(SurfaceSpec::of(scene));
   if (texels) j["texture"] = o.texture.to_json();
   j["reaction_diffusion"] = reaction_diffusion_json(spec);
   if (!scene.maps.empty()) j["maps"] = scene.maps_given;
+  if (resume) j["resumed_from_step"] = resume->checkpoint.header.step;
+  if (checkpoint_interval > 0)
+    j["checkpoints"] = {{"every_steps", checkpoint_interval},
+                        {"written", checkpoints_written},
+                        {"bytes", checkpoint_bytes_written},
+                        {"seconds_per_checkpoint",
+                         checkpoints_written > 0 ? checkpoint_seconds / static_cast<double>(checkpoints_written) : 0.0}};
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
+  // The outputs are complete: the checkpoint has nothing left to protect.
+  std::error_code ignored;
+  std::filesystem::remove(checkpoint_path, ignored);
 
-  std::cout << "physarum run: " << spec.model << ", " << o.steps << " steps (" << simulation.time() << " s simulated, "
+  std::cout << "physarum run: " << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, "
             << substeps << " sub-step" << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s; wrote "
             << out.string() << "/{" << written << ", stats.csv, run.json"
-            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}\n";
+            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}"
+            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
   return 0;
 }
 

@@ -7,6 +7,11 @@
                the surface, not the plane
   ginkgo.obj   a flat 150 degree sector whose margin has a shallow notch at the middle (the bilobed
                ginkgo leaf), radius 1 elsewhere
+  petal.obj    a flower petal for the reaction-diffusion flower scene: a 70 degree sector with a
+               rounded tip (radius 1 on the axis, falling off toward the sides as a cosine), cupped
+               across (z = 0.25 r^2 sin^2 of the angle, scaled to the half-angle) and curled back
+               along its length (z -= 0.1 r^2): the shipped meshes hold no petal, and the stripes
+               have to follow a curved sheet from its base
 
 Rings of vertices are spaced evenly in r and each ring gets a number of segments proportional to its
 length, so the triangles are roughly equilateral everywhere, including at the apex (no slivers for
@@ -69,6 +74,10 @@ def main():
     write_obj(os.path.join(here, "sea_fan.obj"), "sea fan: cupped 120 degree sector, stem at the origin", *sea)
     notch = lambda a: 1.0 - 0.18 * math.exp(-(a / math.radians(6.0)) ** 2)
     ginkgo = sector(math.radians(75.0), notch, lambda r, a: 0.0)
+    half = math.radians(35.0)
+    petal = sector(half, lambda a: 0.55 + 0.45 * math.cos(0.5 * math.pi * a / half),
+                   lambda r, a: 0.25 * r * r * math.sin(0.5 * math.pi * a / half) ** 2 - 0.1 * r * r)
+    write_obj(os.path.join(here, "petal.obj"), "petal: cupped 70 degree sector with a rounded tip, base at the origin", *petal)
     write_obj(os.path.join(here, "ginkgo.obj"), "ginkgo leaf: flat 150 degree sector, notched margin, base at the origin", *ginkgo)
 
 
