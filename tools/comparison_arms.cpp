@@ -103,10 +103,17 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
     maps[i] = std::make_shared<const EvaluatedMaps>(evaluate_maps(a.scene.maps, *a.surface, a.scene.source));
   }
   const Arm& baseline = arms.back();
+  // The kinetics are linearised about the uniform state: each morphogen's area-weighted initial mean
+  // (its "initial" where that is a number; a cascade's earlier field otherwise).
+  const ReactionDiffusionSystem baseline_system = build_reaction_diffusion_system(baseline.scene, *baseline.surface, *maps.back());
+  const IntrinsicVertexData<double>& mass = baseline.surface->domain.vertex_mass;
   std::vector<double> uniform;
-  for (const MorphogenSpec& m : baseline.scene.reaction_diffusion->morphogens) uniform.push_back(m.initial);
-  const double pattern_scale = reaction_diffusion_pattern_scale(
-      build_reaction_diffusion_system(baseline.scene, *baseline.surface, *maps.back()), baseline.surface->domain, uniform);
+  for (const IntrinsicVertexData<double>& initial : baseline_system.initial) {
+    double weighted = 0.0, area = 0.0;
+    for (size_t v = 0; v < initial.size(); ++v) weighted += mass[v] * initial[v], area += mass[v];
+    uniform.push_back(weighted / area);
+  }
+  const double pattern_scale = reaction_diffusion_pattern_scale(baseline_system, baseline.surface->domain, uniform);
 
   ArmsShare share;
   share.discretisation = arms.size() == 1 || arms[0].surface == arms[1].surface;
