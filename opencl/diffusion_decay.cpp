@@ -140,7 +140,8 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
                                               implicit_solve_on_host(compute.device, n)));
     if (on_host) {
       // B u on the host too, beside the solve: the step then costs no launch at all.
-      host_solver_ = std::make_unique<HostCholeskySolve>(system.system, "opencl pheromone (backward Euler)");
+      host_solver_ = std::make_unique<HostCholeskySolve>(system.system, FactorPrecision::Single,
+                                                         "opencl pheromone (backward Euler)");
       host_rhs_operator_ = system.rhs;
       host_rhs_.resize(un);
     } else {

@@ -7,11 +7,14 @@
 // reductions dominate a field's step. Both device field models use this one class: the pheromone
 // and every morphogen of the reaction-diffusion IMEX step.
 //
-// The factor is single precision, like the device fields it serves: a float field cannot hold a
-// double solution, and the float factor's triangular solves move half the bytes of the reference's
-// double ones (the solve is memory-bound). S is symmetric positive definite and well conditioned
-// for the step sizes the fields use, so float Cholesky keeps about 1e-6 relative accuracy, the CG's
-// own tolerance.
+// The pheromone's factor is single precision, like the device field it serves: a float field cannot
+// hold a double solution, and the float factor's triangular solves move half the bytes of the
+// reference's double ones (the solve is memory-bound). S is symmetric positive definite and well
+// conditioned for the step sizes the field uses, so float Cholesky keeps about 1e-6 relative
+// accuracy per solve, the CG's own tolerance, and the pheromone's decay forgets old errors. The
+// reaction-diffusion IMEX factors are double: there the errors of hundreds of steps add up through
+// kinetics that keep them (a float factor left the backends 5e-4 apart after 200 Gray-Scott steps,
+// test_reaction_diffusion_backends; double keeps them within 1e-4).
 //
 // Where it solves is the caller's choice (implicit_solve_on_host below): the class itself only
 // works on host memory, so it serves any device.
@@ -23,11 +26,13 @@
 
 namespace physarum::opencl {
 
+enum class FactorPrecision { Single, Double };
+
 class HostCholeskySolve {
  public:
-  // Factors S (symmetric positive definite, both triangles stored). Throws InputError naming `what`
-  // when it is not positive definite in float.
-  HostCholeskySolve(const CsrMatrix& system, const std::string& what);
+  // Factors S (symmetric positive definite, both triangles stored): L L^T in float, or L D L^T in
+  // double. Throws InputError naming `what` when it is not positive definite at that precision.
+  HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what);
   ~HostCholeskySolve();
   HostCholeskySolve(const HostCholeskySolve&) = delete;
   HostCholeskySolve& operator=(const HostCholeskySolve&) = delete;

@@ -332,7 +332,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       S.setFromTriplets(entries.begin(), entries.end());
       if (imex_solver_ == ImexSolver::HostFactorization) {
         host_solvers_.push_back(std::make_unique<HostCholeskySolve>(
-            CsrMatrix::from_eigen(S), std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
+            CsrMatrix::from_eigen(S), FactorPrecision::Double, std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
                                           "' (a stiffness matrix that is not positive semi-definite?)"));
       } else {
         std::vector<double> inverse_diagonal(un);
