@@ -7,6 +7,7 @@
 //                       (OpenCLReactionDiffusion::bytes_per_sub_step) per second, and that as a
 //                       fraction of the device's measured STREAM-triad bandwidth (opencl/memory_bandwidth):
 //                       the step is bandwidth-bound, so this is its roofline fraction.
+//   BM_RdExplicitStepReference  the same step on the reference backend.
 //   BM_RdImexStep       one IMEX step (dt = 10x the explicit stability bound) with the device's
 //                       conjugate gradients (warm-started) or the host factorization, against
 //   BM_RdImexHostOnly   the same step done entirely on the host in double (right-hand side and
@@ -15,6 +16,7 @@
 #include "common/reaction_diffusion_system.hpp"
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/reaction_diffusion.hpp"
+#include "reference/reaction_diffusion.hpp"
 #include "tests/pheromone_test_meshes.hpp"
 
 #include <Eigen/SparseCholesky>
@@ -103,6 +105,18 @@ void BM_RdExplicitStep(benchmark::State& state) {
                                                         benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RdExplicitStep)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same explicit step on the reference backend (reference/reaction_diffusion.hpp: double, the
+// kinetics through the formula evaluator): the denominator of the OpenCL >= 5x target.
+void BM_RdExplicitStepReference(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  ReferenceReactionDiffusion rd(gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5)));
+  rd.step();
+  for (auto _ : state) rd.step();
+  state.SetLabel("reference");
+  state.counters["vertices"] = domain.vertex_count;
+}
+BENCHMARK(BM_RdExplicitStepReference)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_RdImexStep(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(1)));

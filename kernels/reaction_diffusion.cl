@@ -11,6 +11,8 @@
  *   RD_HAS_FIXED          only when some vertices are Dirichlet (held) vertices
  *   RD_SHARED_WEIGHTS     only when every K_m is c_m K_0 (isotropic morphogens), with
  *   RD_WEIGHT_SCALES      {c_0, c_1, ...}: the explicit sub-step then reads morphogen 0's weights only
+ *   RD_ELL_WIDTH          the explicit sub-step matrix's ELL slots per row
+ *   RD_ZERO_ROW_SUMS      only when that matrix holds off-diagonal entries only (see RD_NEIGHBOUR)
  * so the kinetics are compiled code, not interpreted.
  *
  * Layout: every per-vertex array is padded to `stride` (the padded launch size) and morphogen m's
@@ -31,15 +33,28 @@
 #define RD_STIFFNESS_OF(m) (m)
 #endif
 
+/* A neighbour's contribution to row i's diffusion sum of morphogen m. With RD_ZERO_ROW_SUMS the
+ * matrix holds only the off-diagonal entries of rows that sum to zero (a diffusion operator leaves
+ * constants alone, so W_ii = -sum_j W_ij), and (W u)_i = sum_j W_ij (u_j - u_i): one slot and one
+ * gather fewer per row and morphogen than reading the diagonal as an entry, and no cancellation of
+ * a large diagonal against its neighbours. A padding slot (value 0 at the row's own column) adds
+ * 0 either way. The index is a signed int so that a CPU compiler gathers with 32-bit offsets. */
+#ifdef RD_ZERO_ROW_SUMS
+#define RD_NEIGHBOUR(m, j) ((u_in + (m) * stride)[j] - rd_u[m])
+#else
+#define RD_NEIGHBOUR(m, j) (u_in + (m) * stride)[j]
+#endif
+
 /* One forward Euler sub-step of every morphogen at row i:
  *   u_m' = u_m + (W_m u_m)_i + h R_m(u(i)),   W_m = -h diag(1/mass) K_m,
- * W_m assembled on the host in hybrid ELL + CSR form (opencl/hybrid_matrix.hpp) with one column
- * array shared by all morphogens (their stiffness matrices share the Laplacian's pattern) and one
- * block of values per morphogen: value[(m * PHYSARUM_ELL_WIDTH + k) * stride + i]. One launch reads
- * the columns once for all morphogens, every morphogen's values once, u in and writes u out; the
- * reaction costs no memory traffic beyond the mapped coefficients. Rows of held vertices have zero
- * weights on the host and skip the reaction here, so they keep their value exactly.
- * rd_explicit_overflow then adds the entries of the few rows longer than the ELL width. */
+ * W_m assembled on the host in hybrid ELL + CSR form (opencl/hybrid_matrix.hpp), RD_ELL_WIDTH slots
+ * wide (the host picks the width from the rows' lengths), with one column array shared by all
+ * morphogens (their stiffness matrices share the Laplacian's pattern) and one block of values per
+ * morphogen: value[(m * RD_ELL_WIDTH + k) * stride + i]. One launch reads the columns once for all
+ * morphogens, every morphogen's values once, u in and writes u out; the reaction costs no memory
+ * traffic beyond the mapped coefficients. Rows of held vertices have zero weights on the host and
+ * skip the reaction here, so they keep their value exactly. rd_explicit_overflow then adds the
+ * entries of the few rows longer than the ELL width. */
 __kernel void rd_explicit_substep(const uint n, const uint stride, __global const int* column,
                                   __global const float* value, __global const float* coefficients,
                                   __global const uchar* fixed, const float h, __global const float* u_in,
@@ -55,21 +70,21 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
   /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. */
   const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
 #pragma unroll
-  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
+  for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
     const int j = column[k * stride + i];
     const float w = value[k * stride + i];
 #pragma unroll
-    for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] += w * u_in[m * stride + j];
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] += w * RD_NEIGHBOUR(m, j);
   }
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
 #else
 #pragma unroll
-  for (uint k = 0; k < PHYSARUM_ELL_WIDTH; ++k) {
+  for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
     const int j = column[k * stride + i];
 #pragma unroll
     for (uint m = 0; m < RD_MORPHOGENS; ++m)
-      diffusion[m] += value[(RD_STIFFNESS_OF(m) * PHYSARUM_ELL_WIDTH + k) * stride + i] * u_in[m * stride + j];
+      diffusion[m] += value[(RD_STIFFNESS_OF(m) * RD_ELL_WIDTH + k) * stride + i] * RD_NEIGHBOUR(m, j);
   }
 #endif
   RD_LOAD_COEFFICIENTS
@@ -89,9 +104,9 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
   for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[m * stride + i] = rd_u[m] + diffusion[m] + h * rd_r[m];
 }
 
-/* The rest of the sub-step: each row with more than PHYSARUM_ELL_WIDTH entries adds its remaining
- * ones, for every morphogen (CSR, one work-item per long row, so no two work-items touch one
- * vertex). Morphogen m's values are the block m of `value`, `entries` long. */
+/* The rest of the sub-step: each row with more than RD_ELL_WIDTH entries adds its remaining ones,
+ * for every morphogen (CSR, one work-item per long row, so no two work-items touch one vertex).
+ * Morphogen m's values are the block m of `value`, `entries` long. */
 __kernel void rd_explicit_overflow(const uint count, const uint stride, const uint entries, __global const int* row,
                                    __global const int* row_start, __global const int* column,
                                    __global const float* value, __global const float* u_in, __global float* u_out) {
@@ -103,15 +118,19 @@ __kernel void rd_explicit_overflow(const uint count, const uint stride, const ui
   const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
   (void)entries;
 #endif
+  float rd_u[RD_MORPHOGENS];
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u_in[m * stride + i];
+  (void)rd_u;  /* read by RD_NEIGHBOUR only with RD_ZERO_ROW_SUMS */
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
     float sum = 0.0f;
 #ifdef RD_SHARED_WEIGHTS
-    for (int e = row_start[j]; e < end; ++e) sum += value[e] * u_in[m * stride + column[e]];
+    for (int e = row_start[j]; e < end; ++e) sum += value[e] * RD_NEIGHBOUR(m, column[e]);
     sum *= rd_scale[RD_STIFFNESS_OF(m)];
 #else
     for (int e = row_start[j]; e < end; ++e)
-      sum += value[RD_STIFFNESS_OF(m) * entries + e] * u_in[m * stride + column[e]];
+      sum += value[RD_STIFFNESS_OF(m) * entries + e] * RD_NEIGHBOUR(m, column[e]);
 #endif
     u_out[m * stride + i] += sum;
   }

@@ -1,6 +1,7 @@
 #include "opencl/device_tuning.hpp"
 
 #include <array>
+#include <limits>
 #include <string_view>
 
 namespace physarum::opencl {
@@ -22,25 +23,35 @@ constexpr std::array kTable = {
     //    the page walks of 4 KiB pages are dear (in a virtual machine doubly so);
     //  - one triad launch per timing: on a CPU one triad takes milliseconds, launch costs are lost in it;
     //  - the host triad: the device's memory is the host's, and the host's threads may reach more
-    //    of its bandwidth than the OpenCL runtime's.
+    //    of its bandwidth than the OpenCL runtime's;
+    //  - implicit systems of every size on the host: the field is mapped in place, and one pair of
+    //    triangular solves beats the CG's launches at 10^3 vertices and its tens of bandwidth-bound
+    //    iterations at 10^6 (bench/README.md, "The implicit solve").
     TuningEntry{"CPU", "",
                 DeviceTuning{.agents_per_work_item = 4,
                              .clang_prefetch = true,
                              .huge_page_random_access = true,
                              .triad_launches = 1,
-                             .host_triad = true}},
+                             .host_triad = true,
+                             .host_implicit_solve_max_vertices = std::numeric_limits<int>::max()}},
     // Every other device (GPUs, accelerators):
     //  - 1 agent per work-item, scalar walks: a GPU's threads are its lanes already, and idle vector
     //    lanes would only cost instructions;
     //  - OpenCL's own prefetch(); ordinary buffers (device memory is not the host's pages);
     //  - ten triad launches back to back per timing, so a GPU's launch latency does not count;
-    //  - no host triad: the device's memory is its own.
+    //  - no host triad: the device's memory is its own;
+    //  - implicit systems on the host only up to 10,000 vertices. An estimate, not yet measured on a
+    //    GPU: a device CG solve costs at least 2 + 5 x 16 launches and two state reads whatever the
+    //    size (~0.6 ms at the ~8 us per launch the H100 showed, bench/README.md), while the host
+    //    path's copies of a small field are tens of microseconds and its triangular solves took
+    //    0.3-0.5 ms at 3k vertices and 1-1.5 ms at 12k on the build machine (BM_PheromoneStep).
     TuningEntry{"", "",
                 DeviceTuning{.agents_per_work_item = 1,
                              .clang_prefetch = false,
                              .huge_page_random_access = false,
                              .triad_launches = 10,
-                             .host_triad = false}},
+                             .host_triad = false,
+                             .host_implicit_solve_max_vertices = 10000}},
 };
 
 bool matches(const TuningEntry& entry, const DeviceInfo& device) {

@@ -20,6 +20,10 @@ struct DeviceTuning {
   int triad_launches = 10;
   // The roofline's bandwidth is the better of the device triad and a triad on the host's threads.
   bool host_triad = false;
+  // The largest implicit system (backward-Euler pheromone, IMEX morphogen; unknowns = vertices)
+  // that the automatic choice solves with the host's Cholesky factor (opencl/host_cholesky_solve.hpp)
+  // rather than the device's conjugate gradients.
+  int host_implicit_solve_max_vertices = 0;
 };
 
 // The entry of the first row of the table that matches the device (type, then a substring of the

@@ -8,6 +8,7 @@
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
+#include "opencl/mapped_buffer.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl/work_group_size.hpp"
@@ -134,15 +135,21 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
     const BackwardEulerSystem system =
         backward_euler_system(L, domain.vertex_mass, params[Param::diffuse_rate], params[Param::decay_rate], time_step);
     diagonal_only_ = system.diagonal_only;
-    rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
-    rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
-    rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
-    const bool on_host = options.implicit_solver == ImplicitSolver::HostCholesky ||
-                         (options.implicit_solver == ImplicitSolver::Automatic && compute.device.type == "CPU");
-    if (diagonal_only_) {
-    } else if (on_host) {
-      host_solver_ = std::make_unique<HostCholeskySolve>(compute, system.system);
+    const bool on_host = !diagonal_only_ && (options.implicit_solver == ImplicitSolver::HostCholesky ||
+                                             (options.implicit_solver == ImplicitSolver::Automatic &&
+                                              implicit_solve_on_host(compute.device, n)));
+    if (on_host) {
+      // B u on the host too, beside the solve: the step then costs no launch at all.
+      host_solver_ = std::make_unique<HostCholeskySolve>(system.system, FactorPrecision::Single,
+                                                         "opencl pheromone (backward Euler)");
+      host_rhs_operator_ = system.rhs;
+      host_rhs_.resize(un);
     } else {
+      rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
+      rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
+      rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
+    }
+    if (!diagonal_only_ && !on_host) {
       solver_ = std::make_unique<DeviceConjugateGradients>(
           compute, system.system, system.inverse_diagonal,
           ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
@@ -292,15 +299,34 @@ void OpenCLDiffusionDecay::diagonal_step() {
 }
 
 void OpenCLDiffusionDecay::backward_step() {
+  if (host_solver_) {
+    host_backward_step();
+    return;
+  }
   // b = B u, then S x = b with x = u (the previous field: a good first guess, and the solution is
   // written in place).
-  const DeviceBuffer& b = host_solver_ ? host_solver_->right_hand_side() : solver_->right_hand_side();
+  const DeviceBuffer& b = solver_->right_hand_side();
   set_arguments(kernels_->csr_multiply, static_cast<cl_uint>(vertex_count_), rhs_row_start_, rhs_column_,
                 rhs_value_, u_, b);
   compute_.queue.enqueueNDRangeKernel(kernels_->csr_multiply, cl::NullRange, cl::NDRange(group_count_ * group_),
                                       cl::NDRange(group_));
-  if (host_solver_) host_solver_->solve(u_);
-  else last_solve_ = solver_->solve(u_);
+  last_solve_ = solver_->solve(u_);
+}
+
+// The whole step on the host, on the field mapped in place: b = B u (B is mostly diagonal), then
+// x = S^-1 b written over u. One wait for the queue (the map) and no launch, where the device path
+// pays a launch, a read of b and a write of x, each a round trip that costs more than a small solve.
+void OpenCLDiffusionDecay::host_backward_step() {
+  const size_t un = static_cast<size_t>(vertex_count_);
+  const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, un);
+  const CsrMatrix& B = host_rhs_operator_;
+  for (int i = 0; i < vertex_count_; ++i) {
+    double sum = 0.0;
+    for (int k = B.row_start[i]; k < B.row_start[i + 1]; ++k) sum += B.value[k] * u[static_cast<size_t>(B.column[k])];
+    host_rhs_[static_cast<size_t>(i)] = static_cast<float>(sum);
+  }
+  host_solver_->solve(host_rhs_.data(), u.data());
+  last_solve_ = {};
 }
 
 // ---- summaries ----

@@ -24,9 +24,9 @@
 namespace physarum::opencl {
 
 // How the backward-Euler system is solved: conjugate gradients on the device, or a Cholesky factor on
-// the host (opencl/host_cholesky_solve.hpp). Automatic takes the host factor where the device is a
-// CPU (its memory is the host's; measured faster there at every size, see the README) and CG on
-// every other device.
+// the host (opencl/host_cholesky_solve.hpp). Automatic asks implicit_solve_on_host: the host factor
+// on a CPU device (its memory is the host's; measured faster there at every size, see the README),
+// and on a GPU only for systems small enough that CG's fixed cost of launches dominates.
 enum class ImplicitSolver { Automatic, DeviceConjugateGradients, HostCholesky };
 
 struct OpenCLDiffusionDecayOptions {
@@ -102,6 +102,7 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   struct Kernels;
   void forward_step();
   void backward_step();
+  void host_backward_step();
   void diagonal_step();
   void add_source(double h, bool clamp_at_zero);
 
@@ -134,6 +135,8 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;
   std::unique_ptr<DeviceConjugateGradients> solver_;   // one of these two
   std::unique_ptr<HostCholeskySolve> host_solver_;
+  CsrMatrix host_rhs_operator_;  // B, with the host solver
+  std::vector<float> host_rhs_;  // B u, with the host solver
   // Written by kernels: canary-guarded.
   DeviceBuffer u_, scratch_, amount_;
   // The write rate (empty buffer and has_write_rate_ false when none).

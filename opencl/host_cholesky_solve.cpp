@@ -1,42 +1,68 @@
 #include "opencl/host_cholesky_solve.hpp"
 
 #include "common/errors.hpp"
+#include "opencl/device_tuning.hpp"
 
 #include <Eigen/SparseCholesky>
 
 namespace physarum::opencl {
 
+namespace {
+
+// P S P^-1 = L L^T (or L D L^T), solved in place in a buffer sized once (Eigen's solve() allocates
+// per call).
+template <class Decomposition, class Vector>
+void permuted_solve(const Decomposition& factor, Vector& permuted, const float* b, float* x, int n) {
+  const Eigen::VectorXi& p = factor.permutationP().indices();  // empty: no permutation
+  const bool reorder = p.size() == n;
+  for (int i = 0; i < n; ++i) permuted[reorder ? p[i] : i] = b[i];
+  factor.matrixL().solveInPlace(permuted);
+  if constexpr (requires { factor.vectorD(); }) permuted.array() /= factor.vectorD().array();
+  factor.matrixU().solveInPlace(permuted);
+  for (int i = 0; i < n; ++i) x[i] = static_cast<float>(permuted[reorder ? p[i] : i]);
+}
+
+}  // namespace
+
 struct HostCholeskySolve::Factor {
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<float>> llt;
-  Eigen::VectorXf permuted;  // P b, then the solution in the factor's order
+  FactorPrecision precision;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<float>> single;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> twice;
+  Eigen::VectorXf permuted_single;  // P b, then the solution in the factor's order
+  Eigen::VectorXd permuted_double;
 };
 
 HostCholeskySolve::~HostCholeskySolve() = default;
 
-HostCholeskySolve::HostCholeskySolve(const ComputeContext& compute, const CsrMatrix& system)
-    : compute_(compute), n_(system.rows), factor_(std::make_unique<Factor>()), host_(static_cast<size_t>(system.rows)) {
+HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what)
+    : n_(system.rows), factor_(std::make_unique<Factor>()) {
+  Factor& f = *factor_;
+  f.precision = precision;
   // S is symmetric, so its CSR rows are its CSC columns.
-  const Eigen::SparseMatrix<float> s = system.to_eigen().cast<float>();
-  factor_->llt.compute(s);
-  if (factor_->llt.info() != Eigen::Success)
-    throw InputError("opencl pheromone: the backward-Euler system could not be factorised on the host (LLT)");
-  factor_->permuted.resize(n_);
-  b_ = allocate_written<cl_float>(compute, "backward Euler right-hand side", static_cast<size_t>(n_));
+  bool factored = false;
+  if (precision == FactorPrecision::Single) {
+    f.single.compute(system.to_eigen().cast<float>());
+    factored = f.single.info() == Eigen::Success;
+    f.permuted_single.resize(n_);
+  } else {
+    f.twice.compute(system.to_eigen());
+    // LDL^T factors an indefinite matrix too: positive definite means every pivot > 0.
+    factored = f.twice.info() == Eigen::Success && (f.twice.vectorD().array() > 0.0).all();
+    f.permuted_double.resize(n_);
+  }
+  if (!factored)
+    throw InputError(what + ": the implicit system could not be factorised on the host (not positive definite in " +
+                     (precision == FactorPrecision::Single ? "float" : "double") + ")");
 }
 
-void HostCholeskySolve::solve(const DeviceBuffer& x) {
-  const size_t bytes = host_.size() * sizeof(float);
-  compute_.queue.enqueueReadBuffer(b_.buffer, CL_TRUE, 0, bytes, host_.data());
-  // P S P^-1 = L L^T, solved in place in buffers sized once (Eigen's solve() allocates per call).
+void HostCholeskySolve::solve(const float* b, float* x) {
   Factor& f = *factor_;
-  const Eigen::VectorXi& p = f.llt.permutationP().indices();  // empty: no permutation
-  const bool permuted = p.size() == n_;
-  for (int i = 0; i < n_; ++i) f.permuted[permuted ? p[i] : i] = host_[static_cast<size_t>(i)];
-  f.llt.matrixL().solveInPlace(f.permuted);
-  f.llt.matrixU().solveInPlace(f.permuted);
-  for (int i = 0; i < n_; ++i) host_[static_cast<size_t>(i)] = f.permuted[permuted ? p[i] : i];
-  // Blocking: host_ must outlive the copy (a copy within the host's RAM on a CPU device).
-  compute_.queue.enqueueWriteBuffer(x.buffer, CL_TRUE, 0, bytes, host_.data());
+  if (f.precision == FactorPrecision::Single) permuted_solve(f.single, f.permuted_single, b, x, n_);
+  else permuted_solve(f.twice, f.permuted_double, b, x, n_);
+}
+
+bool implicit_solve_on_host(const DeviceInfo& device, int vertex_count) {
+  return vertex_count <= tuning_for(device).host_implicit_solve_max_vertices;
 }
 
 }  // namespace physarum::opencl

@@ -1,46 +1,56 @@
 #pragma once
-// The backward-Euler system S x = b of a device field (common/pheromone_operators.hpp) solved on the
-// host by a sparse Cholesky factorization computed once, instead of conjugate gradients on the
-// device. Where the OpenCL device is the host's own CPU (PoCL), the device's memory is the host's:
-// reading b and writing x are copies within one RAM, and one pair of triangular solves replaces the
-// dozens of CG iterations whose launches and reductions dominate a small field's step. On a GPU the
-// copies cross the bus every step, so the device's CG stays the choice there
-// (opencl/diffusion_decay.hpp: ImplicitSolver).
+// A backward-Euler / IMEX system S x = b of a device field (common/pheromone_operators.hpp,
+// opencl/reaction_diffusion.hpp) solved on the host by a sparse Cholesky factorization computed
+// once, instead of conjugate gradients on the device. Where the OpenCL device is the host's own CPU
+// (PoCL) the device's memory is the host's: the field is mapped in place (opencl/mapped_buffer.hpp),
+// and one pair of triangular solves replaces the dozens of CG iterations whose launches and
+// reductions dominate a field's step. Both device field models use this one class: the pheromone
+// and every morphogen of the reaction-diffusion IMEX step.
 //
-// The factor is single precision, like the device field it serves: a float field cannot hold a
-// double solution, and the float factor's triangular solves move half the bytes of the reference's
-// double ones (the solve is memory-bound). S is symmetric positive definite and well conditioned
-// for the step sizes the field uses, so float Cholesky keeps about 1e-6 relative accuracy, the CG's
-// own tolerance.
+// The pheromone's factor is single precision, like the device field it serves: a float field cannot
+// hold a double solution, and the float factor's triangular solves move half the bytes of the
+// reference's double ones (the solve is memory-bound). S is symmetric positive definite and well
+// conditioned for the step sizes the field uses, so float Cholesky keeps about 1e-6 relative
+// accuracy per solve, the CG's own tolerance, and the pheromone's decay forgets old errors. The
+// reaction-diffusion IMEX factors are double: there the errors of hundreds of steps add up through
+// kinetics that keep them (a float factor left the backends 5e-4 apart after 200 Gray-Scott steps,
+// test_reaction_diffusion_backends; double keeps them within 1e-4).
+//
+// Where it solves is the caller's choice (implicit_solve_on_host below): the class itself only
+// works on host memory, so it serves any device.
 #include "common/csr_matrix.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/device_selection.hpp"
 
 #include <memory>
-#include <vector>
+#include <string>
 
 namespace physarum::opencl {
 
+enum class FactorPrecision { Single, Double };
+
 class HostCholeskySolve {
  public:
-  // Factors S (InputError when it is not positive definite) and allocates b on the device.
-  HostCholeskySolve(const ComputeContext& compute, const CsrMatrix& system);
+  // Factors S (symmetric positive definite, both triangles stored): L L^T in float, or L D L^T in
+  // double. Throws InputError naming `what` when it is not positive definite at that precision.
+  HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what);
   ~HostCholeskySolve();
   HostCholeskySolve(const HostCholeskySolve&) = delete;
   HostCholeskySolve& operator=(const HostCholeskySolve&) = delete;
 
-  // b: the caller's kernels write the right-hand side here before solve().
-  const DeviceBuffer& right_hand_side() const { return b_; }
-  // x = S^-1 b: reads b (waiting for the queue), solves on the host, writes x (waiting for the copy).
-  void solve(const DeviceBuffer& x);
+  int size() const { return n_; }
+  // x = S^-1 b for size() floats each; b and x may be the same array. Allocates nothing.
+  void solve(const float* b, float* x);
 
  private:
   struct Factor;
-  ComputeContext compute_;
   int n_ = 0;
   std::unique_ptr<Factor> factor_;
-  DeviceBuffer b_;
-  std::vector<float> host_;  // b, then x
 };
+
+// Whether the automatic choice solves an implicit system of `vertex_count` unknowns with the host
+// factorization rather than device conjugate gradients (DeviceTuning::host_implicit_solve_max_vertices:
+// every size on a CPU device; on a GPU only systems so small that CG's fixed cost of launches beats
+// the copies and the host's triangular solves).
+bool implicit_solve_on_host(const DeviceInfo& device, int vertex_count);
 
 }  // namespace physarum::opencl

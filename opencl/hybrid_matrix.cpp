@@ -8,14 +8,15 @@
 
 namespace physarum::opencl {
 
-HybridMatrix to_hybrid(const CsrMatrix& csr, int stride) {
-  constexpr int W = PHYSARUM_ELL_WIDTH;
-  if (stride < csr.rows || csr.rows <= 0)
-    throw std::invalid_argument("hybrid matrix: stride " + std::to_string(stride) + " for " +
-                                std::to_string(csr.rows) + " rows");
+HybridMatrix to_hybrid(const CsrMatrix& csr, int stride, int width) {
+  const int W = width;
+  if (stride < csr.rows || csr.rows <= 0 || width < 1)
+    throw std::invalid_argument("hybrid matrix: stride " + std::to_string(stride) + " and width " +
+                                std::to_string(width) + " for " + std::to_string(csr.rows) + " rows");
   HybridMatrix h;
   h.rows = csr.rows;
   h.stride = stride;
+  h.width = width;
   const size_t slots = static_cast<size_t>(W) * static_cast<size_t>(stride);
   h.column.resize(slots);
   h.value.assign(slots, 0.0f);
@@ -37,6 +38,20 @@ HybridMatrix to_hybrid(const CsrMatrix& csr, int stride) {
     h.overflow_start.push_back(static_cast<int>(h.overflow_column.size()));
   }
   return h;
+}
+
+int ell_width_for(const CsrMatrix& csr, int max_width, double spill) {
+  if (max_width < 1) throw std::invalid_argument("hybrid matrix: ELL width at most " + std::to_string(max_width));
+  // rows_longer[w]: the rows with more than w entries (w < max_width), counted once over the rows.
+  std::vector<long long> rows_longer(static_cast<size_t>(max_width), 0);
+  for (int row = 0; row < csr.rows; ++row) {
+    const int length = csr.row_start[row + 1] - csr.row_start[row];
+    for (int w = 0; w < std::min(length, max_width); ++w) ++rows_longer[static_cast<size_t>(w)];
+  }
+  const double allowed = spill * static_cast<double>(csr.rows);
+  for (int w = 1; w < max_width; ++w)
+    if (static_cast<double>(rows_longer[static_cast<size_t>(w)]) <= allowed) return w;
+  return max_width;
 }
 
 }  // namespace physarum::opencl

@@ -6,12 +6,11 @@
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
+#include "opencl/mapped_buffer.hpp"
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl/reaction_formula.hpp"
 #include "opencl/work_group_size.hpp"
-
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -24,12 +23,6 @@ struct OpenCLReactionDiffusion::Kernels {
   cl::Kernel substep, overflow, imex_rhs;
 };
 
-// One factorization of (M + h K_m), Dirichlet rows eliminated, per morphogen.
-struct OpenCLReactionDiffusion::HostFactorizations {
-  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> factor;
-  std::vector<float> b, u;                 // staging for one morphogen's right-hand side and result
-  Eigen::VectorXd rhs, solution;
-};
 
 namespace {
 
@@ -107,6 +100,38 @@ void check_system(const SurfaceDomain& domain, const ReactionDiffusionSystem& s)
   if (s.substeps < 1) throw InputError(who + ": substeps " + std::to_string(s.substeps) + " must be >= 1");
 }
 
+// Whether every row of K sums to zero up to its rounding (|sum| <= 1e-9 sum |K_ij|): true of a
+// diffusion operator with no-flux boundaries, which leaves constants alone. Far below float's
+// resolution, so dropping such a remainder changes no float result.
+bool rows_sum_to_zero(const CsrMatrix& K) {
+  for (int i = 0; i < K.rows; ++i) {
+    double sum = 0.0, size = 0.0;
+    for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e) {
+      sum += K.value[e];
+      size += std::abs(K.value[e]);
+    }
+    if (std::abs(sum) > 1e-9 * size) return false;
+  }
+  return true;
+}
+
+// A's off-diagonal entries only, in their order.
+CsrMatrix off_diagonal(const CsrMatrix& A) {
+  CsrMatrix out;
+  out.rows = A.rows;
+  out.cols = A.cols;
+  out.row_start.assign(1, 0);
+  for (int i = 0; i < A.rows; ++i) {
+    for (int e = A.row_start[i]; e < A.row_start[i + 1]; ++e) {
+      if (A.column[e] == i) continue;
+      out.column.push_back(A.column[e]);
+      out.value.push_back(A.value[e]);
+    }
+    out.row_start.push_back(static_cast<int>(out.column.size()));
+  }
+  return out;
+}
+
 bool has_option(const std::string& options, const std::string& define) {
   return options.find("-D" + define) != std::string::npos;
 }
@@ -180,9 +205,31 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   }
   std::string scales;
   for (size_t m = 0; m < M; ++m) scales += (m ? ", " : "") + float_literal(weight_scale[m]);
+  // The explicit sub-step matrices W_m = -h M^-1 K_m, rows of held vertices zero. When every K_m's
+  // rows sum to zero (diffusion: always, unless a caller's stiffness says otherwise) only their
+  // off-diagonal entries go to the device (RD_ZERO_ROW_SUMS in reaction_diffusion.cl); the ELL width
+  // is the narrowest that holds 97 % of the rows whole (opencl/hybrid_matrix.hpp).
+  std::vector<CsrMatrix> substep_matrices;
+  bool zero_row_sums = integrator_ == ReactionIntegrator::Explicit;
+  int ell_width = PHYSARUM_ELL_WIDTH;
+  if (integrator_ == ReactionIntegrator::Explicit) {
+    for (size_t m = 0; m < M; ++m) {
+      zero_row_sums = zero_row_sums && rows_sum_to_zero(system.stiffness[m]);
+      CsrMatrix W = system.stiffness[m];
+      for (int i = 0; i < n; ++i)
+        for (int e = W.row_start[i]; e < W.row_start[i + 1]; ++e)
+          W.value[e] = fixed_host_[i] ? 0.0 : -sub_step_ * W.value[e] / system.mass[i];
+      substep_matrices.push_back(std::move(W));
+    }
+    if (zero_row_sums)
+      for (CsrMatrix& W : substep_matrices) W = off_diagonal(W);
+    ell_width = ell_width_for(substep_matrices[0], PHYSARUM_ELL_WIDTH, 0.03);
+  }
   const std::string prelude = "#define RD_MORPHOGENS " + std::to_string(M) + "\n#define RD_LOAD_COEFFICIENTS " + loads +
                               "\n#define RD_REACTIONS " + reactions + "\n" + (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
-                              (shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + scales + "}\n" : "");
+                              (shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + scales + "}\n" : "") +
+                              "#define RD_ELL_WIDTH " + std::to_string(ell_width) + "\n" +
+                              (zero_row_sums ? "#define RD_ZERO_ROW_SUMS\n" : "");
 
   // ---- program and launch sizes ----
   kernels_ = std::make_unique<Kernels>();
@@ -230,15 +277,9 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   }
 
   if (integrator_ == ReactionIntegrator::Explicit) {
-    // W_m = -h M^-1 K_m, rows of held vertices zero; in hybrid form with one ELL row per padded row.
+    // W_m in hybrid form with one ELL row per padded row.
     std::vector<HybridMatrix> hybrid;
-    for (size_t m = 0; m < M; ++m) {
-      CsrMatrix W = system.stiffness[m];
-      for (int i = 0; i < n; ++i)
-        for (int e = W.row_start[i]; e < W.row_start[i + 1]; ++e)
-          W.value[e] = fixed_host_[i] ? 0.0 : -sub_step_ * W.value[e] / system.mass[i];
-      hybrid.push_back(to_hybrid(W, static_cast<int>(stride_)));
-    }
+    for (size_t m = 0; m < M; ++m) hybrid.push_back(to_hybrid(substep_matrices[m], static_cast<int>(stride_), ell_width));
     // One block of weights per morphogen, or only morphogen 0's when they are shared.
     std::vector<float> values, overflow_values;
     for (size_t m = 0; m < (shared_weights ? 1 : M); ++m) {
@@ -268,11 +309,12 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   } else {
     imex_solver_ = options.imex_solver;
     if (imex_solver_ == ImexSolver::Automatic)
-      imex_solver_ = compute.device.type == "CPU" ? ImexSolver::HostFactorization : ImexSolver::DeviceConjugateGradients;
+      imex_solver_ =
+          implicit_solve_on_host(compute.device, n) ? ImexSolver::HostFactorization : ImexSolver::DeviceConjugateGradients;
     rhs_ = allocate_written<cl_float>(compute, "IMEX right-hand sides", M * stride_);
     coupling_ = has_fixed_ ? allocate_written<cl_float>(compute, "Dirichlet coupling", M * stride_)
                            : allocate_written<cl_float>(compute, "Dirichlet coupling", 1);
-    if (imex_solver_ == ImexSolver::HostFactorization) factorizations_ = std::make_unique<HostFactorizations>();
+    if (imex_solver_ == ImexSolver::HostFactorization && has_fixed_) held_solution_.resize(un);
     for (size_t m = 0; m < M; ++m) {
       // S = M + h K_m with the held vertices' rows and columns replaced by m_i on the diagonal.
       const CsrMatrix& K = stiffness_[m];
@@ -289,12 +331,9 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       Eigen::SparseMatrix<double, Eigen::RowMajor> S(n, n);
       S.setFromTriplets(entries.begin(), entries.end());
       if (imex_solver_ == ImexSolver::HostFactorization) {
-        auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
-        factor->compute(Eigen::SparseMatrix<double>(S));
-        if (factor->info() != Eigen::Success)
-          throw InputError(std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
-                           "' is not positive definite (a stiffness matrix that is not positive semi-definite?)");
-        factorizations_->factor.push_back(std::move(factor));
+        host_solvers_.push_back(std::make_unique<HostCholeskySolve>(
+            CsrMatrix::from_eigen(S), FactorPrecision::Double, std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
+                                          "' (a stiffness matrix that is not positive semi-definite?)"));
       } else {
         std::vector<double> inverse_diagonal(un);
         for (int i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / S.coeff(i, i);
@@ -352,7 +391,6 @@ void OpenCLReactionDiffusion::explicit_step() {
 
 void OpenCLReactionDiffusion::imex_step() {
   const size_t un = static_cast<size_t>(vertex_count_);
-  const size_t all_bytes = static_cast<size_t>(morphogen_count_) * stride_ * sizeof(cl_float);
   for (int s = 0; s < substeps_; ++s) {
     set_arguments(kernels_->imex_rhs, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), mass_,
                   coefficients_, fixed_, coupling_, static_cast<cl_float>(sub_step_), u_, rhs_);
@@ -366,24 +404,29 @@ void OpenCLReactionDiffusion::imex_step() {
       }
       continue;
     }
-    // Host factorization: every morphogen's right-hand side in one read and the results in one write
-    // (each blocking transfer is a round trip that costs more than a small solve).
-    HostFactorizations& f = *factorizations_;
-    f.b.resize(all_bytes / sizeof(cl_float));
-    f.u.resize(all_bytes / sizeof(cl_float));
-    compute_.queue.enqueueReadBuffer(rhs_.buffer, CL_FALSE, 0, all_bytes, f.b.data());
-    // The held values as they are: m_i u_i / m_i rounds, and a held value must not move at all.
-    if (has_fixed_) compute_.queue.enqueueReadBuffer(u_.buffer, CL_FALSE, 0, all_bytes, f.u.data());
-    compute_.queue.finish();
-    for (int m = 0; m < morphogen_count_; ++m) {
-      const size_t offset = static_cast<size_t>(m) * stride_;
-      f.rhs = Eigen::Map<const Eigen::VectorXf>(f.b.data() + offset, vertex_count_).cast<double>();
-      f.solution = f.factor[m]->solve(f.rhs);
-      for (size_t i = 0; i < un; ++i)
-        if (!fixed_host_[i]) f.u[offset + i] = static_cast<float>(f.solution[static_cast<Eigen::Index>(i)]);
-    }
-    compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, 0, all_bytes, f.u.data());
+    host_imex_solve();
     last_solve_ = {};
+  }
+}
+
+// Every morphogen's system solved by its host factor on the right-hand sides and fields mapped in
+// place: one wait for the queue (the second map; the right-hand side kernel runs before it) and no
+// copies where the device's memory is the host's (opencl/mapped_buffer.hpp).
+void OpenCLReactionDiffusion::host_imex_solve() {
+  const size_t un = static_cast<size_t>(vertex_count_);
+  const size_t all = static_cast<size_t>(morphogen_count_) * stride_;
+  const MappedBuffer<float> b(compute_, rhs_, CL_MAP_READ, 0, all, false);
+  const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, all);
+  for (int m = 0; m < morphogen_count_; ++m) {
+    const size_t offset = static_cast<size_t>(m) * stride_;
+    if (!has_fixed_) {
+      host_solvers_[static_cast<size_t>(m)]->solve(b.data() + offset, u.data() + offset);
+      continue;
+    }
+    // The held values stay as they are: m_i u_i / m_i rounds, and a held value must not move at all.
+    host_solvers_[static_cast<size_t>(m)]->solve(b.data() + offset, held_solution_.data());
+    for (size_t i = 0; i < un; ++i)
+      if (!fixed_host_[i]) u[offset + i] = held_solution_[i];
   }
 }
 

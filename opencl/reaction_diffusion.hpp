@@ -11,7 +11,8 @@
 //   IMEX:     (M + h K_m) u_m' = M (u_m + h R_m(u)) per morphogen: the right-hand side on the device,
 //             the solve either by Jacobi-preconditioned conjugate gradients on the device
 //             (opencl/conjugate_gradients.hpp, warm-started from the previous step's values) or by a
-//             sparse Cholesky factorization on the host, made once (see ImexSolver).
+//             sparse Cholesky factorization on the host, made once (opencl/host_cholesky_solve.hpp,
+//             the pheromone's; see ImexSolver).
 //
 // The formulas are compiled into the program (opencl/reaction_formula.hpp): a coefficient with one
 // value everywhere becomes a float literal, a varying one a per-vertex buffer read. Held (`fixed`)
@@ -25,6 +26,7 @@
 #include "opencl/conjugate_gradients.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/field_statistics.hpp"
+#include "opencl/host_cholesky_solve.hpp"
 #include "opencl/static_field.hpp"
 
 #include <memory>
@@ -35,9 +37,11 @@ namespace physarum::opencl {
 
 // Who solves the IMEX step's linear systems.
 enum class ImexSolver {
-  // The host factorization where the device is the host's CPU (PoCL): there the factorization's
-  // two triangular solves beat tens of CG iterations at every size (bench_reaction_diffusion); on a
-  // GPU the values never leave the device and CG's bandwidth-bound iterations run at its speed.
+  // implicit_solve_on_host (opencl/host_cholesky_solve.hpp), as for the pheromone: the host's float
+  // factorization where the device is the host's CPU (PoCL): there its two triangular solves per
+  // morphogen, on the fields mapped in place, beat tens of CG iterations at every size
+  // (bench_reaction_diffusion); on a GPU, where the values never leave the device and CG's
+  // bandwidth-bound iterations run at its speed, only for systems too small to fill it.
   Automatic,
   DeviceConjugateGradients,
   HostFactorization,
@@ -109,6 +113,7 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
   struct Kernels;
   void explicit_step();
   void imex_step();
+  void host_imex_solve();
   void update_dirichlet_coupling();
   void check_morphogen(int layer, const char* what) const;
 
@@ -142,8 +147,8 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
   // IMEX.
   ImexSolver imex_solver_ = ImexSolver::Automatic;
   std::vector<std::unique_ptr<DeviceConjugateGradients>> solvers_;
-  struct HostFactorizations;
-  std::unique_ptr<HostFactorizations> factorizations_;
+  std::vector<std::unique_ptr<HostCholeskySolve>> host_solvers_;  // one per morphogen
+  std::vector<float> held_solution_;  // with held vertices: a solve's result before the free ones are kept
   ConjugateGradientReport last_solve_;
 
   IntrinsicVertexData<double> mass_host_;

@@ -40,7 +40,7 @@ int row_length(const CsrMatrix& m, int row) { return m.row_start[row + 1] - m.ro
 std::vector<float> hybrid_product(const HybridMatrix& h, const std::vector<float>& x) {
   std::vector<float> y(static_cast<size_t>(h.stride), 0.0f);
   for (int i = 0; i < h.stride; ++i)
-    for (int k = 0; k < W; ++k) y[i] += h.value[k * h.stride + i] * x[h.column[k * h.stride + i]];
+    for (int k = 0; k < h.width; ++k) y[i] += h.value[k * h.stride + i] * x[h.column[k * h.stride + i]];
   for (int j = 0; j < h.overflow_rows(); ++j) {
     float rest = 0.0f;
     for (int k = h.overflow_start[j]; k < h.overflow_start[j + 1]; ++k) rest += h.overflow_value[k] * x[h.overflow_column[k]];
@@ -107,6 +107,48 @@ TEST(HybridMatrix, ProductEqualsCsrProduct) {
 
 TEST(HybridMatrix, RefusesAStrideShorterThanTheMatrix) {
   EXPECT_THROW(to_hybrid(random_csr(1), 22), std::invalid_argument);
+  EXPECT_THROW(to_hybrid(random_csr(1), 23, 0), std::invalid_argument);
+}
+
+// Narrower blocks than PHYSARUM_ELL_WIDTH (the reaction-diffusion sub-step picks its own): the same
+// product, and exactly the rows longer than the width spill.
+TEST(HybridMatrix, AnyWidthGivesTheSameProduct) {
+  const CsrMatrix csr = random_csr(9);
+  std::mt19937 rng(3);
+  std::vector<double> x(static_cast<size_t>(csr.cols));
+  for (double& v : x) v = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+  std::vector<double> expected;
+  csr.multiply(x, expected);
+  for (const int width : {1, 3, 6, W + 5}) {
+    const HybridMatrix h = to_hybrid(csr, 32, width);
+    ASSERT_EQ(h.column.size(), static_cast<size_t>(width * 32));
+    int longer = 0;
+    for (int i = 0; i < csr.rows; ++i) longer += row_length(csr, i) > width;
+    EXPECT_EQ(h.overflow_rows(), longer) << "width " << width;
+    const std::vector<float> y = hybrid_product(h, std::vector<float>(x.begin(), x.end()));
+    for (size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(y[i], expected[i], 1e-5) << "width " << width << ", row " << i;
+  }
+}
+
+// A matrix of 100 rows: 90 of 6 entries, 7 of 7, 3 of 9. With 3 % allowed to spill the narrowest
+// width is 7 (only the 3 rows of 9 are longer); with none, 9; capped at 8, 8; with 10 %, 6.
+TEST(HybridMatrix, EllWidthForHoldsAllButTheAllowedShareOfRows) {
+  CsrMatrix m;
+  m.rows = m.cols = 100;
+  m.row_start.push_back(0);
+  for (int i = 0; i < m.rows; ++i) {
+    const int length = i < 90 ? 6 : i < 97 ? 7 : 9;
+    for (int k = 0; k < length; ++k) {
+      m.column.push_back((i + k) % m.cols);
+      m.value.push_back(1.0);
+    }
+    m.row_start.push_back(static_cast<int>(m.column.size()));
+  }
+  EXPECT_EQ(ell_width_for(m, 16, 0.03), 7);
+  EXPECT_EQ(ell_width_for(m, 16, 0.0), 9);
+  EXPECT_EQ(ell_width_for(m, 8, 0.0), 8);
+  EXPECT_EQ(ell_width_for(m, 16, 0.10), 6);
+  EXPECT_THROW(ell_width_for(m, 0, 0.03), std::invalid_argument);
 }
 
 }  // namespace

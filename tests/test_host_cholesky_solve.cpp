@@ -1,0 +1,77 @@
+// The host factorization behind the OpenCL backend's implicit solves (opencl/host_cholesky_solve.hpp)
+// against known answers: S x = b for an x chosen first (b = S x computed in double), at both
+// precisions, in place and not; an indefinite S refused at both; and the automatic placement of
+// the solve (every size on a CPU device).
+#include "common/errors.hpp"
+#include "opencl/host_cholesky_solve.hpp"
+#include "opencl/compute_context.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace physarum::opencl {
+namespace {
+
+// The 1-D mass + dt * stiffness of a ring of n nodes: 1 + 2a on the diagonal, -a to either side.
+// Symmetric positive definite for a > -1/4 (its eigenvalues are 1 + 2a (1 - cos θ) in [1, 1 + 4a]);
+// indefinite below. The ring's wrap-around entries give the factor fill, so the ordering matters.
+CsrMatrix ring(int n, double a) {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> m(n, n);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 1.0 + 2.0 * a);
+    t.emplace_back(i, (i + 1) % n, -a);
+    t.emplace_back(i, (i + n - 1) % n, -a);
+  }
+  m.setFromTriplets(t.begin(), t.end());
+  return CsrMatrix::from_eigen(m);
+}
+
+TEST(HostCholeskySolve, SolvesAKnownSystemAtBothPrecisions) {
+  const int n = 500;
+  const double a = 20.0;  // condition number 1 + 4a = 81
+  const CsrMatrix S = ring(n, a);
+  std::vector<double> x(static_cast<size_t>(n)), b;
+  for (int i = 0; i < n; ++i) x[static_cast<size_t>(i)] = std::sin(0.37 * i) + 0.5;
+  S.multiply(x, b);
+  const std::vector<float> bf(b.begin(), b.end());
+  for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
+    HostCholeskySolve solve(S, precision, "test ring");
+    ASSERT_EQ(solve.size(), n);
+    std::vector<float> out(static_cast<size_t>(n), -1.0f), in_place = bf;
+    solve.solve(bf.data(), out.data());
+    solve.solve(in_place.data(), in_place.data());
+    // float: b itself is rounded (1 ulp ~ 6e-8 relative), amplified at most by the condition
+    // number, plus the factor's own rounding; double: only the final rounding of x to float.
+    const double tolerance = precision == FactorPrecision::Single ? 81 * 6e-7 : 81 * 6e-8;
+    for (int i = 0; i < n; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      ASSERT_NEAR(out[k], x[k], tolerance) << (precision == FactorPrecision::Single ? "float" : "double") << " row " << i;
+      ASSERT_EQ(in_place[k], out[k]) << "in place, row " << i;
+    }
+  }
+}
+
+TEST(HostCholeskySolve, RefusesAnIndefiniteSystemNamingIt) {
+  const CsrMatrix S = ring(40, -0.3);  // eigenvalues down to 1 - 1.2 < 0
+  for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
+    try {
+      HostCholeskySolve solve(S, precision, "the test's ring");
+      FAIL() << "an indefinite system was factored";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("the test's ring"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(HostCholeskySolve, AutomaticPlacementSolvesEverySizeOnTheHostOfACpuDevice) {
+  const ComputeContext compute = make_compute_context("");
+  const DeviceInfo& device = compute.device;
+  if (device.type != "CPU") GTEST_SKIP() << "the device is not a CPU: " << device.describe();
+  for (const int n : {1000, 1000000, 100000000}) EXPECT_TRUE(implicit_solve_on_host(device, n)) << n;
+}
+
+}  // namespace
+}  // namespace physarum::opencl
