@@ -144,9 +144,11 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
       system.stiffness.push_back(diffusion_stiffness(domain, rate));
   }
 
-  // ---- initial state ----
-  for (const MorphogenSpec& m : spec.morphogens)
+  // ---- initial state and floors ----
+  for (const MorphogenSpec& m : spec.morphogens) {
     system.initial.push_back(per_vertex(m.initial, maps, n, scene, "morphogens." + m.name + ".initial", false));
+    system.minimum.push_back(m.minimum);
+  }
   auto set_value = [&](const MorphogenValues& values, size_t vertex, double weight) {
     for (const auto& [name, value] : values) {
       double& x = system.initial[static_cast<size_t>(spec.morphogen_index(name))][vertex];

@@ -53,6 +53,11 @@ struct ReactionDiffusionSystem {
   // 1 where every morphogen is held at its current value (a Dirichlet region: the values there are
   // those of `initial`, or of the previous layer of a cascaded pattern); 0 elsewhere. Empty: none.
   std::vector<std::uint8_t> fixed;
+  // Per morphogen, a floor: after every sub-step (explicit) or step (IMEX) a free vertex's value
+  // below it is raised to it. Turk's Turing model needs v >= 0 (a concentration; his own
+  // implementation clamps it), without which a grown pattern's troughs run away to -infinity.
+  // -infinity: no floor. Empty: none for any morphogen.
+  std::vector<double> minimum;
 
   // ---- time ----
   ReactionIntegrator integrator = ReactionIntegrator::Explicit;

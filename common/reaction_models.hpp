@@ -4,6 +4,7 @@
 // coefficients, with the default coefficients, diffusion rates and initial values of the paper the
 // model comes from. Both backends evaluate these formulas, so a named model and the same formulas
 // given as a custom "reaction" are one and the same system.
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -18,6 +19,7 @@ struct ReactionModel {
   std::vector<std::pair<std::string, double>> coefficients;  // name, default value
   std::vector<double> diffusion;        // default rate per morphogen (m^2/s)
   std::vector<double> initial;          // default uniform initial value per morphogen
+  std::vector<double> minimum;          // default floor per morphogen (-infinity: none)
   std::string source;                   // where the equations and defaults come from
 };
 

@@ -51,9 +51,10 @@ std::vector<SceneKey> build_keys() {
               "{\"NAME\": number or SCALAR_MAP, ...}"),
       setting("morphogens", K::Object, false, {}, "m^2/s", "the model's",
               "per morphogen: diffusion rate (along the anisotropy direction; across = ratio x it), initial value "
-              "(a number, or a scalar map such as an earlier run's field: a cascade)",
+              "(a number, or a scalar map such as an earlier run's field: a cascade), floor the value is raised to after "
+              "every step (turing's v: 0, as Turk's; null: none)",
               "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x or SCALAR_MAP, \"anisotropy\": {\"direction\": VECTOR_MAP, "
-              "\"ratio\": r > 0}}, ...}"),
+              "\"ratio\": r > 0}, \"minimum\": x or null}, ...}"),
       setting("reaction", K::Object, false, {}, "", "the model's",
               "custom kinetics: one formula per morphogen (2 to 4; layer order = alphabetical), over the "
               "morphogens and parameters; + - * / ^, exp log sqrt abs min max sin cos tanh",
@@ -122,12 +123,12 @@ std::vector<SceneKey> build_keys() {
               "a built-in name (viridis, magma, inferno, grey, physarum, moss, ocean, ember, lichen), a path to a "
               "MAP.json, or an inline {\"stops\", \"gamma\", \"remap\", \"levels\"} object"),
       // ---- the differential harness (ComparisonSettings, tools/scenes/compare/README.md) ----
-      setting("compare_burn_in", K::Number, false, kNonNegative, "s", shown(c.burn_in), "compare: simulated and discarded per seed"),
-      setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed"),
+      setting("compare_burn_in", K::Number, false, kNonNegative, "s", shown(c.burn_in), "compare: simulated and discarded per seed (reaction-diffusion: half the run unless given)"),
+      setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed (reaction-diffusion: the other half unless given)"),
       setting("compare_sample_interval", K::Number, false, kPositive, "s", shown(c.sample_interval), "compare: between two samples"),
       setting("compare_seeds", K::Integer, false, ValueRange{2.0, false, 10000.0, false}, "",
               std::to_string(c.max_seeds), "compare: most seeds per arm (the sequential test stops when it can)"),
-      setting("compare_margin_mean", K::Number, false, kPositive, "", shown(c.margin_mean), "compare: margin on mean / U"),
+      setting("compare_margin_mean", K::Number, false, kPositive, "", shown(c.margin_mean), "compare: margin on mean / U (reaction-diffusion: relative, on each morphogen's mean)"),
       setting("compare_margin_coverage", K::Number, false, kPositive, "", shown(c.margin_coverage),
               "compare: margin on each coverage fraction"),
       setting("compare_margin_spectrum", K::Number, false, kPositive, "", shown(c.margin_spectrum),
@@ -135,7 +136,7 @@ std::vector<SceneKey> build_keys() {
       setting("compare_margin_density", K::Number, false, kPositive, "", shown(c.margin_density),
               "compare: relative margin on the agent-density dispersion"),
       setting("compare_margin_detail", K::Number, false, kPositive, "", shown(c.margin_detail),
-              "compare: relative margin on each detail energy"),
+              "compare: relative margin on each detail energy (reaction-diffusion: on each morphogen's variance / mean^2)"),
       setting("compare_bands", K::Integer, false, ValueRange{1.0, false, 64.0, false}, "", shown(c.spectrum_bands),
               "compare: manifold-harmonic (and radial) bands"),
       setting("compare_eigenpairs", K::Integer, false, ValueRange{4.0, false, 2000.0, false}, "", shown(c.eigenpairs),

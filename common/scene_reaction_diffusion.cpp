@@ -93,12 +93,14 @@ std::vector<std::string> formula_names(const ReactionDiffusionSpec& spec) {
 
 void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_required, const std::string& source,
                           const std::string& key) {
-  only_fields(entry, {"diffusion", "initial", "anisotropy"}, source, key);
+  only_fields(entry, {"diffusion", "initial", "anisotropy", "minimum"}, source, key);
   if (const auto d = entry.find("diffusion"); d != entry.end())
     m.diffusion = number_or_map(*d, source, key + ".diffusion");
   else if (diffusion_required)
     fail(source, key, "missing \"diffusion\" (m^2/s: a number >= 0 or a scalar map name)");
   if (const auto i = entry.find("initial"); i != entry.end()) m.initial = number_or_map(*i, source, key + ".initial");
+  if (const auto floor = entry.find("minimum"); floor != entry.end())
+    m.minimum = floor->is_null() ? -std::numeric_limits<double>::infinity() : finite_number(*floor, source, key + ".minimum");
   if (const auto a = entry.find("anisotropy"); a != entry.end() && !a->is_null()) {
     const std::string akey = key + ".anisotropy";
     only_fields(*a, {"direction", "ratio"}, source, akey);
@@ -162,13 +164,14 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   // ---- the morphogens and their kinetics ----
   const json* morphogens = given("morphogens");
   if (morphogens && !morphogens->is_object())
-    fail(source, "morphogens", morphogens->dump() + " must be an object {NAME: {\"diffusion\", \"initial\", \"anisotropy\"}}");
+    fail(source, "morphogens", morphogens->dump() + " must be an object {NAME: {\"diffusion\", \"initial\", \"anisotropy\", \"minimum\"}}");
   if (named) {
     for (size_t i = 0; i < named->morphogens.size(); ++i) {
       MorphogenSpec m;
       m.name = named->morphogens[i];
       m.diffusion = named->diffusion[i];
       m.initial = named->initial[i];
+      m.minimum = named->minimum[i];
       spec.morphogens.push_back(m);
     }
     spec.reaction = named->reaction;
@@ -332,6 +335,7 @@ nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec
     entry["diffusion"] = operand(g.diffusion);
     entry["initial"] = operand(g.initial);
     if (g.anisotropy) entry["anisotropy"] = {{"direction", g.anisotropy->direction}, {"ratio", g.anisotropy->ratio}};
+    if (std::isfinite(g.minimum)) entry["minimum"] = g.minimum;
     entry["reaction"] = spec.reaction[m];
     morphogens[g.name] = entry;
   }

@@ -13,9 +13,10 @@
 //                                                  the ALPHABETICAL order of the names (a JSON object has
 //                                                  no order of its own)
 //   "morphogens": {"u": {"diffusion": 2e-5 | MAP, "initial": 1.0 | MAP,
-//                        "anisotropy": {"direction": VECTOR_MAP, "ratio": r}}}
+//                        "anisotropy": {"direction": VECTOR_MAP, "ratio": r}, "minimum": 0 | null}}
 //                  "diffusion" is the rate ALONG the direction, ratio x it the rate across (r > 0;
-//                  r = 1 is isotropic)
+//                  r = 1 is isotropic); "minimum" is a floor the value is raised to after every
+//                  step (null: none; the turing model's v has 0 by default, as Turk's)
 //   "initial": {"noise": a, "seed_region": {"map": MAP, "values": {"u": 0.5}},
 //               "spots": {"count": n, "radius": r, "values": {"v": 0.25}}}
 //   "dirichlet": {"map": MAP, "values": {"u": 0, "v": 30}}   vertices where MAP >= 0.5 are held fixed, at
@@ -30,6 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -47,6 +49,7 @@ struct MorphogenSpec {
   MapOperand diffusion = 0.0;  // m^2/s along the direction (isotropic: everywhere), number or scalar map
   MapOperand initial = 0.0;    // the starting value: a number, or a scalar map (an earlier run's field)
   std::optional<AnisotropySpec> anisotropy;
+  double minimum = -std::numeric_limits<double>::infinity();  // the floor; -infinity: none
 };
 
 // Values per morphogen name (only the morphogens listed).

@@ -13,6 +13,7 @@
  *   RD_WEIGHT_SCALES      {c_0, c_1, ...}: the explicit sub-step then reads morphogen 0's weights only
  *   RD_ELL_WIDTH          the explicit sub-step matrix's ELL slots per row
  *   RD_ZERO_ROW_SUMS      only when that matrix holds off-diagonal entries only (see RD_NEIGHBOUR)
+ *   RD_FLOORS             {floor_0, floor_1, ...}: each morphogen's floor, -INFINITY for none
  * so the kinetics are compiled code, not interpreted.
  *
  * Layout: every per-vertex array is padded to `stride` (the padded launch size) and morphogen m's
@@ -167,4 +168,21 @@ __kernel void rd_imex_rhs(const uint n, const uint stride, __global const float*
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) b[m * stride + i] = m_i * (rd_u[m] + dt * rd_r[m]);
 #endif
+}
+
+/* The floors (ReactionDiffusionSystem::minimum): a free vertex's value below its morphogen's floor is
+ * raised to it, after the whole sub-step or implicit solve. A comparison, not fmax, so that a NaN
+ * stays NaN (fmax would hide a diverging run), as in the reference. Launched only when some floor is
+ * finite; held vertices keep their value. */
+__kernel void rd_apply_floors(const uint n, const uint stride, __global const uchar* fixed, __global float* u) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+#ifdef RD_HAS_FIXED
+  if (fixed[i]) return;
+#else
+  (void)fixed;
+#endif
+  const float floors[RD_MORPHOGENS] = RD_FLOORS;
+  for (uint m = 0; m < RD_MORPHOGENS; ++m)
+    if (u[m * stride + i] < floors[m]) u[m * stride + i] = floors[m];
 }

@@ -20,7 +20,7 @@
 namespace physarum::opencl {
 
 struct OpenCLReactionDiffusion::Kernels {
-  cl::Kernel substep, overflow, imex_rhs;
+  cl::Kernel substep, overflow, imex_rhs, floors;
 };
 
 
@@ -225,7 +225,14 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       for (CsrMatrix& W : substep_matrices) W = off_diagonal(W);
     ell_width = ell_width_for(substep_matrices[0], PHYSARUM_ELL_WIDTH, 0.03);
   }
-  const std::string prelude = "#define RD_MORPHOGENS " + std::to_string(M) + "\n#define RD_LOAD_COEFFICIENTS " + loads +
+  // The floors, as literals: -INFINITY for a morphogen without one.
+  std::string floors;
+  for (size_t m = 0; m < M; ++m) {
+    const bool floored = !system.minimum.empty() && std::isfinite(system.minimum[m]);
+    has_floors_ = has_floors_ || floored;
+    floors += std::string(m ? ", " : "") + (floored ? float_literal(system.minimum[m]) : "-INFINITY");
+  }
+  const std::string prelude = "#define RD_FLOORS {" + floors + "}\n#define RD_MORPHOGENS " + std::to_string(M) + "\n#define RD_LOAD_COEFFICIENTS " + loads +
                               "\n#define RD_REACTIONS " + reactions + "\n" + (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
                               (shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + scales + "}\n" : "") +
                               "#define RD_ELL_WIDTH " + std::to_string(ell_width) + "\n" +
@@ -239,7 +246,9 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
     kernels_->substep = cl::Kernel(program, "rd_explicit_substep");
     kernels_->overflow = cl::Kernel(program, "rd_explicit_overflow");
     kernels_->imex_rhs = cl::Kernel(program, "rd_imex_rhs");
-    group_ = common_work_group_size({&kernels_->substep, &kernels_->overflow, &kernels_->imex_rhs}, compute.device, 256);
+    kernels_->floors = cl::Kernel(program, "rd_apply_floors");
+    group_ = common_work_group_size({&kernels_->substep, &kernels_->overflow, &kernels_->imex_rhs, &kernels_->floors},
+                                    compute.device, 256);
   } catch (const cl::Error& e) {
     throw device_error("preparing the reaction-diffusion kernels (reaction_diffusion.cl) on " +
                            compute.device.device_name,
@@ -383,6 +392,7 @@ void OpenCLReactionDiffusion::explicit_step() {
                     overflow_value_, *from, *to);
       compute_.queue.enqueueNDRangeKernel(kernels_->overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
     }
+    if (has_floors_) apply_floors(*to);
     std::swap(from, to);
   }
   // An odd count ends in scratch: one device-side copy, so u_ (and its sub-buffers) stays current.
@@ -402,11 +412,20 @@ void OpenCLReactionDiffusion::imex_step() {
                                          static_cast<size_t>(m) * stride_ * sizeof(cl_float), 0, un * sizeof(cl_float));
         last_solve_ = solvers_[m]->solve(u_views_[m]);
       }
+      if (has_floors_) apply_floors(u_.buffer);
       continue;
     }
     host_imex_solve();
+    if (has_floors_) apply_floors(u_.buffer);
     last_solve_ = {};
   }
+}
+
+// After the whole sub-step (the overflow rows included): a floor applied to a partial sum would not be
+// the reference's floor of the value.
+void OpenCLReactionDiffusion::apply_floors(const cl::Buffer& u) {
+  set_arguments(kernels_->floors, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), fixed_, u);
+  compute_.queue.enqueueNDRangeKernel(kernels_->floors, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
 }
 
 // Every morphogen's system solved by its host factor on the right-hand sides and fields mapped in

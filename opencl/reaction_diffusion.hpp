@@ -114,6 +114,7 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
   void explicit_step();
   void imex_step();
   void host_imex_solve();
+  void apply_floors(const cl::Buffer& u);
   void update_dirichlet_coupling();
   void check_morphogen(int layer, const char* what) const;
 
@@ -127,6 +128,7 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
   double sub_step_ = 0.0;
   long long steps_taken_ = 0;
   bool has_fixed_ = false;
+  bool has_floors_ = false;  // some morphogen has a floor (ReactionDiffusionSystem::minimum)
   std::vector<std::string> translated_;
 
   std::unique_ptr<Kernels> kernels_;

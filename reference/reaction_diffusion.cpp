@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace physarum {
@@ -40,6 +41,9 @@ ReferenceReactionDiffusion::ReferenceReactionDiffusion(ReactionDiffusionSystem s
   if (!s.fixed.empty() && s.fixed.size() != n) fail("'fixed' must be empty or one entry per vertex");
   if (!(s.time_step > 0.0) || !std::isfinite(s.time_step)) fail("time_step must be > 0 and finite");
   if (s.substeps < 1) fail("substeps must be >= 1");
+  if (!s.minimum.empty() && s.minimum.size() != count) fail("'minimum' must be empty or one floor per morphogen");
+  for (const double floor : s.minimum)
+    if (std::isnan(floor) || floor == std::numeric_limits<double>::infinity()) fail("every floor must be finite or -infinity");
 
   std::vector<std::string> names = s.morphogens;
   names.insert(names.end(), s.coefficient_names.begin(), s.coefficient_names.end());
@@ -108,6 +112,7 @@ void ReferenceReactionDiffusion::explicit_substep(double h) {
     std::vector<double>& u = layers_[m].values();
     for (size_t v = 0; v < u.size(); ++v)
       if (!is_fixed(v)) u[v] += h * (reaction_[m][v] - diffused_[v] / system_.mass[v]);
+    apply_floor(m);
   }
 }
 
@@ -124,7 +129,17 @@ void ReferenceReactionDiffusion::imex_step(double dt) {
     if (coupling_[m].nonZeros() > 0) rhs -= coupling_[m] * Eigen::Map<const Eigen::VectorXd>(u.data(), vertex_count_);
     const Eigen::VectorXd next = factor_[m]->solve(rhs);
     for (int f = 0; f < free_count; ++f) u[static_cast<size_t>(free_vertices_[static_cast<size_t>(f)])] = next[f];
+    apply_floor(m);
   }
+}
+
+void ReferenceReactionDiffusion::apply_floor(size_t m) {
+  if (system_.minimum.empty() || system_.minimum[m] == -std::numeric_limits<double>::infinity()) return;
+  const double floor = system_.minimum[m];
+  std::vector<double>& u = layers_[m].values();
+  // A comparison, not std::max: a NaN stays NaN, so a diverging run is still seen as one.
+  for (size_t v = 0; v < u.size(); ++v)
+    if (!is_fixed(v) && u[v] < floor) u[v] = floor;
 }
 
 void ReferenceReactionDiffusion::step() {

@@ -64,6 +64,8 @@ class ReferenceReactionDiffusion final : public SimulationBackend {
   void explicit_substep(double h);
   void imex_step(double dt);
   void factor_implicit_systems();
+  // Raises the free vertices of morphogen m below its floor (ReactionDiffusionSystem::minimum) to it.
+  void apply_floor(size_t m);
   const IntrinsicVertexData<double>& checked_layer(int layer, const char* what) const;
   bool is_fixed(size_t vertex) const { return !system_.fixed.empty() && system_.fixed[vertex] != 0; }
 
