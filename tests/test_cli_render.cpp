@@ -74,6 +74,36 @@ TEST_F(RenderCommand, RecoloursWithoutChangingValues) {
     EXPECT_EQ(image_shape(out / name), (std::array<int, 3>{320, 240, 3})) << name;
 }
 
+// A reaction-diffusion run: the pictures show its preview morphogen, coloured over 0 .. twice the
+// run's color_unit (half the preview morphogen's largest value, so its maximum sits at the top of
+// the map), and the recoloured PLY keeps every morphogen's values.
+TEST(RenderReactionDiffusion, RecoloursThePreviewMorphogenAndKeepsEveryMorphogen) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << R"({"mesh": "shape:square", "scale_to_area": 1.0, "model": "gray-scott",
+    "initial": {"noise": 0.01, "spots": {"count": 3, "radius": 0.1, "values": {"u": 0.5, "v": 0.25}}},
+    "time_step": 1.0, "seed": 2})";
+  const CommandResult run = run_physarum("run " + quoted(dir.path / "scene.json") + " --backend reference --steps 40 --out " +
+                                         quoted(dir.path / "run"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const fs::path out = dir.path / "magma";
+  const CommandResult r = run_physarum("render " + quoted(dir.path / "run") + " --colormap magma --views 1 --width 64 --height 48 --out " +
+                                       quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream run_json(dir.path / "run" / "run.json");
+  const double unit = nlohmann::json::parse(run_json)["color_unit"].get<double>();
+  const PlyFields before = read_ply_fields((dir.path / "run" / "pheromone.ply").string());
+  const PlyFields after = read_ply_fields((out / "pheromone.ply").string());
+  ASSERT_EQ(after.property("u"), before.property("u"));
+  ASSERT_EQ(after.property("v"), before.property("v"));
+  const auto& v = after.property("v");
+  EXPECT_NEAR(*std::max_element(v.begin(), v.end()), 2.0 * unit, 1e-6 * unit);
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Rgb8 expected = colormap_color(ColorMap::named("magma"), v[i] / (2.0 * unit));
+    ASSERT_EQ(after.property("red")[i], expected[0]) << "vertex " << i;
+  }
+  EXPECT_EQ(image_shape(out / "preview.png"), (std::array<int, 3>{64, 48, 3}));
+}
+
 TEST_F(RenderCommand, TurntableDrawsDistinctFrames) {
   ASSERT_EQ(run_.exit_code, 0) << run_.err;
   const fs::path out = dir_->path / "turntable";

@@ -46,7 +46,8 @@ struct RenderOptions {
 
 // The parts of run.json that say how the run coloured its result.
 struct RunRecord {
-  double U = 0.0;
+  double U = 0.0;  // the colours' unit: U of Eq. 5 (agent runs) or run.json's color_unit (reaction-diffusion)
+  std::string field = "pheromone";  // the property the pictures show: a reaction-diffusion run's preview morphogen
   ColorMapSettings colormap;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
   std::optional<SurfaceSpec> surface;      // how to rebuild the surface (runs before it was recorded: none)
   std::optional<TextureSettings> texture;  // how the run baked texture.png (none: the mesh has no UVs)
@@ -63,9 +64,11 @@ RunRecord read_run_record(const fs::path& run_dir) {
     throw InputError(path.string() + ": not valid JSON: " + e.what());
   }
   RunRecord r;
-  if (!j.contains("U") || !j["U"].is_number() || !(j["U"].get<double>() > 0.0))
-    throw InputError(path.string() + ": no positive 'U' (the uniform steady state the colours are scaled to)");
-  r.U = j["U"].get<double>();
+  const char* unit = j.contains("color_unit") ? "color_unit" : "U";
+  if (!j.contains(unit) || !j[unit].is_number() || !(j[unit].get<double>() > 0.0))
+    throw InputError(path.string() + ": no positive '" + unit + "' (the unit the colours are scaled to)");
+  r.U = j[unit].get<double>();
+  if (j.contains("preview_morphogen") && j["preview_morphogen"].is_string()) r.field = j["preview_morphogen"].get<std::string>();
   if (j.contains("colormap")) r.colormap = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
   if (j.contains("surface")) r.surface = surface_spec_from_json(j["surface"], path.string() + ": key 'surface'");
   if (j.contains("texture")) r.texture = TextureSettings::from_json(j["texture"], path.string() + ": key 'texture'");
@@ -97,11 +100,11 @@ struct ResultFile {
   InputVertexData<double> values;
 };
 
-std::optional<ResultFile> read_result(const fs::path& run_dir, const std::string& name) {
+std::optional<ResultFile> read_result(const fs::path& run_dir, const std::string& name, const std::string& field) {
   const fs::path path = run_dir / name;
   if (!fs::exists(path)) return std::nullopt;
   ResultFile r{name, read_ply_fields(path.string()), {}};
-  const std::vector<double>& v = r.ply.property("pheromone");
+  const std::vector<double>& v = r.ply.property(field);
   r.values = InputVertexData<double>(v);
   return r;
 }
@@ -140,8 +143,8 @@ int run_render(const RenderOptions& o) {
   // ---- read everything first ----
   const fs::path run_dir(o.run_dir);
   const RunRecord run = read_run_record(run_dir);
-  const std::optional<ResultFile> full = read_result(run_dir, "fields_full.ply");
-  const std::optional<ResultFile> on_input = read_result(run_dir, "pheromone.ply");
+  const std::optional<ResultFile> full = read_result(run_dir, "fields_full.ply", run.field);
+  const std::optional<ResultFile> on_input = read_result(run_dir, "pheromone.ply", run.field);
   if (!full && !on_input) throw InputError(run_dir.string() + ": has neither fields_full.ply nor pheromone.ply");
   // Pictures come from the finest result there is.
   const ResultFile& picture_source = full ? *full : *on_input;
@@ -171,7 +174,16 @@ int run_render(const RenderOptions& o) {
   auto note = [&](const std::string& name) { written += (written.empty() ? "" : ", ") + name; };
   for (const ResultFile* r : {full ? &*full : nullptr, on_input ? &*on_input : nullptr}) {
     if (!r) continue;
-    write_field_ply((out / r->name).string(), r->ply.mesh, r->values, coloring);
+    // Every field the run wrote (a reaction-diffusion run: each morphogen), the shown one first: the
+    // vertex colours are the first field's, recoloured here.
+    std::vector<InputVertexData<double>> others;
+    std::vector<std::string> other_names;
+    for (const std::string& name : r->ply.property_names)
+      if (name != run.field && name != "red" && name != "green" && name != "blue" && name != "alpha")
+        other_names.push_back(name), others.emplace_back(r->ply.properties.at(name));
+    std::vector<PlyField> fields{PlyField{run.field, r->values}};
+    for (size_t k = 0; k < others.size(); ++k) fields.push_back(PlyField{other_names[k], others[k]});
+    write_fields_ply((out / r->name).string(), r->ply.mesh, fields, coloring, "recoloured by physarum render");
     note(r->name);
   }
   PreviewOptions preview;

@@ -197,6 +197,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   const std::filesystem::path out(o.out);
   const std::vector<IntrinsicVertexData<double>> final_layers = layers();
   const IntrinsicVertexData<double>& shown = final_layers[static_cast<size_t>(preview_layer)];
+  const double top = shown.empty() ? 0.0 : *std::max_element(shown.begin(), shown.end());
   const ColorMapping coloring = coloring_of(shown);
   std::vector<InputVertexData<double>> on_input, on_full;
   for (const auto& values : final_layers) {
@@ -251,6 +252,10 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   j["scene_file"] = o.scene;
   j["surface"] = surface_spec_json(SurfaceSpec::of(scene));
   if (texels) j["texture"] = o.texture.to_json();
+  // What `physarum render` recolours by: the colour map and the unit its levels count in (half the
+  // preview morphogen's largest value, as coloring_of chose; an agent run's unit is U).
+  j["colormap"] = color_map_settings_json(scene.colormap);
+  j["color_unit"] = top > 0.0 ? top / 2.0 : 1.0;
   j["reaction_diffusion"] = reaction_diffusion_json(spec);
   if (!scene.maps.empty()) j["maps"] = scene.maps_given;
   if (resume) j["resumed_from_step"] = resume->checkpoint.header.step;
