@@ -67,18 +67,22 @@ double distance_outside(const RegionSource& r, const Vec3& x) {
   return -(x - h.point).dot(h.normal);
 }
 
+// A PLY's vertex property, or InputError naming the map that asked for it.
+const std::vector<double>& ply_property(const Evaluation& e, const std::string& name, const PlyFields& ply,
+                                        const std::string& property) {
+  try {
+    return ply.property(property);
+  } catch (const InputError& error) {
+    e.fail(name, error.what());
+  }
+}
+
 // The per-input-vertex values of a PLY vertex property. The PLY's vertices are the input mesh's:
 // either as loaded (physarum's own outputs: pheromone.ply, maps.ply) or as in the mesh file when
 // loading repaired it (dropped unused vertices, split non-manifold ones; InputMesh::file_vertex).
 InputVertexData<double> ply_vertex_values(const Evaluation& e, const std::string& name, const PlyVertexSource& s) {
   const PlyFields ply = read_ply_fields(s.path);
-  const std::vector<double>& column = [&]() -> const std::vector<double>& {
-    try {
-      return ply.property(s.property);
-    } catch (const InputError& error) {
-      e.fail(name, error.what());
-    }
-  }();
+  const std::vector<double>& column = ply_property(e, name, ply, s.property);
   const InputMesh& input = e.input();
   InputVertexData<double> values(static_cast<size_t>(input.vertex_count()));
   if (static_cast<int>(column.size()) == input.vertex_count()) {
@@ -106,13 +110,7 @@ InputVertexData<double> ply_vertex_values(const Evaluation& e, const std::string
 // millionth of the input's size, as the file stores floats), and another surface is refused.
 IntrinsicVertexData<double> fields_full_values(const Evaluation& e, const std::string& name, const FieldsFullSource& s) {
   const PlyFields ply = read_ply_fields(s.path);
-  const std::vector<double>& column = [&]() -> const std::vector<double>& {
-    try {
-      return ply.property(s.property);
-    } catch (const InputError& error) {
-      e.fail(name, error.what());
-    }
-  }();
+  const std::vector<double>& column = ply_property(e, name, ply, s.property);
   const std::string same_surface =
       ": \"fields_full\" reads a run on this scene's own surface (the same mesh, scale_to_area, max_circumradius "
       "and min_angle); for a run on another surface, read its pheromone.ply with {\"ply\": FILE, \"property\": NAME}";

@@ -5,6 +5,9 @@
 // with the uninterrupted run's.
 #include "test_support.hpp"
 
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
@@ -57,5 +60,61 @@ inline bool run_and_kill(const std::vector<std::string>& args, const std::filesy
   ::waitpid(pid, &status, 0);
   return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
 }
+
+// The fixture of both models' resume suites, parameterised by backend: DIR/scene.json (the suite's
+// scene), a one-step probe run that skips the OpenCL case where there is no device, and the
+// arguments of a `steps`-step run of the scene into a folder.
+class ResumeFixture : public ::testing::TestWithParam<std::string> {
+ protected:
+  void prepare(const std::string& scene, long long steps) {
+    steps_ = steps;
+    std::ofstream(dir_.path / "scene.json") << scene;
+    const CommandResult probe = run_physarum("run " + quoted(dir_.path / "scene.json") + " --backend " + GetParam() +
+                                             " --steps 1 --texture-size 16 --out " + quoted(dir_.path / "probe"));
+    if (probe.exit_code != 0 && probe.err.find("device error") != std::string::npos)
+      GTEST_SKIP() << "no OpenCL device: " << probe.err;
+    ASSERT_EQ(probe.exit_code, 0) << probe.err;
+  }
+  std::vector<std::string> run_args(const std::filesystem::path& out) const {
+    return {"run", (dir_.path / "scene.json").string(), "--backend", GetParam(), "--steps", std::to_string(steps_),
+            "--texture-size", "16", "--out", out.string()};
+  }
+  // The resume contract: the scene run whole; the same with --checkpoint-every `every` (a checkpoint
+  // every `steps_per_checkpoint` steps) killed at a random moment and resumed writes the same bytes,
+  // records a resume step in (0, steps) that is a multiple of `steps_per_checkpoint`, and removes its
+  // checkpoint.
+  void expect_killed_run_resumes_to_the_same_bytes(const std::string& every, long long steps_per_checkpoint) {
+    namespace fs = std::filesystem;
+    std::string whole_args;
+    for (const std::string& a : run_args(dir_.path / "whole")) whole_args += quoted(fs::path(a)) + " ";
+    const CommandResult whole = run_physarum(whole_args);
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+
+    const unsigned seed = std::random_device{}();
+    const fs::path killed = dir_.path / "killed";
+    std::vector<std::string> args = run_args(killed);
+    args.insert(args.end(), {"--checkpoint-every", every});
+    ASSERT_TRUE(run_and_kill(args, killed / "checkpoint.bin", seed))
+        << "the run finished before it could be killed (kill delay seed " << seed << ")";
+    ASSERT_TRUE(fs::exists(killed / "checkpoint.bin"));
+    ASSERT_FALSE(fs::exists(killed / "run.json"));
+
+    const CommandResult resumed = run_physarum("run --resume " + quoted(killed));
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    for (const char* file : {"pheromone.ply", "fields_full.ply", "stats.csv", "preview.png"})
+      EXPECT_TRUE(bytes_of(killed / file) == bytes_of(dir_.path / "whole" / file))
+          << file << " differs from the uninterrupted run's (kill delay seed " << seed << ")";
+    std::ifstream in(killed / "run.json");
+    const auto j = nlohmann::json::parse(in);
+    const long long from = j["resumed_from_step"].get<long long>();
+    EXPECT_GT(from, 0);
+    EXPECT_LT(from, steps_);
+    EXPECT_EQ(from % steps_per_checkpoint, 0);
+    EXPECT_EQ(j["steps"], steps_);
+    EXPECT_FALSE(fs::exists(killed / "checkpoint.bin")) << "a finished run removes its checkpoint";
+  }
+  TempDir dir_;
+  long long steps_ = 0;
+};
 
 }  // namespace physarum::testing

@@ -31,51 +31,13 @@ const char* kScene = R"({
 })";
 constexpr int kSteps = 2000;
 
-class ResumeCommand : public ::testing::TestWithParam<std::string> {
+class ResumeCommand : public ResumeFixture {
  protected:
-  void SetUp() override {
-    std::ofstream(dir_.path / "scene.json") << kScene;
-    const CommandResult probe = run_physarum("run " + quoted(dir_.path / "scene.json") + " --backend " + GetParam() +
-                                             " --steps 1 --texture-size 16 --out " + quoted(dir_.path / "probe"));
-    if (probe.exit_code != 0 && probe.err.find("device error") != std::string::npos)
-      GTEST_SKIP() << "no OpenCL device: " << probe.err;
-    ASSERT_EQ(probe.exit_code, 0) << probe.err;
-  }
-  std::vector<std::string> run_args(const fs::path& out) const {
-    return {"run", (dir_.path / "scene.json").string(), "--backend", GetParam(), "--steps", std::to_string(kSteps),
-            "--texture-size", "16", "--out", out.string()};
-  }
-  TempDir dir_;
+  void SetUp() override { prepare(kScene, kSteps); }
 };
 
 TEST_P(ResumeCommand, KilledRunResumesToTheUninterruptedRunsBytes) {
-  std::string whole_args;
-  for (const std::string& a : run_args(dir_.path / "whole")) whole_args += quoted(fs::path(a)) + " ";
-  const CommandResult whole = run_physarum(whole_args);
-  ASSERT_EQ(whole.exit_code, 0) << whole.err;
-
-  const unsigned seed = std::random_device{}();
-  const fs::path killed = dir_.path / "killed";
-  std::vector<std::string> args = run_args(killed);
-  args.insert(args.end(), {"--checkpoint-every", "0.05"});  // every 5 steps
-  ASSERT_TRUE(run_and_kill(args, killed / "checkpoint.bin", seed))
-      << "the run finished before it could be killed (kill delay seed " << seed << ")";
-  ASSERT_TRUE(fs::exists(killed / "checkpoint.bin"));
-  ASSERT_FALSE(fs::exists(killed / "run.json"));
-
-  const CommandResult resumed = run_physarum("run --resume " + quoted(killed));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  for (const char* file : {"pheromone.ply", "fields_full.ply", "stats.csv", "preview.png"})
-    EXPECT_TRUE(bytes_of(killed / file) == bytes_of(dir_.path / "whole" / file))
-        << file << " differs from the uninterrupted run's (kill delay seed " << seed << ")";
-  std::ifstream in(killed / "run.json");
-  const auto j = nlohmann::json::parse(in);
-  const long long from = j["resumed_from_step"].get<long long>();
-  EXPECT_GT(from, 0);
-  EXPECT_LT(from, kSteps);
-  EXPECT_EQ(from % 5, 0);
-  EXPECT_EQ(j["steps"], kSteps);
-  EXPECT_FALSE(fs::exists(killed / "checkpoint.bin")) << "a finished run removes its checkpoint";
+  expect_killed_run_resumes_to_the_same_bytes("0.05", 5);  // every 5 steps
 }
 
 TEST_P(ResumeCommand, CorruptedOrForeignCheckpointsAreRefused) {

@@ -48,6 +48,7 @@
 #include "tools/feasible_surface.hpp"
 #include "tools/run_options.hpp"
 #include "tools/resume_point.hpp"
+#include "tools/run_checkpoints.hpp"
 #include "tools/run_reaction_diffusion.hpp"
 #include "tools/surface_exports.hpp"
 
@@ -196,43 +197,22 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
     return render_species_preview(full.mesh, layers, species_colorings, preview);
   };
 
-  // ---- checkpoints: what identifies this run, and where it starts ----
-  CheckpointHeader identity;
-  identity.build_id = checkpoint_build_id();
-  identity.backend = simulation.backend_name();
-  identity.device = simulation.device_name();
-  identity.scene_hash = scene_identity_hash(o, given_scene.mesh);
-  const std::filesystem::path checkpoint_path = std::filesystem::path(o.out) / "checkpoint.bin";
-  const long long checkpoint_interval =
-      o.checkpoint_every ? std::max<long long>(1, std::llround(*o.checkpoint_every / scene.time_step)) : 0;
-  long long first_step = 1;
-  double seconds_before = 0.0;  // simulation seconds of the run before its last checkpoint
+  // ---- checkpoints, and where the run starts ----
+  RunCheckpoints checkpoints(simulation, o, given_scene.mesh, scene.time_step, steps, resume);
   std::string stats;
-  if (resume) {
-    check_checkpoint_matches(resume->checkpoint.header, identity, resume->path);
-    if (resume->checkpoint.header.step >= steps)
-      throw InputError(resume->path + ": the checkpoint is at step " + std::to_string(resume->checkpoint.header.step) +
-                       " of " + std::to_string(steps) + ": nothing is left to run");
-    simulation.restore_state(resume->checkpoint.state);
-    stats = resume->checkpoint.header.run.at("stats").get<std::string>();
-    seconds_before = resume->checkpoint.header.run.at("seconds").get<double>();
-    first_step = resume->checkpoint.header.step + 1;
-    std::cerr << "physarum run: resuming " << o.out << " at step " << resume->checkpoint.header.step << " of " << steps << "\n";
+  if (const std::string* resumed = checkpoints.resumed_stats()) {
+    stats = *resumed;
   } else {
     stats = stats_csv_header() + species_stats_csv_columns(species_layers) + "\n";
     stats += stats_row() + "\n";
   }
-  if (checkpoint_interval > 0) create_output_folder(o.out);
-  long long checkpoints_written = 0;
-  double checkpoint_seconds = 0.0;
-  std::size_t checkpoint_bytes_written = 0;
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
   ProgressBar progress(steps);
-  const auto t0 = std::chrono::steady_clock::now();
+  checkpoints.start();
   double stats_seconds = 0.0;
-  for (long long s = first_step; s <= steps; ++s) {
+  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
     simulation.step();
     if (s % stats_every == 0 || s == steps) {
       simulation.finish();
@@ -246,27 +226,13 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
       time_lapse.add(picture());
       stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
     }
-    if (checkpoint_interval > 0 && s % checkpoint_interval == 0 && s < steps) {
-      const auto tc = std::chrono::steady_clock::now();
-      CheckpointHeader header = identity;
-      header.step = s;
-      header.run = {{"options", run_options_json(o)},
-                    {"stats", stats},
-                    {"seconds", seconds_before + std::chrono::duration<double>(tc - t0).count() - stats_seconds -
-                                    checkpoint_seconds}};
-      const std::string bytes = checkpoint_bytes(header, simulation.save_state());
-      write_text_file_atomically(checkpoint_path.string(), bytes);
-      ++checkpoints_written;
-      checkpoint_bytes_written = bytes.size();
-      checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
-    }
+    checkpoints.after_step(s, simulation, stats, stats_seconds);
     progress.update(s);
   }
   simulation.finish();
   // Throughput counts the simulation alone, not the statistics rows, the time-lapse frames or the
   // checkpoints; a resumed run adds the seconds before its checkpoint.
-  const double seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
-                         stats_seconds - checkpoint_seconds;
+  const double seconds = checkpoints.simulation_seconds(stats_seconds);
   const FieldStatistics final_stats = simulation.field_statistics(U);
   const std::vector<FieldStatistics> final_species_stats = species_statistics();
 
@@ -354,17 +320,9 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   j["parameters"] = scene_parameters_json(scene);
   // The colours as used (stops, levels in multiples of U): `physarum render` re-colours with it.
   j["colormap"] = color_map_settings_json(scene.colormap);
-  if (resume) j["resumed_from_step"] = resume->checkpoint.header.step;
-  if (checkpoint_interval > 0)
-    j["checkpoints"] = {{"every_steps", checkpoint_interval},
-                        {"written", checkpoints_written},
-                        {"bytes", checkpoint_bytes_written},
-                        {"seconds_per_checkpoint",
-                         checkpoints_written > 0 ? checkpoint_seconds / static_cast<double>(checkpoints_written) : 0.0}};
+  checkpoints.record(j);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
-  // The outputs are complete: the checkpoint has nothing left to protect.
-  std::error_code ignored;
-  std::filesystem::remove(checkpoint_path, ignored);
+  checkpoints.remove_file();
 
   std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
             << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean

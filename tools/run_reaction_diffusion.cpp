@@ -2,7 +2,6 @@
 
 #include "common/atomic_write.hpp"
 #include "common/cached_map_evaluation.hpp"
-#include "common/checkpoint.hpp"
 #include "common/errors.hpp"
 #include "common/field_transfer.hpp"
 #include "common/full_resolution_mesh.hpp"
@@ -16,6 +15,7 @@
 #include "common/texture_bake.hpp"
 #include "common/time_lapse.hpp"
 #include "tools/backend_factory.hpp"
+#include "tools/run_checkpoints.hpp"
 #include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
@@ -122,42 +122,21 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
     return render_preview(full.mesh, full.vertex_values(values), preview);
   };
 
-  // ---- checkpoints: what identifies this run, and where it starts ----
-  CheckpointHeader identity;
-  identity.build_id = checkpoint_build_id();
-  identity.backend = simulation.backend_name();
-  identity.device = simulation.device_name();
-  identity.scene_hash = scene_identity_hash(o, scene.mesh);
-  const std::filesystem::path checkpoint_path = std::filesystem::path(o.out) / "checkpoint.bin";
-  const long long checkpoint_interval =
-      o.checkpoint_every ? std::max<long long>(1, std::llround(*o.checkpoint_every / scene.time_step)) : 0;
-  long long first_step = 1;
-  double seconds_before = 0.0;  // simulation seconds of the run before its last checkpoint
+  // ---- checkpoints, and where the run starts ----
+  RunCheckpoints checkpoints(simulation, o, scene.mesh, scene.time_step, steps, resume);
   std::string stats;
-  if (resume) {
-    check_checkpoint_matches(resume->checkpoint.header, identity, resume->path);
-    if (resume->checkpoint.header.step >= steps)
-      throw InputError(resume->path + ": the checkpoint is at step " + std::to_string(resume->checkpoint.header.step) +
-                       " of " + std::to_string(steps) + ": nothing is left to run");
-    simulation.restore_state(resume->checkpoint.state);
-    stats = resume->checkpoint.header.run.at("stats").get<std::string>();
-    seconds_before = resume->checkpoint.header.run.at("seconds").get<double>();
-    first_step = resume->checkpoint.header.step + 1;
-    std::cerr << "physarum run: resuming " << o.out << " at step " << resume->checkpoint.header.step << " of " << steps << "\n";
+  if (const std::string* resumed = checkpoints.resumed_stats()) {
+    stats = *resumed;
   } else {
     stats = morphogen_stats_header(morphogens) + "\n";
     stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
   }
-  if (checkpoint_interval > 0) create_output_folder(o.out);
-  long long checkpoints_written = 0;
-  double checkpoint_seconds = 0.0;
-  std::size_t checkpoint_bytes_written = 0;
 
   // ---- simulate ----
   const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  const auto t0 = std::chrono::steady_clock::now();
-  double side_seconds = 0.0;  // statistics rows, frames and checkpoints: not simulation
-  for (long long s = first_step; s <= steps; ++s) {
+  checkpoints.start();
+  double side_seconds = 0.0;  // statistics rows and frames: not simulation
+  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
     simulation.step();
     if (s % stats_every == 0 || s == steps || time_lapse.due(s)) {
       simulation.finish();  // the steps enqueued so far count as simulation, not as the reading below
@@ -167,25 +146,11 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
       if (time_lapse.due(s)) time_lapse.add(picture());
       side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
     }
-    if (checkpoint_interval > 0 && s % checkpoint_interval == 0 && s < steps) {
-      const auto tc = std::chrono::steady_clock::now();
-      CheckpointHeader header = identity;
-      header.step = s;
-      header.run = {{"options", run_options_json(o)},
-                    {"stats", stats},
-                    {"seconds", seconds_before + std::chrono::duration<double>(tc - t0).count() - side_seconds -
-                                    checkpoint_seconds}};
-      const std::string bytes = checkpoint_bytes(header, simulation.save_state());
-      write_text_file_atomically(checkpoint_path.string(), bytes);
-      ++checkpoints_written;
-      checkpoint_bytes_written = bytes.size();
-      checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
-    }
+    checkpoints.after_step(s, simulation, stats, side_seconds);
   }
   simulation.finish();
   // A resumed run adds the seconds before its checkpoint.
-  const double seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
-                         side_seconds - checkpoint_seconds;
+  const double seconds = checkpoints.simulation_seconds(side_seconds);
   for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
     for (const double x : simulation.field_values(m))
       if (!std::isfinite(x))
@@ -258,17 +223,9 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   j["color_unit"] = top > 0.0 ? top / 2.0 : 1.0;
   j["reaction_diffusion"] = reaction_diffusion_json(spec);
   if (!scene.maps.empty()) j["maps"] = scene.maps_given;
-  if (resume) j["resumed_from_step"] = resume->checkpoint.header.step;
-  if (checkpoint_interval > 0)
-    j["checkpoints"] = {{"every_steps", checkpoint_interval},
-                        {"written", checkpoints_written},
-                        {"bytes", checkpoint_bytes_written},
-                        {"seconds_per_checkpoint",
-                         checkpoints_written > 0 ? checkpoint_seconds / static_cast<double>(checkpoints_written) : 0.0}};
+  checkpoints.record(j);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
-  // The outputs are complete: the checkpoint has nothing left to protect.
-  std::error_code ignored;
-  std::filesystem::remove(checkpoint_path, ignored);
+  checkpoints.remove_file();
 
   std::cout << "physarum run: " << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, "
             << substeps << " sub-step" << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s; wrote "
