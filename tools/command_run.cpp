@@ -147,13 +147,7 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
-  // Where each texel lies on the triangulation, found now: a UV map that cannot be baked is bad
-  // input, refused before anything is simulated or written.
-  std::optional<TexelLocations> texels;
-  if (!input.uvs.empty())
-    texels = locate_texels(input, domain, o.texture.size, o.texture.size);
-  else
-    std::cerr << "physarum run: note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
+  const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
   const ChosenBackend chosen = choose_backend(o.backend, o.device);
   const BackendChoice choice = chosen.backend;
   const std::optional<opencl::ComputeContext>& compute = chosen.compute;

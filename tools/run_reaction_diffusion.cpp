@@ -89,11 +89,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   const int preview_layer = spec.morphogen_index(spec.preview_morphogen);
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
-  std::optional<TexelLocations> texels;
-  if (!input.uvs.empty())
-    texels = locate_texels(input, domain, o.texture.size, o.texture.size);
-  else
-    std::cerr << "physarum run: note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
+  const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
   const ChosenBackend chosen = choose_backend(o.backend, o.device);
   if (o.backend == "auto") std::cerr << "physarum run: " << to_string(chosen.backend) << " backend (auto: " << chosen.why << ")\n";
   if (system.integrator == ReactionIntegrator::Explicit && substeps > 1)

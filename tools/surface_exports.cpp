@@ -3,6 +3,8 @@
 #include "common/errors.hpp"
 #include "common/texture_image.hpp"
 
+#include <iostream>
+
 namespace physarum::cli {
 
 void TextureSettings::check() const {
@@ -89,6 +91,13 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
   written.glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
   written.files.push_back("result.glb");
   return written;
+}
+
+std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,
+                                             const TextureSettings& texture, const std::string& command) {
+  if (!input.uvs.empty()) return locate_texels(input, domain, texture.size, texture.size);
+  std::cerr << command << ": note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
+  return std::nullopt;
 }
 
 }  // namespace physarum::cli

@@ -42,6 +42,12 @@ nlohmann::ordered_json surface_spec_json(const SurfaceSpec& spec);
 // InputError naming `where` when a key is missing or has the wrong type.
 SurfaceSpec surface_spec_from_json(const nlohmann::json& j, const std::string& where);
 
+// Where each texel of a --texture-size square lies on the triangulation, found before a run starts:
+// a UV map that cannot be baked is bad input, refused before anything is simulated or written. Without
+// UVs: nothing, and `command` tells the user on stderr that no texture.png will be written.
+std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,
+                                             const TextureSettings& texture, const std::string& command);
+
 struct SurfaceExportsWritten {
   std::vector<std::string> files;  // names inside the output folder, in the order written
   GltfExportSummary glb;
