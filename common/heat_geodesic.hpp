@@ -3,7 +3,10 @@
 // the intrinsic triangulation of a SurfaceDomain:
 //   1. heat flow for a short time t = m h^2 (h the mean intrinsic edge length, m the time factor):
 //      (M + t L) u = delta_seeds, one backward Euler step from the seeds' indicator;
-//   2. the unit field X = -grad u / |grad u| on every face (heat flows away from the seeds);
+//   2. the unit field X = -grad u / |grad u| on every face (heat flows away from the seeds), except on
+//      the faces with exactly one seed corner, where X is the gradient of the distance's own
+//      interpolant (0 at the seed, the edge lengths beside it), and those with three (inside a region
+//      of seeds), where X = 0 (heat_geodesic.cpp says why);
 //   3. the distance phi solves the Poisson problem L phi = -div X, fixed per connected piece so that
 //      its smallest value over the seeds is 0 (values below 0 next to the seeds are clamped to 0).
 // L is the PSD cotan Laplacian and M the lumped mass of the domain. On a surface with boundary, step 1

@@ -1,6 +1,6 @@
 // The heat method (common/heat_geodesic.hpp) against distances known in closed form: great circles
 // on the unit icosphere (error within 1 % of pi at shape:sphere's resolution, and falling as the
-// sphere is refined), Euclidean distance on the flat square from a corner and on the disk from its
+// sphere is refined; the seed's first ring; a region of seeds), Euclidean distance on the flat square from a corner and on the disk from its
 // centre (surfaces with boundary: the Neumann/Dirichlet average), and |grad distance| = 1 away from
 // the source and the cut locus.
 #include "common/errors.hpp"
@@ -24,9 +24,10 @@ using testing::max_error;
 
 SceneSurface unscaled(const std::string& mesh) { return prepare_surface(SurfaceSpec{mesh, std::nullopt, std::nullopt, 0.0}); }
 
-// The issue asks for 1 % of pi at shape:sphere's resolution (level 4, h = 0.075): measured 0.93-1.09 %
-// there (the largest errors at the antipode, the cut locus), so level 4 is held to 1.2 % and the
-// 1 % is asserted one level finer (measured 0.67 %).
+// The issue asks for 1 % of pi at shape:sphere's resolution (level 4, h = 0.075). Measured 0.51 /
+// 0.76 / 0.74 % for these sources (0.93-1.09 % before the faces around the seed took the cone's own
+// gradient: heat_geodesic.cpp), the largest errors at the antipode (the cut locus); one level finer
+// 0.39 / 0.51 / 0.60 %.
 TEST(HeatGeodesic, GreatCircleDistanceOnTheIcosphereWithinOnePercentOfPi) {
   const SceneSurface s = unscaled("shape:sphere");  // level 4: 2562 vertices, no refinement
   ASSERT_EQ(s.domain.vertex_count, s.input.vertex_count());
@@ -39,18 +40,62 @@ TEST(HeatGeodesic, GreatCircleDistanceOnTheIcosphereWithinOnePercentOfPi) {
     for (int v = 0; v < s.input.vertex_count(); ++v)
       worst = std::max(worst, std::abs(d[static_cast<size_t>(s.input_to_intrinsic[static_cast<size_t>(v)])] -
                                        great_circle(p, s.input.positions[static_cast<size_t>(v)])));
-    EXPECT_LT(worst, 0.012 * std::numbers::pi) << "source " << source;
+    EXPECT_LT(worst, 0.01 * std::numbers::pi) << "source " << source;
     EXPECT_EQ(d[static_cast<size_t>(seed)], 0.0);
   }
-  const InputMesh finer = testing::make_icosphere(5);
-  const SurfaceDomain domain = testing::make_domain(finer);
-  const HeatGeodesicSolver heat5(domain);
+}
+
+TEST(HeatGeodesic, FirstRingAroundASeedSitsAtItsGreatCircleDistance) {
+  // The distance is a cone at a point seed; a unit field alone leaves the first ring short of it by
+  // about (1 - cos(theta/2)) h = 0.13 h on an equilateral fan, and every farther vertex with it. With
+  // the seed's faces carrying the cone's interpolant the ring is unbiased: its mean error within
+  // 0.02 h, each vertex within 0.1 h (phi still fits the faces beyond the ring in least squares).
+  const InputMesh mesh = testing::make_icosphere(4);
+  const SurfaceDomain domain = testing::make_domain(mesh);
+  const HeatGeodesicSolver heat(domain);
+  const double h = heat.mean_edge_length();
   for (const int source : {0, 100, 2000}) {
-    const IntrinsicVertexData<double> d = heat5.distance({source});
-    EXPECT_LT(max_error(finer, d, [&](const Eigen::Vector3d& q) { return great_circle(finer.positions[static_cast<size_t>(source)], q); }),
-              0.01 * std::numbers::pi)
-        << "source " << source;
+    const IntrinsicVertexData<double> d = heat.distance({source});
+    double sum = 0.0;
+    int ring = 0;
+    for (int f = 0; f < domain.face_count; ++f)
+      for (int k = 0; k < 3; ++k) {
+        if (domain.face_vertices[f][k] != source) continue;
+        const int w = domain.face_vertices[f][(k + 1) % 3];  // each neighbour once: the fan's next corner
+        const double error = d[static_cast<size_t>(w)] - great_circle(mesh.positions[static_cast<size_t>(source)], mesh.positions[static_cast<size_t>(w)]);
+        EXPECT_LT(std::abs(error), 0.1 * h) << "source " << source << " neighbour " << w;
+        sum += error;
+        ++ring;
+      }
+    ASSERT_GE(ring, 5) << "source " << source;
+    EXPECT_LT(std::abs(sum / ring), 0.02 * h) << "source " << source;
   }
+}
+
+TEST(HeatGeodesic, DistanceFromASeedRegionIsZeroInsideAndGrowsFromItsRim) {
+  // Every vertex of a spherical cap (radius 0.5 about vertex 0) is a seed: the distance is 0 on the
+  // cap and the great-circle distance to its rim outside (the cap's seeds lie on its rim's circle up
+  // to one edge, so the exact distance from the nearest seed is r - r_rim within h, r_rim the largest
+  // seed radius). Without care the cap's interior faces, where the heat still flows outward from the
+  // cap's centre, made it the distance from the centre (0.47 on the outermost seeds).
+  const InputMesh mesh = testing::make_icosphere(4);
+  const SurfaceDomain domain = testing::make_domain(mesh);
+  const HeatGeodesicSolver heat(domain);
+  const Eigen::Vector3d centre = mesh.positions[0];
+  std::vector<int> cap;
+  double rim = 0.0;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const double r = great_circle(centre, mesh.positions[static_cast<size_t>(v)]);
+    if (r < 0.5) {
+      cap.push_back(v);
+      rim = std::max(rim, r);
+    }
+  }
+  ASSERT_GT(cap.size(), 100u);
+  const IntrinsicVertexData<double> d = heat.distance(cap);
+  for (const int v : cap) EXPECT_LT(d[static_cast<size_t>(v)], 0.25 * heat.mean_edge_length()) << "seed " << v;
+  EXPECT_LT(max_error(mesh, d, [&](const Eigen::Vector3d& q) { return std::max(0.0, great_circle(centre, q) - rim); }),
+            heat.mean_edge_length());
 }
 
 TEST(HeatGeodesic, SphereErrorFallsUnderRefinement) {
@@ -79,8 +124,13 @@ TEST(HeatGeodesic, EuclideanDistanceOnTheSquareFromACornerWithinTwoPercent) {
   for (int v = 0; v < s.input.vertex_count(); ++v)
     worst = std::max(worst, std::abs(d[static_cast<size_t>(s.input_to_intrinsic[static_cast<size_t>(v)])] -
                                      s.input.positions[static_cast<size_t>(v)].norm()));
-  // The issue asks for 2 % (of the largest distance, the diagonal sqrt 2); measured 2.25 %, largest
-  // near the far corner, where the Neumann half bends the level sets to meet the far edges square.
+  // The issue asks for 2 % (of the largest distance, the diagonal sqrt 2); measured 2.45 % (-2.3 % at
+  // the corner (1, 0), +2.4 % near the far corner). The Poisson step is not the cause (fed the exact
+  // directions the same code is within 0.08 %); the heat's direction is, near the far edges, where
+  // the Neumann solution turns the level sets to meet them square: the error grows with the band's
+  // width sqrt(t) (2.45 / 3.36 / 4.22 % for m = 1 / 2 / 4), and the Dirichlet half of the average is
+  // negligible for a corner seed (the two boundary edges at the seed drain it; Neumann alone gives
+  // the same 2.45 %). Open: held to 2.5 % until a boundary treatment fixes it.
   EXPECT_LT(worst, 0.025 * std::sqrt(2.0));
 }
 
@@ -96,7 +146,7 @@ TEST(HeatGeodesic, DistanceFromTheDiskCentreIsTheRadius) {
   for (int v = 0; v < s.input.vertex_count(); ++v)
     worst = std::max(worst, std::abs(d[static_cast<size_t>(s.input_to_intrinsic[static_cast<size_t>(v)])] -
                                      s.input.positions[static_cast<size_t>(v)].norm()));
-  EXPECT_LT(worst, 0.02);  // 2 % of the radius
+  EXPECT_LT(worst, 0.005);  // 0.5 % of the radius (measured 0.24 %; 0.88 % before the seed's faces took the cone)
 }
 
 TEST(HeatGeodesic, GradientHasUnitLengthAwayFromSourceAndCutLocus) {
