@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -17,36 +18,35 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// A heat solution far from the seeds is smaller than any double: one backward Euler step of length
-// t = h^2 decays by about e per edge, so 700-odd edges away (a sphere of a million faces from pole to
-// pole) it underflows, the gradient vanishes, and the distance there is lost (the 43 % error quoted
-// in the issue). So the heat is solved in levels, each with its own scale: value[v] stands for
-// value[v] * exp(-log_scale[v]).
+// A heat solution far from the seeds is tiny: one backward Euler step of length t = h^2 decays by
+// about e per edge, so pole to pole on a sphere of a million faces (~700 edges) it spans ~300 decades,
+// and twice that underflows any double. So the heat is solved in levels, each with its own scale:
+// value[v] stands for value[v] * exp(-log_scale[v]).
 struct ScaledHeat {
   Eigen::VectorXd value;
   std::vector<double> log_scale;
 };
 
-// Values below this fraction of a level's largest unresolved value wait for the next level. Not
-// merely above underflow (2e-308): measured on the level-8 icosphere (1.3 M faces, pole to pole
-// 800 edges, no value of the single solve below 1e-308), the tiny values of one solve are not
-// accurate enough for their gradient's direction: maximum error 42 % of pi with no levels, 13 %
-// with levels at 1e-200, 0.51 % at 1e-100 (the same as with no levels needed at level 7, 0.51 %).
-// Re-measured after the seed's faces took the cone's interpolant (level 8, source 0): 0.29 % at
-// 1e-100 (3 levels) and at 1e-160 (2 levels, every distance the same to 1e-10, also on a sphere of
-// radius 100), 2.7 % at 1e-170, 6.2 % at 1e-180, 13 % at 1e-200. Why values below ~1e-165 of the
-// top go wrong is not understood (the system is an M-matrix, so the solves do not cancel), hence
-// the margin kept here: one level fewer (a quarter of a distance() at that size) waits on it.
-constexpr double kResolved = 1e-100;
+// Each level is scaled so that its largest values sit near kTop, and resolves every value down to
+// kLowest, 18 decades above the smallest normal double (2.2e-308): 440 decades per solve, so a
+// sphere of 1.3 M faces (level-8 icosphere, ~300 decades pole to pole) needs one level and a flat
+// strip ~1000 edges long two. The tiny values are as accurate as the large ones for the gradient's
+// direction: measured on that sphere, one level (resolving ~1e-290 relative) and three levels
+// (1e-100 each) give the same distances (max error 0.295 % of pi both). Once they looked
+// inaccurate below ~1e-165 of the top: that was |grad u| underflowing when squared, not the solve
+// (the divergence below now scales the gradient before normalising it). kTop leaves 150 decades of
+// headroom: nothing here squares a heat value.
+constexpr double kTop = 1e150;
+constexpr double kLowest = 1e-290;
 constexpr int kMaxLevels = 64;
 
-// Solves A u = rhs in levels. Level 0 is the plain solve; vertices with u >= kResolved * max are
-// resolved. The rest, C, is exactly A^{-1} f with f = A (u 1_C): since A u = rhs, f is supported on
-// the band where C meets the resolved set K (f_i = rhs_i - sum_{j in K} A_ij u_j for i in C,
-// f_i = sum_{j in C} A_ij u_j for i in K), so it needs only values next to K, which are accurate.
-// Scaled by 1/(kResolved * max) the next solve brings C's values back into range, and each level is
-// as accurate as the first (tested: forcing levels at 1e-10 or 1e-40 on a small sphere changes no
-// distance).
+// Solves A u = rhs in levels (rhs scaled by the caller so that u peaks near kTop). Level 0 is the
+// plain solve; vertices with u >= kLowest are resolved. The rest, C, is exactly A^{-1} f with
+// f = A (u 1_C): since A u = rhs, f is supported on the band where C meets the resolved set K
+// (f_i = rhs_i - sum_{j in K} A_ij u_j for i in C, f_i = sum_{j in C} A_ij u_j for i in K), so it
+// needs only values next to K, which are accurate. Scaled by kTop / kLowest the next solve brings
+// C's values back up, and each level is as accurate as the first (tests/test_geodesic_heat.cpp: a
+// strip long enough to need three levels).
 ScaledHeat heat_in_levels(const CholeskyFactor& solver, const SparseMatrix& a, Eigen::VectorXd rhs) {
   const int n = static_cast<int>(a.rows());
   ScaledHeat out{Eigen::VectorXd::Zero(n), std::vector<double>(static_cast<size_t>(n), 0.0)};
@@ -59,16 +59,14 @@ ScaledHeat heat_in_levels(const CholeskyFactor& solver, const SparseMatrix& a, E
     for (int v = 0; v < n; ++v)
       if (!known[static_cast<size_t>(v)]) top = std::max(top, x[v]);
     if (!(top > 0.0) || !std::isfinite(top)) break;  // no heat reaches the rest (Dirichlet, boundary seeds only)
-    const double floor = kResolved * top;
     for (int v = 0; v < n; ++v)
-      if (!known[static_cast<size_t>(v)] && x[v] >= floor) {
+      if (!known[static_cast<size_t>(v)] && x[v] >= kLowest) {
         known[static_cast<size_t>(v)] = 1;
         out.value[v] = x[v];
         out.log_scale[static_cast<size_t>(v)] = log_scale;
         ++known_count;
       }
     if (known_count == n) break;
-    const double scale = 1.0 / floor;
     Eigen::VectorXd next = Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i) {
       const bool i_known = known[static_cast<size_t>(i)] != 0;
@@ -77,10 +75,11 @@ ScaledHeat heat_in_levels(const CholeskyFactor& solver, const SparseMatrix& a, E
         const int j = static_cast<int>(it.row());
         if (j != i && (known[static_cast<size_t>(j)] != 0) != i_known) sum += it.value() * x[j];
       }
-      next[i] = scale * (i_known ? sum : rhs[i] - sum);
+      // kTop / kLowest overflows a double: two factors, the first bringing the band to ~1.
+      next[i] = (i_known ? sum : rhs[i] - sum) / kLowest * kTop;
     }
     rhs = std::move(next);
-    log_scale += std::log(scale);
+    log_scale += std::log(kTop) - std::log(kLowest);
   }
   return out;
 }
@@ -205,7 +204,8 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
 
   // 1. Heat flow from the seeds' indicator.
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
-  for (const int s : seeds) delta[s] = 1.0;
+  // kTop times the seed's mass: the solution there is about delta_s / m_s, i.e. near kTop.
+  for (const int s : seeds) delta[s] = kTop * domain_.vertex_mass[static_cast<size_t>(s)];
   ScaledHeat u = heat_in_levels(f.heat, f.heat_matrix, delta);
   if (f.boundary) {
     // A seed on the boundary keeps its Neumann value (u = 0 on the rest of the boundary): the
@@ -214,7 +214,7 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (const int s : seeds) {
       if (!f.on_boundary[static_cast<size_t>(s)]) {
-        rhs[s] += 1.0;
+        rhs[s] += delta[s];
         continue;
       }
       rhs[s] = u.value[s];  // level 0: a seed is among the largest values
@@ -264,15 +264,25 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
   for (int face = 0; face < domain_.face_count; ++face) {
     const auto& p = domain_.face_corners[face];
     const auto& v = domain_.face_vertices[face];
-    // The corners at the scale of the largest one (the lowest level among them).
-    double face_scale = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k)
-      if (u.value[v[k]] > 0.0) face_scale = std::min(face_scale, u.log_scale[static_cast<size_t>(v[k])]);
+    // The corners in one scale. On one level (nearly every face) their values are that; a face
+    // across levels is taken in logarithms with its largest corner at 1 (one level's scale differs
+    // from the next by 440 decades, so no product of a value and a scale factor is safe there).
+    std::array<double, 3> corner_heat{u.value[v[0]], u.value[v[1]], u.value[v[2]]};
+    const double level0 = u.log_scale[static_cast<size_t>(v[0])];
+    if (level0 != u.log_scale[static_cast<size_t>(v[1])] || level0 != u.log_scale[static_cast<size_t>(v[2])]) {
+      std::array<double, 3> log_heat{};
+      double largest = -std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        log_heat[k] = corner_heat[k] > 0.0 ? std::log(corner_heat[k]) - u.log_scale[static_cast<size_t>(v[k])]
+                                           : -std::numeric_limits<double>::infinity();
+        largest = std::max(largest, log_heat[k]);
+      }
+      for (int k = 0; k < 3; ++k) corner_heat[k] = corner_heat[k] > 0.0 ? std::exp(log_heat[k] - largest) : 0.0;
+    }
     Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
     for (int k = 0; k < 3; ++k) {
-      if (!(u.value[v[k]] > 0.0)) continue;
       const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
-      grad += u.value[v[k]] * std::exp(face_scale - u.log_scale[static_cast<size_t>(v[k])]) * Eigen::Vector2d(-e.y(), e.x());
+      grad += corner_heat[k] * Eigen::Vector2d(-e.y(), e.x());
     }
     Eigen::Vector2d x;
     const int seed_corners = is_seed[static_cast<size_t>(v[0])] + is_seed[static_cast<size_t>(v[1])] + is_seed[static_cast<size_t>(v[2])];
@@ -287,9 +297,11 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
       const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
       x = cone / (a.x() * b.y() - a.y() * b.x());  // signed 2A: the layout's orientation cancels
     } else {
-      const double length = grad.norm();
-      if (!(length > 0.0)) continue;  // no heat reached this face: no direction
-      x = -grad / length;
+      // Only the direction counts: scaled to its largest component first, because far from the
+      // seeds the components can be ~1e-290 and their squares underflow.
+      const double largest = grad.cwiseAbs().maxCoeff();
+      if (!(largest > 0.0)) continue;  // no heat reached this face: no direction
+      x = -(grad / largest).normalized();
     }
     const auto& cot = f.corner_cot[static_cast<size_t>(face)];
     for (int i = 0; i < 3; ++i) {

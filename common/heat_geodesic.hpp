@@ -15,9 +15,9 @@
 // at right angles, Dirichlet alone makes them follow it. A seed ON the boundary heats only the Neumann
 // solution (the Dirichlet one holds it at 0); with seeds on the boundary alone the result is Neumann's.
 //
-// Far from the seeds the heat falls below what one solve resolves (about e^-1 per edge: 1e-100 some
-// 200 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
-// stopped (heat_geodesic.cpp); a surface less than ~200 edges across needs one level.
+// Far from the seeds the heat falls below what one solve resolves (about e^-1 per edge: 440 decades
+// ~1000 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
+// stopped (heat_geodesic.cpp); a surface less than ~1000 edges across needs one level.
 //
 // The factorizations (supernodal Cholesky through CHOLMOD, one METIS analysis shared by all three:
 // common/shared_cholesky.hpp) are built once, in the

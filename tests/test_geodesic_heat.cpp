@@ -8,6 +8,7 @@
 #include "common/heat_geodesic.hpp"
 #include "common/scene_surface.hpp"
 #include "geodesic_test_support.hpp"
+#include "map_tool_meshes.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "test_support.hpp"
 
@@ -96,6 +97,21 @@ TEST(HeatGeodesic, DistanceFromASeedRegionIsZeroInsideAndGrowsFromItsRim) {
   for (const int v : cap) EXPECT_LT(d[static_cast<size_t>(v)], 0.25 * heat.mean_edge_length()) << "seed " << v;
   EXPECT_LT(max_error(mesh, d, [&](const Eigen::Vector3d& q) { return std::max(0.0, great_circle(centre, q) - rim); }),
             heat.mean_edge_length());
+}
+
+// Heat decays about e-fold per edge, and one solve resolves 440 decades (~1000 edges): a strip
+// 3000 cells long seeded along one short side needs three levels. The distance there is x; without
+// the levels (or with a wrong rescaling between them) the far two thirds get no direction.
+TEST(HeatGeodesic, DistanceAlongAStripLongerThanOneSolveResolves) {
+  const InputMesh strip = testing::make_flat_rectangle(0.0, 3000.0, 0.0, 2.0, 3000, 2);
+  const SurfaceDomain domain = testing::make_domain(strip);
+  std::vector<int> short_side;
+  for (int v = 0; v < strip.vertex_count(); ++v)
+    if (strip.positions[static_cast<size_t>(v)].x() == 0.0) short_side.push_back(v);
+  ASSERT_EQ(short_side.size(), 3u);
+  const IntrinsicVertexData<double> d = HeatGeodesicSolver(domain).distance(short_side);
+  // Measured 7.6 (0.25 % of the length; the issue asks 2 % for flat distances). One level: 1830.
+  EXPECT_LT(testing::max_error(strip, d, [](const Eigen::Vector3d& q) { return q.x(); }), 0.005 * 3000.0);
 }
 
 TEST(HeatGeodesic, SphereErrorFallsUnderRefinement) {
