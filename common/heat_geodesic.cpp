@@ -1,6 +1,7 @@
 #include "common/heat_geodesic.hpp"
 
 #include "common/errors.hpp"
+#include "common/parallel_chunks.hpp"
 #include "common/shared_cholesky.hpp"
 #include "common/surface_pieces.hpp"
 
@@ -260,55 +261,66 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
           d = std::min(d, (p[a] - p[b]).norm());
         }
   }
-  Eigen::VectorXd divergence = Eigen::VectorXd::Zero(n);
-  for (int face = 0; face < domain_.face_count; ++face) {
-    const auto& p = domain_.face_corners[face];
-    const auto& v = domain_.face_vertices[face];
-    // The corners in one scale. On one level (nearly every face) their values are that; a face
-    // across levels is taken in logarithms with its largest corner at 1 (one level's scale differs
-    // from the next by 440 decades, so no product of a value and a scale factor is safe there).
-    std::array<double, 3> corner_heat{u.value[v[0]], u.value[v[1]], u.value[v[2]]};
-    const double level0 = u.log_scale[static_cast<size_t>(v[0])];
-    if (level0 != u.log_scale[static_cast<size_t>(v[1])] || level0 != u.log_scale[static_cast<size_t>(v[2])]) {
-      std::array<double, 3> log_heat{};
-      double largest = -std::numeric_limits<double>::infinity();
-      for (int k = 0; k < 3; ++k) {
-        log_heat[k] = corner_heat[k] > 0.0 ? std::log(corner_heat[k]) - u.log_scale[static_cast<size_t>(v[k])]
-                                           : -std::numeric_limits<double>::infinity();
-        largest = std::max(largest, log_heat[k]);
+  // Large meshes: faces in a fixed number of chunks, each summing into its own vector, added in chunk
+  // order, so the cores share the pass (70 ms at 1.3 M faces on one) and the result does not depend
+  // on the threads. Small ones: one chunk, no thread started.
+  const int chunks = domain_.face_count < 65536 ? 1 : 4;
+  std::vector<Eigen::VectorXd> partial(static_cast<size_t>(chunks), Eigen::VectorXd::Zero(n));
+  parallel_chunks(chunks, [&](int chunk) {
+    Eigen::VectorXd& divergence = partial[static_cast<size_t>(chunk)];
+    const int first = static_cast<int>(static_cast<long long>(domain_.face_count) * chunk / chunks);
+    const int last = static_cast<int>(static_cast<long long>(domain_.face_count) * (chunk + 1) / chunks);
+    for (int face = first; face < last; ++face) {
+      const auto& p = domain_.face_corners[face];
+      const auto& v = domain_.face_vertices[face];
+      // The corners in one scale. On one level (nearly every face) their values are that; a face
+      // across levels is taken in logarithms with its largest corner at 1 (one level's scale differs
+      // from the next by 440 decades, so no product of a value and a scale factor is safe there).
+      std::array<double, 3> corner_heat{u.value[v[0]], u.value[v[1]], u.value[v[2]]};
+      const double level0 = u.log_scale[static_cast<size_t>(v[0])];
+      if (level0 != u.log_scale[static_cast<size_t>(v[1])] || level0 != u.log_scale[static_cast<size_t>(v[2])]) {
+        std::array<double, 3> log_heat{};
+        double largest = -std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 3; ++k) {
+          log_heat[k] = corner_heat[k] > 0.0 ? std::log(corner_heat[k]) - u.log_scale[static_cast<size_t>(v[k])]
+                                             : -std::numeric_limits<double>::infinity();
+          largest = std::max(largest, log_heat[k]);
+        }
+        for (int k = 0; k < 3; ++k) corner_heat[k] = corner_heat[k] > 0.0 ? std::exp(log_heat[k] - largest) : 0.0;
       }
-      for (int k = 0; k < 3; ++k) corner_heat[k] = corner_heat[k] > 0.0 ? std::exp(log_heat[k] - largest) : 0.0;
-    }
-    Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
-      grad += corner_heat[k] * Eigen::Vector2d(-e.y(), e.x());
-    }
-    Eigen::Vector2d x;
-    const int seed_corners = is_seed[static_cast<size_t>(v[0])] + is_seed[static_cast<size_t>(v[1])] + is_seed[static_cast<size_t>(v[2])];
-    if (seed_corners == 3) continue;  // inside a region of seeds: X = grad 0 = 0
-    if (seed_corners == 1) {
-      Eigen::Vector2d cone = Eigen::Vector2d::Zero();  // the interpolant's gradient times 2A
+      Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
       for (int k = 0; k < 3; ++k) {
-        if (is_seed[static_cast<size_t>(v[k])]) continue;
         const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
-        cone += next_to_seed[static_cast<size_t>(v[k])] * Eigen::Vector2d(-e.y(), e.x());
+        grad += corner_heat[k] * Eigen::Vector2d(-e.y(), e.x());
       }
-      const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
-      x = cone / (a.x() * b.y() - a.y() * b.x());  // signed 2A: the layout's orientation cancels
-    } else {
-      // Only the direction counts: scaled to its largest component first, because far from the
-      // seeds the components can be ~1e-290 and their squares underflow.
-      const double largest = grad.cwiseAbs().maxCoeff();
-      if (!(largest > 0.0)) continue;  // no heat reached this face: no direction
-      x = -(grad / largest).normalized();
+      Eigen::Vector2d x;
+      const int seed_corners = is_seed[static_cast<size_t>(v[0])] + is_seed[static_cast<size_t>(v[1])] + is_seed[static_cast<size_t>(v[2])];
+      if (seed_corners == 3) continue;  // inside a region of seeds: X = grad 0 = 0
+      if (seed_corners == 1) {
+        Eigen::Vector2d cone = Eigen::Vector2d::Zero();  // the interpolant's gradient times 2A
+        for (int k = 0; k < 3; ++k) {
+          if (is_seed[static_cast<size_t>(v[k])]) continue;
+          const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
+          cone += next_to_seed[static_cast<size_t>(v[k])] * Eigen::Vector2d(-e.y(), e.x());
+        }
+        const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
+        x = cone / (a.x() * b.y() - a.y() * b.x());  // signed 2A: the layout's orientation cancels
+      } else {
+        // Only the direction counts: scaled to its largest component first, because far from the
+        // seeds the components can be ~1e-290 and their squares underflow.
+        const double largest = grad.cwiseAbs().maxCoeff();
+        if (!(largest > 0.0)) continue;  // no heat reached this face: no direction
+        x = -(grad / largest).normalized();
+      }
+      const auto& cot = f.corner_cot[static_cast<size_t>(face)];
+      for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        divergence[v[i]] += 0.5 * (cot[k] * (p[j] - p[i]).dot(x) + cot[j] * (p[k] - p[i]).dot(x));
+      }
     }
-    const auto& cot = f.corner_cot[static_cast<size_t>(face)];
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      divergence[v[i]] += 0.5 * (cot[k] * (p[j] - p[i]).dot(x) + cot[j] * (p[k] - p[i]).dot(x));
-    }
-  }
+  });
+  Eigen::VectorXd divergence = std::move(partial[0]);
+  for (int chunk = 1; chunk < chunks; ++chunk) divergence += partial[static_cast<size_t>(chunk)];
 
   // L phi = -b (L is the positive semi-definite Laplacian, Crane's L_C = -L).
   Eigen::VectorXd rhs = -divergence;
