@@ -272,17 +272,20 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   std::vector<float> mass(stride_, 0.0f);
   for (size_t i = 0; i < un; ++i) mass[i] = static_cast<float>(system.mass[i]);
   mass_ = upload_buffer(compute, "vertex mass", mass, kRead, false);
-  u_ = allocate_written<cl_float>(compute, "morphogens", M * stride_);
-  scratch_ = allocate_written<cl_float>(compute, "morphogens scratch", M * stride_);
-  compute.queue.enqueueFillBuffer(u_.buffer, 0.0f, 0, u_.payload_bytes);
-  compute.queue.enqueueFillBuffer(scratch_.buffer, 0.0f, 0, scratch_.payload_bytes);
-  for (size_t m = 0; m < M; ++m) {
-    cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
-    DeviceBuffer view;
-    view.buffer = u_.buffer.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region);
-    view.name = "morphogen '" + system.morphogens[m] + "'";
-    view.payload_bytes = region.size;
-    u_views_.push_back(view);
+  // Two halves of the state for the explicit integrator's double buffer, one for IMEX.
+  const size_t halves = integrator_ == ReactionIntegrator::Explicit ? 2 : 1;
+  for (size_t half = 0; half < halves; ++half) {
+    DeviceBuffer& u = state_[half];
+    u = allocate_written<cl_float>(compute, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
+    compute.queue.enqueueFillBuffer(u.buffer, 0.0f, 0, u.payload_bytes);
+    for (size_t m = 0; m < M; ++m) {
+      cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
+      DeviceBuffer view;
+      view.buffer = u.buffer.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region);
+      view.name = "morphogen '" + system.morphogens[m] + "'";
+      view.payload_bytes = region.size;
+      state_views_[half].push_back(view);
+    }
   }
 
   if (integrator_ == ReactionIntegrator::Explicit) {
@@ -379,44 +382,42 @@ void OpenCLReactionDiffusion::run(long long steps) {
 void OpenCLReactionDiffusion::finish() { compute_.queue.finish(); }
 
 void OpenCLReactionDiffusion::explicit_step() {
-  const cl::Buffer* from = &u_.buffer;
-  const cl::Buffer* to = &scratch_.buffer;
   const cl::NDRange overflow_global(padded_global_size(static_cast<size_t>(overflow_rows_), group_));
   for (int s = 0; s < substeps_; ++s) {
+    const DeviceBuffer& from = state();
+    const DeviceBuffer& to = state_[static_cast<size_t>(1 - current_)];
     set_arguments(kernels_->substep, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), column_, value_,
-                  coefficients_, fixed_, static_cast<cl_float>(sub_step_), *from, *to);
+                  coefficients_, fixed_, static_cast<cl_float>(sub_step_), from, to);
     compute_.queue.enqueueNDRangeKernel(kernels_->substep, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
     if (overflow_rows_ > 0) {
       set_arguments(kernels_->overflow, static_cast<cl_uint>(overflow_rows_), static_cast<cl_uint>(stride_),
                     static_cast<cl_uint>(overflow_entries_), overflow_row_, overflow_start_, overflow_column_,
-                    overflow_value_, *from, *to);
+                    overflow_value_, from, to);
       compute_.queue.enqueueNDRangeKernel(kernels_->overflow, cl::NullRange, overflow_global, cl::NDRange(group_));
     }
-    if (has_floors_) apply_floors(*to);
-    std::swap(from, to);
+    if (has_floors_) apply_floors(to.buffer);
+    current_ = 1 - current_;
   }
-  // An odd count ends in scratch: one device-side copy, so u_ (and its sub-buffers) stays current.
-  if (from != &u_.buffer) compute_.queue.enqueueCopyBuffer(scratch_.buffer, u_.buffer, 0, 0, u_.payload_bytes);
 }
 
 void OpenCLReactionDiffusion::imex_step() {
   const size_t un = static_cast<size_t>(vertex_count_);
   for (int s = 0; s < substeps_; ++s) {
     set_arguments(kernels_->imex_rhs, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_), mass_,
-                  coefficients_, fixed_, coupling_, static_cast<cl_float>(sub_step_), u_, rhs_);
+                  coefficients_, fixed_, coupling_, static_cast<cl_float>(sub_step_), state(), rhs_);
     compute_.queue.enqueueNDRangeKernel(kernels_->imex_rhs, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
     if (imex_solver_ == ImexSolver::DeviceConjugateGradients) {
       for (int m = 0; m < morphogen_count_; ++m) {
         // x starts from the previous step's values: the warm start.
         compute_.queue.enqueueCopyBuffer(rhs_.buffer, solvers_[m]->right_hand_side().buffer,
                                          static_cast<size_t>(m) * stride_ * sizeof(cl_float), 0, un * sizeof(cl_float));
-        last_solve_ = solvers_[m]->solve(u_views_[m]);
+        last_solve_ = solvers_[m]->solve(state_view(m));
       }
-      if (has_floors_) apply_floors(u_.buffer);
+      if (has_floors_) apply_floors(state().buffer);
       continue;
     }
     host_imex_solve();
-    if (has_floors_) apply_floors(u_.buffer);
+    if (has_floors_) apply_floors(state().buffer);
     last_solve_ = {};
   }
 }
@@ -435,7 +436,7 @@ void OpenCLReactionDiffusion::host_imex_solve() {
   const size_t un = static_cast<size_t>(vertex_count_);
   const size_t all = static_cast<size_t>(morphogen_count_) * stride_;
   const MappedBuffer<float> b(compute_, rhs_, CL_MAP_READ, 0, all, false);
-  const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, all);
+  const MappedBuffer<float> u(compute_, state(), CL_MAP_READ | CL_MAP_WRITE, 0, all);
   for (int m = 0; m < morphogen_count_; ++m) {
     const size_t offset = static_cast<size_t>(m) * stride_;
     if (!has_fixed_) {
@@ -489,7 +490,7 @@ IntrinsicVertexData<double> OpenCLReactionDiffusion::field_values(int layer) con
   if (layer >= morphogen_count_)
     return IntrinsicVertexData<double>(static_fields_[static_cast<size_t>(layer - morphogen_count_)]->concentration().values());
   std::vector<float> values(static_cast<size_t>(vertex_count_));
-  compute_.queue.enqueueReadBuffer(u_.buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+  compute_.queue.enqueueReadBuffer(state().buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
                                    values.size() * sizeof(cl_float), values.data());
   return IntrinsicVertexData<double>(std::vector<double>(values.begin(), values.end()));
 }
@@ -503,7 +504,7 @@ void OpenCLReactionDiffusion::set_field(const IntrinsicVertexData<double>& value
     return;
   }
   const std::vector<float> floats(values.begin(), values.end());
-  compute_.queue.enqueueWriteBuffer(u_.buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+  compute_.queue.enqueueWriteBuffer(state().buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
                                     floats.size() * sizeof(cl_float), floats.data());
   update_dirichlet_coupling();
 }
@@ -515,7 +516,7 @@ void OpenCLReactionDiffusion::fill_field(double value, int layer) {
     static_fields_[static_cast<size_t>(layer - morphogen_count_)]->fill(value);
     return;
   }
-  compute_.queue.enqueueFillBuffer(u_.buffer, static_cast<cl_float>(value),
+  compute_.queue.enqueueFillBuffer(state().buffer, static_cast<cl_float>(value),
                                    static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
                                    static_cast<size_t>(vertex_count_) * sizeof(cl_float));
   update_dirichlet_coupling();
@@ -524,12 +525,12 @@ void OpenCLReactionDiffusion::fill_field(double value, int layer) {
 FieldStatistics OpenCLReactionDiffusion::field_statistics(double U, int layer) const {
   check_morphogen(layer, "field_statistics");
   if (layer >= morphogen_count_) return static_fields_[static_cast<size_t>(layer - morphogen_count_)]->statistics(U);
-  return statistics_->compute(u_views_[static_cast<size_t>(layer)].buffer, U);
+  return statistics_->compute(state_view(layer).buffer, U);
 }
 
 std::vector<std::string> OpenCLReactionDiffusion::damaged_canaries() const {
   std::vector<std::string> damaged = statistics_->damaged_canaries();
-  for (const DeviceBuffer* b : {&u_, &scratch_, &rhs_, &coupling_})
+  for (const DeviceBuffer* b : {&state_[0], &state_[1], &rhs_, &coupling_})
     if (b->guarded && !canary_intact(compute_, *b)) damaged.push_back(b->name);
   for (const auto& solver : solvers_)
     for (const std::string& name : solver->damaged_canaries()) damaged.push_back(name);

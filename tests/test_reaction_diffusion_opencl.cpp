@@ -15,7 +15,9 @@
 // system M + h K whose condition number is ~1 + h D lambda_max / m ~ 10 here: 1e-5 absolute on O(1)
 // values; the host factorization solves in double from the float right-hand side: the same bound.
 #include "common/errors.hpp"
+#include "common/field_statistics.hpp"
 #include "common/reaction_diffusion_system.hpp"
+#include "common/simulation_state.hpp"
 #include "delaunay_domain.hpp"
 #include "opencl/reaction_diffusion.hpp"
 
@@ -229,6 +231,53 @@ TEST(ExplicitStep, TheFormulaIsCompiledWithUniformCoefficientsAsLiterals) {
   ASSERT_EQ(rd.translated_reactions().size(), 2u);
   EXPECT_NE(rd.translated_reactions()[1].find("0.06f"), std::string::npos) << rd.translated_reactions()[1];  // k
   EXPECT_NE(rd.translated_reactions()[1].find("rd_c0"), std::string::npos) << rd.translated_reactions()[1];  // F
+}
+
+// The explicit integrator's two state halves take turns as the current one, so after an odd number
+// of sub-steps the newest state lives in the half the backend started without. Every reader and
+// writer must follow it: one step of three sub-steps reads back as three sub-steps of the double
+// loop, the saved state is that state; values set then are what the device statistics see (a state
+// far from the stale half's, so a statistic of the wrong half shows) and what the next step starts
+// from; a filled layer reads back filled.
+TEST(ExplicitStep, EveryReaderAndWriterFollowsTheCurrentHalfOfTheDoubleBuffer) {
+  const SurfaceDomain& domain = domain_of("shape:sphere");
+  const int n = domain.vertex_count;
+  const double D_v = 1e-3;
+  const double h = 0.8 * stable_sub_step(domain, 2.0 * D_v);
+  const ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
+  OpenCLReactionDiffusion rd(compute(), domain, s);
+  rd.step();
+  const auto reference = explicit_reference(s);
+  const SimulationState saved = rd.save_state();
+  for (int m = 0; m < 2; ++m) {
+    const IntrinsicVertexData<double> device = rd.field_values(m);
+    EXPECT_LT(max_difference(device, reference[m]), kExplicitTolerance * std::max(1.0, largest_magnitude(reference[m])))
+        << "morphogen " << m;
+    EXPECT_GT(max_difference(reference[m], s.initial[m]), 100 * kExplicitTolerance) << "morphogen " << m;
+    EXPECT_EQ(saved.layers[static_cast<size_t>(m)].values(), device.values()) << "morphogen " << m;
+  }
+
+  // u now low and v high, where the step left u ~ 0.65 and v ~ 0.25 on average.
+  ReactionDiffusionSystem restart = s;
+  restart.initial = {random_values(n, 21, 0.0, 0.2), random_values(n, 22, 0.6, 1.0)};
+  for (int m = 0; m < 2; ++m) {
+    rd.set_field(restart.initial[static_cast<size_t>(m)], m);
+    const double U = 0.5;
+    const FieldStatistics expected = compute_field_statistics(restart.initial[static_cast<size_t>(m)], domain.vertex_mass, U);
+    const FieldStatistics on_device = rd.field_statistics(U, m);
+    EXPECT_NEAR(on_device.mean, expected.mean, 1e-5 * std::abs(expected.mean)) << "morphogen " << m;
+    for (size_t c = 0; c < expected.coverage.size(); ++c)
+      EXPECT_NEAR(on_device.coverage[c], expected.coverage[c], 1e-5) << "morphogen " << m << " coverage " << c;
+  }
+  rd.step();
+  const auto from_restart = explicit_reference(restart);
+  for (int m = 0; m < 2; ++m)
+    EXPECT_LT(max_difference(rd.field_values(m), from_restart[m]),
+              kExplicitTolerance * std::max(1.0, largest_magnitude(from_restart[m])))
+        << "morphogen " << m << " after set_field";
+  rd.fill_field(0.25, 1);
+  for (double x : rd.field_values(1)) ASSERT_EQ(x, 0.25);
+  EXPECT_EQ(rd.damaged_canaries(), std::vector<std::string>{});
 }
 
 class ImexStep : public ::testing::TestWithParam<ImexSolver> {};
