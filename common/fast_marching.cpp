@@ -3,9 +3,11 @@
 #include "common/errors.hpp"
 #include "common/surface_pieces.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <queue>
 #include <string>
 #include <utility>
@@ -18,10 +20,16 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// The inverse of `rotation` applied to `v`.
+Vec2 rotate_back(const Rotation2& rotation, const Vec2& v) {
+  return {rotation.cos_angle * v.x() + rotation.sin_angle * v.y(), -rotation.sin_angle * v.x() + rotation.cos_angle * v.y()};
+}
+
 // The distance at C through triangle (A, B, C) from the distances at A and B (see the header): the
 // virtual source S with |SA| = dA, |SB| = dB on the far side of AB from C; |SC| when the segment SC
 // crosses AB, +infinity when it does not or when no such S exists (|dA - dB| > |AB| or dA + dB < |AB|).
-double two_point_update(const Vec2& pa, const Vec2& pb, const Vec2& pc, double da, double db) {
+// `source` receives S - C.
+double two_point_update(const Vec2& pa, const Vec2& pb, const Vec2& pc, double da, double db, Vec2& source) {
   const Vec2 e = pb - pa;
   const double c = e.norm();
   if (!(c > 0.0)) return kInfinity;
@@ -38,12 +46,13 @@ double two_point_update(const Vec2& pa, const Vec2& pb, const Vec2& pc, double d
   const double x = sy == 0.0 ? sx : sx + (cx - sx) * (-sy / (cy - sy));
   const double tolerance = 1e-12 * c;
   if (x < -tolerance || x > c + tolerance) return kInfinity;
+  source = pa + sx * ex + sy * ey - pc;
   return std::hypot(cx - sx, cy - sy);
 }
 
 }  // namespace
 
-FastMarchingGeodesics::FastMarchingGeodesics(const SurfaceDomain& domain) : domain_(domain) {
+FastMarchingGeodesics::FastMarchingGeodesics(const SurfaceDomain& domain) : domain_(domain), fans_(domain) {
   const int n = domain.vertex_count, faces = domain.face_count;
   vertex_face_start_.assign(static_cast<size_t>(n) + 1, 0);
   for (const auto& f : domain.face_vertices)
@@ -107,8 +116,8 @@ void FastMarchingGeodesics::split_obtuse_corner(int face, int corner) {
     if (!beyond_a && !beyond_b) {
       // In the section: the two virtual triangles are acute at C.
       if (vertex_v == target || vertex_v == vertex_a || vertex_v == vertex_b) return;
-      stencils_.push_back({target, vertex_a, vertex_v, a, v});
-      stencils_.push_back({target, vertex_v, vertex_b, v, b});
+      stencils_.push_back({target, 3 * face + k, vertex_a, vertex_v, a, v});
+      stencils_.push_back({target, 3 * face + k, vertex_v, vertex_b, v, b});
       corner_split_[static_cast<size_t>(3 * face + k)] = 1;
       ++split_corners_;
       return;
@@ -132,6 +141,11 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
   if (seeds.empty()) throw InputError("fast marching: the seed set is empty");
   IntrinsicVertexData<double> dist(static_cast<size_t>(n), kInfinity);
   std::vector<char> accepted(static_cast<size_t>(n), 0);
+  // Where each vertex's current distance comes from: the corner 3f + k it was reached through, and
+  // the source S - C in that face's frame with the distance already travelled before S (see the header).
+  std::vector<int> reach_corner(static_cast<size_t>(n), -1);
+  std::vector<Vec2> reach_source(static_cast<size_t>(n), Vec2::Zero());
+  std::vector<double> reach_offset(static_cast<size_t>(n), 0.0);
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
   for (const int s : seeds) {
@@ -140,9 +154,13 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
     dist[static_cast<size_t>(s)] = 0.0;
     heap.emplace(0.0, s);
   }
-  auto offer = [&](int vertex, double value) {
-    if (value < dist[static_cast<size_t>(vertex)]) {
-      dist[static_cast<size_t>(vertex)] = value;
+  auto offer = [&](int vertex, double value, int corner, const Vec2& source, double offset) {
+    const auto v = static_cast<size_t>(vertex);
+    if (value < dist[v]) {
+      dist[v] = value;
+      reach_corner[v] = corner;
+      reach_source[v] = source;
+      reach_offset[v] = offset;
       heap.emplace(value, vertex);
     }
   };
@@ -151,6 +169,8 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
     heap.pop();
     if (accepted[static_cast<size_t>(v)] || value > dist[static_cast<size_t>(v)]) continue;
     accepted[static_cast<size_t>(v)] = 1;
+    const TrackedSource tracked = track_source(reach_corner[static_cast<size_t>(v)], reach_source[static_cast<size_t>(v)],
+                                               reach_offset[static_cast<size_t>(v)]);
     for (int i = vertex_face_start_[static_cast<size_t>(v)]; i < vertex_face_start_[static_cast<size_t>(v) + 1]; ++i) {
       const int f = vertex_faces_[static_cast<size_t>(i)] / 3, k = vertex_faces_[static_cast<size_t>(i)] % 3;
       const auto& p = d.face_corners[f];
@@ -159,10 +179,26 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
         const int c = (k + m) % 3, o = (k + 3 - m) % 3;  // target corner c, the third corner o
         const int target = corner_vertex[c], other = corner_vertex[o];
         if (accepted[static_cast<size_t>(target)]) continue;
-        double candidate = value + (p[c] - p[k]).norm();
-        if (!corner_split_[static_cast<size_t>(3 * f + c)] && accepted[static_cast<size_t>(other)])
-          candidate = std::min(candidate, two_point_update(p[k], p[o], p[c], value, dist[static_cast<size_t>(other)]));
-        offer(target, candidate);
+        const int target_corner = 3 * f + c;
+        Vec2 source = p[k] - p[c];
+        double candidate = value + source.norm(), offset = value;
+        Vec2 two_point_source = Vec2::Zero();
+        if (!corner_split_[static_cast<size_t>(target_corner)] && accepted[static_cast<size_t>(other)]) {
+          const double through = two_point_update(p[k], p[o], p[c], value, dist[static_cast<size_t>(other)], two_point_source);
+          if (through < candidate) {
+            candidate = through;
+            source = two_point_source;
+            offset = 0.0;
+          }
+        }
+        Vec2 unfolded_source = Vec2::Zero();
+        const double along = tracked_update(tracked, f, k, c, unfolded_source);
+        if (along < candidate) {
+          candidate = along;
+          source = unfolded_source;
+          offset = tracked.offset;
+        }
+        offer(target, candidate, target_corner, source, offset);
       }
     }
     for (int i = stencil_start_[static_cast<size_t>(v)]; i < stencil_start_[static_cast<size_t>(v) + 1]; ++i) {
@@ -170,8 +206,10 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
       if (accepted[static_cast<size_t>(s.target)]) continue;
       const int other = s.a == v ? s.b : s.a;
       if (!accepted[static_cast<size_t>(other)]) continue;
-      offer(s.target, two_point_update(s.position_a, s.position_b, Vec2::Zero(), dist[static_cast<size_t>(s.a)],
-                                       dist[static_cast<size_t>(s.b)]));
+      Vec2 source = Vec2::Zero();
+      const double through = two_point_update(s.position_a, s.position_b, Vec2::Zero(), dist[static_cast<size_t>(s.a)],
+                                              dist[static_cast<size_t>(s.b)], source);
+      offer(s.target, through, s.target_corner, source, 0.0);
     }
   }
   for (int v = 0; v < n; ++v)
@@ -180,6 +218,59 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
       throw InputError("fast marching: intrinsic vertex " + std::to_string(v) + " was never reached from the seeds");
     }
   return dist;
+}
+
+FastMarchingGeodesics::TrackedSource FastMarchingGeodesics::track_source(int corner, const Vec2& source, double offset) const {
+  TrackedSource tracked;
+  const double length = source.norm();
+  if (corner < 0 || !(length > 0.0)) return tracked;  // a seed: nothing to unfold
+  const VertexFans::Corner& at = fans_.corner(corner);
+  const auto& p = domain_.face_corners[corner / 3];
+  const int k = corner % 3;
+  const Vec2 edge = p[(k + 1) % 3] - p[k];
+  // The source lies in the corner's own sector (every update's segment crosses the opposite edge or
+  // runs along a side); clamping only removes rounding.
+  const double inside = std::clamp(std::atan2(cross(edge, source), edge.dot(source)), 0.0, at.angle);
+  tracked.fan = at.fan;
+  tracked.direction = at.start + inside;
+  tracked.in_fan = at.to_fan.apply_direction(source);
+  tracked.offset = offset;
+  return tracked;
+}
+
+double FastMarchingGeodesics::tracked_update(const TrackedSource& tracked, int face, int corner, int target_corner,
+                                             Vec2& source) const {
+  const VertexFans::Corner& at = fans_.corner(3 * face + corner);
+  if (tracked.fan < 0 || at.fan != tracked.fan) return kInfinity;
+  const VertexFans::Fan& fan = fans_.fan(at.fan);
+  // Angle of the source from the corner's edge to corner k+1, going round the fan the way that
+  // enters the face through the edge to the other corner: counter-clockwise of the face when the
+  // target is corner k+1 (at angle 0, the entry edge at `angle`), clockwise when it is corner k+2.
+  const bool target_is_next = target_corner == (corner + 1) % 3;
+  double angle = tracked.direction - at.start;
+  Vec2 in_fan = tracked.in_fan;
+  if (fan.closed) {
+    if (target_is_next && angle < at.angle) {
+      angle += fan.cone_angle;
+      in_fan = fan.turn.apply_direction(in_fan);
+    } else if (!target_is_next && angle > 0.0) {
+      angle -= fan.cone_angle;
+      in_fan = rotate_back(fan.turn, in_fan);
+    }
+  }
+  // The segment from S to the target passes the vertex on the entry edge's side within half a turn.
+  if (target_is_next ? !(angle > at.angle && angle < at.angle + std::numbers::pi) : !(angle < 0.0 && angle > at.angle - std::numbers::pi))
+    return kInfinity;
+  const auto& p = domain_.face_corners[face];
+  const Vec2& vertex = p[corner];
+  const Vec2& target = p[target_corner];
+  const Vec2& entry = p[3 - corner - target_corner];
+  const Vec2 unfolded = vertex + rotate_back(at.to_fan, in_fan);
+  // A real unfolded path only when the segment crosses the entry edge between its ends.
+  const double side_vertex = cross(target - unfolded, vertex - unfolded), side_entry = cross(target - unfolded, entry - unfolded);
+  if (side_vertex * side_entry > 0.0) return kInfinity;
+  source = unfolded - target;
+  return tracked.offset + source.norm();
 }
 
 }  // namespace physarum
