@@ -7,7 +7,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numbers>
 #include <queue>
 #include <string>
 #include <utility>
@@ -19,11 +18,6 @@ using Vec2 = Eigen::Vector2d;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// The inverse of `rotation` applied to `v`.
-Vec2 rotate_back(const Rotation2& rotation, const Vec2& v) {
-  return {rotation.cos_angle * v.x() + rotation.sin_angle * v.y(), -rotation.sin_angle * v.x() + rotation.cos_angle * v.y()};
-}
 
 // The distance at C through triangle (A, B, C) from the distances at A and B (see the header): the
 // virtual source S with |SA| = dA, |SB| = dB on the far side of AB from C; |SC| when the segment SC
@@ -50,9 +44,45 @@ double two_point_update(const Vec2& pa, const Vec2& pb, const Vec2& pc, double d
   return std::hypot(cx - sx, cy - sy);
 }
 
+
+// Calls visit(target vertex, its corner 3g + c, S' - target) for every face g around an accepted
+// vertex V that a straight line from V's source S enters across an edge at V: S' is S unfolded
+// into g by walking round V, counter-clockwise (the line then enters through g's edge to corner
+// k+1 and ends at corner k+2) and clockwise (the mirror image), starting from the face V was
+// reached through (`corner`, with `source` = S - V in its frame). The walk stops once the source
+// is more than half a turn round from the entry edge: from there on no straight line through the
+// edge reaches the target, and going further round would only add to the turn.
+template <class Visit>
+void unfold_source_around_vertex(const SurfaceDomain& d, int corner, const Vec2& source, Visit&& visit) {
+  if (corner < 0) return;  // a seed: it is its own source
+  for (const bool counter_clockwise : {true, false}) {
+    int f = corner / 3, k = corner % 3;
+    Vec2 s = source;
+    while (true) {
+      const int edge = counter_clockwise ? (k + 2) % 3 : k;  // halfedges of f at V: k leaves V, k+2 arrives
+      const int g = d.face_neighbour[f][edge];
+      if (g < 0) break;
+      const int j = d.neighbour_edge[f][edge];
+      s = d.edge_transition[static_cast<size_t>(3 * f + edge)].apply_direction(s);
+      f = g;
+      k = counter_clockwise ? j : (j + 1) % 3;
+      if (3 * f + k == corner) break;  // all the way round
+      const auto& p = d.face_corners[f];
+      const int entry_corner = counter_clockwise ? (k + 1) % 3 : (k + 2) % 3, target_corner = 3 - k - entry_corner;
+      const double side = cross(p[entry_corner] - p[k], s);
+      if (counter_clockwise ? side > 0.0 : side < 0.0) break;
+      // A real unfolded path only when the segment from S' crosses the entry edge between its ends.
+      const Vec2 unfolded = p[k] + s;
+      const Vec2 to_target = p[target_corner] - unfolded;
+      if (cross(to_target, p[k] - unfolded) * cross(to_target, p[entry_corner] - unfolded) <= 0.0)
+        visit(d.face_vertices[f][target_corner], 3 * f + target_corner, Vec2(-to_target));
+    }
+  }
+}
+
 }  // namespace
 
-FastMarchingGeodesics::FastMarchingGeodesics(const SurfaceDomain& domain) : domain_(domain), fans_(domain) {
+FastMarchingGeodesics::FastMarchingGeodesics(const SurfaceDomain& domain) : domain_(domain) {
   const int n = domain.vertex_count, faces = domain.face_count;
   vertex_face_start_.assign(static_cast<size_t>(n) + 1, 0);
   for (const auto& f : domain.face_vertices)
@@ -141,36 +171,46 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
   if (seeds.empty()) throw InputError("fast marching: the seed set is empty");
   IntrinsicVertexData<double> dist(static_cast<size_t>(n), kInfinity);
   std::vector<char> accepted(static_cast<size_t>(n), 0);
-  // Where each vertex's current distance comes from: the corner 3f + k it was reached through, and
-  // the source S - C in that face's frame with the distance already travelled before S (see the header).
-  std::vector<int> reach_corner(static_cast<size_t>(n), -1);
-  std::vector<Vec2> reach_source(static_cast<size_t>(n), Vec2::Zero());
-  std::vector<double> reach_offset(static_cast<size_t>(n), 0.0);
+  // Each vertex keeps two tentative values (see the header): the shortest path found (edge and
+  // tracked-source updates) and the shortest virtual-source estimate (two-point updates). Its
+  // distance is the path once a tracked source has reached it, else the smaller of the two.
+  std::vector<Reach> path(static_cast<size_t>(n)), estimate(static_cast<size_t>(n));
+  std::vector<char> tracked_reached(static_cast<size_t>(n), 0);
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
   for (const int s : seeds) {
     if (s < 0 || s >= n)
       throw InputError("fast marching: seed " + std::to_string(s) + " is no intrinsic vertex (0.." + std::to_string(n - 1) + ")");
     dist[static_cast<size_t>(s)] = 0.0;
+    path[static_cast<size_t>(s)].value = 0.0;
+    tracked_reached[static_cast<size_t>(s)] = 1;
     heap.emplace(0.0, s);
   }
-  auto offer = [&](int vertex, double value, int corner, const Vec2& source, double offset) {
+  // One call per update, so the heap gets at most one entry for it.
+  auto offer = [&](int vertex, const Reach& path_candidate, bool is_tracked, const Reach& estimate_candidate) {
     const auto v = static_cast<size_t>(vertex);
-    if (value < dist[v]) {
-      dist[v] = value;
-      reach_corner[v] = corner;
-      reach_source[v] = source;
-      reach_offset[v] = offset;
-      heap.emplace(value, vertex);
+    if (path_candidate.value < path[v].value) path[v] = path_candidate;
+    if (estimate_candidate.value < estimate[v].value) estimate[v] = estimate_candidate;
+    tracked_reached[v] |= static_cast<char>(is_tracked);
+    const double key = tracked_reached[v] ? path[v].value : std::min(path[v].value, estimate[v].value);
+    if (key != dist[v]) {
+      dist[v] = key;
+      heap.emplace(key, vertex);
     }
   };
   while (!heap.empty()) {
     const auto [value, v] = heap.top();
     heap.pop();
-    if (accepted[static_cast<size_t>(v)] || value > dist[static_cast<size_t>(v)]) continue;
+    // Entries left behind when a value changed (it may also rise, when a tracked path replaces an estimate).
+    if (accepted[static_cast<size_t>(v)] || value != dist[static_cast<size_t>(v)]) continue;
     accepted[static_cast<size_t>(v)] = 1;
-    const TrackedSource tracked = track_source(reach_corner[static_cast<size_t>(v)], reach_source[static_cast<size_t>(v)],
-                                               reach_offset[static_cast<size_t>(v)]);
+    const Reach& reach = value == path[static_cast<size_t>(v)].value ? path[static_cast<size_t>(v)] : estimate[static_cast<size_t>(v)];
+    // First the straight lines from the source unfolded around v (real paths), then the edges and
+    // the estimates, which mostly find those targets settled already.
+    unfold_source_around_vertex(d, reach.corner, reach.source, [&](int target, int target_corner, const Vec2& source) {
+      if (!accepted[static_cast<size_t>(target)])
+        offer(target, Reach{reach.offset + source.norm(), target_corner, source, reach.offset}, true, Reach{});
+    });
     for (int i = vertex_face_start_[static_cast<size_t>(v)]; i < vertex_face_start_[static_cast<size_t>(v) + 1]; ++i) {
       const int f = vertex_faces_[static_cast<size_t>(i)] / 3, k = vertex_faces_[static_cast<size_t>(i)] % 3;
       const auto& p = d.face_corners[f];
@@ -180,25 +220,17 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
         const int target = corner_vertex[c], other = corner_vertex[o];
         if (accepted[static_cast<size_t>(target)]) continue;
         const int target_corner = 3 * f + c;
-        Vec2 source = p[k] - p[c];
-        double candidate = value + source.norm(), offset = value;
-        Vec2 two_point_source = Vec2::Zero();
-        if (!corner_split_[static_cast<size_t>(target_corner)] && accepted[static_cast<size_t>(other)]) {
-          const double through = two_point_update(p[k], p[o], p[c], value, dist[static_cast<size_t>(other)], two_point_source);
-          if (through < candidate) {
-            candidate = through;
-            source = two_point_source;
-            offset = 0.0;
-          }
+        // Along the edge: a path that bends at this vertex.
+        const Reach along_edge{value + (p[k] - p[c]).norm(), target_corner, p[k] - p[c], value};
+        // An estimate matters only until a tracked source reaches the target.
+        Reach estimate_candidate;
+        if (!tracked_reached[static_cast<size_t>(target)] && !corner_split_[static_cast<size_t>(target_corner)] &&
+            accepted[static_cast<size_t>(other)]) {
+          estimate_candidate.corner = target_corner;
+          estimate_candidate.value =
+              two_point_update(p[k], p[o], p[c], value, dist[static_cast<size_t>(other)], estimate_candidate.source);
         }
-        Vec2 unfolded_source = Vec2::Zero();
-        const double along = tracked_update(tracked, f, k, c, unfolded_source);
-        if (along < candidate) {
-          candidate = along;
-          source = unfolded_source;
-          offset = tracked.offset;
-        }
-        offer(target, candidate, target_corner, source, offset);
+        offer(target, along_edge, false, estimate_candidate);
       }
     }
     for (int i = stencil_start_[static_cast<size_t>(v)]; i < stencil_start_[static_cast<size_t>(v) + 1]; ++i) {
@@ -206,10 +238,11 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
       if (accepted[static_cast<size_t>(s.target)]) continue;
       const int other = s.a == v ? s.b : s.a;
       if (!accepted[static_cast<size_t>(other)]) continue;
-      Vec2 source = Vec2::Zero();
-      const double through = two_point_update(s.position_a, s.position_b, Vec2::Zero(), dist[static_cast<size_t>(s.a)],
-                                              dist[static_cast<size_t>(s.b)], source);
-      offer(s.target, through, s.target_corner, source, 0.0);
+      if (tracked_reached[static_cast<size_t>(s.target)]) continue;
+      Reach through{kInfinity, s.target_corner, Vec2::Zero(), 0.0};
+      through.value = two_point_update(s.position_a, s.position_b, Vec2::Zero(), dist[static_cast<size_t>(s.a)],
+                                       dist[static_cast<size_t>(s.b)], through.source);
+      offer(s.target, Reach{}, false, through);
     }
   }
   for (int v = 0; v < n; ++v)
@@ -218,59 +251,6 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
       throw InputError("fast marching: intrinsic vertex " + std::to_string(v) + " was never reached from the seeds");
     }
   return dist;
-}
-
-FastMarchingGeodesics::TrackedSource FastMarchingGeodesics::track_source(int corner, const Vec2& source, double offset) const {
-  TrackedSource tracked;
-  const double length = source.norm();
-  if (corner < 0 || !(length > 0.0)) return tracked;  // a seed: nothing to unfold
-  const VertexFans::Corner& at = fans_.corner(corner);
-  const auto& p = domain_.face_corners[corner / 3];
-  const int k = corner % 3;
-  const Vec2 edge = p[(k + 1) % 3] - p[k];
-  // The source lies in the corner's own sector (every update's segment crosses the opposite edge or
-  // runs along a side); clamping only removes rounding.
-  const double inside = std::clamp(std::atan2(cross(edge, source), edge.dot(source)), 0.0, at.angle);
-  tracked.fan = at.fan;
-  tracked.direction = at.start + inside;
-  tracked.in_fan = at.to_fan.apply_direction(source);
-  tracked.offset = offset;
-  return tracked;
-}
-
-double FastMarchingGeodesics::tracked_update(const TrackedSource& tracked, int face, int corner, int target_corner,
-                                             Vec2& source) const {
-  const VertexFans::Corner& at = fans_.corner(3 * face + corner);
-  if (tracked.fan < 0 || at.fan != tracked.fan) return kInfinity;
-  const VertexFans::Fan& fan = fans_.fan(at.fan);
-  // Angle of the source from the corner's edge to corner k+1, going round the fan the way that
-  // enters the face through the edge to the other corner: counter-clockwise of the face when the
-  // target is corner k+1 (at angle 0, the entry edge at `angle`), clockwise when it is corner k+2.
-  const bool target_is_next = target_corner == (corner + 1) % 3;
-  double angle = tracked.direction - at.start;
-  Vec2 in_fan = tracked.in_fan;
-  if (fan.closed) {
-    if (target_is_next && angle < at.angle) {
-      angle += fan.cone_angle;
-      in_fan = fan.turn.apply_direction(in_fan);
-    } else if (!target_is_next && angle > 0.0) {
-      angle -= fan.cone_angle;
-      in_fan = rotate_back(fan.turn, in_fan);
-    }
-  }
-  // The segment from S to the target passes the vertex on the entry edge's side within half a turn.
-  if (target_is_next ? !(angle > at.angle && angle < at.angle + std::numbers::pi) : !(angle < 0.0 && angle > at.angle - std::numbers::pi))
-    return kInfinity;
-  const auto& p = domain_.face_corners[face];
-  const Vec2& vertex = p[corner];
-  const Vec2& target = p[target_corner];
-  const Vec2& entry = p[3 - corner - target_corner];
-  const Vec2 unfolded = vertex + rotate_back(at.to_fan, in_fan);
-  // A real unfolded path only when the segment crosses the entry edge between its ends.
-  const double side_vertex = cross(target - unfolded, vertex - unfolded), side_entry = cross(target - unfolded, entry - unfolded);
-  if (side_vertex * side_entry > 0.0) return kInfinity;
-  source = unfolded - target;
-  return tracked.offset + source.norm();
 }
 
 }  // namespace physarum

@@ -23,9 +23,9 @@
 // acute or split: the virtual source is then the seed itself.
 #include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
-#include "common/vertex_fans.hpp"
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 namespace physarum {
@@ -51,22 +51,17 @@ class FastMarchingGeodesics {
     int target, target_corner, a, b;
     Eigen::Vector2d position_a, position_b;
   };
-  // An accepted vertex's source in the angular coordinate of its fan (see the header).
-  struct TrackedSource {
-    int fan = -1;            // -1: none (a seed)
-    double direction = 0.0;  // angle of the source from the fan's first edge
-    Eigen::Vector2d in_fan = Eigen::Vector2d::Zero();  // source - vertex, in the fan's coordinate
-    double offset = 0.0;     // distance travelled before the source
+  // A tentative value with where it comes from: the corner 3f + k it was reached through, and the
+  // source S - vertex in that face's frame, with the distance already travelled before S.
+  struct Reach {
+    double value = std::numeric_limits<double>::infinity();
+    int corner = -1;  // -1: a seed
+    Eigen::Vector2d source = Eigen::Vector2d::Zero();
+    double offset = 0.0;
   };
   void split_obtuse_corner(int face, int corner);
-  TrackedSource track_source(int corner, const Eigen::Vector2d& source, double offset) const;
-  // offset + |S' - target| for S' the tracked source unfolded around the accepted vertex (corner
-  // `corner` of `face`) into the face, entering it across the edge to the third corner; +infinity
-  // when that segment misses the edge. `source` receives S' - target.
-  double tracked_update(const TrackedSource& tracked, int face, int corner, int target_corner, Eigen::Vector2d& source) const;
 
   const SurfaceDomain& domain_;
-  VertexFans fans_;
   std::vector<int> vertex_face_start_, vertex_faces_;  // CSR: 3f + corner of every face at a vertex
   std::vector<char> corner_split_;                      // per 3f + k: updated through virtual stencils instead
   std::vector<VirtualStencil> stencils_;
