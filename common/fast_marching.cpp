@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <queue>
 #include <string>
 #include <utility>
@@ -46,35 +47,56 @@ double two_point_update(const Vec2& pa, const Vec2& pb, const Vec2& pc, double d
 
 
 // Calls visit(target vertex, its corner 3g + c, S' - target) for every face g around an accepted
-// vertex V that a straight line from V's source S enters across an edge at V: S' is S unfolded
-// into g by walking round V, counter-clockwise (the line then enters through g's edge to corner
-// k+1 and ends at corner k+2) and clockwise (the mirror image), starting from the face V was
-// reached through (`corner`, with `source` = S - V in its frame). The walk stops once the source
-// is more than half a turn round from the entry edge: from there on no straight line through the
-// edge reaches the target, and going further round would only add to the turn.
+// vertex V that a straight line from V's source S enters across an edge at V: S' is S unfolded into
+// g by walking round V from the face V was reached through (`corner`, `source` = S - V in its
+// frame), counter-clockwise (the line then enters g through its edge to corner k+1 and ends at
+// corner k+2) and clockwise (the mirror image).
+//
+// The walk unfolds V's faces exactly; where the segment S'T passes outside them, beyond the far end
+// W of an edge walked over, it stands for a path on the far side of W, which is as long as the
+// segment only when W is flat, and not much shorter when W is convex (a cone angle below 2 pi: no
+// shortest path goes through it). Past a saddle vertex (more than 2 pi) or a boundary vertex it
+// would be a shortcut that does not exist, so such an edge must be crossed between V and W: the
+// rays from S' that do form a window between the ray through V and the ray through the tightest
+// such W, and a target counts when it is inside. The edge the line enters g through is always held
+// to that (the line has to enter g). The walk stops once the source is more than half a turn round
+// from the edge crossed: the line to any target further round passes on the other side of V.
 template <class Visit>
-void unfold_source_around_vertex(const SurfaceDomain& d, int corner, const Vec2& source, Visit&& visit) {
+void unfold_source_around_vertex(const SurfaceDomain& d, const std::vector<char>& blocking, int corner, const Vec2& source,
+                                 Visit&& visit) {
   if (corner < 0) return;  // a seed: it is its own source
   for (const bool counter_clockwise : {true, false}) {
     int f = corner / 3, k = corner % 3;
-    Vec2 s = source;
+    Vec2 s = source;          // S' - V in the frame of f
+    Vec2 tightest(0.0, 0.0);  // blocking end bounding the window, minus V
+    bool bounded = false;
     while (true) {
       const int edge = counter_clockwise ? (k + 2) % 3 : k;  // halfedges of f at V: k leaves V, k+2 arrives
       const int g = d.face_neighbour[f][edge];
       if (g < 0) break;
       const int j = d.neighbour_edge[f][edge];
-      s = d.edge_transition[static_cast<size_t>(3 * f + edge)].apply_direction(s);
+      const Rotation2& into_g = d.edge_transition[static_cast<size_t>(3 * f + edge)];
+      s = into_g.apply_direction(s);
+      tightest = into_g.apply_direction(tightest);
       f = g;
       k = counter_clockwise ? j : (j + 1) % 3;
       if (3 * f + k == corner) break;  // all the way round
       const auto& p = d.face_corners[f];
       const int entry_corner = counter_clockwise ? (k + 1) % 3 : (k + 2) % 3, target_corner = 3 - k - entry_corner;
-      const double side = cross(p[entry_corner] - p[k], s);
+      const Vec2 entry = p[entry_corner] - p[k];
+      const double side = cross(entry, s);
       if (counter_clockwise ? side > 0.0 : side < 0.0) break;
-      // A real unfolded path only when the segment from S' crosses the entry edge between its ends.
-      const Vec2 unfolded = p[k] + s;
-      const Vec2 to_target = p[target_corner] - unfolded;
-      if (cross(to_target, p[k] - unfolded) * cross(to_target, p[entry_corner] - unfolded) <= 0.0)
+      // The entry edge's end bounds the window for this target; it narrows it for good when blocking
+      // and tighter than the bound so far (on V's side of the ray from S' through it).
+      const bool tighter = !bounded || cross(tightest - s, entry - s) * cross(tightest - s, -s) >= 0.0;
+      const Vec2 bound = tighter ? entry : tightest;
+      if (tighter && blocking[static_cast<size_t>(d.face_vertices[f][entry_corner])]) {
+        tightest = entry;
+        bounded = true;
+      }
+      // Inside the window: V and the bound on either side of the line from S' to the target (or on it).
+      const Vec2 to_target = p[target_corner] - p[k] - s;
+      if (cross(to_target, -s) * cross(to_target, bound - s) <= 0.0)
         visit(d.face_vertices[f][target_corner], 3 * f + target_corner, Vec2(-to_target));
     }
   }
@@ -104,6 +126,21 @@ FastMarchingGeodesics::FastMarchingGeodesics(const SurfaceDomain& domain) : doma
         split_obtuse_corner(f, k);
       }
     }
+
+  // Saddle and boundary vertices: straight lines may not pass them on the far side (see
+  // unfold_source_around_vertex). Flat vertices sum to 2 pi up to rounding; the margin keeps them out.
+  std::vector<double> angle_sum(static_cast<size_t>(n), 0.0);
+  blocking_.assign(static_cast<size_t>(n), 0);
+  for (int f = 0; f < faces; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = domain.face_corners[f];
+      const Vec2 to_next = p[(k + 1) % 3] - p[k], to_previous = p[(k + 2) % 3] - p[k];
+      const auto v = static_cast<size_t>(domain.face_vertices[f][k]);
+      angle_sum[v] += std::atan2(cross(to_next, to_previous), to_next.dot(to_previous));
+      if (domain.face_neighbour[f][k] < 0 || domain.face_neighbour[f][(k + 2) % 3] < 0) blocking_[v] = 1;
+    }
+  for (int v = 0; v < n; ++v)
+    if (angle_sum[static_cast<size_t>(v)] > 2.0 * std::numbers::pi + 1e-9) blocking_[static_cast<size_t>(v)] = 1;
 
   stencil_start_.assign(static_cast<size_t>(n) + 1, 0);
   for (const VirtualStencil& s : stencils_) ++stencil_start_[static_cast<size_t>(s.a) + 1], ++stencil_start_[static_cast<size_t>(s.b) + 1];
@@ -207,7 +244,7 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
     const Reach& reach = value == path[static_cast<size_t>(v)].value ? path[static_cast<size_t>(v)] : estimate[static_cast<size_t>(v)];
     // First the straight lines from the source unfolded around v (real paths), then the edges and
     // the estimates, which mostly find those targets settled already.
-    unfold_source_around_vertex(d, reach.corner, reach.source, [&](int target, int target_corner, const Vec2& source) {
+    unfold_source_around_vertex(d, blocking_, reach.corner, reach.source, [&](int target, int target_corner, const Vec2& source) {
       if (!accepted[static_cast<size_t>(target)])
         offer(target, Reach{reach.offset + source.norm(), target_corner, source, reach.offset}, true, Reach{});
     });

@@ -64,6 +64,7 @@ class FastMarchingGeodesics {
   const SurfaceDomain& domain_;
   std::vector<int> vertex_face_start_, vertex_faces_;  // CSR: 3f + corner of every face at a vertex
   std::vector<char> corner_split_;                      // per 3f + k: updated through virtual stencils instead
+  std::vector<char> blocking_;                          // per vertex: a saddle or on the boundary
   std::vector<VirtualStencil> stencils_;
   std::vector<int> stencil_start_, stencils_by_base_;  // CSR: stencils in which a vertex is a or b
   int obtuse_corners_ = 0, split_corners_ = 0;
