@@ -2,14 +2,21 @@
 // Geodesic distance by fast marching on the intrinsic (Delaunay) triangulation of a SurfaceDomain
 // (Kimmel & Sethian, "Computing geodesic paths on manifolds", PNAS 1998).
 //
-// Vertices are accepted in order of distance (a binary heap). When a vertex is accepted, every
-// not-yet-accepted corner C of its faces is updated
-//   * through the triangle (C; A, B) when both other corners are accepted: the virtual source S at
-//     distance d_A from A and d_B from B beyond edge AB is the point a plane wave (or, for a single
-//     seed on a flat surface, the seed itself) comes from; d_C = |S - C| when the segment SC crosses
-//     AB (causality), the same answer as Kimmel-Sethian's quadratic;
-//   * along each edge, d_C = d_A + |AC| (Dijkstra), which is what remains when no triangle update is
-//     causal.
+// Vertices are accepted in order of distance (a binary heap). Every tentative value remembers its
+// source: a point S in the frame of the face it came through, with the distance travelled before S
+// (the offset). When a vertex V is accepted, every not-yet-accepted corner C of its faces is offered
+//   * the straight line from V's source (source tracking, after Surazhsky et al., "Fast exact and
+//     approximate geodesics on meshes", SIGGRAPH 2005, approximate variant): S is unfolded round V,
+//     face by face across the edges at V, into C's face, and offset + |S' - C| counts when the
+//     segment enters that face across its edge at V without passing a saddle or boundary vertex on
+//     its far side. This carries the true source from face to face, so on a convex polyhedron the
+//     distances are the polyhedron's own geodesics, not a chain of per-triangle reconstructions;
+//   * along each edge, d_C = d_V + |VC| (Dijkstra): a path that bends at V, with S = V, offset d_V;
+//   * through the triangle (C; V, B) when B is accepted too, an estimate: the virtual source S at
+//     distance d_V from V and d_B from B beyond edge VB; d_C = |S - C| when the segment SC crosses
+//     VB (causality), Kimmel-Sethian's quadratic. A point source is all one triangle can reconstruct,
+//     and it undershoots where fronts converge (past the equator of a sphere: 1-1.3 % of pi at
+//     icosphere level 4), so estimates count only until a tracked straight line reaches the vertex.
 // The triangle update is monotone only at a corner whose angle is at most 90 degrees. An obtuse
 // corner C is split, once in the constructor, by unfolding the faces beyond its opposite edge into
 // the plane of its triangle (intrinsic layouts from edge lengths) until a vertex D lands in the
@@ -20,7 +27,8 @@
 // updates and edge updates reach it).
 //
 // Exact (up to rounding) on a flat surface for a single seed when every corner the wave passes is
-// acute or split: the virtual source is then the seed itself.
+// acute or split: the source is then the seed itself. On the unit icosphere within 0.2 % of pi of the
+// great circles at level 4 (h = 0.075), 0.06 % at level 6.
 #include "common/element_data.hpp"
 #include "common/surface_domain.hpp"
 
