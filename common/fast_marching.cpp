@@ -17,6 +17,9 @@ namespace {
 
 using Vec2 = Eigen::Vector2d;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Relative size of rounding in lengths and in the orientation tests below: a source lying on an
+// edge's line (every source one edge away from a seed does) must not fall off it by rounding.
+constexpr double kRounding = 1e-12;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -84,11 +87,12 @@ void unfold_source_around_vertex(const SurfaceDomain& d, const std::vector<char>
       const auto& p = d.face_corners[f];
       const int entry_corner = counter_clockwise ? (k + 1) % 3 : (k + 2) % 3, target_corner = 3 - k - entry_corner;
       const Vec2 entry = p[entry_corner] - p[k];
-      const double side = cross(entry, s);
-      if (counter_clockwise ? side > 0.0 : side < 0.0) break;
+      const double side = cross(entry, s), side_rounding = kRounding * entry.norm() * s.norm();
+      if (counter_clockwise ? side > side_rounding : side < -side_rounding) break;
       // The entry edge's end bounds the window for this target; it narrows it for good when blocking
       // and tighter than the bound so far (on V's side of the ray from S' through it).
-      const bool tighter = !bounded || cross(tightest - s, entry - s) * cross(tightest - s, -s) >= 0.0;
+      const bool tighter = !bounded || cross(tightest - s, entry - s) * cross(tightest - s, -s) >=
+                                           -kRounding * (tightest - s).squaredNorm() * (entry - s).norm() * s.norm();
       const Vec2 bound = tighter ? entry : tightest;
       if (tighter && blocking[static_cast<size_t>(d.face_vertices[f][entry_corner])]) {
         tightest = entry;
@@ -96,7 +100,7 @@ void unfold_source_around_vertex(const SurfaceDomain& d, const std::vector<char>
       }
       // Inside the window: V and the bound on either side of the line from S' to the target (or on it).
       const Vec2 to_target = p[target_corner] - p[k] - s;
-      if (cross(to_target, -s) * cross(to_target, bound - s) <= 0.0)
+      if (cross(to_target, -s) * cross(to_target, bound - s) <= kRounding * to_target.squaredNorm() * s.norm() * (bound - s).norm())
         visit(d.face_vertices[f][target_corner], 3 * f + target_corner, Vec2(-to_target));
     }
   }
@@ -241,13 +245,16 @@ IntrinsicVertexData<double> FastMarchingGeodesics::distance(const std::vector<in
     // Entries left behind when a value changed (it may also rise, when a tracked path replaces an estimate).
     if (accepted[static_cast<size_t>(v)] || value != dist[static_cast<size_t>(v)]) continue;
     accepted[static_cast<size_t>(v)] = 1;
-    const Reach& reach = value == path[static_cast<size_t>(v)].value ? path[static_cast<size_t>(v)] : estimate[static_cast<size_t>(v)];
-    // First the straight lines from the source unfolded around v (real paths), then the edges and
-    // the estimates, which mostly find those targets settled already.
-    unfold_source_around_vertex(d, blocking_, reach.corner, reach.source, [&](int target, int target_corner, const Vec2& source) {
-      if (!accepted[static_cast<size_t>(target)])
-        offer(target, Reach{reach.offset + source.norm(), target_corner, source, reach.offset}, true, Reach{});
-    });
+    // Only a path's source is unfolded: an estimate's virtual source is no point any path starts
+    // from, and lines drawn from it in other directions than the one it was fitted to can be
+    // shorter than any path on the surface. A path that an estimate beats only by rounding (on a
+    // flat surface both are the same line) still counts.
+    const Reach& reach = path[static_cast<size_t>(v)];
+    if (reach.value - value <= kRounding * value)
+      unfold_source_around_vertex(d, blocking_, reach.corner, reach.source, [&](int target, int target_corner, const Vec2& source) {
+        if (!accepted[static_cast<size_t>(target)])
+          offer(target, Reach{reach.offset + source.norm(), target_corner, source, reach.offset}, true, Reach{});
+      });
     for (int i = vertex_face_start_[static_cast<size_t>(v)]; i < vertex_face_start_[static_cast<size_t>(v) + 1]; ++i) {
       const int f = vertex_faces_[static_cast<size_t>(i)] / 3, k = vertex_faces_[static_cast<size_t>(i)] % 3;
       const auto& p = d.face_corners[f];
