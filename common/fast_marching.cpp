@@ -22,6 +22,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kRounding = 1e-12;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double square(double x) { return x * x; }
+
+// x <= kRounding * sqrt(scale_squared): zero up to rounding or below (no square root on the way).
+bool within_rounding(double x, double scale_squared) { return x <= 0.0 || x * x <= kRounding * kRounding * scale_squared; }
 
 // The distance at C through triangle (A, B, C) from the distances at A and B (see the header): the
 // virtual source S with |SA| = dA, |SB| = dB on the far side of AB from C; |SC| when the segment SC
@@ -87,20 +91,22 @@ void unfold_source_around_vertex(const SurfaceDomain& d, const std::vector<char>
       const auto& p = d.face_corners[f];
       const int entry_corner = counter_clockwise ? (k + 1) % 3 : (k + 2) % 3, target_corner = 3 - k - entry_corner;
       const Vec2 entry = p[entry_corner] - p[k];
-      const double side = cross(entry, s), side_rounding = kRounding * entry.norm() * s.norm();
-      if (counter_clockwise ? side > side_rounding : side < -side_rounding) break;
+      const double side = cross(entry, s);
+      if (!within_rounding(counter_clockwise ? side : -side, entry.squaredNorm() * s.squaredNorm())) break;
       // The entry edge's end bounds the window for this target; it narrows it for good when blocking
       // and tighter than the bound so far (on V's side of the ray from S' through it).
-      const bool tighter = !bounded || cross(tightest - s, entry - s) * cross(tightest - s, -s) >=
-                                           -kRounding * (tightest - s).squaredNorm() * (entry - s).norm() * s.norm();
+      const Vec2 to_tightest = tightest - s, to_entry = entry - s;
+      const bool tighter = !bounded || within_rounding(-cross(to_tightest, to_entry) * cross(to_tightest, -s),
+                                                       square(to_tightest.squaredNorm()) * to_entry.squaredNorm() * s.squaredNorm());
       const Vec2 bound = tighter ? entry : tightest;
       if (tighter && blocking[static_cast<size_t>(d.face_vertices[f][entry_corner])]) {
         tightest = entry;
         bounded = true;
       }
       // Inside the window: V and the bound on either side of the line from S' to the target (or on it).
-      const Vec2 to_target = p[target_corner] - p[k] - s;
-      if (cross(to_target, -s) * cross(to_target, bound - s) <= kRounding * to_target.squaredNorm() * s.norm() * (bound - s).norm())
+      const Vec2 to_target = p[target_corner] - p[k] - s, to_bound = bound - s;
+      if (within_rounding(cross(to_target, -s) * cross(to_target, to_bound),
+                          square(to_target.squaredNorm()) * s.squaredNorm() * to_bound.squaredNorm()))
         visit(d.face_vertices[f][target_corner], 3 * f + target_corner, Vec2(-to_target));
     }
   }
