@@ -2,7 +2,8 @@
 // distance from a corner of the flat square (exact up to rounding: every update is a two-point
 // update through a right or acute corner), from a vertex of a flat mesh full of obtuse triangles
 // (exact only because the obtuse corners are split by unfolding), great circles on the unit
-// icosphere (within 0.5 % of pi), and |grad distance| = 1 away from the source and cut locus.
+// icosphere (within 0.5 % of pi at the default resolution, falling with refinement), and
+// |grad distance| = 1 away from the source and cut locus.
 #include "common/errors.hpp"
 #include "common/fast_marching.hpp"
 #include "common/fe_operators.hpp"
@@ -13,7 +14,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace physarum {
@@ -61,12 +65,21 @@ TEST(FastMarching, ObtuseTrianglesAreSplitByUnfoldingAndStayExactOnAFlatMesh) {
   EXPECT_LT(max_error(mesh, d, [&](const Eigen::Vector3d& q) { return (q - p).norm(); }), 1e-3);
 }
 
-// The issue asks for 0.5 % of pi. Measured: 1.1-1.3 % at shape:sphere's level 4 (h = 0.075), 0.68 %
-// at level 5, 0.42 % at level 6 (first order: the point-source update assumes a front that diverges
-// from a source, while on the sphere fronts past the equator converge, so the error grows toward
-// the antipode). Level 4 is held to 1.5 %, the 0.5 % is asserted at level 6.
+// Largest |fast marching - arccos(p.q)| over the vertices of the unit sphere `mesh` (taken as it is:
+// intrinsic vertex v on input vertex v) from input vertex `source`.
+double great_circle_error(const InputMesh& mesh, const FastMarchingGeodesics& marching, int source) {
+  const IntrinsicVertexData<double> d = marching.distance({source});
+  return max_error(mesh, d, [&](const Eigen::Vector3d& q) { return great_circle(mesh.positions[static_cast<size_t>(source)], q); });
+}
+
+// The issue's target: 0.5 % of pi at shape:sphere's resolution (icosphere level 4, h = 0.075). A
+// point-source update alone is first order here (1.0-1.3 % at level 4: past the equator the fronts
+// converge, which a per-triangle point source cannot represent); tracking each vertex's source
+// through the unfoldings gives the polyhedron's own geodesics, whose gap to the great circles (chord
+// against arc) is second order, so the error also has to fall as the sphere is refined.
 TEST(FastMarching, GreatCircleDistanceOnTheIcosphereWithinHalfAPercentOfPi) {
   const SceneSurface s = prepare_surface(SurfaceSpec{"shape:sphere", std::nullopt, std::nullopt, 0.0});
+  ASSERT_EQ(s.input.vertex_count(), 2562);  // level 4
   const FastMarchingGeodesics marching(s.domain);
   for (const int source : {0, 100, 2000}) {
     const int seed = s.input_to_intrinsic[static_cast<size_t>(source)];
@@ -76,16 +89,47 @@ TEST(FastMarching, GreatCircleDistanceOnTheIcosphereWithinHalfAPercentOfPi) {
     for (int v = 0; v < s.input.vertex_count(); ++v)
       worst = std::max(worst, std::abs(d[static_cast<size_t>(s.input_to_intrinsic[static_cast<size_t>(v)])] -
                                        great_circle(p, s.input.positions[static_cast<size_t>(v)])));
-    EXPECT_LT(worst, 0.015 * std::numbers::pi) << "source " << source;
+    EXPECT_LT(worst, 0.005 * std::numbers::pi) << "source " << source;
   }
-  const InputMesh finer = testing::make_icosphere(6);
-  const SurfaceDomain domain = testing::make_domain(finer);
-  const FastMarchingGeodesics marching6(domain);
-  for (const int source : {0, 100, 2000}) {
-    const IntrinsicVertexData<double> d = marching6.distance({source});
-    EXPECT_LT(max_error(finer, d, [&](const Eigen::Vector3d& q) { return great_circle(finer.positions[static_cast<size_t>(source)], q); }),
-              0.005 * std::numbers::pi)
-        << "source " << source;
+}
+
+TEST(FastMarching, GreatCircleErrorFallsAsTheIcosphereIsRefined) {
+  const std::array<int, 3> sources{0, 100, 2000};
+  std::array<double, 3> coarser;
+  coarser.fill(std::numeric_limits<double>::infinity());
+  for (const int level : {4, 5, 6}) {
+    const InputMesh mesh = testing::make_icosphere(level);
+    const SurfaceDomain domain = testing::make_domain(mesh);
+    const FastMarchingGeodesics marching(domain);
+    for (size_t i = 0; i < sources.size(); ++i) {
+      const double error = great_circle_error(mesh, marching, sources[i]);
+      EXPECT_LT(error, coarser[i]) << "source " << sources[i] << ", level " << level;
+      coarser[i] = error;
+    }
+  }
+}
+
+// No path between two points is shorter than the straight line through space. A real mesh has
+// saddles and sharp convex vertices, where a straight line drawn from a reconstructed (virtual)
+// source, or past a saddle's far side, would be a shortcut: unfolding estimates' sources made
+// values up to 1.4 % of the diameter shorter than the chord on spot. What is left (0.18 % of the
+// diameter on spot from vertex 1465, none on cow) comes from a tracked source being used for
+// lines that enter the vertex's star away from the point its own line came through, where the
+// faces behind differ; the bound states that margin.
+TEST(FastMarching, NeverShorterThanTheStraightLineThroughSpaceOnRealMeshes) {
+  for (const char* name : {"spot.obj", "cow.obj"}) {
+    PHYSARUM_REQUIRE_SHARED_MESH(path, name);
+    const SceneSurface s = prepare_surface(SurfaceSpec{path, std::nullopt, std::nullopt, 0.0});
+    const FastMarchingGeodesics marching(s.domain);
+    for (const int source : {0, s.input.vertex_count() / 2}) {
+      const IntrinsicVertexData<double> d = marching.distance({s.input_to_intrinsic[static_cast<size_t>(source)]});
+      const Eigen::Vector3d p = s.simulated.positions[static_cast<size_t>(source)];
+      double shortest_margin = 0.0;
+      for (int v = 0; v < s.input.vertex_count(); ++v)
+        shortest_margin = std::min(shortest_margin, d[static_cast<size_t>(s.input_to_intrinsic[static_cast<size_t>(v)])] -
+                                                        (s.simulated.positions[static_cast<size_t>(v)] - p).norm());
+      EXPECT_GE(shortest_margin, -0.003 * s.diameter) << name << ", source " << source;
+    }
   }
 }
 
