@@ -242,9 +242,10 @@ TEST(OpenCLDiffusionDecay, HostSolveInTheQueueEqualsTheMappedSolveBitForBit) {
   const VertexParameters params = varying_rates(n, 0.01, 0.5, 29);
   testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
   const double dt = 50.0 * probe.stable_time_step();
-  // Sources everywhere, and sinks strong enough at every fifth vertex that the clamp at zero acts.
-  IntrinsicVertexData<double> rate = random_values(n, 31, 0.0, 1.0);
-  for (int i = 0; i < n; i += 5) rate[static_cast<size_t>(i)] = -50.0 / dt;
+  // Sources everywhere (up to 1 per step), and at every 40th vertex a sink strong enough that the
+  // clamp at zero acts around it (about a quarter of the vertices end at zero).
+  IntrinsicVertexData<double> rate = random_values(n, 31, 0.0, 1.0 / dt);
+  for (int i = 0; i < n; i += 40) rate[static_cast<size_t>(i)] = -20.0 / dt;
   const IntrinsicVertexData<double> u0 = random_values(n, 37, 0.1, 1.0);
   const IntrinsicVertexData<double> amount = random_values(n, 41, 0.0, 1e-3);
   OpenCLDiffusionDecayOptions queued, mapped;
@@ -269,8 +270,10 @@ TEST(OpenCLDiffusionDecay, HostSolveInTheQueueEqualsTheMappedSolveBitForBit) {
     ASSERT_EQ(ua[k], ub[k]) << "vertex " << i;
     if (ua[k] == 0.0) ++clamped;
   }
-  // The steps did what they should: the sinks were clamped, and the field moved from where it started.
-  EXPECT_GE(clamped, n / 5);
+  // The steps did real work: some vertices clamped, most not (a field driven to zero everywhere would
+  // agree whatever the solve did), and the field moved from where it started.
+  EXPECT_GT(clamped, 0);
+  EXPECT_LT(clamped, n / 2);
   EXPECT_GT(max_difference(ua, u0).first, 0.1);
   EXPECT_TRUE(a.damaged_canaries().empty()) << joined(a.damaged_canaries());
 }
