@@ -147,7 +147,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
       if (options.host_solve_in_queue && runs_queued_host_tasks(compute.device))
         host_task_ = std::make_unique<QueuedHostTask>(
             compute, "opencl pheromone (backward Euler)",
-            [this](std::span<void* const> buffers) { host_backward_solve(static_cast<float*>(buffers[0])); });
+            [this](void* u) { host_backward_solve(static_cast<float*>(u)); });
     } else {
       rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
       rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
@@ -324,7 +324,7 @@ void OpenCLDiffusionDecay::backward_step() {
 void OpenCLDiffusionDecay::host_backward_step() {
   last_solve_ = {};
   if (host_task_) {
-    host_task_->enqueue({&u_});
+    host_task_->enqueue(u_);
     return;
   }
   const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, static_cast<size_t>(vertex_count_));

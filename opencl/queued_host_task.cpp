@@ -3,7 +3,6 @@
 #include "common/errors.hpp"
 #include "opencl/opencl_error.hpp"
 
-#include <array>
 #include <exception>
 #include <utility>
 
@@ -11,12 +10,11 @@ namespace physarum::opencl {
 
 namespace {
 
-// The argument block of one native-kernel run. OpenCL copies it, and in the copy replaces each
-// buffer's cl_mem handle (stored in `buffers`) by a host pointer to that buffer's contents.
+// The argument block of one native-kernel run. OpenCL copies it, and in the copy replaces the
+// buffer's cl_mem handle (stored in `contents`) by a host pointer to the buffer's contents.
 struct NativeArguments {
   QueuedHostTask* task;
-  std::size_t count;
-  std::array<void*, QueuedHostTask::kMaxBuffers> buffers;
+  void* contents;
 };
 
 }  // namespace
@@ -40,24 +38,13 @@ QueuedHostTask::~QueuedHostTask() {
   }
 }
 
-void QueuedHostTask::enqueue(std::initializer_list<const DeviceBuffer*> buffers) {
+void QueuedHostTask::enqueue(const DeviceBuffer& buffer) {
   throw_if_failed();
-  if (buffers.size() == 0 || buffers.size() > kMaxBuffers)
-    throw DeviceError(what_ + ": a queued host task names 1 to " + std::to_string(kMaxBuffers) + " buffers, not " +
-                      std::to_string(buffers.size()));
-  NativeArguments arguments{this, buffers.size(), {}};
-  std::array<cl_mem, kMaxBuffers> handles{};
-  std::array<const void*, kMaxBuffers> locations{};
-  std::size_t i = 0;
-  for (const DeviceBuffer* b : buffers) {
-    handles[i] = b->buffer();
-    arguments.buffers[i] = b->buffer();
-    locations[i] = &arguments.buffers[i];
-    ++i;
-  }
-  const cl_int status = clEnqueueNativeKernel(compute_.queue(), &QueuedHostTask::run, &arguments, sizeof(arguments),
-                                              static_cast<cl_uint>(buffers.size()), handles.data(), locations.data(),
-                                              0, nullptr, nullptr);
+  cl_mem handle = buffer.buffer();
+  NativeArguments arguments{this, handle};
+  const void* location = &arguments.contents;
+  const cl_int status = clEnqueueNativeKernel(compute_.queue(), &QueuedHostTask::run, &arguments, sizeof(arguments), 1,
+                                              &handle, &location, 0, nullptr, nullptr);
   if (status != CL_SUCCESS)
     throw device_error(what_ + ": enqueueing host work on " + compute_.device.device_name, status);
 }
@@ -68,7 +55,7 @@ void QueuedHostTask::run(void* arguments) {
   const NativeArguments& a = *static_cast<const NativeArguments*>(arguments);
   QueuedHostTask& task = *a.task;
   try {
-    task.work_(std::span<void* const>(a.buffers.data(), a.count));
+    task.work_(a.contents);
   } catch (const std::exception& e) {
     const std::lock_guard lock(task.failure_mutex_);
     if (task.failure_.empty()) task.failure_ = e.what();

@@ -9,18 +9,20 @@
 // when its turn comes (bench/README.md, "The implicit solve": those round trips were most of a
 // small field's implicit step).
 //
+// One buffer per run: PoCL 3.1 puts the host pointers of a native kernel's several buffers into
+// the wrong argument slots (given [b, a] for buffers a, b created in that order, the work saw a's
+// pointer where b's belonged), so a task that needs two fields would read one as the other. With
+// one buffer there is nothing to mix up. (The reaction-diffusion IMEX solve, which reads the
+// right-hand sides and writes the fields, stays on mapped buffers for that reason.)
+//
 // The work runs on the OpenCL runtime's thread, so it must not touch what the enqueueing thread
 // changes meanwhile, and it must not call OpenCL on the same queue. A task object lives as long as
 // any run of it: the destructor waits for the queue.
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 
-#include <cstddef>
 #include <functional>
-#include <initializer_list>
-#include <memory>
 #include <mutex>
-#include <span>
 #include <string>
 
 namespace physarum::opencl {
@@ -30,10 +32,8 @@ bool runs_queued_host_tasks(const DeviceInfo& device);
 
 class QueuedHostTask {
  public:
-  // The buffers' contents as host pointers, in the order enqueue() named the buffers.
-  using Work = std::function<void(std::span<void* const> buffers)>;
-  // The most buffers one run may name.
-  static constexpr std::size_t kMaxBuffers = 4;
+  // The contents of the buffer enqueue() named, as a host pointer.
+  using Work = std::function<void(void* contents)>;
 
   // `what` names the task in error messages. Throws DeviceError when the device runs no native
   // kernels (runs_queued_host_tasks).
@@ -42,11 +42,11 @@ class QueuedHostTask {
   QueuedHostTask(const QueuedHostTask&) = delete;
   QueuedHostTask& operator=(const QueuedHostTask&) = delete;
 
-  // Enqueues one run of the work on `buffers` (1 to kMaxBuffers) and returns without waiting. The
-  // commands enqueued before it have finished when it runs, and those after it see what it wrote.
-  // Throws DeviceError when an earlier run failed (the work threw: the message says what), or when
-  // the queue refuses the command.
-  void enqueue(std::initializer_list<const DeviceBuffer*> buffers);
+  // Enqueues one run of the work on `buffer` and returns without waiting. The commands enqueued
+  // before it have finished when it runs, and those after it see what it wrote. Throws DeviceError
+  // when an earlier run failed (the work threw: the message says what), or when the queue refuses
+  // the command.
+  void enqueue(const DeviceBuffer& buffer);
 
  private:
   static void run(void* arguments);
