@@ -1,11 +1,14 @@
 // The pheromone step alone (Eq. 6 forward Euler, Eq. 7 backward Euler), both backends side by side,
-// on spot.obj scaled to 4 m^2 from 6k to 1.3M intrinsic faces; the OpenCL field numbered as a
+// on spot.obj scaled to 4 m^2 from 6k to 1.3M intrinsic faces (and the backward step on the built-in
+// square too: 1,089 vertices, the 10^3 end of the implicit solve's range, which spot cannot reach); the OpenCL field numbered as a
 // simulation numbers it (opencl::in_device_vertex_order). Counters: vertices per second, the
 // forward-Euler sub-steps per step (finer meshes need more for stability), and for the OpenCL forward
 // step the bytes per second its sub-step matrix and fields move, to set against the machine's
-// bandwidth (`physarum bench` prints both as a roofline). The backward step three ways: the reference,
+// bandwidth (`physarum bench` prints both as a roofline). The backward step four ways: the reference,
 // the OpenCL field as it runs here (a CPU device: the host's float Cholesky factor,
-// opencl/host_cholesky_solve.hpp) and the OpenCL field with device conjugate gradients (a GPU's path).
+// opencl/host_cholesky_solve.hpp, run in the device's queue, opencl/queued_host_task.hpp), the same
+// factor on the field mapped by the host (a GPU's path for small fields), and the OpenCL field with
+// device conjugate gradients (a GPU's path for large ones).
 #include "bench/bench_backends.hpp"
 #include "common/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
@@ -21,12 +24,22 @@ namespace {
 // Backend argument 2: the OpenCL field with its backward-Euler system solved by conjugate gradients
 // on the device even where the automatic choice is the host's Cholesky factor (a CPU device).
 constexpr int kOpenCLWithDeviceCG = 2;
+// Backend argument 3: the OpenCL field with the host factor solving on the field mapped by the host
+// (one wait per step) even where the device could run it in its queue (opencl/queued_host_task.hpp).
+constexpr int kOpenCLMapped = 3;
+// Mesh argument 3: spot.obj, or the built-in square (32 x 32 cells: scaled to 4 m^2 its triangles'
+// circumradius is 4.4 cm, so a 10 cm bound leaves its 1,089 vertices as they are).
+constexpr int kSpot = 0;
+constexpr int kSquare = 1;
 
 void BM_PheromoneStep(benchmark::State& state) {
   const bool device_cg = state.range(0) == kOpenCLWithDeviceCG;
-  const auto backend = device_cg ? kOpenCL : static_cast<Backend>(state.range(0));
+  const bool mapped = state.range(0) == kOpenCLMapped;
+  const auto backend = device_cg || mapped ? kOpenCL : static_cast<Backend>(state.range(0));
   const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
-  const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
+  const bool square = state.range(3) == kSquare;
+  const SurfaceDomain* domain =
+      square ? scaled_domain("shape:square", tenths_of_mm(state.range(2))) : spot_or_skip(state, state.range(2));
   if (!domain) return;
   const Scene scene = bench_scene(0);
   const VertexParameters params = VertexParameters::constant(scene.parameters, domain->vertex_count);
@@ -36,6 +49,7 @@ void BM_PheromoneStep(benchmark::State& state) {
     const SurfaceDomain device_domain = opencl::in_device_vertex_order(*domain);
     opencl::OpenCLDiffusionDecayOptions options;
     if (device_cg) options.implicit_solver = opencl::ImplicitSolver::DeviceConjugateGradients;
+    if (mapped) options.host_solve_in_queue = false;
     opencl::OpenCLDiffusionDecay field(compute(), device_domain, params, integrator, scene.time_step, options);
     field.fill(1.0);
     for (auto _ : state) {
@@ -50,7 +64,7 @@ void BM_PheromoneStep(benchmark::State& state) {
     for (auto _ : state) model.step(u);
     sub_steps = model.sub_steps();
   }
-  state.SetLabel(device_cg ? "opencl, device CG" : backend == kOpenCL ? "opencl" : "reference");
+  state.SetLabel(device_cg ? "opencl, device CG" : mapped ? "opencl, mapped host solve" : backend == kOpenCL ? "opencl" : "reference");
   state.counters["vertices_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
   state.counters["vertices"] = domain->vertex_count;
@@ -60,14 +74,19 @@ void BM_PheromoneStep(benchmark::State& state) {
         bytes_per_sub_step * sub_steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm}. Backward
-// Euler three ways (the device-CG variant too), from 3k to 1.3M vertices.
+// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm, mesh}.
+// Backward Euler four ways (the device-CG and mapped-host-solve variants too), from 1k (the square)
+// to 1.3M vertices.
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL}, {0}, {400, 150, 50, 25, 20}})
+    ->ArgsProduct({{kReference, kOpenCL}, {0}, {400, 150, 50, 25, 20}, {kSpot}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG}, {1}, {1000, 400, 150, 50, 20, 14}})
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000}, {kSquare}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_PheromoneStep)
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000, 400, 150, 50, 20, 14}, {kSpot}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

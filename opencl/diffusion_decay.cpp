@@ -144,6 +144,10 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
                                                          "opencl pheromone (backward Euler)");
       host_rhs_operator_ = system.rhs;
       host_rhs_.resize(un);
+      if (options.host_solve_in_queue && runs_queued_host_tasks(compute.device))
+        host_task_ = std::make_unique<QueuedHostTask>(
+            compute, "opencl pheromone (backward Euler)",
+            [this](void* u) { host_backward_solve(static_cast<float*>(u)); });
     } else {
       rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
       rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
@@ -313,20 +317,29 @@ void OpenCLDiffusionDecay::backward_step() {
   last_solve_ = solver_->solve(u_);
 }
 
-// The whole step on the host, on the field mapped in place: b = B u (B is mostly diagonal), then
-// x = S^-1 b written over u. One wait for the queue (the map) and no launch, where the device path
-// pays a launch, a read of b and a write of x, each a round trip that costs more than a small solve.
+// The whole step on the host, on the field in place: no launch, where the device path pays a launch,
+// a read of b and a write of x, each a round trip that costs more than a small solve. In the
+// device's queue where it can (host_task_: the step returns at once), else on the field mapped (one
+// wait for the queue, and the unmap).
 void OpenCLDiffusionDecay::host_backward_step() {
-  const size_t un = static_cast<size_t>(vertex_count_);
-  const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, un);
+  last_solve_ = {};
+  if (host_task_) {
+    host_task_->enqueue(u_);
+    return;
+  }
+  const MappedBuffer<float> u(compute_, u_, CL_MAP_READ | CL_MAP_WRITE, 0, static_cast<size_t>(vertex_count_));
+  host_backward_solve(u.data());
+}
+
+// b = B u (B is mostly diagonal), then x = S^-1 b written over u.
+void OpenCLDiffusionDecay::host_backward_solve(float* u) {
   const CsrMatrix& B = host_rhs_operator_;
   for (int i = 0; i < vertex_count_; ++i) {
     double sum = 0.0;
     for (int k = B.row_start[i]; k < B.row_start[i + 1]; ++k) sum += B.value[k] * u[static_cast<size_t>(B.column[k])];
     host_rhs_[static_cast<size_t>(i)] = static_cast<float>(sum);
   }
-  host_solver_->solve(host_rhs_.data(), u.data());
-  last_solve_ = {};
+  host_solver_->solve(host_rhs_.data(), u);
 }
 
 // ---- summaries ----

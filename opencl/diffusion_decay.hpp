@@ -16,6 +16,7 @@
 #include "opencl/field_model.hpp"
 #include "opencl/field_statistics.hpp"
 #include "opencl/host_cholesky_solve.hpp"
+#include "opencl/queued_host_task.hpp"
 
 #include <memory>
 #include <string>
@@ -31,6 +32,11 @@ enum class ImplicitSolver { Automatic, DeviceConjugateGradients, HostCholesky };
 
 struct OpenCLDiffusionDecayOptions {
   ImplicitSolver implicit_solver = ImplicitSolver::Automatic;
+  // With the host factor: solve inside the device's queue, as a native kernel on the field in place
+  // (opencl/queued_host_task.hpp), where the device runs them (PoCL's CPU device), so a step never
+  // waits for the device; elsewhere, or when false, the host maps the field and solves (one wait per
+  // step). The same arithmetic either way: the fields agree bit for bit.
+  bool host_solve_in_queue = true;
   // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system,
   // common/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
   double cg_relative_tolerance = 1e-6;
@@ -88,6 +94,8 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   // The last backward-Euler CG solve (iterations 0 when the host factor solves the system).
   const ConjugateGradientReport& last_solve() const { return last_solve_; }
   bool solves_on_host() const { return host_solver_ != nullptr; }
+  // The host factor solves in the device's queue (OpenCLDiffusionDecayOptions::host_solve_in_queue).
+  bool solves_in_queue() const { return host_task_ != nullptr; }
 
   // ---- summaries, reduced on the device ----
   double total_amount() const override;  // sum_i m_i u_i
@@ -103,6 +111,7 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   void forward_step();
   void backward_step();
   void host_backward_step();
+  void host_backward_solve(float* u);
   void diagonal_step();
   void add_source(double h, bool clamp_at_zero);
 
@@ -145,6 +154,9 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
 
   std::unique_ptr<DeviceFieldStatistics> statistics_;
   ConjugateGradientReport last_solve_;
+  // The host solve as a native kernel (host_solve_in_queue). Declared last, so it is destroyed first:
+  // its destructor waits for runs still queued, which use the host solver and buffers above.
+  std::unique_ptr<QueuedHostTask> host_task_;
 };
 
 }  // namespace physarum::opencl
