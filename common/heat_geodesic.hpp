@@ -12,8 +12,10 @@
 // L is the PSD cotan Laplacian and M the lumped mass of the domain. On a surface with boundary, step 1
 // is the average of the Neumann solution (the system above) and the Dirichlet one (u = 0 on every
 // boundary vertex), as the authors recommend: Neumann alone bends the level sets to meet the boundary
-// at right angles, Dirichlet alone makes them follow it. A seed ON the boundary heats only the Neumann
-// solution (the Dirichlet one holds it at 0); with seeds on the boundary alone the result is Neumann's.
+// at right angles, Dirichlet alone makes them follow it. A seed ON the boundary heats the Dirichlet
+// solution at its Neumann value; with seeds on the boundary alone there is no Dirichlet solution (it
+// would hold them at 0), the result is Neumann's, and the faces at the boundary where the geodesics
+// leave the surface take their direction from the interior (common/boundary_outflow.hpp).
 //
 // Far from the seeds the heat falls below what one solve resolves (about e^-1 per edge: 440 decades
 // ~1000 edges away), so step 1 is solved in levels, each rescaled from the band where the last one
@@ -28,7 +30,6 @@
 #include "common/surface_domain.hpp"
 
 #include <memory>
-#include <vector>
 #include <vector>
 
 namespace physarum {
