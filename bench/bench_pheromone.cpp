@@ -38,6 +38,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   const auto backend = device_cg || mapped ? kOpenCL : static_cast<Backend>(state.range(0));
   const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
   const bool square = state.range(3) == kSquare;
+  const int steps_per_sync = static_cast<int>(state.range(4));
   const SurfaceDomain* domain =
       square ? scaled_domain("shape:square", tenths_of_mm(state.range(2))) : spot_or_skip(state, state.range(2));
   if (!domain) return;
@@ -53,7 +54,7 @@ void BM_PheromoneStep(benchmark::State& state) {
     opencl::OpenCLDiffusionDecay field(compute(), device_domain, params, integrator, scene.time_step, options);
     field.fill(1.0);
     for (auto _ : state) {
-      field.step();
+      for (int s = 0; s < steps_per_sync; ++s) field.step();
       compute().queue.finish();
     }
     sub_steps = field.sub_steps();
@@ -61,32 +62,41 @@ void BM_PheromoneStep(benchmark::State& state) {
   } else {
     ReferenceDiffusionDecay model(*domain, params, integrator, scene.time_step);
     IntrinsicVertexData<double> u(static_cast<size_t>(domain->vertex_count), 1.0);
-    for (auto _ : state) model.step(u);
+    for (auto _ : state)
+      for (int s = 0; s < steps_per_sync; ++s) model.step(u);
     sub_steps = model.sub_steps();
   }
   state.SetLabel(device_cg ? "opencl, device CG" : mapped ? "opencl, mapped host solve" : backend == kOpenCL ? "opencl" : "reference");
   state.counters["vertices_per_s"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * domain->vertex_count, benchmark::Counter::kIsRate);
+      benchmark::Counter(static_cast<double>(state.iterations()) * steps_per_sync * domain->vertex_count, benchmark::Counter::kIsRate);
   state.counters["vertices"] = domain->vertex_count;
+  state.counters["ms_per_step"] = benchmark::Counter(1e-3 * steps_per_sync, benchmark::Counter::kIsIterationInvariantRate |
+                                                                               benchmark::Counter::kInvert);
   if (integrator == Integrator::ForwardEuler) state.counters["sub_steps"] = sub_steps;
   if (bytes_per_sub_step > 0.0)
     state.counters["bytes_per_s"] = benchmark::Counter(
-        bytes_per_sub_step * sub_steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+        bytes_per_sub_step * sub_steps * steps_per_sync * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm, mesh}.
-// Backward Euler four ways (the device-CG and mapped-host-solve variants too), from 1k (the square)
-// to 1.3M vertices.
+// Args: {backend, integrator (0 forward, 1 backward), max circumradius in tenths of a mm, mesh, steps
+// per sync}. Backward Euler four ways (the device-CG and mapped-host-solve variants too), from 1k
+// (the square) to 1.3M vertices. Steps per sync 1: each step waits for the device (its latency);
+// 64: as `physarum run` issues them, many steps between waits (it waits only for a statistics row,
+// a frame or a checkpoint), so ms_per_step is what a run pays per step (its throughput).
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL}, {0}, {400, 150, 50, 25, 20}, {kSpot}})
+    ->ArgsProduct({{kReference, kOpenCL}, {0}, {400, 150, 50, 25, 20}, {kSpot}, {1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000}, {kSquare}})
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000}, {kSquare}, {1, 64}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000, 400, 150, 50, 20, 14}, {kSpot}})
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000, 400, 150, 50, 20, 14}, {kSpot}, {1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_PheromoneStep)
+    ->ArgsProduct({{kReference, kOpenCL}, {1}, {1000, 400, 150}, {kSpot}, {64}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

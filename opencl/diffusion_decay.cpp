@@ -5,6 +5,7 @@
 #include "common/pheromone_operators.hpp"
 #include "kernels/device_types.h"
 #include "opencl/deposit_scale.hpp"
+#include "opencl/flush_denormals.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"
@@ -333,6 +334,7 @@ void OpenCLDiffusionDecay::host_backward_step() {
 
 // b = B u (B is mostly diagonal), then x = S^-1 b written over u.
 void OpenCLDiffusionDecay::host_backward_solve(float* u) {
+  const FlushDenormalsToZero flush;  // the field's tails (opencl/flush_denormals.hpp)
   const CsrMatrix& B = host_rhs_operator_;
   for (int i = 0; i < vertex_count_; ++i) {
     double sum = 0.0;

@@ -2,6 +2,7 @@
 
 #include "common/errors.hpp"
 #include "opencl/device_tuning.hpp"
+#include "opencl/flush_denormals.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -9,15 +10,14 @@ namespace physarum::opencl {
 
 namespace {
 
-// P S P^-1 = L L^T (or L D L^T), solved in place in a buffer sized once (Eigen's solve() allocates
-// per call).
+// P S P^-1 = L D L^T, solved in place in a buffer sized once (Eigen's solve() allocates per call).
 template <class Decomposition, class Vector>
 void permuted_solve(const Decomposition& factor, Vector& permuted, const float* b, float* x, int n) {
   const Eigen::VectorXi& p = factor.permutationP().indices();  // empty: no permutation
   const bool reorder = p.size() == n;
   for (int i = 0; i < n; ++i) permuted[reorder ? p[i] : i] = b[i];
   factor.matrixL().solveInPlace(permuted);
-  if constexpr (requires { factor.vectorD(); }) permuted.array() /= factor.vectorD().array();
+  permuted.array() /= factor.vectorD().array();
   factor.matrixU().solveInPlace(permuted);
   for (int i = 0; i < n; ++i) x[i] = static_cast<float>(permuted[reorder ? p[i] : i]);
 }
@@ -26,7 +26,7 @@ void permuted_solve(const Decomposition& factor, Vector& permuted, const float* 
 
 struct HostCholeskySolve::Factor {
   FactorPrecision precision;
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<float>> single;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<float>> single;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> twice;
   Eigen::VectorXf permuted_single;  // P b, then the solution in the factor's order
   Eigen::VectorXd permuted_double;
@@ -38,15 +38,15 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
     : n_(system.rows), factor_(std::make_unique<Factor>()) {
   Factor& f = *factor_;
   f.precision = precision;
-  // S is symmetric, so its CSR rows are its CSC columns.
+  // S is symmetric, so its CSR rows are its CSC columns. LDL^T factors an indefinite matrix too:
+  // positive definite means every pivot > 0.
   bool factored = false;
   if (precision == FactorPrecision::Single) {
     f.single.compute(system.to_eigen().cast<float>());
-    factored = f.single.info() == Eigen::Success;
+    factored = f.single.info() == Eigen::Success && (f.single.vectorD().array() > 0.0f).all();
     f.permuted_single.resize(n_);
   } else {
     f.twice.compute(system.to_eigen());
-    // LDL^T factors an indefinite matrix too: positive definite means every pivot > 0.
     factored = f.twice.info() == Eigen::Success && (f.twice.vectorD().array() > 0.0).all();
     f.permuted_double.resize(n_);
   }
@@ -56,6 +56,7 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
 }
 
 void HostCholeskySolve::solve(const float* b, float* x) {
+  const FlushDenormalsToZero flush;  // decayed fields' tails (opencl/flush_denormals.hpp)
   Factor& f = *factor_;
   if (f.precision == FactorPrecision::Single) permuted_solve(f.single, f.permuted_single, b, x, n_);
   else permuted_solve(f.twice, f.permuted_double, b, x, n_);

@@ -8,6 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 #include <cmath>
 #include <vector>
 
@@ -52,6 +57,28 @@ TEST(HostCholeskySolve, SolvesAKnownSystemAtBothPrecisions) {
       ASSERT_EQ(in_place[k], out[k]) << "in place, row " << i;
     }
   }
+}
+
+// A decayed field's tails below float's smallest normal number (1.2e-38) are solved as zeros
+// (opencl/flush_denormals.hpp: denormal arithmetic is ~2x slower on x86), and the caller's
+// floating-point mode is left as it was.
+TEST(HostCholeskySolve, FlushesDenormalRightHandSidesToZeroAndRestoresTheMode) {
+#if defined(__SSE__)
+  const CsrMatrix S = ring(50, 2.0);
+  std::vector<float> b(50, 1e-40f), x(50, -1.0f);  // denormal floats
+  ASSERT_GT(b[0], 0.0f);
+  ASSERT_LT(b[0], std::numeric_limits<float>::min());
+  const unsigned mode = _mm_getcsr();
+  for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
+    HostCholeskySolve(S, precision, "test ring").solve(b.data(), x.data());
+    for (const float v : x) ASSERT_EQ(v, 0.0f) << (precision == FactorPrecision::Single ? "float" : "double");
+    EXPECT_EQ(_mm_getcsr(), mode);
+  }
+  volatile float tiny = 1e-38f;
+  EXPECT_GT(tiny * 0.01f, 0.0f) << "denormals still flushed after the solve";
+#else
+  GTEST_SKIP() << "the flush is checked on x86 only";
+#endif
 }
 
 TEST(HostCholeskySolve, RefusesAnIndefiniteSystemNamingIt) {

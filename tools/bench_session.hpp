@@ -71,7 +71,8 @@ struct Row {
 
 // The pheromone step alone: seconds per step (the best of several) and the forward-Euler sub-steps
 // each step takes. OpenCL's forward Euler alternates its steps with triads, so the bandwidth it is
-// compared with was measured in the same seconds, by the best of as many tries.
+// compared with was measured in the same seconds, by the best of as many tries; the backward step
+// is timed in batches of steps per wait for the device, as a run issues them (bench_session.cpp).
 struct PheromoneTiming {
   double seconds = 0.0;
   int sub_steps = 1;
