@@ -5,7 +5,9 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
+#include <thread>
 
 namespace physarum {
 namespace {
@@ -18,6 +20,18 @@ using Vector = Eigen::Map<Eigen::VectorXd>;
 constexpr double kBalanceTolerance = 0.02;
 constexpr double kMaxTopShare = 0.15;
 constexpr int kMaxSplits = 4096;
+// A top supernode of at least this many entries is cut into blocks: kBlockColumns wide on the
+// diagonal (the triangular solves that must wait for each other), kBlockRows tall below it.
+constexpr double kLargeTopEntries = 65536;
+constexpr int kBlockColumns = 64;
+constexpr int kBlockRows = 256;
+
+// Waits until `value` reaches `target` (set by another thread with release order). Yields after a
+// short spin: on a busy machine the thread being waited for may not be running.
+void wait_until(const std::atomic<int>& value, int target) {
+  for (int spin = 0; value.load(std::memory_order_acquire) < target; ++spin)
+    if (spin >= 64) std::this_thread::yield();
+}
 
 // Longest-processing-time-first: the subtrees, heaviest first, each to the currently lightest bin
 // (ties to the lowest bin, so the result depends only on the weights). Returns each subtree's bin.
@@ -123,6 +137,7 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactorView& factor, std::size_t
     top_nodes_.resize(static_cast<size_t>(ns));
     std::iota(top_nodes_.begin(), top_nodes_.end(), 0);
   }
+  plan_top();
   entries_ = static_cast<std::size_t>(total);
   for (const int k : top_nodes_) top_entries_ += static_cast<std::size_t>(entries[static_cast<size_t>(k)]);
 }
@@ -157,6 +172,124 @@ void SupernodalSolve::backward(int k, double* y, double* work) const {
   block.topRows(cols).triangularView<Eigen::Lower>().transpose().solveInPlace(own);
 }
 
+void SupernodalSolve::plan_top() {
+  if (bin_nodes_.empty()) return;  // serial: no tasks
+  const int top = static_cast<int>(top_nodes_.size());
+  forward_tasks_.assign(static_cast<size_t>(top), 0);
+  backward_tasks_.assign(static_cast<size_t>(top), 0);
+  first_flag_.assign(static_cast<size_t>(2 * top), -1);  // forward flags, then backward ones
+  auto large = [&](int k) { return static_cast<double>(f_.pi[k + 1] - f_.pi[k]) * (f_.super[k + 1] - f_.super[k]) >= kLargeTopEntries; };
+  for (int q = 0; q < top; ++q) {
+    const int k = top_nodes_[static_cast<size_t>(q)];
+    const int cols = f_.super[k + 1] - f_.super[k], rows = f_.pi[k + 1] - f_.pi[k];
+    const size_t before = tasks_.size();
+    if (!large(k)) {
+      tasks_.push_back({TopTask::kForwardNode, q, 0, 0, -1});
+    } else {
+      first_flag_[static_cast<size_t>(q)] = flags_;
+      for (int c = 0; c < cols; c += kBlockColumns) tasks_.push_back({TopTask::kForwardRows, q, c, std::min(c + kBlockColumns, cols), flags_++});
+      for (int r = cols; r < rows; r += kBlockRows) tasks_.push_back({TopTask::kForwardRows, q, r, std::min(r + kBlockRows, rows), -1});
+    }
+    forward_tasks_[static_cast<size_t>(q)] = static_cast<int>(tasks_.size() - before);
+  }
+  for (int q = top - 1; q >= 0; --q) {
+    const int k = top_nodes_[static_cast<size_t>(q)];
+    const int cols = f_.super[k + 1] - f_.super[k];
+    const size_t before = tasks_.size();
+    if (!large(k)) {
+      tasks_.push_back({TopTask::kBackwardNode, q, 0, 0, -1});
+    } else {
+      const int blocks = (cols + kBlockColumns - 1) / kBlockColumns;
+      first_flag_[static_cast<size_t>(top + q)] = flags_;
+      flags_ += blocks;
+      for (int block = blocks - 1; block >= 0; --block)
+        tasks_.push_back({TopTask::kBackwardColumns, q, block * kBlockColumns, std::min((block + 1) * kBlockColumns, cols),
+                          first_flag_[static_cast<size_t>(top + q)] + block});
+    }
+    backward_tasks_[static_cast<size_t>(q)] = static_cast<int>(tasks_.size() - before);
+  }
+}
+
+void SupernodalSolve::run_top(double* y, double* x) const {
+  const int top = static_cast<int>(top_nodes_.size());
+  std::vector<std::atomic<int>> done(static_cast<size_t>(flags_));  // zero (C++20 value-initialises)
+  std::vector<std::atomic<int>> forward_done(static_cast<size_t>(top)), backward_done(static_cast<size_t>(top));
+  std::atomic<int> next{0};
+  const int task_count = static_cast<int>(tasks_.size());
+  parallel_chunks(kSolveBins, [&](int) {
+    std::vector<double> work(static_cast<size_t>(max_rows_)), gathered(static_cast<size_t>(max_rows_));
+    for (int t = next++; t < task_count; t = next++) {
+      const TopTask& task = tasks_[static_cast<size_t>(t)];
+      const int q = task.top, k = top_nodes_[static_cast<size_t>(q)];
+      const int first = f_.super[k], cols = f_.super[k + 1] - first, rows = f_.pi[k + 1] - f_.pi[k], below = rows - cols;
+      const ConstBlock block(f_.x + f_.px[k], rows, cols, Eigen::OuterStride<>(rows));
+      const int* row = f_.s + f_.pi[k];
+      Vector own(y + first, cols);
+      const int length = task.last - task.first;
+      Vector acc(work.data(), length);
+      const bool forward_task = task.kind == TopTask::kForwardNode || task.kind == TopTask::kForwardRows;
+      // Everything before this supernode (forward: the earlier ones; backward: the later ones, or
+      // the whole forward sweep for the last) is complete.
+      if (forward_task && q > 0) wait_until(forward_done[static_cast<size_t>(q - 1)], forward_tasks_[static_cast<size_t>(q - 1)]);
+      if (!forward_task) {
+        if (q + 1 < top)
+          wait_until(backward_done[static_cast<size_t>(q + 1)], backward_tasks_[static_cast<size_t>(q + 1)]);
+        else
+          wait_until(forward_done[static_cast<size_t>(top - 1)], forward_tasks_[static_cast<size_t>(top - 1)]);
+      }
+      switch (task.kind) {
+        case TopTask::kForwardNode:
+          forward(k, y, nullptr, work.data());
+          break;
+        case TopTask::kForwardRows: {
+          // These rows minus L(rows, columns left of them) times those columns' solved values.
+          acc.setZero();
+          const int left = std::min(task.first, cols);
+          for (int c = 0; c < left; c += kBlockColumns) {
+            wait_until(done[static_cast<size_t>(first_flag_[static_cast<size_t>(q)] + c / kBlockColumns)], 1);
+            const int width = std::min(kBlockColumns, cols - c);
+            acc.noalias() += block.block(task.first, c, length, width) * own.segment(c, width);
+          }
+          if (task.first < cols) {
+            auto part = own.segment(task.first, length);
+            part -= acc;
+            block.block(task.first, task.first, length, length).triangularView<Eigen::Lower>().solveInPlace(part);
+            done[static_cast<size_t>(task.flag)].store(1, std::memory_order_release);
+          } else {
+            for (int i = 0; i < length; ++i) y[row[task.first + i]] -= acc[i];
+          }
+          break;
+        }
+        case TopTask::kBackwardNode:
+          backward(k, y, work.data());
+          for (int c = first; c < first + cols; ++c) x[f_.perm[c]] = y[c];
+          break;
+        case TopTask::kBackwardColumns: {
+          // These columns minus L(rows below them, these columns)' times those rows' values: the
+          // ancestors' first, then the blocks below within the supernode, bottom up.
+          acc = own.segment(task.first, length);
+          if (below > 0) {
+            for (int i = 0; i < below; ++i) gathered[static_cast<size_t>(i)] = y[row[cols + i]];
+            acc.noalias() -= block.block(cols, task.first, below, length).transpose() * Vector(gathered.data(), below);
+          }
+          const int blocks = (cols + kBlockColumns - 1) / kBlockColumns;
+          for (int b = blocks - 1; b * kBlockColumns >= task.last; --b) {
+            wait_until(done[static_cast<size_t>(first_flag_[static_cast<size_t>(top + q)] + b)], 1);
+            const int c = b * kBlockColumns, height = std::min(kBlockColumns, cols - c);
+            acc.noalias() -= block.block(c, task.first, height, length).transpose() * own.segment(c, height);
+          }
+          block.block(task.first, task.first, length, length).triangularView<Eigen::Lower>().transpose().solveInPlace(acc);
+          own.segment(task.first, length) = acc;
+          for (int c = task.first; c < task.last; ++c) x[f_.perm[first + c]] = y[first + c];
+          done[static_cast<size_t>(task.flag)].store(1, std::memory_order_release);
+          break;
+        }
+      }
+      (forward_task ? forward_done : backward_done)[static_cast<size_t>(q)].fetch_add(1, std::memory_order_acq_rel);
+    }
+  });
+}
+
 Eigen::VectorXd SupernodalSolve::solve(const Eigen::VectorXd& b) const {
   const int n = f_.n;
   Eigen::VectorXd y(n), x(n);
@@ -174,17 +307,20 @@ Eigen::VectorXd SupernodalSolve::solve(const Eigen::VectorXd& b) const {
         for (int c = f_.super[k]; c < f_.super[k + 1]; ++c) y[c] = b[f_.perm[c]];
       for (const int k : nodes) forward(k, y.data(), buffer.data(), work.data());
     });
-  // The top, serially: its columns of P b plus the bins' updates (in bin order), forward then
-  // backward (the last supernodes forward are the first backward, still in cache).
-  std::vector<double> work(static_cast<size_t>(max_rows_));
+  // The top: its columns of P b plus the bins' updates (in bin order), forward then backward.
   for (const int k : top_nodes_)
     for (int c = f_.super[k]; c < f_.super[k + 1]; ++c) y[c] = b[f_.perm[c]];
   for (int bin = 0; bin < bins; ++bin)
     for (size_t t = 0; t < top_columns_.size(); ++t) y[top_columns_[t]] += buffers[static_cast<size_t>(bin)][static_cast<Eigen::Index>(t)];
-  for (const int k : top_nodes_) forward(k, y.data(), nullptr, work.data());
-  for (auto k = top_nodes_.rbegin(); k != top_nodes_.rend(); ++k) {
-    backward(*k, y.data(), work.data());
-    for (int c = f_.super[*k]; c < f_.super[*k + 1]; ++c) x[f_.perm[c]] = y[c];
+  if (bins > 0) {
+    run_top(y.data(), x.data());
+  } else {
+    std::vector<double> work(static_cast<size_t>(max_rows_));
+    for (const int k : top_nodes_) forward(k, y.data(), nullptr, work.data());
+    for (auto k = top_nodes_.rbegin(); k != top_nodes_.rend(); ++k) {
+      backward(*k, y.data(), work.data());
+      for (int c = f_.super[*k]; c < f_.super[*k + 1]; ++c) x[f_.perm[c]] = y[c];
+    }
   }
   // Backward, the bins: parents before children, reading only final values.
   if (bins > 0)

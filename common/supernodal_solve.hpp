@@ -50,17 +50,33 @@ class SupernodalSolve {
   // least `min_parallel_entries` entries.
   explicit SupernodalSolve(const SupernodalFactorView& factor, std::size_t min_parallel_entries = kMinParallelSolveEntries);
 
-  // x with P' L L' P x = b, i.e. A x = b.
+  // x with P' L L' P x = b, i.e. A x = b. Thread-safe.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
-  // For tests: how the supernodes were split (bins == 0: all serial).
+  // For tests and benchmarks: how the supernodes were split (bins == 0: all serial).
   int bins() const { return static_cast<int>(bin_nodes_.size()); }
-  std::size_t top_entries() const { return top_entries_; }
   std::size_t entries() const { return entries_; }
+  std::size_t top_entries() const { return top_entries_; }
+  // The top's work items (one per small supernode, one per block of a large one, forward and backward).
+  int top_tasks() const { return static_cast<int>(tasks_.size()); }
 
  private:
+  // One piece of the top's work. Forward, a large supernode is cut into blocks of rows, each of
+  // which waits for the blocks of columns left of it to be solved; backward into blocks of columns,
+  // each waiting for those below it. Tasks are claimed in list order and wait only for earlier
+  // ones, so any number of threads finishes them (one does them in order), and each sum runs in
+  // the same order whoever computes it.
+  struct TopTask {
+    enum Kind { kForwardNode, kForwardRows, kBackwardNode, kBackwardColumns } kind;
+    int top = 0;               // index into top_nodes_
+    int first = 0, last = 0;   // rows (forward) or columns (backward) of the supernode's block
+    int flag = 0;              // this block's done flag (large supernodes)
+  };
+
   void forward(int k, double* y, double* top_buffer, double* work) const;
   void backward(int k, double* y, double* work) const;
+  void plan_top();
+  void run_top(double* y, double* x) const;
 
   SupernodalFactorView f_;
   int max_rows_ = 0;
@@ -74,6 +90,10 @@ class SupernodalSolve {
   // top_slot_[column]: its index among the top's columns, or -1.
   std::vector<int> top_slot_;
   std::vector<int> top_columns_;
+  std::vector<TopTask> tasks_;
+  // Per top supernode: its forward and its backward tasks' count, and its first done flag.
+  std::vector<int> forward_tasks_, backward_tasks_, first_flag_;
+  int flags_ = 0;
   std::size_t entries_ = 0, top_entries_ = 0;
 };
 
