@@ -18,7 +18,7 @@ using Vector = Eigen::Map<Eigen::VectorXd>;
 // Splitting stops once the bins are within this of perfect balance, or the top holds this share of
 // the entries (it runs on one core), or after this many splits.
 constexpr double kBalanceTolerance = 0.02;
-constexpr double kMaxTopShare = 0.15;
+constexpr double kMaxTopShare = 0.5;
 constexpr int kMaxSplits = 4096;
 // A top supernode of at least this many entries is cut into blocks: kBlockColumns wide on the
 // diagonal (the triangular solves that must wait for each other), kBlockRows tall below it.

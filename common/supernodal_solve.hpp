@@ -59,6 +59,7 @@ class SupernodalSolve {
   std::size_t top_entries() const { return top_entries_; }
   // The top's work items (one per small supernode, one per block of a large one, forward and backward).
   int top_tasks() const { return static_cast<int>(tasks_.size()); }
+  int top_supernodes() const { return static_cast<int>(top_nodes_.size()); }
 
  private:
   // One piece of the top's work. Forward, a large supernode is cut into blocks of rows, each of
