@@ -15,8 +15,9 @@ namespace {
 using ConstBlock = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 using Vector = Eigen::Map<Eigen::VectorXd>;
 
-// Splitting stops once the bins are within this of perfect balance, or the top holds this share of
-// the entries (it runs on one core), or after this many splits.
+// Splitting stops once the bins are within this of perfect balance, or the top would hold more than
+// this share of the entries (its small supernodes run one at a time: a chain, as in a 3D grid's
+// or a path's elimination tree, is not worth splitting further), or after this many splits.
 constexpr double kBalanceTolerance = 0.02;
 constexpr double kMaxTopShare = 0.5;
 constexpr int kMaxSplits = 4096;

@@ -7,13 +7,15 @@
 //
 // Parallelism is by subtrees of the supernodal elimination tree (proportional mapping): the
 // heaviest subtrees are split into their children until the "frontier" subtrees fall into
-// kSolveBins bins of nearly equal stored entries; the supernodes above them (the "top": the last
-// separators of the nested dissection, a few % of the entries) are solved serially. Forward, each bin
-// solves its subtrees leaves first; a supernode's updates to rows of its own subtree stay in its
-// bin, those to top rows go to the bin's private buffer, added in bin order before the top is
-// solved. Backward is the reverse: the top first, then the bins, each reading only its own and the
-// top's values. Bins, their order and every sum's order depend only on the factor's structure, so
-// the result is the same bits whatever the thread count or timing.
+// kSolveBins bins of nearly equal stored entries. Forward, each bin solves its subtrees leaves
+// first; a supernode's updates to rows of its own subtree stay in its bin, those to rows above the
+// frontier (the "top": the last separators of the nested dissection, ~12 % of the entries on a
+// sphere) go to the bin's private buffer, added in bin order before the top is solved. The top is
+// a chain of large dense supernodes, so it is cut into blocks instead (rows forward, columns
+// backward), which the threads take in order, each waiting for the blocks it reads. Backward is
+// the reverse: the top first, then the bins, each reading only its own and the top's values.
+// Bins, blocks and every sum's order depend only on the factor's structure, so the result is the
+// same bits whatever the thread count or timing.
 #include <Eigen/Core>
 
 #include <cstddef>
