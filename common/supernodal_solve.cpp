@@ -133,8 +133,14 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactorView& factor, std::size_t
         int p = 0;
         while (p < below && top_slot_[static_cast<size_t>(rows[p])] < 0) ++p;
         private_rows_[static_cast<size_t>(k)] = p;
+        for (int i = p; i < below; ++i) parallel = parallel && top_slot_[static_cast<size_t>(rows[i])] >= 0;
       }
-  } else {
+  }
+  if (!parallel) {  // also where a factor broke the layout assumed above (then: serial, still right)
+    bin_nodes_.clear();
+    top_slot_.clear();
+    top_columns_.clear();
+    private_rows_.clear();
     top_nodes_.resize(static_cast<size_t>(ns));
     std::iota(top_nodes_.begin(), top_nodes_.end(), 0);
   }
