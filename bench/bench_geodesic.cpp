@@ -8,8 +8,10 @@
 //                          per process and reported as build_s)
 //   BM_CholeskySolve       one solve with the factor of M + tL (t = h^2), the heat method's step 1:
 //                          /level/0 CHOLMOD's own cholmod_solve (serial), /level/1 ours
-//                          (common/supernodal_solve.hpp, by subtrees on all cores); factor_entries
-//                          is what each solve streams twice
+//                          (common/supernodal_solve.hpp: by subtrees on all cores above its size
+//                          threshold), /level/2 ours forced serial, /level/3 ours forced parallel
+//                          (where the threshold should sit); factor_entries is what each solve
+//                          streams twice
 // Each reports max_error_pct_pi: the largest |computed - arccos(p.q)| over all vertices, in % of pi.
 #include "common/fast_marching.hpp"
 #include "common/heat_geodesic.hpp"
@@ -22,9 +24,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 namespace physarum::bench {
 namespace {
@@ -102,9 +106,10 @@ struct HeatSystem {
   Eigen::VectorXd rhs;
 };
 
-const HeatSystem& heat_system(int level) {
-  static std::map<int, std::unique_ptr<HeatSystem>> cache;
-  auto& entry = cache[level];
+// The factor of M + tL on an icosphere, solved in parallel from `min_parallel_entries` on.
+const HeatSystem& heat_system(int level, std::size_t min_parallel_entries) {
+  static std::map<std::pair<int, std::size_t>, std::unique_ptr<HeatSystem>> cache;
+  auto& entry = cache[{level, min_parallel_entries}];
   if (!entry) {
     const SurfaceDomain& domain = icosphere(level).domain;
     const double h = mean_intrinsic_edge_length(domain);
@@ -112,7 +117,7 @@ const HeatSystem& heat_system(int level) {
     for (int v = 0; v < domain.vertex_count; ++v) a.coeffRef(v, v) += domain.vertex_mass[static_cast<size_t>(v)];
     a.makeCompressed();
     entry = std::make_unique<HeatSystem>();
-    entry->cholesky = std::make_unique<SharedCholesky>(a);
+    entry->cholesky = std::make_unique<SharedCholesky>(a, nullptr, min_parallel_entries);
     entry->index = entry->cholesky->factor(a, "M + tL");
     entry->rhs = Eigen::VectorXd::Zero(a.rows());
     entry->rhs[0] = 1.0;
@@ -121,8 +126,10 @@ const HeatSystem& heat_system(int level) {
 }
 
 void BM_CholeskySolve(benchmark::State& state) {
-  const HeatSystem& system = heat_system(static_cast<int>(state.range(0)));
-  const bool ours = state.range(1) != 0;
+  const int variant = static_cast<int>(state.range(1));
+  const std::size_t threshold = variant == 2 ? std::numeric_limits<std::size_t>::max() : variant == 3 ? 0 : kMinParallelSolveEntries;
+  const HeatSystem& system = heat_system(static_cast<int>(state.range(0)), threshold);
+  const bool ours = variant != 0;
   Eigen::VectorXd x;
   for (auto _ : state) {
     x = ours ? system.cholesky->solve(system.index, system.rhs) : system.cholesky->cholmod_reference_solve(system.index, system.rhs);
@@ -137,7 +144,8 @@ void BM_CholeskySolve(benchmark::State& state) {
 BENCHMARK(BM_HeatGeodesicFactor)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_HeatGeodesicSolve)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastMarching)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CholeskySolve)->ArgsProduct({{4, 6, 8}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CholeskySolve)->ArgsProduct({{4, 5, 6, 8}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CholeskySolve)->ArgsProduct({{4, 5, 6}, {2, 3}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace physarum::bench
