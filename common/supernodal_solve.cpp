@@ -219,7 +219,7 @@ void SupernodalSolve::plan_top() {
 
 void SupernodalSolve::run_top(double* y, double* x) const {
   const int top = static_cast<int>(top_nodes_.size());
-  std::vector<std::atomic<int>> done(static_cast<size_t>(flags_));  // zero (C++20 value-initialises)
+  std::vector<std::atomic<int>> done(static_cast<size_t>(flags_));  // value-initialised: 0
   std::vector<std::atomic<int>> forward_done(static_cast<size_t>(top)), backward_done(static_cast<size_t>(top));
   std::atomic<int> next{0};
   const int task_count = static_cast<int>(tasks_.size());

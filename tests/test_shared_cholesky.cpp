@@ -101,7 +101,7 @@ void expect_solves_like_cholmod(const SharedCholesky& shared, int index, const E
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
   EXPECT_LT(relative_difference(x, ldlt.solve(b)), 1e-11);
   EXPECT_LT((a * x - b).norm(), 1e-11 * b.norm() * a.norm());
-  for (int repeat = 0; repeat < 5; ++repeat) {
+  for (int repeat = 0; repeat < 50; ++repeat) {
     const Eigen::VectorXd again = shared.solve(index, b);
     ASSERT_EQ(again.size(), x.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(again[i], x[i]) << "repeat " << repeat << ", row " << i;
