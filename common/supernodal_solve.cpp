@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <atomic>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace physarum {
@@ -299,6 +301,8 @@ void SupernodalSolve::run_top(double* y, double* x) const {
 
 Eigen::VectorXd SupernodalSolve::solve(const Eigen::VectorXd& b) const {
   const int n = f_.n;
+  if (b.size() != n)
+    throw std::invalid_argument("SupernodalSolve: a right-hand side of " + std::to_string(b.size()) + " rows for " + std::to_string(n));
   Eigen::VectorXd y(n), x(n);
   const int bins = static_cast<int>(bin_nodes_.size());
   std::vector<Eigen::VectorXd> buffers(static_cast<size_t>(bins));

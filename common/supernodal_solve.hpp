@@ -55,7 +55,7 @@ class SupernodalSolve {
   // least `min_parallel_entries` entries.
   explicit SupernodalSolve(const SupernodalFactorView& factor, std::size_t min_parallel_entries = kMinParallelSolveEntries);
 
-  // x with P' L L' P x = b, i.e. A x = b. Thread-safe.
+  // x with P' L L' P x = b, i.e. A x = b (std::invalid_argument when b has another size). Thread-safe.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
   // For tests and benchmarks: how the supernodes were split (bins == 0: all serial).

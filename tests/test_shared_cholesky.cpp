@@ -137,7 +137,9 @@ TEST(SupernodalSolve, TinySystems) {
 
     const Eigen::SparseMatrix<double> a = path(3, 0.5, 1.0);
     SharedCholesky shared(a, nullptr, threshold);
-    expect_solves_like_cholmod(shared, shared.factor(a, "path"), a);
+    const int index = shared.factor(a, "path");
+    expect_solves_like_cholmod(shared, index, a);
+    EXPECT_THROW(shared.solve(index, Eigen::VectorXd::Ones(4)), std::invalid_argument);
   }
 }
 
