@@ -6,10 +6,17 @@
 //   BM_HeatGeodesicSolve   one distance() from a vertex, after the factorization
 //   BM_FastMarching        one distance() from a vertex (the obtuse-corner splitting is built once
 //                          per process and reported as build_s)
+//   BM_CholeskySolve       one solve with the factor of M + tL (t = h^2), the heat method's step 1:
+//                          /level/0 CHOLMOD's own cholmod_solve (serial), /level/1 ours
+//                          (common/supernodal_solve.hpp: by subtrees on all cores above its size
+//                          threshold), /level/2 ours forced serial, /level/3 ours forced parallel
+//                          (where the threshold should sit); factor_entries is what each solve
+//                          streams twice
 // Each reports max_error_pct_pi: the largest |computed - arccos(p.q)| over all vertices, in % of pi.
 #include "common/fast_marching.hpp"
 #include "common/heat_geodesic.hpp"
 #include "common/intrinsic_mesh.hpp"
+#include "common/shared_cholesky.hpp"
 #include "common/surface_domain.hpp"
 #include "tests/pheromone_test_meshes.hpp"
 
@@ -17,9 +24,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 namespace physarum::bench {
 namespace {
@@ -91,9 +100,52 @@ void BM_FastMarching(benchmark::State& state) {
   state.counters["max_error_pct_pi"] = max_error_pct_pi(sphere, distance, 0);
 }
 
+struct HeatSystem {
+  std::unique_ptr<SharedCholesky> cholesky;
+  int index = -1;
+  Eigen::VectorXd rhs;
+};
+
+// The factor of M + tL on an icosphere, solved in parallel from `min_parallel_entries` on.
+const HeatSystem& heat_system(int level, std::size_t min_parallel_entries) {
+  static std::map<std::pair<int, std::size_t>, std::unique_ptr<HeatSystem>> cache;
+  auto& entry = cache[{level, min_parallel_entries}];
+  if (!entry) {
+    const SurfaceDomain& domain = icosphere(level).domain;
+    const double h = mean_intrinsic_edge_length(domain);
+    Eigen::SparseMatrix<double> a = h * h * Eigen::SparseMatrix<double>(domain.laplacian.to_eigen());
+    for (int v = 0; v < domain.vertex_count; ++v) a.coeffRef(v, v) += domain.vertex_mass[static_cast<size_t>(v)];
+    a.makeCompressed();
+    entry = std::make_unique<HeatSystem>();
+    entry->cholesky = std::make_unique<SharedCholesky>(a, nullptr, min_parallel_entries);
+    entry->index = entry->cholesky->factor(a, "M + tL");
+    entry->rhs = Eigen::VectorXd::Zero(a.rows());
+    entry->rhs[0] = 1.0;
+  }
+  return *entry;
+}
+
+void BM_CholeskySolve(benchmark::State& state) {
+  const int variant = static_cast<int>(state.range(1));
+  const std::size_t threshold = variant == 2 ? std::numeric_limits<std::size_t>::max() : variant == 3 ? 0 : kMinParallelSolveEntries;
+  const HeatSystem& system = heat_system(static_cast<int>(state.range(0)), threshold);
+  const bool ours = variant != 0;
+  Eigen::VectorXd x;
+  for (auto _ : state) {
+    x = ours ? system.cholesky->solve(system.index, system.rhs) : system.cholesky->cholmod_reference_solve(system.index, system.rhs);
+    benchmark::DoNotOptimize(x.data());
+  }
+  faces_counter(state, icosphere(static_cast<int>(state.range(0))));
+  const SupernodalSolve& plan = system.cholesky->supernodal_solve(system.index);
+  state.counters["factor_entries"] = static_cast<double>(plan.entries());
+  state.counters["top_entries"] = static_cast<double>(plan.top_entries());
+}
+
 BENCHMARK(BM_HeatGeodesicFactor)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_HeatGeodesicSolve)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastMarching)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CholeskySolve)->ArgsProduct({{4, 5, 6, 8}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CholeskySolve)->ArgsProduct({{4, 5, 6}, {2, 3}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace physarum::bench

@@ -34,11 +34,16 @@ struct SharedCholesky::State {
   mutable cholmod_common common{};
   cholmod_factor* symbolic = nullptr;
   std::vector<cholmod_factor*> numeric;
+  std::vector<std::unique_ptr<SupernodalSolve>> solves;  // one per numeric factor
   std::vector<int> outer, inner;  // the pattern
+  std::vector<int> identity;      // the permutation when CHOLMOD keeps none
+  std::size_t min_parallel_entries = kMinParallelSolveEntries;
 };
 
-SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>* ordering)
+SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>* ordering,
+                               std::size_t min_parallel_entries)
     : state_(std::make_unique<State>()) {
+  state_->min_parallel_entries = min_parallel_entries;
   if (!pattern.isCompressed()) throw std::invalid_argument("SharedCholesky: the matrix must be compressed");
   if (ordering && static_cast<Eigen::Index>(ordering->size()) != pattern.rows())
     throw std::invalid_argument("SharedCholesky: the ordering has " + std::to_string(ordering->size()) + " entries for " +
@@ -86,11 +91,36 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
     cholmod_free_factor(&f, &s.common);
     throw std::runtime_error(std::string("the Cholesky factorization of ") + what + " failed (not positive definite)");
   }
+  // common.supernodal forces a supernodal LL' of doubles with int indices: the layout our solve reads.
+  if (!f->is_super || !f->is_ll || f->xtype != CHOLMOD_REAL || f->itype != CHOLMOD_INT || f->dtype != CHOLMOD_DOUBLE) {
+    cholmod_free_factor(&f, &s.common);
+    throw std::runtime_error(std::string("SharedCholesky: CHOLMOD's factor of ") + what + " is not a supernodal LL'");
+  }
+  if (!f->Perm && s.identity.empty()) {
+    s.identity.resize(f->n);
+    for (size_t i = 0; i < f->n; ++i) s.identity[i] = static_cast<int>(i);
+  }
+  SupernodalFactorView view;
+  view.n = static_cast<int>(f->n);
+  view.supernodes = static_cast<int>(f->nsuper);
+  view.super = static_cast<const int*>(f->super);
+  view.pi = static_cast<const int*>(f->pi);
+  view.px = static_cast<const int*>(f->px);
+  view.s = static_cast<const int*>(f->s);
+  view.x = static_cast<const double*>(f->x);
+  view.perm = f->Perm ? static_cast<const int*>(f->Perm) : s.identity.data();
+  s.solves.push_back(std::make_unique<SupernodalSolve>(view, s.min_parallel_entries));
   s.numeric.push_back(f);
   return static_cast<int>(s.numeric.size()) - 1;
 }
 
 Eigen::VectorXd SharedCholesky::solve(int index, const Eigen::VectorXd& b) const {
+  return state_->solves[static_cast<size_t>(index)]->solve(b);
+}
+
+const SupernodalSolve& SharedCholesky::supernodal_solve(int index) const { return *state_->solves[static_cast<size_t>(index)]; }
+
+Eigen::VectorXd SharedCholesky::cholmod_reference_solve(int index, const Eigen::VectorXd& b) const {
   const State& s = *state_;
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(b.size());
