@@ -17,23 +17,17 @@
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "reference/reaction_diffusion.hpp"
-#include "tests/pheromone_test_meshes.hpp"
+#include "tests/rough_gray_scott.hpp"
 
 #include <Eigen/SparseCholesky>
-
-#include <map>
-#include <random>
 
 namespace physarum::bench {
 namespace {
 
-const SurfaceDomain& grid_domain(int cells) {
-  static std::map<int, SurfaceDomain> domains;
-  auto found = domains.find(cells);
-  if (found == domains.end())
-    found = domains.emplace(cells, testing::make_domain(testing::make_square_grid(cells))).first;
-  return found->second;
-}
+// Gray-Scott from a rough state on square grids (tests/rough_gray_scott.hpp).
+using testing::grid_domain;
+using testing::rough_gray_scott;
+using testing::stable_step;
 
 // The device's triad bandwidth now: measured right beside each timing, because the machine is
 // shared and its bandwidth moves with the load (a bound measured minutes apart is not a bound).
@@ -42,49 +36,10 @@ double triad_bandwidth() {
   return triad.bytes_per_second(3);
 }
 
-// The explicit forward-Euler stability bound of diffusion rate D (Gershgorin on M^-1 L).
-double stable_step(const SurfaceDomain& domain, double D) {
-  double worst = 0.0;
-  const CsrMatrix& L = domain.laplacian;
-  for (int i = 0; i < domain.vertex_count; ++i)
-    for (int e = L.row_start[i]; e < L.row_start[i + 1]; ++e)
-      if (L.column[e] == i) worst = std::max(worst, 2.0 * L.value[e] / domain.vertex_mass[i]);
-  return 2.0 / (D * worst);
-}
-
-// Pearson's Gray-Scott (D_u = 2e-5, D_v = 1e-5 on the unit square, F = 0.04, k = 0.06) from a
-// rough state (u in [0.3, 1], v in [0, 0.5] at random), far from any steady state, so an implicit
-// solve has real work to do in every timed step (near (1, 0) the warm start alone converges).
-ReactionDiffusionSystem gray_scott(const SurfaceDomain& domain, ReactionIntegrator integrator, double dt) {
-  const size_t n = static_cast<size_t>(domain.vertex_count);
-  ReactionDiffusionSystem s;
-  s.morphogens = {"u", "v"};
-  s.reaction = {"-u*v^2 + F*(1-u)", "u*v^2 - (F+k)*v"};
-  s.coefficient_names = {"F", "k"};
-  s.coefficients = {IntrinsicVertexData<double>(n, 0.04), IntrinsicVertexData<double>(n, 0.06)};
-  for (double D : {2e-5, 1e-5}) {
-    CsrMatrix K = domain.laplacian;
-    for (double& v : K.value) v *= D;
-    s.stiffness.push_back(K);
-  }
-  s.mass = domain.vertex_mass;
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0.3, 1.0), v(0.0, 0.5);
-  s.initial = {IntrinsicVertexData<double>(n), IntrinsicVertexData<double>(n)};
-  for (size_t i = 0; i < n; ++i) {
-    s.initial[0][i] = u(rng);
-    s.initial[1][i] = v(rng);
-  }
-  s.integrator = integrator;
-  s.time_step = dt;
-  s.substeps = 1;
-  return s;
-}
-
 void BM_RdExplicitStep(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
   const ReactionDiffusionSystem s =
-      gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5));
+      rough_gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5));
   opencl::OpenCLReactionDiffusion rd(compute(), domain, s);
   rd.run(2);
   rd.finish();
@@ -110,7 +65,7 @@ BENCHMARK(BM_RdExplicitStep)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMi
 // kinetics through the formula evaluator): the denominator of the OpenCL >= 5x target.
 void BM_RdExplicitStepReference(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
-  ReferenceReactionDiffusion rd(gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5)));
+  ReferenceReactionDiffusion rd(rough_gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5)));
   rd.step();
   for (auto _ : state) rd.step();
   state.SetLabel("reference");
@@ -120,7 +75,7 @@ BENCHMARK(BM_RdExplicitStepReference)->Arg(100)->Arg(316)->Arg(1000)->Unit(bench
 
 void BM_RdImexStep(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(1)));
-  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const ReactionDiffusionSystem s = rough_gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
   opencl::OpenCLReactionDiffusionOptions options;
   options.imex_solver =
       state.range(0) == 0 ? opencl::ImexSolver::DeviceConjugateGradients : opencl::ImexSolver::HostFactorization;
@@ -149,7 +104,7 @@ BENCHMARK(BM_RdImexStep)
 
 void BM_RdImexHostOnly(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
-  const ReactionDiffusionSystem s = gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const ReactionDiffusionSystem s = rough_gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
   const int n = domain.vertex_count;
   const double h = s.time_step;
   std::vector<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> factors(2);

@@ -6,50 +6,154 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
 namespace physarum::opencl {
 
 namespace {
 
-// P S P^-1 = L D L^T, solved in place in a buffer sized once (Eigen's solve() allocates per call).
-template <class Decomposition, class Vector>
-void permuted_solve(const Decomposition& factor, Vector& permuted, const float* b, float* x, int n) {
-  const Eigen::VectorXi& p = factor.permutationP().indices();  // empty: no permutation
-  const bool reorder = p.size() == n;
-  for (int i = 0; i < n; ++i) permuted[reorder ? p[i] : i] = b[i];
-  factor.matrixL().solveInPlace(permuted);
-  permuted.array() /= factor.vectorD().array();
-  factor.matrixU().solveInPlace(permuted);
-  for (int i = 0; i < n; ++i) x[i] = static_cast<float>(permuted[reorder ? p[i] : i]);
+using DoubleLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+
+// One entry of L's strict lower triangle as a sweep reads it: the other index (its column, in a
+// row; its row, in a column) beside its value, one stream instead of two.
+template <class Scalar>
+struct TriangleEntry {
+  int index;
+  Scalar value;
+};
+
+// L's strict lower triangle by lines (rows, or columns): line i is entries[start[i] .. start[i+1]).
+template <class Scalar>
+struct TriangleLines {
+  std::vector<int> start;
+  std::vector<TriangleEntry<Scalar>> entries;
+};
+
+// The sum of value * y[index] over `count` entries, in four independent partial sums: a surface
+// factor's lines hold ~10-30 entries, and one chain of dependent additions would wait for the
+// adder's latency at every entry.
+template <class Scalar>
+inline Scalar line_dot(const TriangleEntry<Scalar>* e, int count, const Scalar* y) {
+  Scalar s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  int k = 0;
+  for (; k + 4 <= count; k += 4) {
+    s0 += e[k].value * y[e[k].index];
+    s1 += e[k + 1].value * y[e[k + 1].index];
+    s2 += e[k + 2].value * y[e[k + 2].index];
+    s3 += e[k + 3].value * y[e[k + 3].index];
+  }
+  for (; k < count; ++k) s0 += e[k].value * y[e[k].index];
+  return (s0 + s1) + (s2 + s3);
 }
+
+// P S P^T = L D L^T at one precision, solved by two sweeps: forward along L's rows (dot products) or
+// down its columns (each column's value subtracted from the rows below), backward along its
+// columns (the rows of L^T: dot products).
+template <class Scalar>
+struct LdltSweeps {
+  std::vector<int> permutation;  // row i of S is row permutation[i] of the factor
+  TriangleLines<Scalar> rows;  // empty when L is kept by columns only
+  TriangleLines<Scalar> columns;
+  std::vector<Scalar> inverse_pivot;  // 1 / D
+  std::vector<Scalar> work;           // P b, then the solution in the factor's order
+
+  // From Eigen's factor, with L's rows copied when both copies take at most max_row_copy_bytes;
+  // false when a pivot is not positive (or its inverse not finite) at Scalar.
+  bool assign(const DoubleLdlt& ldlt, int n, std::size_t max_row_copy_bytes) {
+    const Eigen::VectorXi& p = ldlt.permutationP().indices();  // empty: no permutation
+    permutation.resize(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) permutation[static_cast<size_t>(i)] = p.size() == n ? p[i] : i;
+    const Eigen::SparseMatrix<double>& L = ldlt.matrixL().nestedExpression();  // unit diagonal not read
+    columns.start.assign(static_cast<size_t>(n) + 1, 0);
+    rows.start.assign(static_cast<size_t>(n) + 1, 0);
+    columns.entries.clear();
+    columns.entries.reserve(static_cast<size_t>(L.nonZeros()));
+    for (int j = 0; j < n; ++j) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, j); it; ++it)
+        if (it.row() > j) {
+          columns.entries.push_back({static_cast<int>(it.row()), static_cast<Scalar>(it.value())});
+          ++rows.start[static_cast<size_t>(it.row()) + 1];
+        }
+      columns.start[static_cast<size_t>(j) + 1] = static_cast<int>(columns.entries.size());
+    }
+    if (2 * columns.entries.size() * sizeof(TriangleEntry<Scalar>) <= max_row_copy_bytes) {
+      for (int i = 0; i < n; ++i) rows.start[static_cast<size_t>(i) + 1] += rows.start[static_cast<size_t>(i)];
+      // Columns in ascending order leave every row's entries in ascending column order.
+      rows.entries.resize(columns.entries.size());
+      std::vector<int> next(rows.start.begin(), rows.start.end() - 1);
+      for (int j = 0; j < n; ++j)
+        for (int k = columns.start[static_cast<size_t>(j)]; k < columns.start[static_cast<size_t>(j) + 1]; ++k) {
+          const TriangleEntry<Scalar>& e = columns.entries[static_cast<size_t>(k)];
+          rows.entries[static_cast<size_t>(next[static_cast<size_t>(e.index)]++)] = {j, e.value};
+        }
+    } else {
+      rows = {};
+    }
+    const Eigen::VectorXd& D = ldlt.vectorD();
+    inverse_pivot.resize(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      const Scalar pivot = static_cast<Scalar>(D[i]);
+      if (!(D[i] > 0.0) || !(pivot > Scalar(0)) || !std::isfinite(Scalar(1) / pivot)) return false;
+      inverse_pivot[static_cast<size_t>(i)] = Scalar(1) / pivot;
+    }
+    work.assign(static_cast<size_t>(n), Scalar(0));
+    return true;
+  }
+
+  void solve(const float* b, float* x) {
+    const int n = static_cast<int>(work.size());
+    Scalar* y = work.data();
+    for (int i = 0; i < n; ++i) y[permutation[static_cast<size_t>(i)]] = static_cast<Scalar>(b[i]);
+    // L z = P b, from the first row (L's diagonal is 1).
+    const TriangleEntry<Scalar>* by_column = columns.entries.data();
+    if (!rows.start.empty()) {
+      const TriangleEntry<Scalar>* by_row = rows.entries.data();
+      for (int i = 0; i < n; ++i) {
+        const int first = rows.start[static_cast<size_t>(i)];
+        y[i] -= line_dot(by_row + first, rows.start[static_cast<size_t>(i) + 1] - first, y);
+      }
+    } else {
+      for (int j = 0; j < n; ++j) {
+        const Scalar z = y[j];
+        const TriangleEntry<Scalar>* e = by_column + columns.start[static_cast<size_t>(j)];
+        const int count = columns.start[static_cast<size_t>(j) + 1] - columns.start[static_cast<size_t>(j)];
+        for (int k = 0; k < count; ++k) y[e[k].index] -= e[k].value * z;
+      }
+    }
+    // L^T w = D^-1 z, from the last row of L^T (column of L).
+    for (int j = n - 1; j >= 0; --j) {
+      const int first = columns.start[static_cast<size_t>(j)];
+      y[j] = y[j] * inverse_pivot[static_cast<size_t>(j)] -
+             line_dot(by_column + first, columns.start[static_cast<size_t>(j) + 1] - first, y);
+    }
+    for (int i = 0; i < n; ++i) x[i] = static_cast<float>(y[permutation[static_cast<size_t>(i)]]);
+  }
+};
 
 }  // namespace
 
 struct HostCholeskySolve::Factor {
   FactorPrecision precision;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<float>> single;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> twice;
-  Eigen::VectorXf permuted_single;  // P b, then the solution in the factor's order
-  Eigen::VectorXd permuted_double;
+  LdltSweeps<float> single;
+  LdltSweeps<double> twice;
 };
 
 HostCholeskySolve::~HostCholeskySolve() = default;
 
-HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what)
+HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what,
+                                     std::size_t max_row_copy_bytes)
     : n_(system.rows), factor_(std::make_unique<Factor>()) {
   Factor& f = *factor_;
   f.precision = precision;
   // S is symmetric, so its CSR rows are its CSC columns. LDL^T factors an indefinite matrix too:
   // positive definite means every pivot > 0.
-  bool factored = false;
-  if (precision == FactorPrecision::Single) {
-    f.single.compute(system.to_eigen().cast<float>());
-    factored = f.single.info() == Eigen::Success && (f.single.vectorD().array() > 0.0f).all();
-    f.permuted_single.resize(n_);
-  } else {
-    f.twice.compute(system.to_eigen());
-    factored = f.twice.info() == Eigen::Success && (f.twice.vectorD().array() > 0.0).all();
-    f.permuted_double.resize(n_);
-  }
+  const DoubleLdlt ldlt(system.to_eigen());
+  bool factored = ldlt.info() == Eigen::Success;
+  if (factored)
+    factored = precision == FactorPrecision::Single ? f.single.assign(ldlt, n_, max_row_copy_bytes)
+                                                    : f.twice.assign(ldlt, n_, max_row_copy_bytes);
   if (!factored)
     throw InputError(what + ": the implicit system could not be factorised on the host (not positive definite in " +
                      (precision == FactorPrecision::Single ? "float" : "double") + ")");
@@ -58,8 +162,8 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
 void HostCholeskySolve::solve(const float* b, float* x) {
   const FlushDenormalsToZero flush;  // decayed fields' tails (opencl/flush_denormals.hpp)
   Factor& f = *factor_;
-  if (f.precision == FactorPrecision::Single) permuted_solve(f.single, f.permuted_single, b, x, n_);
-  else permuted_solve(f.twice, f.permuted_double, b, x, n_);
+  if (f.precision == FactorPrecision::Single) f.single.solve(b, x);
+  else f.twice.solve(b, x);
 }
 
 bool implicit_solve_on_host(const DeviceInfo& device, int vertex_count) {

@@ -14,6 +14,7 @@
 #endif
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace physarum::opencl {
@@ -62,6 +63,58 @@ TEST(HostCholeskySolve, SolvesAKnownSystemAtBothPrecisions) {
 // A decayed field's tails below float's smallest normal number (1.2e-38) are solved as zeros
 // (opencl/flush_denormals.hpp: denormal arithmetic is ~2x slower on x86), and the caller's
 // floating-point mode is left as it was.
+// A surface-like system: a g x g grid where every node couples to its eight neighbours with weights
+// in [0.5, 2], S = (1 + row sum) I - W, symmetric and diagonally dominant (eigenvalues in [1, 1 + 2
+// max row sum], condition number below 33). Its factor fills in: lines of L run from a few entries
+// to dozens, so the sweeps' four-way sums and their remainders are all exercised, unlike the ring's
+// two-entry lines.
+CsrMatrix weighted_grid(int g) {
+  const int n = g * g;
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> row_sum(static_cast<size_t>(n), 0.0);
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x)
+      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}}) {
+        const int x2 = x + dx, y2 = y + dy;
+        if (x2 < 0 || x2 >= g || y2 < 0 || y2 >= g) continue;
+        const int a = y * g + x, b = y2 * g + x2;
+        const double w = 0.5 + 1.5 * std::fabs(std::sin(0.7 * a + 1.3 * b));
+        t.emplace_back(a, b, -w);
+        t.emplace_back(b, a, -w);
+        row_sum[static_cast<size_t>(a)] += w;
+        row_sum[static_cast<size_t>(b)] += w;
+      }
+  for (int i = 0; i < n; ++i) t.emplace_back(i, i, 1.0 + row_sum[static_cast<size_t>(i)]);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> m(n, n);
+  m.setFromTriplets(t.begin(), t.end());
+  return CsrMatrix::from_eigen(m);
+}
+
+TEST(HostCholeskySolve, SolvesASystemWhoseFactorFillsInAtBothPrecisions) {
+  const int g = 40;
+  const CsrMatrix S = weighted_grid(g);
+  const int n = S.rows;
+  std::vector<double> x(static_cast<size_t>(n)), b;
+  for (int i = 0; i < n; ++i) x[static_cast<size_t>(i)] = std::cos(0.11 * i) + 1.5;  // in [0.5, 2.5]
+  S.multiply(x, b);
+  const std::vector<float> bf(b.begin(), b.end());
+  // Both forward sweeps: along L's rows (a small factor's copy by rows) and down its columns (a
+  // large factor's, forced here with no room for the copy).
+  for (const std::size_t row_copy_bytes : {kMaxRowCopyBytes, std::size_t{0}})
+    for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
+      HostCholeskySolve solve(S, precision, "test grid", row_copy_bytes);
+      std::vector<float> out(static_cast<size_t>(n), -1.0f);
+      solve.solve(bf.data(), out.data());
+      // As above, with the condition number's bound 33 (and |x| <= 2.5): float ~ 33 * 2.5 * 6e-7,
+      // double only the rounding of b and of x to float.
+      const double tolerance = precision == FactorPrecision::Single ? 33 * 2.5 * 6e-7 : 33 * 2.5 * 6e-8;
+      for (int i = 0; i < n; ++i)
+        ASSERT_NEAR(out[static_cast<size_t>(i)], x[static_cast<size_t>(i)], tolerance)
+            << (precision == FactorPrecision::Single ? "float" : "double") << (row_copy_bytes ? " by rows" : " by columns")
+            << ", row " << i;
+    }
+}
+
 TEST(HostCholeskySolve, FlushesDenormalRightHandSidesToZeroAndRestoresTheMode) {
 #if defined(__SSE__)
   const CsrMatrix S = ring(50, 2.0);

@@ -3,21 +3,28 @@
 // OpenCL driver. For each device: one agent step from identical states against the reference
 // (fraction of agents that agree), the U metric over a short run, one forward-Euler pheromone step
 // against the reference, canaries, the throughput of the full step at 1e5..1e7 agents on refined
-// spheres, and the forward step's bytes per second against the device memory's (a triad).
-//   physarum_device_check [--device SPEC]
+// spheres, and the forward step's bytes per second against the device memory's (a triad); then
+// where the backward-Euler step should solve (host factorization or device CG, by size: what
+// DeviceTuning::host_implicit_solve_max_vertices is set from) and the reaction-diffusion explicit
+// step against the triad.
+//   physarum_device_check [--device SPEC] [--only SECTION[,SECTION...]]
+// SECTION: checks, throughput, implicit, rd (all when --only is not given).
 #include "common/field_statistics.hpp"
 #include "common/scene_surface.hpp"
 #include "common/workload.hpp"
 #include "opencl/face_records.hpp"
+#include "opencl/host_cholesky_solve.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/diffusion_decay.hpp"
+#include "opencl/reaction_diffusion.hpp"
 #include "opencl/simulation.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
 #include "probe_checks.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "reference/simulation.hpp"
+#include "rough_gray_scott.hpp"
 #include "tools/backend_factory.hpp"
 
 #include <chrono>
@@ -27,7 +34,10 @@
 #include <exception>
 #include <memory>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace physarum::opencl {
 namespace {
@@ -152,7 +162,96 @@ void throughput(const ComputeContext& compute, SurfaceCache& surfaces, double ma
   for (int grouping : {1, 4}) throughput_line(compute, surfaces, sphere(1000000), grouping);
 }
 
-int run(const std::string& device) {
+// Seconds per backward-Euler step of `field`, `per_wait` steps between waits for the device, each
+// batch from the field u0 (so a long timing does not decay the field into zeros that solve for
+// free); at least 0.3 s and three batches.
+double seconds_per_step(const ComputeContext& compute, OpenCLDiffusionDecay& field, const DeviceVertexData<double>& u0,
+                        int per_wait) {
+  double elapsed = 0.0;
+  int steps = 0;
+  for (int batch = 0; batch < 3 || (elapsed < 0.3 && batch < 1000); ++batch) {
+    field.set_concentration(u0);
+    compute.queue.finish();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int s = 0; s < per_wait; ++s) field.step();
+    compute.queue.finish();
+    elapsed += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    steps += per_wait;
+  }
+  return elapsed / steps;
+}
+
+// The backward-Euler pheromone step both ways the device can solve it, on spheres of 4 m^2 from
+// ~10^3 to ~10^6 vertices: the host factorization (on a device without native kernels, the field
+// mapped: a copy each way per step) and device conjugate gradients. Each is checked against the
+// reference after three steps from a varied field, then timed as lone steps (each waited for) and
+// in batches of 32 (as a run issues them). The sizes where the host wins set
+// DeviceTuning::host_implicit_solve_max_vertices for this kind of device.
+void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
+  const Scene sc = scene(0, Integrator::BackwardEuler);
+  for (const double r : {0.05, 0.028, 0.016, 0.009, 0.005, 0.0028, 0.0015}) {
+    const Workload w = workload("sphere", r, kBenchArea, 0, Integrator::BackwardEuler);
+    const SurfaceDomain domain = in_device_vertex_order(surfaces.get(w.surface).domain);
+    const int n = domain.vertex_count;
+    const VertexParameters params = VertexParameters::constant(sc.parameters, n);
+    std::vector<double> values(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) values[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
+    const DeviceVertexData<double> u0(values);
+    IntrinsicVertexData<double> want(values);
+    ReferenceDiffusionDecay reference(domain, params, Integrator::BackwardEuler, sc.time_step);
+    for (int s = 0; s < 3; ++s) reference.step(want);
+    double scale = 0.0;
+    for (const double v : want.values()) scale = std::max(scale, std::abs(v));
+    double lone[2], batched[2];
+    int iterations = 0;
+    for (const ImplicitSolver solver : {ImplicitSolver::HostCholesky, ImplicitSolver::DeviceConjugateGradients}) {
+      const int k = solver == ImplicitSolver::HostCholesky ? 0 : 1;
+      OpenCLDiffusionDecayOptions options;
+      options.implicit_solver = solver;
+      OpenCLDiffusionDecay field(compute, domain, params, Integrator::BackwardEuler, sc.time_step, options);
+      field.set_concentration(u0);
+      for (int s = 0; s < 3; ++s) field.step();
+      const DeviceVertexData<double> got = field.concentration();
+      if (k == 1) iterations = field.last_solve().iterations;
+      double diff = 0.0;
+      for (int i = 0; i < n; ++i) diff = std::max(diff, std::abs(got[static_cast<size_t>(i)] - want[static_cast<size_t>(i)]));
+      check(diff <= 1e-4 * scale, std::to_string(n) + " vertices, backward Euler, " + (k == 0 ? "host factor" : "device CG") +
+                                      ": max difference " + std::to_string(diff) + " of " + std::to_string(scale));
+      lone[k] = seconds_per_step(compute, field, u0, 1);
+      batched[k] = seconds_per_step(compute, field, u0, 32);
+    }
+    std::printf("implicit step: %d vertices: host factor %.3f ms lone / %.3f ms in batches of 32; device CG %.3f / "
+                "%.3f ms (%d iterations); host/CG %.2f / %.2f; the automatic choice: %s\n",
+                n, 1e3 * lone[0], 1e3 * batched[0], 1e3 * lone[1], 1e3 * batched[1], iterations, lone[0] / lone[1],
+                batched[0] / batched[1], implicit_solve_on_host(compute.device, n) ? "host" : "device CG");
+  }
+}
+
+// The reaction-diffusion explicit step (Gray-Scott, two morphogens) on square grids of 10^4 to 10^6
+// vertices: time per step, the bytes it must move per second, and that against the triad.
+void reaction_diffusion(const ComputeContext& compute, double triad_bytes_per_second) {
+  for (const int cells : {100, 316, 1000}) {
+    const SurfaceDomain& domain = testing::grid_domain(cells);
+    const ReactionDiffusionSystem s = testing::rough_gray_scott(domain, ReactionIntegrator::Explicit,
+                                                                0.5 * testing::stable_step(domain, 2e-5));
+    OpenCLReactionDiffusion rd(compute, domain, s);
+    rd.run(2);
+    rd.finish();
+    const int steps = 200;
+    const auto t0 = std::chrono::steady_clock::now();
+    rd.run(steps);
+    rd.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / steps;
+    const double rate = rd.bytes_per_sub_step() / seconds;
+    std::printf("reaction-diffusion explicit step: %d vertices, %.3g MB a step, %.4f ms/step, %.3g GB/s, %.2f of the "
+                "triad\n",
+                domain.vertex_count, rd.bytes_per_sub_step() / 1e6, 1e3 * seconds, rate / 1e9,
+                rate / triad_bytes_per_second);
+  }
+}
+
+int run(const std::string& device, const std::set<std::string>& sections) {
+  const auto wanted = [&](const char* section) { return sections.empty() || sections.count(section) > 0; };
   const ComputeContext compute = make_compute_context(device);
   std::printf("device: %s\n", compute.device.describe().c_str());
   DeviceTriad triad(compute);
@@ -162,21 +261,27 @@ int run(const std::string& device) {
               bandwidth / 1e9);
   SurfaceCache surfaces;
   auto domain = [&](const Workload& w) -> const SurfaceDomain& { return surfaces.get(w.surface).domain; };
-  const Workload sphere = workload("sphere", 0.03, kBenchArea, 20000, Integrator::ForwardEuler);
-  const Workload square = workload("square", 0.03, std::nullopt, 20000, Integrator::BackwardEuler);
-  one_step(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
-  one_step(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
-  u_metric(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
-  u_metric(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
-  pheromone_forward(compute, domain(sphere), "sphere", bandwidth);
-  throughput(compute, surfaces, 0.015);
-  throughput(compute, surfaces, 0.004);
-  pheromone_forward(compute, domain(workload("sphere", 0.004, kBenchArea, 0, Integrator::ForwardEuler)),
-                    "fine sphere", bandwidth);
-  // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
-  throughput(compute, surfaces, 0.0015);
-  pheromone_forward(compute, domain(workload("sphere", 0.0015, kBenchArea, 0, Integrator::ForwardEuler)),
-                    "finest sphere", bandwidth);
+  if (wanted("checks")) {
+    const Workload sphere = workload("sphere", 0.03, kBenchArea, 20000, Integrator::ForwardEuler);
+    const Workload square = workload("square", 0.03, std::nullopt, 20000, Integrator::BackwardEuler);
+    one_step(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
+    one_step(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
+    u_metric(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
+    u_metric(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
+    pheromone_forward(compute, domain(sphere), "sphere", bandwidth);
+  }
+  if (wanted("throughput")) {
+    throughput(compute, surfaces, 0.015);
+    throughput(compute, surfaces, 0.004);
+    pheromone_forward(compute, domain(workload("sphere", 0.004, kBenchArea, 0, Integrator::ForwardEuler)),
+                      "fine sphere", bandwidth);
+    // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
+    throughput(compute, surfaces, 0.0015);
+    pheromone_forward(compute, domain(workload("sphere", 0.0015, kBenchArea, 0, Integrator::ForwardEuler)),
+                      "finest sphere", bandwidth);
+  }
+  if (wanted("implicit")) implicit_placement(compute, surfaces);
+  if (wanted("rd")) reaction_diffusion(compute, bandwidth);
   std::printf("%d failed\n", testing::probe_failures());
   return testing::probe_exit_status();
 }
@@ -185,8 +290,33 @@ int run(const std::string& device) {
 }  // namespace physarum::opencl
 
 int main(int argc, char** argv) {
+  std::string device;
+  std::set<std::string> sections;
+  const std::set<std::string> known = {"checks", "throughput", "implicit", "rd"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if ((arg == "--device" || arg == "--only") && i + 1 < argc) {
+      const std::string value = argv[++i];
+      if (arg == "--device") {
+        device = value;
+        continue;
+      }
+      std::istringstream list(value);
+      for (std::string section; std::getline(list, section, ',');) {
+        if (!known.count(section)) {
+          std::fprintf(stderr, "physarum_device_check: unknown section '%s' (checks, throughput, implicit, rd)\n",
+                       section.c_str());
+          return 2;
+        }
+        sections.insert(section);
+      }
+    } else {
+      std::fprintf(stderr, "usage: physarum_device_check [--device SPEC] [--only SECTION[,SECTION...]]\n");
+      return 2;
+    }
+  }
   try {
-    return physarum::opencl::run(argc > 2 && std::strcmp(argv[1], "--device") == 0 ? argv[2] : "");
+    return physarum::opencl::run(device, sections);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "physarum_device_check: error: %s\n", e.what());
     return 1;
