@@ -40,18 +40,20 @@ constexpr std::array kTable = {
     //  - OpenCL's own prefetch(); ordinary buffers (device memory is not the host's pages);
     //  - ten triad launches back to back per timing, so a GPU's launch latency does not count;
     //  - no host triad: the device's memory is its own;
-    //  - implicit systems on the host only up to 10,000 vertices. An estimate, not yet measured on a
-    //    GPU: a device CG solve costs at least 2 + 5 x 16 launches and two state reads whatever the
-    //    size (~0.6 ms at the ~8 us per launch the H100 showed, bench/README.md), while the host
-    //    path's copies of a small field are tens of microseconds and its triangular solves took
-    //    0.3-0.5 ms at 3k vertices and 1-1.5 ms at 12k on the build machine (BM_PheromoneStep).
+    //  - implicit systems on the host only up to 7,000 vertices. Measured on an NVIDIA H200
+    //    (`physarum_device_check --only implicit`, 2026-11-27, NVIDIA's OpenCL; the host solve on
+    //    that machine's CPU with the field mapped, both copies included): the host factor took
+    //    0.053 / 0.19 / 0.85 / 3.3 ms a step at 1,089 / 2,562 / 8,470 / 27,188 vertices, device
+    //    CG (2-3 iterations) 0.72 / 0.72 / 0.72 / 0.56 ms, a cost set by its launches and nearly
+    //    flat up to 3.4 10^5 vertices (0.51 ms); the two cross near 7,400 vertices. A faster host
+    //    CPU moves the crossing up, a slower one down.
     TuningEntry{"", "",
                 DeviceTuning{.agents_per_work_item = 1,
                              .clang_prefetch = false,
                              .huge_page_random_access = false,
                              .triad_launches = 10,
                              .host_triad = false,
-                             .host_implicit_solve_max_vertices = 10000}},
+                             .host_implicit_solve_max_vertices = 7000}},
 };
 
 bool matches(const TuningEntry& entry, const DeviceInfo& device) {

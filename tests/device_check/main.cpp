@@ -35,6 +35,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -181,16 +182,20 @@ double seconds_per_step(const ComputeContext& compute, OpenCLDiffusionDecay& fie
   return elapsed / steps;
 }
 
-// The backward-Euler pheromone step both ways the device can solve it, on spheres of 4 m^2 from
-// ~10^3 to ~10^6 vertices: the host factorization (on a device without native kernels, the field
+// The backward-Euler pheromone step both ways the device can solve it, on the square (1,089
+// vertices) and spheres (2,562 to 3.4 10^5 vertices; a 1.2M-vertex sphere's refinement and host
+// factor took minutes on a lent GPU machine's CPU, and past 10^4 vertices CG wins by far), 4 m^2: the host factorization (on a device without native kernels, the field
 // mapped: a copy each way per step) and device conjugate gradients. Each is checked against the
 // reference after three steps from a varied field, then timed as lone steps (each waited for) and
 // in batches of 32 (as a run issues them). The sizes where the host wins set
 // DeviceTuning::host_implicit_solve_max_vertices for this kind of device.
 void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
   const Scene sc = scene(0, Integrator::BackwardEuler);
-  for (const double r : {0.05, 0.028, 0.016, 0.009, 0.005, 0.0028, 0.0015}) {
-    const Workload w = workload("sphere", r, kBenchArea, 0, Integrator::BackwardEuler);
+  // A 10 cm bound leaves the square's 32 x 32 cells as they are; the spheres' bounds refine them.
+  const std::pair<const char*, double> surfaces_by_size[] = {{"square", 0.1},   {"sphere", 0.028}, {"sphere", 0.016},
+                                                             {"sphere", 0.009}, {"sphere", 0.005}, {"sphere", 0.0028}};
+  for (const auto& [shape, r] : surfaces_by_size) {
+    const Workload w = workload(shape, r, kBenchArea, 0, Integrator::BackwardEuler);
     const SurfaceDomain domain = in_device_vertex_order(surfaces.get(w.surface).domain);
     const int n = domain.vertex_count;
     const VertexParameters params = VertexParameters::constant(sc.parameters, n);
