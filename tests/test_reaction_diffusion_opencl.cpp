@@ -20,6 +20,7 @@
 #include "common/simulation_state.hpp"
 #include "delaunay_domain.hpp"
 #include "opencl/reaction_diffusion.hpp"
+#include "rough_gray_scott.hpp"
 
 #include <gtest/gtest.h>
 
@@ -82,15 +83,8 @@ std::array<double, 2> gray_scott_reaction(double u, double v, double F, double k
 }
 
 // The largest explicit step for which a forward Euler sub-step of the fastest diffusion is stable,
-// roughly: h < 2 / (D lambda_max) with lambda_max <= 2 max_i (L_ii / m_i) (Gershgorin).
-double stable_sub_step(const SurfaceDomain& domain, double D) {
-  double worst = 0.0;
-  const CsrMatrix& L = domain.laplacian;
-  for (int i = 0; i < domain.vertex_count; ++i)
-    for (int e = L.row_start[i]; e < L.row_start[i + 1]; ++e)
-      if (L.column[e] == i) worst = std::max(worst, 2.0 * L.value[e] / domain.vertex_mass[i]);
-  return 2.0 / (D * worst);
-}
+// roughly (Gershgorin): tests/rough_gray_scott.hpp.
+using testing::stable_step;
 
 // The state after one step of the system, in double: the explicit integrator's sub-steps.
 std::vector<IntrinsicVertexData<double>> explicit_reference(const ReactionDiffusionSystem& s) {
@@ -206,7 +200,7 @@ void expect_explicit_step_matches(const SurfaceDomain& domain, const ReactionDif
 TEST_P(ExplicitStep, MatchesTheDoubleLoopElementWise) {
   const SurfaceDomain& domain = domain_of(GetParam());
   const double D_v = 1e-3;
-  const double h = 0.8 * stable_sub_step(domain, 2.0 * D_v);
+  const double h = 0.8 * stable_step(domain, 2.0 * D_v);
   expect_explicit_step_matches(domain, gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3));
 }
 
@@ -215,7 +209,7 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopElementWise) {
 TEST_P(ExplicitStep, MatchesTheDoubleLoopWithUnrelatedStiffnesses) {
   const SurfaceDomain& domain = domain_of(GetParam());
   const double D_v = 1e-3;
-  const double h = 0.8 * stable_sub_step(domain, 2.0 * D_v);
+  const double h = 0.8 * stable_step(domain, 2.0 * D_v);
   ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
   for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 0.6 + 0.4 * std::sin(double(e));
   expect_explicit_step_matches(domain, s);
@@ -243,7 +237,7 @@ TEST(ExplicitStep, EveryReaderAndWriterFollowsTheCurrentHalfOfTheDoubleBuffer) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
   const int n = domain.vertex_count;
   const double D_v = 1e-3;
-  const double h = 0.8 * stable_sub_step(domain, 2.0 * D_v);
+  const double h = 0.8 * stable_step(domain, 2.0 * D_v);
   const ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
   OpenCLReactionDiffusion rd(compute(), domain, s);
   rd.step();
@@ -287,7 +281,7 @@ TEST_P(ImexStep, MatchesAnEigenFactorizationOnTheHost) {
   // A step 20x the explicit stability bound: only an implicit diffusion solve survives it.
   const double D_v = 1e-3;
   const ReactionDiffusionSystem s =
-      gray_scott(domain, D_v, ReactionIntegrator::Imex, 20 * stable_sub_step(domain, 2 * D_v), 1);
+      gray_scott(domain, D_v, ReactionIntegrator::Imex, 20 * stable_step(domain, 2 * D_v), 1);
   OpenCLReactionDiffusionOptions options;
   options.imex_solver = GetParam();
   const auto device = one_step(domain, s, options);
@@ -310,7 +304,7 @@ TEST(ReactionDiffusionDirichlet, HeldVerticesKeepTheirValuesAndTheRestFollows) {
   for (const ReactionIntegrator integrator : {ReactionIntegrator::Explicit, ReactionIntegrator::Imex}) {
     for (const ImexSolver solver : {ImexSolver::DeviceConjugateGradients, ImexSolver::HostFactorization}) {
       if (integrator == ReactionIntegrator::Explicit && solver == ImexSolver::HostFactorization) continue;
-      const double h = 0.8 * stable_sub_step(domain, 2e-3);
+      const double h = 0.8 * stable_step(domain, 2e-3);
       ReactionDiffusionSystem s = integrator == ReactionIntegrator::Explicit
                                       ? gray_scott(domain, 1e-3, integrator, 2 * h, 2)
                                       : gray_scott(domain, 1e-3, integrator, 10 * h, 1);
@@ -339,7 +333,7 @@ TEST(ReactionDiffusionDirichlet, HeldVerticesKeepTheirValuesAndTheRestFollows) {
 TEST(ReactionDiffusionFaults, SwapDiffusionAndNoFeedChangeTheStep) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
   for (const ReactionIntegrator integrator : {ReactionIntegrator::Explicit, ReactionIntegrator::Imex}) {
-    const double h = 0.8 * stable_sub_step(domain, 2e-3);
+    const double h = 0.8 * stable_step(domain, 2e-3);
     const ReactionDiffusionSystem s = gray_scott(domain, 1e-3, integrator, integrator == ReactionIntegrator::Explicit ? 2 * h : 10 * h,
                                                  integrator == ReactionIntegrator::Explicit ? 2 : 1);
     const auto clean = one_step(domain, s);
@@ -378,7 +372,7 @@ TEST(ReactionDiffusionInputs, BadFormulasAndSizesAreRefusedWithWhere) {
 TEST(ReactionDiffusionSteadyState, GrayScottStaysAtOneZero) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
   ReactionDiffusionSystem s = gray_scott(domain, 1e-3, ReactionIntegrator::Explicit,
-                                         2 * 0.8 * stable_sub_step(domain, 2e-3), 2);
+                                         2 * 0.8 * stable_step(domain, 2e-3), 2);
   s.initial = {IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 1.0),
                IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)};
   OpenCLReactionDiffusion rd(compute(), domain, s);
