@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 
@@ -292,20 +293,28 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
     // W_m in hybrid form with one ELL row per padded row.
     std::vector<HybridMatrix> hybrid;
     for (size_t m = 0; m < M; ++m) hybrid.push_back(to_hybrid(substep_matrices[m], static_cast<int>(stride_), ell_width));
-    // One block of weights per morphogen, or only morphogen 0's when they are shared.
+    // Each ELL slot's column beside morphogen 0's weight (its bits), one 8-byte pair per slot and
+    // row (kernels/reaction_diffusion.cl says why); then a block of weights for each other
+    // morphogen, none when the weights are shared.
+    const HybridMatrix& shape = hybrid[0];
+    std::vector<cl_int> column_weight(2 * shape.column.size());
+    for (size_t e = 0; e < shape.column.size(); ++e) {
+      column_weight[2 * e] = shape.column[e];
+      std::memcpy(&column_weight[2 * e + 1], &shape.value[e], sizeof(cl_float));
+    }
     std::vector<float> values, overflow_values;
     for (size_t m = 0; m < (shared_weights ? 1 : M); ++m) {
-      values.insert(values.end(), hybrid[m].value.begin(), hybrid[m].value.end());
+      if (m > 0) values.insert(values.end(), hybrid[m].value.begin(), hybrid[m].value.end());
       overflow_values.insert(overflow_values.end(), hybrid[m].overflow_value.begin(), hybrid[m].overflow_value.end());
     }
+    if (values.empty()) values.push_back(0.0f);  // a buffer may not be empty
     const double weight_blocks = shared_weights ? 1.0 : static_cast<double>(M);
-    const HybridMatrix& shape = hybrid[0];
     overflow_rows_ = shape.overflow_rows();
     overflow_entries_ = static_cast<int>(shape.overflow_column.size());
     if (overflow_values.empty()) overflow_values.push_back(0.0f);  // a buffer may not be empty
     auto non_empty = [](std::vector<int> v) { return v.empty() ? std::vector<int>{0} : v; };
-    column_ = upload_buffer(compute, "reaction-diffusion ELL columns", shape.column, kRead, false);
-    value_ = upload_buffer(compute, "reaction-diffusion ELL values", values, kRead, false);
+    column_ = upload_buffer(compute, "reaction-diffusion ELL columns and weights", column_weight, kRead, false);
+    value_ = upload_buffer(compute, "reaction-diffusion ELL weights of morphogens 1..", values, kRead, false);
     overflow_row_ = upload_buffer(compute, "reaction-diffusion overflow rows", non_empty(shape.overflow_row), kRead, false);
     overflow_start_ = upload_buffer(compute, "reaction-diffusion overflow starts", shape.overflow_start, kRead, false);
     overflow_column_ =
