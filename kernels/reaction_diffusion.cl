@@ -56,8 +56,9 @@
  * weights are shared). A column and its weight are read together, as one stream of 8-byte pairs
  * rather than two of 4 bytes: past the cache a CPU's prefetchers follow every stream the sub-step
  * reads, and with half as many slot streams the step ran 1.6x faster at 10^6 vertices on PoCL here
- * (bench/README.md; on an H200 it made no difference). One launch reads the columns once for all morphogens, every morphogen's values
- * once, u in and writes u out; the reaction costs no memory traffic beyond the mapped coefficients.
+ * (bench/README.md; on an H200 it made no difference). One launch reads the columns once for all
+ * morphogens, every morphogen's values once, u in and writes u out; the reaction costs no memory
+ * traffic beyond the mapped coefficients.
  * Rows of held vertices have zero weights on the host and skip the reaction here, so they keep
  * their value exactly. rd_explicit_overflow then adds the entries of the few rows longer than the
  * ELL width. */

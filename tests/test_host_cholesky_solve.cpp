@@ -110,8 +110,8 @@ TEST(HostCholeskySolve, SolvesASystemWhoseFactorFillsInAtBothPrecisions) {
       const double tolerance = precision == FactorPrecision::Single ? 33 * 2.5 * 6e-7 : 33 * 2.5 * 6e-8;
       for (int i = 0; i < n; ++i)
         ASSERT_NEAR(out[static_cast<size_t>(i)], x[static_cast<size_t>(i)], tolerance)
-            << (precision == FactorPrecision::Single ? "float" : "double") << (row_copy_bytes ? " by rows" : " by columns")
-            << ", row " << i;
+            << (precision == FactorPrecision::Single ? "float" : "double")
+            << (row_copy_bytes ? " by rows" : " by columns") << ", row " << i;
     }
 }
 

@@ -30,14 +30,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <memory>
 #include <optional>
 #include <set>
-#include <utility>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace physarum::opencl {
@@ -184,8 +183,9 @@ double seconds_per_step(const ComputeContext& compute, OpenCLDiffusionDecay& fie
 
 // The backward-Euler pheromone step both ways the device can solve it, on the square (1,089
 // vertices) and spheres (2,562 to 3.4 10^5 vertices; a 1.2M-vertex sphere's refinement and host
-// factor took minutes on a lent GPU machine's CPU, and past 10^4 vertices CG wins by far), 4 m^2: the host factorization (on a device without native kernels, the field
-// mapped: a copy each way per step) and device conjugate gradients. Each is checked against the
+// factor took minutes on a lent GPU machine's CPU, and past 10^4 vertices CG wins by far), 4 m^2:
+// the host factorization (on a device without native kernels, the field mapped: a copy each way
+// per step) and device conjugate gradients. Each is checked against the
 // reference after three steps from a varied field, then timed as lone steps (each waited for) and
 // in batches of 32 (as a run issues them). The sizes where the host wins set
 // DeviceTuning::host_implicit_solve_max_vertices for this kind of device.
@@ -219,9 +219,11 @@ void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
       const DeviceVertexData<double> got = field.concentration();
       if (k == 1) iterations = field.last_solve().iterations;
       double diff = 0.0;
-      for (int i = 0; i < n; ++i) diff = std::max(diff, std::abs(got[static_cast<size_t>(i)] - want[static_cast<size_t>(i)]));
-      check(diff <= 1e-4 * scale, std::to_string(n) + " vertices, backward Euler, " + (k == 0 ? "host factor" : "device CG") +
-                                      ": max difference " + std::to_string(diff) + " of " + std::to_string(scale));
+      for (int i = 0; i < n; ++i)
+        diff = std::max(diff, std::abs(got[static_cast<size_t>(i)] - want[static_cast<size_t>(i)]));
+      check(diff <= 1e-4 * scale, std::to_string(n) + " vertices, backward Euler, " +
+                                      (k == 0 ? "host factor" : "device CG") + ": max difference " +
+                                      std::to_string(diff) + " of " + std::to_string(scale));
       lone[k] = seconds_per_step(compute, field, u0, 1);
       batched[k] = seconds_per_step(compute, field, u0, 32);
     }
