@@ -14,6 +14,8 @@
 #include "opencl/compute_context.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/diffusion_decay.hpp"
+#include "opencl/host_cholesky_solve.hpp"
+#include "common/pheromone_operators.hpp"
 #include "reference/diffusion_decay.hpp"
 
 #include <benchmark/benchmark.h>
@@ -97,6 +99,37 @@ BENCHMARK(BM_PheromoneStep)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)
     ->ArgsProduct({{kReference, kOpenCL}, {1}, {1000, 400, 150}, {kSpot}, {64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The backward-Euler system's host solve alone (opencl/host_cholesky_solve.hpp), one right-hand side:
+// the simplicial L D L^T with our sweeps against the supernodal L L^T (common/supernodal_solve.hpp),
+// each in float (the pheromone) and double (the reaction-diffusion IMEX step). Args: {supernodal,
+// double, max circumradius in tenths of a mm}. This is what sets kMinSupernodalRows.
+void BM_HostCholeskySolve(benchmark::State& state) {
+  const bool supernodal = state.range(0) != 0;
+  const auto precision = state.range(1) != 0 ? opencl::FactorPrecision::Double : opencl::FactorPrecision::Single;
+  const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
+  if (!domain) return;
+  const Scene scene = bench_scene(0);
+  const VertexParameters params = VertexParameters::constant(scene.parameters, domain->vertex_count);
+  const BackwardEulerSystem system = backward_euler_system(domain->laplacian, domain->vertex_mass,
+                                                           params[Param::diffuse_rate], params[Param::decay_rate],
+                                                           scene.time_step);
+  const int n = domain->vertex_count;
+  opencl::HostCholeskySolve solve(system.system, precision, "benchmark", opencl::kMaxRowCopyBytes,
+                                  supernodal ? 0 : n + 1);
+  std::vector<float> u(static_cast<size_t>(n), 1.0f);
+  for (auto _ : state) {
+    solve.solve(u.data(), u.data());
+    benchmark::DoNotOptimize(u.data());
+  }
+  state.SetLabel(std::string(supernodal ? "supernodal" : "simplicial") +
+                 (precision == opencl::FactorPrecision::Double ? ", double" : ", float"));
+  state.counters["vertices"] = n;
+}
+BENCHMARK(BM_HostCholeskySolve)
+    ->ArgsProduct({{0, 1}, {0, 1}, {400, 150, 100, 70, 50, 20}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -27,37 +27,47 @@ namespace physarum {
 // holds columns super[k] .. super[k+1]-1; its row indices are s[pi[k] .. pi[k+1]) (the first
 // ncols being its own columns, all ascending), and its values a dense column-major block of
 // nrows x ncols (leading dimension nrows) at x + px[k]. perm[i] is the row of A eliminated i-th.
-struct SupernodalFactorView {
+template <class Scalar>
+struct BasicSupernodalFactorView {
   int n = 0, supernodes = 0;
   const int* super = nullptr;
   const int* pi = nullptr;
   const int* px = nullptr;
   const int* s = nullptr;
-  const double* x = nullptr;
+  const Scalar* x = nullptr;
   const int* perm = nullptr;
 };
+using SupernodalFactorView = BasicSupernodalFactorView<double>;
 
 // The number of bins the subtrees are split into: fixed (not the machine's thread count) so that the
 // summation order, hence the result, is the same everywhere; 4 rather than 2 so that the two cores
 // still balance when one of them is busy with something else for a while.
 inline constexpr int kSolveBins = 4;
 
-// Below this many stored entries (32 MB: the L3 cache here; a sphere of ~100 k faces), the solve is
-// serial: the factor stays in cache and one core solves it in a few milliseconds, which two
-// threads did not beat (measured on icospheres: 2.6 M entries 5.1 ms serial, 6.1 ms on two
-// threads on a busy machine; 0.56 M entries 0.46 ms vs 2.2 ms). Above it the solve streams from
-// memory, which one core cannot saturate.
-inline constexpr std::size_t kMinParallelSolveEntries = std::size_t{1} << 22;
+// Below this many stored entries (8 MB of doubles, 16 MB of floats: a sphere of ~25 k faces), the
+// solve is serial: two threads' start and the waits between the bins and the top cost as much as
+// they save (measured on spot's pheromone system, float: 1.2 M entries 0.78 ms serial and 0.77 ms
+// on two cores; 2.8 M entries 1.95 vs 1.35 ms; 5.7 M entries 5.1 vs 3.1 ms). Above it the solve
+// streams from memory, which one core cannot saturate. (The threshold was 4 M entries while the
+// supernodes were solved by Eigen's general kernels, whose per-supernode cost hid the gain.)
+inline constexpr std::size_t kMinParallelSolveEntries = std::size_t{1} << 20;
 
-class SupernodalSolve {
+template <class Scalar>
+class BasicSupernodalSolve {
  public:
   // Plans the solve for `factor` (which must outlive this object). Parallel when it stores at
   // least `min_parallel_entries` entries.
-  explicit SupernodalSolve(const SupernodalFactorView& factor, std::size_t min_parallel_entries = kMinParallelSolveEntries);
+  explicit BasicSupernodalSolve(const BasicSupernodalFactorView<Scalar>& factor,
+                                std::size_t min_parallel_entries = kMinParallelSolveEntries);
 
-  // x with P' L L' P x = b, i.e. A x = b (std::invalid_argument when b has another size). Thread-safe.
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  // x with P' L L' P x = b, i.e. A x = b, for n values each; b and x may be the same array (b is
+  // read whole before x is written). Thread-safe.
+  void solve(const Scalar* b, Scalar* x) const;
+  // The same on vectors (std::invalid_argument when b has another size).
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> solve(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& b) const;
 
+  // The factor it solves with.
+  const BasicSupernodalFactorView<Scalar>& factor() const { return f_; }
   // For tests and benchmarks: how the supernodes were split (bins == 0: all serial).
   int bins() const { return static_cast<int>(bin_nodes_.size()); }
   std::size_t entries() const { return entries_; }
@@ -79,12 +89,12 @@ class SupernodalSolve {
     int flag = 0;              // this block's done flag (large supernodes)
   };
 
-  void forward(int k, double* y, double* top_buffer, double* work) const;
-  void backward(int k, double* y, double* work) const;
+  void forward(int k, Scalar* y, Scalar* top_buffer, Scalar* work) const;
+  void backward(int k, Scalar* y, Scalar* work) const;
   void plan_top();
-  void run_top(double* y, double* x) const;
+  void run_top(Scalar* y, Scalar* x) const;
 
-  SupernodalFactorView f_;
+  BasicSupernodalFactorView<Scalar> f_;
   int max_rows_ = 0;
   // Per bin, its supernodes in ascending order (children before parents).
   std::vector<std::vector<int>> bin_nodes_;
@@ -102,5 +112,9 @@ class SupernodalSolve {
   int flags_ = 0;
   std::size_t entries_ = 0, top_entries_ = 0;
 };
+
+extern template class BasicSupernodalSolve<float>;
+extern template class BasicSupernodalSolve<double>;
+using SupernodalSolve = BasicSupernodalSolve<double>;
 
 }  // namespace physarum

@@ -1,6 +1,8 @@
 #include "opencl/host_cholesky_solve.hpp"
 
 #include "common/errors.hpp"
+#include "common/shared_cholesky.hpp"
+#include "common/supernodal_solve.hpp"
 #include "opencl/device_tuning.hpp"
 #include "opencl/flush_denormals.hpp"
 
@@ -8,6 +10,9 @@
 
 #include <cmath>
 #include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace physarum::opencl {
@@ -138,21 +143,95 @@ struct LdltSweeps {
   }
 };
 
+// P S P^T = L L^T in CHOLMOD's supernodal layout (METIS nested dissection), kept at Scalar and solved
+// by common/supernodal_solve.hpp: dense column blocks that carry one row index per block row, not one
+// per entry (half the bytes of an (index, value) pair in float), and the elimination tree's subtrees
+// on both cores once the factor is past the cache.
+template <class Scalar>
+struct SupernodalSweeps {
+  std::vector<int> super, pi, px, rows, permutation;
+  std::vector<Scalar> values;
+  std::unique_ptr<BasicSupernodalSolve<Scalar>> plan;
+  std::vector<Scalar> work;  // b and x at Scalar, when that is not float
+
+  // False when a diagonal entry of L is not positive and finite at Scalar.
+  bool assign(const SupernodalFactorView& f) {
+    auto copy = [](const int* data, int count) { return std::vector<int>(data, data + count); };
+    super = copy(f.super, f.supernodes + 1);
+    pi = copy(f.pi, f.supernodes + 1);
+    px = copy(f.px, f.supernodes + 1);
+    rows = copy(f.s, f.pi[f.supernodes]);
+    permutation = copy(f.perm, f.n);
+    values.resize(static_cast<size_t>(f.px[f.supernodes]));
+    for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<Scalar>(f.x[i]);
+    for (int k = 0; k < f.supernodes; ++k) {
+      const int height = pi[static_cast<size_t>(k) + 1] - pi[static_cast<size_t>(k)];
+      for (int c = 0; c < super[static_cast<size_t>(k) + 1] - super[static_cast<size_t>(k)]; ++c) {
+        const Scalar diagonal = values[static_cast<size_t>(px[static_cast<size_t>(k)] + c * height + c)];
+        if (!(diagonal > Scalar(0)) || !std::isfinite(Scalar(1) / diagonal)) return false;
+      }
+    }
+    BasicSupernodalFactorView<Scalar> view;
+    view.n = f.n;
+    view.supernodes = f.supernodes;
+    view.super = super.data();
+    view.pi = pi.data();
+    view.px = px.data();
+    view.s = rows.data();
+    view.x = values.data();
+    view.perm = permutation.data();
+    // The parallel threshold is one of bytes (the cache's size), counted here in doubles.
+    plan = std::make_unique<BasicSupernodalSolve<Scalar>>(view, kMinParallelSolveEntries * sizeof(double) / sizeof(Scalar));
+    if constexpr (!std::is_same_v<Scalar, float>) work.resize(static_cast<size_t>(f.n));
+    return true;
+  }
+
+  void solve(const float* b, float* x) {
+    if constexpr (std::is_same_v<Scalar, float>) {
+      plan->solve(b, x);
+    } else {
+      for (size_t i = 0; i < work.size(); ++i) work[i] = static_cast<Scalar>(b[i]);
+      plan->solve(work.data(), work.data());
+      for (size_t i = 0; i < work.size(); ++i) x[i] = static_cast<float>(work[i]);
+    }
+  }
+};
+
 }  // namespace
 
 struct HostCholeskySolve::Factor {
   FactorPrecision precision;
+  bool supernodal = false;
   LdltSweeps<float> single;
   LdltSweeps<double> twice;
+  SupernodalSweeps<float> single_supernodal;
+  SupernodalSweeps<double> twice_supernodal;
 };
 
 HostCholeskySolve::~HostCholeskySolve() = default;
 
 HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what,
-                                     std::size_t max_row_copy_bytes)
+                                     std::size_t max_row_copy_bytes, int min_supernodal_rows)
     : n_(system.rows), factor_(std::make_unique<Factor>()) {
   Factor& f = *factor_;
   f.precision = precision;
+  if (n_ >= min_supernodal_rows) {
+    f.supernodal = true;
+    bool factored = false;
+    try {
+      const Eigen::SparseMatrix<double> S = system.to_eigen();
+      SharedCholesky cholesky(S);
+      const int index = cholesky.factor(S, what.c_str());
+      const SupernodalFactorView& view = cholesky.supernodal_solve(index).factor();
+      factored = precision == FactorPrecision::Single ? f.single_supernodal.assign(view)
+                                                      : f.twice_supernodal.assign(view);
+    } catch (const std::runtime_error&) {  // CHOLMOD found a pivot <= 0
+    }
+    if (!factored)
+      throw InputError(what + ": the implicit system could not be factorised on the host (not positive definite in " +
+                       (precision == FactorPrecision::Single ? "float" : "double") + ")");
+    return;
+  }
   // S is symmetric, so its CSR rows are its CSC columns. LDL^T factors an indefinite matrix too:
   // positive definite means every pivot > 0.
   const DoubleLdlt ldlt(system.to_eigen());
@@ -168,8 +247,13 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
 void HostCholeskySolve::solve(const float* b, float* x) {
   const FlushDenormalsToZero flush;  // decayed fields' tails (opencl/flush_denormals.hpp)
   Factor& f = *factor_;
-  if (f.precision == FactorPrecision::Single) f.single.solve(b, x);
-  else f.twice.solve(b, x);
+  if (f.supernodal) {
+    if (f.precision == FactorPrecision::Single) f.single_supernodal.solve(b, x);
+    else f.twice_supernodal.solve(b, x);
+  } else {
+    if (f.precision == FactorPrecision::Single) f.single.solve(b, x);
+    else f.twice.solve(b, x);
+  }
 }
 
 bool implicit_solve_on_host(const DeviceInfo& device, int vertex_count) {

@@ -45,6 +45,10 @@ enum class FactorPrecision { Single, Double };
 // the two forward sweeps tied; at 57k, 28 MB, the row sweep over two copies took twice as long).
 inline constexpr std::size_t kMaxRowCopyBytes = std::size_t{8} << 20;
 
+// Systems of at least this many rows are factored supernodally instead (CHOLMOD, solved by
+// common/supernodal_solve.hpp).
+inline constexpr int kMinSupernodalRows = 20000;
+
 class HostCholeskySolve {
  public:
   // Factors S (symmetric positive definite, both triangles stored) as P S P^T = L D L^T (Eigen's
@@ -54,7 +58,7 @@ class HostCholeskySolve {
   // that precision (a pivot <= 0).
   // `max_row_copy_bytes` is for tests (both forward sweeps on one system).
   HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what,
-                    std::size_t max_row_copy_bytes = kMaxRowCopyBytes);
+                    std::size_t max_row_copy_bytes = kMaxRowCopyBytes, int min_supernodal_rows = kMinSupernodalRows);
   ~HostCholeskySolve();
   HostCholeskySolve(const HostCholeskySolve&) = delete;
   HostCholeskySolve& operator=(const HostCholeskySolve&) = delete;

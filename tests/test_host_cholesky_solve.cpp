@@ -1,6 +1,6 @@
 // The host factorization behind the OpenCL backend's implicit solves (opencl/host_cholesky_solve.hpp)
 // against known answers: S x = b for an x chosen first (b = S x computed in double), at both
-// precisions, in place and not; an indefinite S refused at both; and the automatic placement of
+// precisions, in place and not, in each of the factor's layouts; an indefinite S refused at both; and the automatic placement of
 // the solve (every size on a CPU device).
 #include "common/errors.hpp"
 #include "opencl/host_cholesky_solve.hpp"
@@ -98,20 +98,27 @@ TEST(HostCholeskySolve, SolvesASystemWhoseFactorFillsInAtBothPrecisions) {
   for (int i = 0; i < n; ++i) x[static_cast<size_t>(i)] = std::cos(0.11 * i) + 1.5;  // in [0.5, 2.5]
   S.multiply(x, b);
   const std::vector<float> bf(b.begin(), b.end());
-  // Both forward sweeps: along L's rows (a small factor's copy by rows) and down its columns (a
-  // large factor's, forced here with no room for the copy).
-  for (const std::size_t row_copy_bytes : {kMaxRowCopyBytes, std::size_t{0}})
+  // The three layouts: L D L^T with the forward sweep along L's rows (a small factor's copy by
+  // rows) or down its columns (a larger factor's, forced here with no room for the copy), and the
+  // supernodal L L^T of large systems (forced here at any size).
+  enum Layout { kByRows, kByColumns, kSupernodal };
+  for (const Layout layout : {kByRows, kByColumns, kSupernodal})
     for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
-      HostCholeskySolve solve(S, precision, "test grid", row_copy_bytes);
-      std::vector<float> out(static_cast<size_t>(n), -1.0f);
+      HostCholeskySolve solve(S, precision, "test grid", layout == kByRows ? kMaxRowCopyBytes : 0,
+                              layout == kSupernodal ? 0 : n + 1);
+      std::vector<float> out(static_cast<size_t>(n), -1.0f), in_place = bf;
       solve.solve(bf.data(), out.data());
+      solve.solve(in_place.data(), in_place.data());
       // As above, with the condition number's bound 33 (and |x| <= 2.5): float ~ 33 * 2.5 * 6e-7,
       // double only the rounding of b and of x to float.
       const double tolerance = precision == FactorPrecision::Single ? 33 * 2.5 * 6e-7 : 33 * 2.5 * 6e-8;
-      for (int i = 0; i < n; ++i)
-        ASSERT_NEAR(out[static_cast<size_t>(i)], x[static_cast<size_t>(i)], tolerance)
-            << (precision == FactorPrecision::Single ? "float" : "double")
-            << (row_copy_bytes ? " by rows" : " by columns") << ", row " << i;
+      const char* name = layout == kByRows ? " by rows" : layout == kByColumns ? " by columns" : " supernodal";
+      for (int i = 0; i < n; ++i) {
+        const size_t k = static_cast<size_t>(i);
+        ASSERT_NEAR(out[k], x[k], tolerance) << (precision == FactorPrecision::Single ? "float" : "double") << name
+                                             << ", row " << i;
+        ASSERT_EQ(in_place[k], out[k]) << "in place" << name << ", row " << i;
+      }
     }
 }
 
@@ -136,14 +143,15 @@ TEST(HostCholeskySolve, FlushesDenormalRightHandSidesToZeroAndRestoresTheMode) {
 
 TEST(HostCholeskySolve, RefusesAnIndefiniteSystemNamingIt) {
   const CsrMatrix S = ring(40, -0.3);  // eigenvalues down to 1 - 1.2 < 0
-  for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
-    try {
-      HostCholeskySolve solve(S, precision, "the test's ring");
-      FAIL() << "an indefinite system was factored";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("the test's ring"), std::string::npos) << e.what();
+  for (const int min_supernodal_rows : {kMinSupernodalRows, 0})
+    for (const FactorPrecision precision : {FactorPrecision::Single, FactorPrecision::Double}) {
+      try {
+        HostCholeskySolve solve(S, precision, "the test's ring", kMaxRowCopyBytes, min_supernodal_rows);
+        FAIL() << "an indefinite system was factored" << (min_supernodal_rows ? "" : " (supernodal)");
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("the test's ring"), std::string::npos) << e.what();
+      }
     }
-  }
 }
 
 TEST(HostCholeskySolve, AutomaticPlacementSolvesEverySizeOnTheHostOfACpuDevice) {

@@ -201,5 +201,44 @@ TEST(SupernodalSolve, LargeSeparatorsCutIntoBlocksSolveLikeCholmod) {
   expect_solves_like_cholmod(shared, index, a);
 }
 
+// The solve in float (the device fields' implicit step, opencl/host_cholesky_solve.hpp) on the
+// double factor rounded once: serial and split into subtrees (with the top's large supernodes in
+// blocks, on the cube), it agrees with the double solve to float's precision times the condition
+// number (M + tL at t = 0.01 on the sphere and the cube: below 100), and repeats itself bit for bit.
+TEST(SupernodalSolve, FloatFactorSolvesLikeTheDoubleOne) {
+  for (const bool cube : {false, true}) {
+    const Eigen::SparseMatrix<double> a = cube ? cube_grid(24, 0.01) : sphere_heat_matrix(4, 0.01);
+    SharedCholesky shared(a, nullptr, 0);
+    const int index = shared.factor(a, "M + tL");
+    const SupernodalFactorView& d = shared.supernodal_solve(index).factor();
+    const std::vector<float> values(d.x, d.x + d.px[d.supernodes]);
+    BasicSupernodalFactorView<float> f;
+    f.n = d.n;
+    f.supernodes = d.supernodes;
+    f.super = d.super;
+    f.pi = d.pi;
+    f.px = d.px;
+    f.s = d.s;
+    f.x = values.data();
+    f.perm = d.perm;
+    const BasicSupernodalSolve<float> split(f, 0), serial(f, std::size_t{1} << 40);
+    ASSERT_EQ(split.bins(), kSolveBins);
+    ASSERT_EQ(serial.bins(), 0);
+    if (cube) {
+      EXPECT_GT(split.top_tasks(), 2 * split.top_supernodes());
+    }
+    const Eigen::VectorXd b = wiggly(a.rows());
+    const Eigen::VectorXd x = shared.solve(index, b);
+    const Eigen::VectorXf bf = b.cast<float>();
+    for (const BasicSupernodalSolve<float>* plan : {&split, &serial}) {
+      const Eigen::VectorXf xf = plan->solve(bf);
+      EXPECT_LT(relative_difference(xf.cast<double>(), x), 100 * 6e-8) << (cube ? "cube" : "sphere")
+                                                                        << (plan == &split ? ", split" : ", serial");
+      const Eigen::VectorXf again = plan->solve(bf);
+      for (Eigen::Index i = 0; i < xf.size(); ++i) ASSERT_EQ(again[i], xf[i]) << "row " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace physarum
