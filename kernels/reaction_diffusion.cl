@@ -41,9 +41,29 @@
  * a large diagonal against its neighbours. A padding slot (value 0 at the row's own column) adds
  * 0 either way. The index is a signed int so that a CPU compiler gathers with 32-bit offsets. */
 #ifdef RD_ZERO_ROW_SUMS
-#define RD_NEIGHBOUR(m, j) ((u_in + (m) * stride)[j] - rd_u[m])
+#define RD_NEIGHBOUR(m, j) (u_in[(size_t)(m) * stride + (j)] - rd_u[m])
 #else
-#define RD_NEIGHBOUR(m, j) (u_in + (m) * stride)[j]
+#define RD_NEIGHBOUR(m, j) u_in[(size_t)(m) * stride + (j)]
+#endif
+
+/* The morphogens of a vertex as one vector (rd_vector; a float3 for three, a float4 for four):
+ * RD_VECTOR_OF(a) from a private array, RD_VECTOR_TO(a, v) back into one, RD_GATHER(p, j) the values
+ * at vertex j of the blocks p[0..]. */
+#if RD_MORPHOGENS == 2
+typedef float2 rd_vector;
+#define RD_VECTOR_OF(a) ((float2)((a)[0], (a)[1]))
+#define RD_GATHER(p, j) ((float2)((p)[0][j], (p)[1][j]))
+#define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y)
+#elif RD_MORPHOGENS == 3
+typedef float3 rd_vector;
+#define RD_VECTOR_OF(a) ((float3)((a)[0], (a)[1], (a)[2]))
+#define RD_GATHER(p, j) ((float3)((p)[0][j], (p)[1][j], (p)[2][j]))
+#define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z)
+#else
+typedef float4 rd_vector;
+#define RD_VECTOR_OF(a) ((float4)((a)[0], (a)[1], (a)[2], (a)[3]))
+#define RD_GATHER(p, j) ((float4)((p)[0][j], (p)[1][j], (p)[2][j], (p)[3][j]))
+#define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z, (a)[3] = (v).w)
 #endif
 
 /* One forward Euler sub-step of every morphogen at row i:
@@ -68,34 +88,53 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
                                   __global float* u_out) {
   const uint i = get_global_id(0);
   float rd_u[RD_MORPHOGENS], rd_r[RD_MORPHOGENS], diffusion[RD_MORPHOGENS];
+  /* Slot k of row i is slot_base[k * stride]; each morphogen's values start at its own pointer.
+   * Offsets in size_t and one pointer per block: the addresses are then a base plus a scaled index,
+   * which a CPU compiler folds into its loads instead of computing 32-bit sums per slot. */
+  __global const int2* slot_base = column_weight + i;
+  __global const float* rd_in[RD_MORPHOGENS];
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
-    rd_u[m] = u_in[m * stride + i];
+    rd_in[m] = u_in + (size_t)m * stride;
+    rd_u[m] = rd_in[m][i];
     diffusion[m] = 0.0f;
   }
 #ifdef RD_SHARED_WEIGHTS
-  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. */
+  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. All
+   * morphogens' neighbour values are one short vector, so a device that runs work-items one at a
+   * time (a CPU driver that cannot vectorise across them: the gathers) still does every
+   * morphogen's subtraction and multiply-add of a slot in one instruction (1.15x at 10^6 vertices
+   * on PoCL here). */
   const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
   (void)value;
+  const rd_vector own = RD_VECTOR_OF(rd_u);
+  rd_vector sum = (rd_vector)(0.0f);
+  /* The pair's halves read as two ints rather than one int2: the weight then goes from memory
+   * straight into the multiply-add instead of through an integer register and a shuffle. */
+  __global const int* slot_half = (__global const int*)slot_base;
 #pragma unroll
   for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
-    const int2 slot = column_weight[k * stride + i];
-    const int j = slot.x;
-    const float w = as_float(slot.y);
-#pragma unroll
-    for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] += w * RD_NEIGHBOUR(m, j);
+    const int j = slot_half[2 * (size_t)k * stride];
+    const float w = as_float(slot_half[2 * (size_t)k * stride + 1]);
+    const rd_vector neighbour = RD_GATHER(rd_in, j);
+#ifdef RD_ZERO_ROW_SUMS
+    sum += w * (neighbour - own);
+#else
+    sum += w * neighbour;
+#endif
   }
+  RD_VECTOR_TO(diffusion, sum);
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
 #else
 #pragma unroll
   for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
-    const int2 slot = column_weight[k * stride + i];
+    const int2 slot = slot_base[(size_t)k * stride];
     const int j = slot.x;
 #pragma unroll
     for (uint m = 0; m < RD_MORPHOGENS; ++m) {
       const uint s = RD_STIFFNESS_OF(m);
-      const float w = s == 0 ? as_float(slot.y) : value[((s - 1) * RD_ELL_WIDTH + k) * stride + i];
+      const float w = s == 0 ? as_float(slot.y) : value[((size_t)(s - 1) * RD_ELL_WIDTH + k) * stride + i];
       diffusion[m] += w * RD_NEIGHBOUR(m, j);
     }
   }
@@ -114,7 +153,7 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
   (void)fixed;
 #endif
 #pragma unroll
-  for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[m * stride + i] = rd_u[m] + diffusion[m] + h * rd_r[m];
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[(size_t)m * stride + i] = rd_u[m] + diffusion[m] + h * rd_r[m];
 }
 
 /* The rest of the sub-step: each row with more than RD_ELL_WIDTH entries adds its remaining ones,

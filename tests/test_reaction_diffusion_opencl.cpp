@@ -215,6 +215,60 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithUnrelatedStiffnesses) {
   expect_explicit_step_matches(domain, s);
 }
 
+// Three and four morphogens (custom kinetics): the device sums every morphogen's diffusion of a slot
+// as one short vector (a float3 or float4 for these counts, a float2 for two), so each count is its
+// own code path. Gray-Scott's u and v plus linear kinetics coupling the extra morphogens to them
+// (w' = 0.5 u - w, x' = v w - 0.3 x), each diffusing at its own rate (proportional stiffnesses: the
+// shared-weights path; and with x's weights perturbed: each morphogen's own weights).
+TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeAndFourMorphogens) {
+  const SurfaceDomain& domain = domain_of(GetParam());
+  const int n = domain.vertex_count;
+  const double D_v = 1e-3;
+  const double h = 0.8 * stable_step(domain, 2.0 * D_v);
+  for (const int count : {3, 4})
+    for (const bool own_weights : {false, true}) {
+      ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
+      s.morphogens.push_back("w");
+      s.reaction.push_back("0.5*u - w");
+      s.stiffness.push_back(scaled(domain.laplacian, 1.5 * D_v));
+      s.initial.push_back(random_values(n, 14, 0.0, 1.0));
+      if (count == 4) {
+        s.morphogens.push_back("x");
+        s.reaction.push_back("v*w - 0.3*x");
+        s.stiffness.push_back(scaled(domain.laplacian, 0.5 * D_v));
+        s.initial.push_back(random_values(n, 15, 0.0, 1.0));
+      }
+      if (own_weights)
+        for (size_t e = 0; e < s.stiffness.back().value.size(); ++e)
+          s.stiffness.back().value[e] *= 0.6 + 0.4 * std::sin(double(e));
+      // The same sub-steps in double, written out.
+      std::vector<IntrinsicVertexData<double>> u = s.initial;
+      for (int step = 0; step < s.substeps; ++step) {
+        std::vector<IntrinsicVertexData<double>> next = u;
+        for (int i = 0; i < n; ++i) {
+          const auto gs = gray_scott_reaction(u[0][i], u[1][i], s.coefficients[0][i], s.coefficients[1][i]);
+          std::vector<double> r = {gs[0], gs[1], 0.5 * u[0][i] - u[2][i]};
+          if (count == 4) r.push_back(u[1][i] * u[2][i] - 0.3 * u[3][i]);
+          for (int m = 0; m < count; ++m) {
+            const CsrMatrix& K = s.stiffness[static_cast<size_t>(m)];
+            double Ku = 0.0;
+            for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e) Ku += K.value[e] * u[m][K.column[e]];
+            next[m][i] = u[m][i] + s.time_step / s.substeps * (-Ku / s.mass[i] + r[static_cast<size_t>(m)]);
+          }
+        }
+        u = next;
+      }
+      OpenCLReactionDiffusion rd(compute(), domain, s);
+      rd.step();
+      for (int m = 0; m < count; ++m) {
+        const IntrinsicVertexData<double> device = rd.field_values(m);
+        EXPECT_LT(max_difference(device, u[m]), kExplicitTolerance * std::max(1.0, largest_magnitude(u[m])))
+            << count << " morphogens" << (own_weights ? ", own weights" : "") << ", morphogen " << m;
+        EXPECT_GT(max_difference(u[m], s.initial[m]), 100 * kExplicitTolerance) << "morphogen " << m;
+      }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Shapes, ExplicitStep,
                          ::testing::Values("shape:sphere", "shape:square", "shape:octagonal-prism"),
                          ShapeName);
