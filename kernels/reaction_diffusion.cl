@@ -102,9 +102,13 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
 #ifdef RD_SHARED_WEIGHTS
   /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. All
    * morphogens' neighbour values are one short vector, so a device that runs work-items one at a
-   * time (a CPU driver that cannot vectorise across them: the gathers) still does every
-   * morphogen's subtraction and multiply-add of a slot in one instruction (1.15x at 10^6 vertices
-   * on PoCL here). */
+   * time still does every morphogen's subtraction and multiply-add of a slot in one instruction.
+   * PoCL runs this kernel so on x86 here: its loop vectoriser leaves a loop that holds vector
+   * values (the pairs, this vector), and when it did vectorise across work-items (the pairs read as
+   * one 64-bit integer) the neighbours' gathers made the step twice as slow (4.6 against 2.4 ms at
+   * 10^6 vertices). With this vector, the folded offsets and the weight read into the multiply-add
+   * below, the step went from 2.4 to 1.9 ms (bench/README.md, "One vector per slot"). A GPU runs
+   * the vector's lanes one after another, as before. */
   const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
   (void)value;
   const rd_vector own = RD_VECTOR_OF(rd_u);
