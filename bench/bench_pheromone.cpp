@@ -94,7 +94,7 @@ BENCHMARK(BM_PheromoneStep)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)
-    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000, 400, 150, 50, 20, 14}, {kSpot}, {1}})
+    ->ArgsProduct({{kReference, kOpenCL, kOpenCLWithDeviceCG, kOpenCLMapped}, {1}, {1000, 400, 150, 100, 50, 20, 14}, {kSpot}, {1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_PheromoneStep)

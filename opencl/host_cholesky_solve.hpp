@@ -23,8 +23,14 @@
 // side and keep four independent sums, and 1/D is folded into the backward sweep. On systems of
 // 1k-3k vertices that is ~1.6x faster than Eigen's solve in float or double (bench/README.md, "The
 // implicit solve"), which is what puts the device's implicit step ahead of the reference's at small
-// sizes, where the solve is the whole step. Past the cache both are bound by the bytes of L, which
-// are the same (an index and a float per entry).
+// sizes, where the solve is the whole step.
+//
+// Past kMinSupernodalRows the factor is CHOLMOD's supernodal L L^T instead (METIS nested dissection),
+// rounded to the field's precision and solved by common/supernodal_solve.hpp: dense column blocks
+// carry one row index per block row rather than one per entry, so a float entry costs 4 bytes
+// instead of 8, and the elimination tree's subtrees are solved on both cores. At 10^5-10^6
+// vertices that solve is 3-4x faster than the simplicial one, which was bound by L's bytes and
+// by one core; below ~12k vertices its blocks' padding and per-supernode cost made it slower.
 //
 // Where it solves is the caller's choice (implicit_solve_on_host below): the class itself only
 // works on host memory, so it serves any device.
@@ -45,8 +51,9 @@ enum class FactorPrecision { Single, Double };
 // the two forward sweeps tied; at 57k, 28 MB, the row sweep over two copies took twice as long).
 inline constexpr std::size_t kMaxRowCopyBytes = std::size_t{8} << 20;
 
-// Systems of at least this many rows are factored supernodally instead (CHOLMOD, solved by
-// common/supernodal_solve.hpp).
+// Systems of at least this many rows are factored supernodally instead (measured on spot's pheromone
+// system in float, `BM_HostCholeskySolve`: simplicial / supernodal 0.046 / 0.073 ms at 3.0k rows,
+// 0.31 / 0.32 at 12k, 0.96 / 0.79 at 26k, 2.9 / 1.2 at 54k, 8.9 / 2.9 at 106k).
 inline constexpr int kMinSupernodalRows = 20000;
 
 class HostCholeskySolve {
@@ -56,7 +63,9 @@ class HostCholeskySolve {
   // `precision` (not L L^T: its solves divide by L's diagonal in both sweeps, where L D L^T's unit
   // L multiplies once by 1/D). Throws InputError naming `what` when it is not positive definite at
   // that precision (a pivot <= 0).
-  // `max_row_copy_bytes` is for tests (both forward sweeps on one system).
+  // Systems of at least `min_supernodal_rows` rows get the supernodal factor (CHOLMOD's analysis and
+  // factorization, in double) instead. Both last arguments are for tests and benchmarks (each
+  // layout on one system).
   HostCholeskySolve(const CsrMatrix& system, FactorPrecision precision, const std::string& what,
                     std::size_t max_row_copy_bytes = kMaxRowCopyBytes, int min_supernodal_rows = kMinSupernodalRows);
   ~HostCholeskySolve();
