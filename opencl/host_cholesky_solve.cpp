@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -218,6 +219,7 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
   if (n_ >= min_supernodal_rows) {
     f.supernodal = true;
     bool factored = false;
+    std::string cholmod_error;
     try {
       const Eigen::SparseMatrix<double> S = system.to_eigen();
       SharedCholesky cholesky(S);
@@ -225,11 +227,12 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
       const SupernodalFactorView& view = cholesky.supernodal_solve(index).factor();
       factored = precision == FactorPrecision::Single ? f.single_supernodal.assign(view)
                                                       : f.twice_supernodal.assign(view);
-    } catch (const std::runtime_error&) {  // CHOLMOD found a pivot <= 0
+    } catch (const std::runtime_error& e) {  // a pivot <= 0 in double, or CHOLMOD's analysis failed
+      cholmod_error = std::string(": ") + e.what();
     }
     if (!factored)
       throw InputError(what + ": the implicit system could not be factorised on the host (not positive definite in " +
-                       (precision == FactorPrecision::Single ? "float" : "double") + ")");
+                       (precision == FactorPrecision::Single ? "float" : "double") + ")" + cholmod_error);
     return;
   }
   // S is symmetric, so its CSR rows are its CSC columns. LDL^T factors an indefinite matrix too:
@@ -245,7 +248,9 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
 }
 
 void HostCholeskySolve::solve(const float* b, float* x) {
-  const FlushDenormalsToZero flush;  // decayed fields' tails (opencl/flush_denormals.hpp)
+  // Decayed fields' tails (opencl/flush_denormals.hpp). The supernodal solve's helper threads start
+  // from this one and inherit its floating-point environment (POSIX threads; Linux copies it).
+  const FlushDenormalsToZero flush;
   Factor& f = *factor_;
   if (f.supernodal) {
     if (f.precision == FactorPrecision::Single) f.single_supernodal.solve(b, x);
