@@ -131,17 +131,29 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
 #else
+  /* Each morphogen's own weights (anisotropic diffusion): the same vector form, with the slot's
+   * weights gathered into a vector of their own. */
+  const rd_vector own = RD_VECTOR_OF(rd_u);
+  rd_vector sum = (rd_vector)(0.0f);
+  __global const int* slot_half = (__global const int*)slot_base;
 #pragma unroll
   for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
-    const int2 slot = slot_base[(size_t)k * stride];
-    const int j = slot.x;
+    const int j = slot_half[2 * (size_t)k * stride];
+    float w[RD_MORPHOGENS];
 #pragma unroll
     for (uint m = 0; m < RD_MORPHOGENS; ++m) {
       const uint s = RD_STIFFNESS_OF(m);
-      const float w = s == 0 ? as_float(slot.y) : value[((size_t)(s - 1) * RD_ELL_WIDTH + k) * stride + i];
-      diffusion[m] += w * RD_NEIGHBOUR(m, j);
+      w[m] = s == 0 ? as_float(slot_half[2 * (size_t)k * stride + 1])
+                    : value[((size_t)(s - 1) * RD_ELL_WIDTH + k) * stride + i];
     }
+    const rd_vector neighbour = RD_GATHER(rd_in, j);
+#ifdef RD_ZERO_ROW_SUMS
+    sum += RD_VECTOR_OF(w) * (neighbour - own);
+#else
+    sum += RD_VECTOR_OF(w) * neighbour;
+#endif
   }
+  RD_VECTOR_TO(diffusion, sum);
 #endif
   RD_LOAD_COEFFICIENTS
   RD_REACTIONS
