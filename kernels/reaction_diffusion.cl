@@ -88,38 +88,50 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
                                   __global float* u_out) {
   const uint i = get_global_id(0);
   float rd_u[RD_MORPHOGENS], rd_r[RD_MORPHOGENS], diffusion[RD_MORPHOGENS];
-  /* Slot k of row i is slot_base[k * stride]; each morphogen's values start at its own pointer.
-   * Offsets in size_t and one pointer per block: the addresses are then a base plus a scaled index,
-   * which a CPU compiler folds into its loads instead of computing 32-bit sums per slot. */
-  __global const int2* slot_base = column_weight + i;
+  /* Slot k of row i is the pair at column_weight[k * stride + i]; each morphogen's values start at
+   * their own pointer. Offsets in size_t and one pointer per block: the addresses are then a base
+   * plus a scaled index, which a CPU compiler folds into its loads instead of computing 32-bit sums
+   * per slot. */
+  __global const int* slot_half = (__global const int*)(column_weight + i);
   __global const float* rd_in[RD_MORPHOGENS];
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
     rd_in[m] = u_in + (size_t)m * stride;
     rd_u[m] = rd_in[m][i];
-    diffusion[m] = 0.0f;
   }
-#ifdef RD_SHARED_WEIGHTS
-  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. All
-   * morphogens' neighbour values are one short vector, so a device that runs work-items one at a
-   * time still does every morphogen's subtraction and multiply-add of a slot in one instruction.
-   * PoCL runs this kernel so on x86 here: its loop vectoriser leaves a loop that holds vector
-   * values (the pairs, this vector), and when it did vectorise across work-items (the pairs read as
-   * one 64-bit integer) the neighbours' gathers made the step twice as slow (4.6 against 2.4 ms at
-   * 10^6 vertices). With this vector, the folded offsets and the weight read into the multiply-add
-   * below, the step went from 2.4 to 1.9 ms (bench/README.md, "One vector per slot"). A GPU runs
-   * the vector's lanes one after another, as before. */
-  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
-  (void)value;
+  /* All morphogens' neighbour values of a slot are one short vector, so a device that runs
+   * work-items one at a time still does every morphogen's subtraction and multiply-add of a slot in
+   * one instruction. PoCL runs this kernel so on x86 here: its loop vectoriser leaves a loop that
+   * holds vector values (the pairs, this vector), and when it did vectorise across work-items (the
+   * pairs read as one 64-bit integer) the neighbours' gathers made the step twice as slow (4.6
+   * against 2.4 ms at 10^6 vertices). With this vector, the folded offsets and the weight read into
+   * the multiply-add, the step went from 2.4 to 1.9 ms (bench/README.md, "One vector per slot"). A
+   * GPU runs the vector's lanes one after another, as before.
+   * The pair's halves are read as two ints rather than one int2: the weight then goes from memory
+   * straight into the multiply-add instead of through an integer register and a shuffle. */
   const rd_vector own = RD_VECTOR_OF(rd_u);
   rd_vector sum = (rd_vector)(0.0f);
-  /* The pair's halves read as two ints rather than one int2: the weight then goes from memory
-   * straight into the multiply-add instead of through an integer register and a shuffle. */
-  __global const int* slot_half = (__global const int*)slot_base;
+#ifdef RD_SHARED_WEIGHTS
+  /* Every K_m is c_m K_0 (isotropic morphogens): one block of weights, each sum scaled by c_m. */
+  const float rd_scale[RD_MORPHOGENS] = RD_WEIGHT_SCALES;
+  (void)value;
+#endif
 #pragma unroll
   for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
     const int j = slot_half[2 * (size_t)k * stride];
+#ifdef RD_SHARED_WEIGHTS
     const float w = as_float(slot_half[2 * (size_t)k * stride + 1]);
+#else
+    /* Each morphogen's own weights (anisotropic diffusion), gathered into a vector of their own. */
+    float rd_w[RD_MORPHOGENS];
+#pragma unroll
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) {
+      const uint s = RD_STIFFNESS_OF(m);
+      rd_w[m] = s == 0 ? as_float(slot_half[2 * (size_t)k * stride + 1])
+                       : value[((size_t)(s - 1) * RD_ELL_WIDTH + k) * stride + i];
+    }
+    const rd_vector w = RD_VECTOR_OF(rd_w);
+#endif
     const rd_vector neighbour = RD_GATHER(rd_in, j);
 #ifdef RD_ZERO_ROW_SUMS
     sum += w * (neighbour - own);
@@ -128,32 +140,9 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
 #endif
   }
   RD_VECTOR_TO(diffusion, sum);
+#ifdef RD_SHARED_WEIGHTS
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];
-#else
-  /* Each morphogen's own weights (anisotropic diffusion): the same vector form, with the slot's
-   * weights gathered into a vector of their own. */
-  const rd_vector own = RD_VECTOR_OF(rd_u);
-  rd_vector sum = (rd_vector)(0.0f);
-  __global const int* slot_half = (__global const int*)slot_base;
-#pragma unroll
-  for (uint k = 0; k < RD_ELL_WIDTH; ++k) {
-    const int j = slot_half[2 * (size_t)k * stride];
-    float w[RD_MORPHOGENS];
-#pragma unroll
-    for (uint m = 0; m < RD_MORPHOGENS; ++m) {
-      const uint s = RD_STIFFNESS_OF(m);
-      w[m] = s == 0 ? as_float(slot_half[2 * (size_t)k * stride + 1])
-                    : value[((size_t)(s - 1) * RD_ELL_WIDTH + k) * stride + i];
-    }
-    const rd_vector neighbour = RD_GATHER(rd_in, j);
-#ifdef RD_ZERO_ROW_SUMS
-    sum += RD_VECTOR_OF(w) * (neighbour - own);
-#else
-    sum += RD_VECTOR_OF(w) * neighbour;
-#endif
-  }
-  RD_VECTOR_TO(diffusion, sum);
 #endif
   RD_LOAD_COEFFICIENTS
   RD_REACTIONS
