@@ -27,6 +27,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 namespace physarum::opencl {
@@ -86,8 +87,17 @@ std::array<double, 2> gray_scott_reaction(double u, double v, double F, double k
 // roughly (Gershgorin): tests/rough_gray_scott.hpp.
 using testing::stable_step;
 
-// The state after one step of the system, in double: the explicit integrator's sub-steps.
-std::vector<IntrinsicVertexData<double>> explicit_reference(const ReactionDiffusionSystem& s) {
+// Every morphogen's reaction at vertex i of state u, written out in double.
+using Kinetics = std::function<std::vector<double>(const std::vector<IntrinsicVertexData<double>>& u, size_t i)>;
+
+// The state after one step of the system, in double: the explicit integrator's sub-steps, with
+// `kinetics` (Gray-Scott's when none is given).
+std::vector<IntrinsicVertexData<double>> explicit_reference(const ReactionDiffusionSystem& s, Kinetics kinetics = {}) {
+  if (!kinetics)
+    kinetics = [&s](const std::vector<IntrinsicVertexData<double>>& u, size_t i) {
+      const auto r = gray_scott_reaction(u[0][i], u[1][i], s.coefficients[0][i], s.coefficients[1][i]);
+      return std::vector<double>(r.begin(), r.end());
+    };
   std::vector<IntrinsicVertexData<double>> u = s.initial;
   const size_t n = s.mass.size();
   const double h = s.time_step / s.substeps;
@@ -95,8 +105,8 @@ std::vector<IntrinsicVertexData<double>> explicit_reference(const ReactionDiffus
     std::vector<IntrinsicVertexData<double>> next = u;
     for (size_t i = 0; i < n; ++i) {
       if (!s.fixed.empty() && s.fixed[i]) continue;
-      const auto r = gray_scott_reaction(u[0][i], u[1][i], s.coefficients[0][i], s.coefficients[1][i]);
-      for (int m = 0; m < 2; ++m) {
+      const std::vector<double> r = kinetics(u, i);
+      for (int m = 0; m < static_cast<int>(u.size()); ++m) {
         const CsrMatrix& K = s.stiffness[static_cast<size_t>(m)];
         double Ku = 0.0;
         for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e) Ku += K.value[e] * u[m][K.column[e]];
@@ -241,23 +251,12 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeAndFourMorphogens) {
       if (own_weights)
         for (size_t e = 0; e < s.stiffness.back().value.size(); ++e)
           s.stiffness.back().value[e] *= 0.6 + 0.4 * std::sin(double(e));
-      // The same sub-steps in double, written out.
-      std::vector<IntrinsicVertexData<double>> u = s.initial;
-      for (int step = 0; step < s.substeps; ++step) {
-        std::vector<IntrinsicVertexData<double>> next = u;
-        for (int i = 0; i < n; ++i) {
-          const auto gs = gray_scott_reaction(u[0][i], u[1][i], s.coefficients[0][i], s.coefficients[1][i]);
-          std::vector<double> r = {gs[0], gs[1], 0.5 * u[0][i] - u[2][i]};
-          if (count == 4) r.push_back(u[1][i] * u[2][i] - 0.3 * u[3][i]);
-          for (int m = 0; m < count; ++m) {
-            const CsrMatrix& K = s.stiffness[static_cast<size_t>(m)];
-            double Ku = 0.0;
-            for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e) Ku += K.value[e] * u[m][K.column[e]];
-            next[m][i] = u[m][i] + s.time_step / s.substeps * (-Ku / s.mass[i] + r[static_cast<size_t>(m)]);
-          }
-        }
-        u = next;
-      }
+      const auto u = explicit_reference(s, [&](const std::vector<IntrinsicVertexData<double>>& v, size_t i) {
+        const auto gs = gray_scott_reaction(v[0][i], v[1][i], s.coefficients[0][i], s.coefficients[1][i]);
+        std::vector<double> r = {gs[0], gs[1], 0.5 * v[0][i] - v[2][i]};
+        if (count == 4) r.push_back(v[1][i] * v[2][i] - 0.3 * v[3][i]);
+        return r;
+      });
       OpenCLReactionDiffusion rd(compute(), domain, s);
       rd.step();
       for (int m = 0; m < count; ++m) {
