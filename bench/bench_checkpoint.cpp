@@ -4,11 +4,12 @@
 // max circumradius 2 cm) with 10k and 100k agents. Counter: the checkpoint's bytes. What the
 // interval costs is this time once per interval; run.json's "checkpoints" reports it for a real run.
 #include "bench/bench_backends.hpp"
-#include "common/atomic_write.hpp"
-#include "common/checkpoint.hpp"
-#include "common/default_scene.hpp"
-#include "common/scene_surface.hpp"
-#include "common/simulation_state.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/run/checkpoint.hpp"
+#include "common/scene/default_scene.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/simulation/simulation_state.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 
@@ -22,7 +23,7 @@ namespace physarum::bench {
 namespace {
 
 const SurfaceDomain& default_sphere() {
-  static const SceneSurface surface = [] {
+  static const PreparedSurface surface = [] {
     SurfaceSpec spec;
     spec.mesh = "shape:sphere";
     spec.scale_to_area = 4.0;
@@ -37,9 +38,9 @@ void BM_Checkpoint(benchmark::State& state) {
   const Scene scene = default_scene_parameters(static_cast<int>(state.range(1)));
   std::unique_ptr<SimulationBackend> sim;
   if (backend == kOpenCL)
-    sim = std::make_unique<opencl::OpenCLSimulation>(compute(), default_sphere(), scene);
+    sim = std::make_unique<opencl::OpenCLSimulation>(compute(), default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
   else
-    sim = std::make_unique<ReferenceSimulation>(default_sphere(), scene);
+    sim = std::make_unique<ReferenceSimulation>(default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
   sim->run(10);
   sim->finish();
   CheckpointHeader header;

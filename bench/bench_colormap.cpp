@@ -1,8 +1,8 @@
-// Image-assisted colour maps (common/isomap_colormap.hpp) against the size of their graph: the
+// Image-assisted colour maps (common/color/isomap_colormap.hpp) against the size of their graph: the
 // all-pairs Dijkstra and the dense MDS matrix grow with the square of the distinct colours, which
 // `IsomapOptions::max_colors` bounds (default 1500). The exemplar is a thick tube of random colours
 // around a ramp (as a noisy photograph gives), so every run fills the node budget it is given.
-#include "common/isomap_colormap.hpp"
+#include "common/color/isomap_colormap.hpp"
 
 #include <benchmark/benchmark.h>
 

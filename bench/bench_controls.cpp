@@ -1,11 +1,12 @@
-// The cost of the controls of Sec. 3.3 (common/simulation_controls.hpp): the full step on spot.obj
+// The cost of the controls of Sec. 3.3 (common/model/simulation_controls.hpp): the full step on spot.obj
 // (4 m^2, 15 mm, ~24k faces) with 100k agents, on both backends, once with a parameter map (sensor
 // distance ramped along the body), a read-stimulus, a write-stimulus and a directional bias (n = 2)
 // and once without any control on the same parameters. Agent steps per second; the ratio with /
 // without is the overhead of the controls (target >= 0.7x; bench/README.md).
 #include "bench/bench_backends.hpp"
-#include "common/simulation_controls.hpp"
-#include "common/workload.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 

@@ -1,4 +1,4 @@
-// Geodesic distance on unit icospheres (common/heat_geodesic.hpp, common/fast_marching.hpp), built
+// Geodesic distance on unit icospheres (common/map_tools/heat_geodesic.hpp, common/map_tools/fast_marching.hpp), built
 // in code (no scene), the sizes of the comparison with potpourri3d: level 6 (81,920 faces)
 // and level 8 (1,310,720 faces). The targets at ~10^6 faces: heat factor <= 10 s once,
 // heat solve <= 0.2 s per new source set, fast marching <= 2 s.
@@ -8,16 +8,16 @@
 //                          per process and reported as build_s)
 //   BM_CholeskySolve       one solve with the factor of M + tL (t = h^2), the heat method's step 1:
 //                          /level/0 CHOLMOD's own cholmod_solve (serial), /level/1 ours
-//                          (common/supernodal_solve.hpp: by subtrees on all cores above its size
+//                          (common/numerics/supernodal_solve.hpp: by subtrees on all cores above its size
 //                          threshold), /level/2 ours forced serial, /level/3 ours forced parallel
 //                          (where the threshold should sit); factor_entries is what each solve
 //                          streams twice
 // Each reports max_error_pct_pi: the largest |computed - arccos(p.q)| over all vertices, in % of pi.
-#include "common/fast_marching.hpp"
-#include "common/heat_geodesic.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/shared_cholesky.hpp"
-#include "common/surface_domain.hpp"
+#include "common/map_tools/fast_marching.hpp"
+#include "common/map_tools/heat_geodesic.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/numerics/shared_cholesky.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "tests/pheromone_test_meshes.hpp"
 
 #include <benchmark/benchmark.h>

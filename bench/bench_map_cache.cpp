@@ -1,4 +1,4 @@
-// The map cache (common/cached_map_evaluation.hpp) on the sizes of bench_maps.cpp: spot.obj scaled
+// The map cache (common/setup/cached_map_evaluation.hpp) on the sizes of bench_maps.cpp: spot.obj scaled
 // to 4 m^2 and refined to ~50k and ~1.07M intrinsic faces, with BM_MapsProcedural's seven maps.
 //   BM_MapCacheKeys  the keys alone: the executable's and the triangulation's hashes, the JSON
 //   BM_MapsFromCache a warm cache: keys, then every map read back and checked (what a second run
@@ -6,10 +6,10 @@
 //                    their own benchmarks)
 // The entries live in a temporary folder, written once before timing.
 #include "bench/map_bench_support.hpp"
-#include "common/cached_map_evaluation.hpp"
-#include "common/map_cache.hpp"
-#include "common/map_definition.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/maps/map_cache.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/setup/scene_surface.hpp"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>

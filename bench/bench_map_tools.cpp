@@ -5,19 +5,19 @@
 //                       system's assembly, sparse Cholesky factorization and solve; second argument
 //                       0: METIS orders the system in every call, 1: the surface's Laplacian ordering
 //                       is computed once (ordering_s, as a scene's map tools share it:
-//                       common/surface_solvers.hpp) and each call restricts it
+//                       common/map_tools/surface_solvers.hpp) and each call restricts it
 //   BM_DiffusionFactor  factoring M + h L (once per step size; shared by any number of steps)
 //   BM_DiffusionStep    one backward-Euler step with the factor reused (a solve)
 //   BM_Gradient         the normalised FE gradient of a map on every face
 //   BM_Elevation        the elevation proxy of spot's INPUT mesh (5.9k faces; one implicit step)
 // The triangulation is built once per process (bench_support.hpp) and not timed.
 #include "bench/map_bench_support.hpp"
-#include "common/elevation_proxy.hpp"
-#include "common/laplace_interpolation.hpp"
-#include "common/scene_surface.hpp"
-#include "common/surface_diffusion.hpp"
-#include "common/surface_gradient.hpp"
-#include "common/surface_solvers.hpp"
+#include "common/map_tools/elevation_proxy.hpp"
+#include "common/map_tools/laplace_interpolation.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/map_tools/surface_diffusion.hpp"
+#include "common/map_tools/surface_gradient.hpp"
+#include "common/map_tools/surface_solvers.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -30,7 +30,7 @@ namespace {
 
 
 // A smooth map with some structure: x of each intrinsic vertex's input location.
-IntrinsicVertexData<double> x_coordinate(const SceneSurface& s) {
+IntrinsicVertexData<double> x_coordinate(const PreparedSurface& s) {
   IntrinsicVertexData<double> x(static_cast<size_t>(s.domain.vertex_count));
   for (int v = 0; v < s.domain.vertex_count; ++v) {
     const SurfacePoint& l = s.domain.vertex_location[v];
@@ -42,7 +42,7 @@ IntrinsicVertexData<double> x_coordinate(const SceneSurface& s) {
 }
 
 void BM_LaplaceSolve(benchmark::State& state) {
-  const SceneSurface* s = spot_surface(state).surface;
+  const PreparedSurface* s = spot_surface(state).surface;
   if (!s) return;
   const IntrinsicVertexData<double> x = x_coordinate(*s);
   double low = 1e300, high = -1e300;
@@ -66,7 +66,7 @@ void BM_LaplaceSolve(benchmark::State& state) {
 }
 
 void BM_DiffusionFactor(benchmark::State& state) {
-  const SceneSurface* s = spot_surface(state).surface;
+  const PreparedSurface* s = spot_surface(state).surface;
   if (!s) return;
   for (auto _ : state) {
     const BackwardEulerDiffusion diffusion(s->domain, 1e-4);
@@ -76,7 +76,7 @@ void BM_DiffusionFactor(benchmark::State& state) {
 }
 
 void BM_DiffusionStep(benchmark::State& state) {
-  const SceneSurface* s = spot_surface(state).surface;
+  const PreparedSurface* s = spot_surface(state).surface;
   if (!s) return;
   const BackwardEulerDiffusion diffusion(s->domain, 1e-4);
   const IntrinsicVertexData<double> x = x_coordinate(*s);
@@ -85,7 +85,7 @@ void BM_DiffusionStep(benchmark::State& state) {
 }
 
 void BM_Gradient(benchmark::State& state) {
-  const SceneSurface* s = spot_surface(state).surface;
+  const PreparedSurface* s = spot_surface(state).surface;
   if (!s) return;
   const IntrinsicVertexData<double> x = x_coordinate(*s);
   for (auto _ : state) benchmark::DoNotOptimize(gradient_vector_map(s->domain, x, true));
@@ -93,7 +93,7 @@ void BM_Gradient(benchmark::State& state) {
 }
 
 void BM_Elevation(benchmark::State& state) {
-  const SceneSurface* s = spot_surface(state).surface;
+  const PreparedSurface* s = spot_surface(state).surface;
   if (!s) return;
   for (auto _ : state) benchmark::DoNotOptimize(elevation_proxy(s->input, 0.005, 1, "bench"));
   state.counters["input_faces"] = s->input.triangle_count();

@@ -1,4 +1,4 @@
-// Evaluating a scene's named maps on a large triangulation (common/map_evaluation.hpp): spot.obj
+// Evaluating a scene's named maps on a large triangulation (common/maps/map_evaluation.hpp): spot.obj
 // scaled to 4 m^2 and refined to ~50k and ~1.07M intrinsic faces (max circumradius 10 and 2.2 mm),
 // the sizes of the output benchmarks.
 //   BM_MapsProcedural  a ramp, a sphere region with falloff, a box, range/product/max arithmetic
@@ -9,10 +9,10 @@
 // The triangulation is built once per process (bench_support.hpp) and not timed; the PLY file is
 // written once per benchmark, its reading is timed.
 #include "bench/map_bench_support.hpp"
-#include "common/map_definition.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/ply_writer.hpp"
-#include "common/scene_surface.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/setup/scene_surface.hpp"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
@@ -25,7 +25,7 @@ namespace {
 
 
 void BM_MapsProcedural(benchmark::State& state) {
-  const SceneSurface* surface = spot_surface(state).surface;
+  const PreparedSurface* surface = spot_surface(state).surface;
   if (!surface) return;
   const MapSet maps = parse_maps(procedural_maps(), ".", "bench");
   for (auto _ : state) benchmark::DoNotOptimize(evaluate_maps(maps, *surface, "bench"));
@@ -34,7 +34,7 @@ void BM_MapsProcedural(benchmark::State& state) {
 }
 
 void BM_MapsPly(benchmark::State& state) {
-  const SceneSurface* surface = spot_surface(state).surface;
+  const PreparedSurface* surface = spot_surface(state).surface;
   if (!surface) return;
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("physarum_bench_maps_" + std::to_string(::getpid()));

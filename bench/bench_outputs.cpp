@@ -8,10 +8,10 @@
 //   BM_TextureBakeField      baking one more field (or frame) from locations made once
 // The triangulation is built once per process (bench_support.hpp) and not timed.
 #include "bench/bench_support.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/ply_writer.hpp"
-#include "common/scene_surface.hpp"
-#include "common/texture_bake.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/output/texture_bake.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -23,7 +23,7 @@ namespace {
 
 // spot.obj at `max_circumradius_tenth_mm` tenths of a millimetre; nullptr (benchmark skipped) when
 // the shared meshes are absent.
-const SceneSurface* spot_surface(benchmark::State& state, long max_circumradius_tenth_mm) {
+const PreparedSurface* spot_surface(benchmark::State& state, long max_circumradius_tenth_mm) {
   const std::string spec = mesh_spec("spot.obj");
   if (spec.empty()) {
     state.SkipWithError("spot.obj not found under PHYSARUM_SHARED_MESHES (the shared/ folder is absent)");
@@ -43,7 +43,7 @@ IntrinsicVertexData<double> wavy_field(const FullResolutionMesh& full) {
 }
 
 void BM_FullResolutionExport(benchmark::State& state) {
-  const SceneSurface* surface = spot_surface(state, state.range(0));
+  const PreparedSurface* surface = spot_surface(state, state.range(0));
   if (!surface) return;
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / ("physarum_bench_fields_full_" + std::to_string(::getpid()) + ".ply");
@@ -59,7 +59,7 @@ void BM_FullResolutionExport(benchmark::State& state) {
 }
 
 void BM_TextureBake(benchmark::State& state) {
-  const SceneSurface* surface = spot_surface(state, state.range(0));
+  const PreparedSurface* surface = spot_surface(state, state.range(0));
   if (!surface) return;
   const int size = static_cast<int>(state.range(1));
   const IntrinsicVertexData<double> field = wavy_field(build_full_resolution_mesh(surface->input, surface->domain));
@@ -77,7 +77,7 @@ void BM_TextureBake(benchmark::State& state) {
 }
 
 void BM_TextureBakeField(benchmark::State& state) {
-  const SceneSurface* surface = spot_surface(state, state.range(0));
+  const PreparedSurface* surface = spot_surface(state, state.range(0));
   if (!surface) return;
   const int size = static_cast<int>(state.range(1));
   const IntrinsicVertexData<double> field = wavy_field(build_full_resolution_mesh(surface->input, surface->domain));

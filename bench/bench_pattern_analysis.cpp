@@ -1,11 +1,11 @@
-// Pattern analysis (`physarum analyze`, common/pattern_analysis.hpp) of a hexagonal lattice of
+// Pattern analysis (`physarum analyze`, common/pattern/pattern_analysis.hpp) of a hexagonal lattice of
 // Gaussian spots (spacing 0.1, so ~100 spots) on the unit square cut into N x N cells, N = 128 .. 512
 // (17k .. 263k vertices). The spacing is the costly part: one fast-marching run for the Voronoi
 // labels over the whole surface, then one per spot over its own and its neighbours' cells.
 //   BM_SegmentPattern  the clipping and connected regions alone
 //   BM_AnalyzePattern  everything analysis.json reports
-#include "common/pattern_analysis.hpp"
-#include "common/pattern_segmentation.hpp"
+#include "common/pattern/pattern_analysis.hpp"
+#include "common/pattern/pattern_segmentation.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -10,12 +10,12 @@
 // factor on the field mapped by the host (a GPU's path for small fields), and the OpenCL field with
 // device conjugate gradients (a GPU's path for large ones).
 #include "bench/bench_backends.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/host_cholesky_solve.hpp"
-#include "common/pheromone_operators.hpp"
+#include "common/model/pheromone_operators.hpp"
 #include "reference/diffusion_decay.hpp"
 
 #include <benchmark/benchmark.h>
@@ -103,7 +103,7 @@ BENCHMARK(BM_PheromoneStep)
     ->UseRealTime();
 
 // The backward-Euler system's host solve alone (opencl/host_cholesky_solve.hpp), one right-hand side:
-// the simplicial L D L^T with our sweeps against the supernodal L L^T (common/supernodal_solve.hpp),
+// the simplicial L D L^T with our sweeps against the supernodal L L^T (common/numerics/supernodal_solve.hpp),
 // each in float (the pheromone) and double (the reaction-diffusion IMEX step). Args: {supernodal,
 // double, max circumradius in tenths of a mm}. This is what sets kMinSupernodalRows.
 void BM_HostCholeskySolve(benchmark::State& state) {

@@ -13,7 +13,7 @@
 //   BM_RdImexHostOnly   the same step done entirely on the host in double (right-hand side and
 //                       SimplicialLDLT solves), what a host reference backend pays.
 #include "bench/bench_backends.hpp"
-#include "common/reaction_diffusion_system.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
 #include "opencl/memory_bandwidth.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "reference/reaction_diffusion.hpp"

@@ -2,9 +2,9 @@
 // meshes, at the refinement scale of the known-answer tests (max circumradius 0.5 % of the
 // bounding-box diagonal). Reference timings from geometry-central on this kind of machine: bunny
 // 0.25 s, bunny with a 25 degree min angle 0.42 s, spot 0.65 s. Loading the mesh is not timed.
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -1,9 +1,9 @@
 #pragma once
 // What the benchmark suites share: the surfaces they run on (built once per process through the
-// shared surface loader, common/scene_surface.hpp, skipped with a message when the shared meshes
-// are absent) and the model parameters of the agent benchmarks (common/workload.hpp).
-#include "common/surface_domain.hpp"
-#include "common/workload.hpp"
+// shared surface loader, common/setup/scene_surface.hpp, skipped with a message when the shared meshes
+// are absent) and the model parameters of the agent benchmarks (common/setup/workload.hpp).
+#include "common/surface/surface_domain.hpp"
+#include "common/setup/workload.hpp"
 
 #include <filesystem>
 #include <string>

@@ -2,7 +2,7 @@
 // What the map benchmarks share (bench_maps, bench_map_cache, bench_map_tools): spot.obj at the sizes
 // of the output benchmarks, and the procedural maps whose evaluation and caching they time.
 #include "bench/bench_support.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/scene_surface.hpp"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@ namespace physarum::bench {
 
 // spot.obj scaled to 4 m^2 and refined to state.range(0) / 10^4 metres (100: ~50k faces, 22: ~1.07M).
 struct SpotSurface {
-  const SceneSurface* surface = nullptr;  // null, with the benchmark skipped, without shared meshes
+  const PreparedSurface* surface = nullptr;  // null, with the benchmark skipped, without shared meshes
   SurfaceSpec spec;
 };
 

@@ -9,7 +9,7 @@
 #include <Random123/philox.h>
 #include "species.cl"
 
-/* ---- random numbers: the packing of common/philox.hpp and common/random_streams.hpp ---- */
+/* ---- random numbers: the packing of common/base/philox.hpp and common/base/random_streams.hpp ---- */
 
 uint4 agent_random_words(const uint seed, const uint agent, const uint step, const uint purpose, const uint index) {
   philox4x32_ctr_t c = {{step, purpose, index, 0u}};
@@ -93,7 +93,7 @@ FacePoint sample_surface_point(__global const PhysarumFaceRecord* faces, __globa
   return p;
 }
 
-/* ---- spawn weights (common/spawn_distribution.hpp; compiled in with PHYSARUM_SPAWN_WEIGHTS) ----
+/* ---- spawn weights (common/model/spawn_distribution.hpp; compiled in with PHYSARUM_SPAWN_WEIGHTS) ----
  * The face from the spawn distribution's own alias table (area x mean corner weight, zero where a
  * face touches a sink), the point from the linear density: a corner with probability w_i / sum w,
  * its coordinate Beta(2, 2) by the closed-form inverse CDF, the rest split uniformly. Bounded work:
@@ -149,7 +149,7 @@ float exponential_exposure(const float u) { return -log(u); }
 
 /* A newborn's heading from the uniform u of its heading draw: random, or (PHYSARUM_SPAWN_HEADING_BIAS,
  * Fig. 8) along copy floor(u n) of its face's bias direction, random where that is zero (mirrors
- * heading_along_bias in common/directional_bias.cpp). */
+ * heading_along_bias in common/model/directional_bias.cpp). */
 float2 spawn_heading(__global const float2* bias_direction, const int face, const float u) {
 #ifdef PHYSARUM_SPAWN_HEADING_BIAS
   const float2 d = bias_direction[face];

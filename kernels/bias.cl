@@ -1,4 +1,4 @@
-/* Directional bias (paper Sec. 3.3, Fig. 6; mirrors common/directional_bias.cpp and
+/* Directional bias (paper Sec. 3.3, Fig. 6; mirrors common/model/directional_bias.cpp and
  * reference/directional_bias.cpp): the heading relaxes toward the CLOSEST of the
  * PHYSARUM_BIAS_SYMMETRY copies of the face's bias direction, d(delta)/dt = -strength delta,
  * integrated exactly over the step, so it never overshoots. Compiled in only when the controls have

@@ -1,5 +1,5 @@
 /* Conjugate gradients for S x = b on the device, S symmetric positive definite (the backward Euler
- * system of Eq. 7, common/pheromone_operators.hpp), Jacobi preconditioner; the solver's scalars stay
+ * system of Eq. 7, common/model/pheromone_operators.hpp), Jacobi preconditioner; the solver's scalars stay
  * in a PhysarumCgState on the device (host side: opencl/conjugate_gradients.cpp). float32
  * throughout. Every per-vertex kernel runs on a global size padded to the work-group size, hence the
  * guards.

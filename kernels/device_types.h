@@ -12,7 +12,7 @@ typedef float dev_float;
 #else
 #include <stdint.h>
 /* The host takes the number of agent parameters from its table. */
-#include <common/model_parameters.hpp>
+#include <common/model/model_parameters.hpp>
 #define PHYSARUM_AGENT_PARAMETER_COUNT (physarum::kAgentParamCount)
 typedef int32_t dev_int;
 typedef uint32_t dev_uint;
@@ -71,7 +71,7 @@ typedef struct {
   dev_float transition_sin[3];
 } PhysarumFaceRecord;
 
-/* ---- agent parameters, per vertex or uniform (common/model_parameters.hpp) ----
+/* ---- agent parameters, per vertex or uniform (common/model/model_parameters.hpp) ----
  * One float per agent parameter of the host's parameter table, in table order. The kernels see it
  * as a struct of named floats that the host generates from the table (opencl/agent_parameters.cpp
  * provides "agent_parameters.h"); the host sees the same floats as an array. */
@@ -104,7 +104,7 @@ typedef struct {
 #define PHYSARUM_COUNTER_RESPAWNS 3
 #define PHYSARUM_COUNTERS 4
 
-/* Purposes of the Philox counter: the values of common/random_streams.hpp (never renumber). */
+/* Purposes of the Philox counter: the values of common/base/random_streams.hpp (never renumber). */
 #define PHYSARUM_PURPOSE_INITIAL_PLACEMENT 1u
 #define PHYSARUM_PURPOSE_INITIAL_STATE 2u
 #define PHYSARUM_PURPOSE_TURN_DIRECTION 3u
@@ -113,7 +113,7 @@ typedef struct {
 #define PHYSARUM_PURPOSE_INITIAL_SPAWN_CORNER 6u
 #define PHYSARUM_PURPOSE_RESPAWN_CORNER 7u
 
-/* Bounds shared with the reference (common/trace.hpp, reference/sensing_steering.hpp). */
+/* Bounds shared with the reference (common/surface/trace.hpp, reference/sensing_steering.hpp). */
 #define PHYSARUM_MAX_TRACE_STEPS 65536
 #define PHYSARUM_MAX_TURN_DECISIONS_PER_STEP 4
 #define PHYSARUM_TURN_DECISION_TOLERANCE 1e-4f

@@ -8,7 +8,7 @@
 
 /* One forward Euler sub-step of Eq. 6 divided by M, for row i:
  *   u_out = F u_in,  F = I - h (diag(r_dif / m) L + diag(r_dec)),
- * with F assembled once on the host (common/pheromone_operators.hpp) in hybrid ELL + CSR form
+ * with F assembled once on the host (common/model/pheromone_operators.hpp) in hybrid ELL + CSR form
  * (opencl/hybrid_matrix.hpp). Folding the rates into F leaves one matrix-vector product per
  * sub-step, which reads fewer bytes per vertex than L, two rate arrays and u_i would. This kernel
  * does the ELL block: a fixed loop of PHYSARUM_ELL_WIDTH slots, read slot-major so that adjacent

@@ -1,5 +1,5 @@
 /* Reaction-diffusion on the device (opencl/reaction_diffusion.hpp; the equations are those of
- * common/reaction_diffusion_system.hpp): explicit sub-steps fused over all morphogens, and the
+ * common/reaction_diffusion/reaction_diffusion_system.hpp): explicit sub-steps fused over all morphogens, and the
  * right-hand side of the IMEX step. float32 throughout: not every device has fp64.
  *
  * The host prepends a generated prelude (opencl/reaction_diffusion.cpp) that defines

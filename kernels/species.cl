@@ -2,7 +2,7 @@
  * side is opencl/simulation.cpp): compiled only when the host defines PHYSARUM_SPECIES (K > 1), so
  * the single-species kernels are the base model's text.
  *
- * Agents are numbered species by species (common/species.hpp), so an agent's species follows from
+ * Agents are numbered species by species (common/model/species.hpp), so an agent's species follows from
  * its id (the device reorders agents by face, ids travel with them): PHYSARUM_SPECIES_FIRST_IDS
  * lists the K + 1 boundaries, first id of each species and the total. Per species the device keeps
  *   - its parameter records: vertex_parameters[s * PHYSARUM_SPECIES_VERTICES + v],

@@ -1,5 +1,5 @@
 /* Straight-line (geodesic) walking across intrinsic faces, in float32: the device twin of
- * common/trace.cpp, step for step (same exit rule, same exit-point construction, same reflection),
+ * common/surface/trace.cpp, step for step (same exit rule, same exit-point construction, same reflection),
  * so a reader can compare them side by side. Differences are only those float32 forces: the
  * parallel tolerance is relative to float rounding, and end points are clamped into the end face.
  *

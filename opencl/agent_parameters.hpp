@@ -1,9 +1,9 @@
 #pragma once
 // The agent parameters as the kernels read them: one PhysarumAgentParameters record per vertex (or
 // one for the whole surface when every parameter is uniform), packed from the parameter table
-// (common/model_parameters.hpp). The record's kernel-side struct and its interpolation are generated
+// (common/model/model_parameters.hpp). The record's kernel-side struct and its interpolation are generated
 // from the same table (agent_parameters_header), so a new agent parameter needs no edit here.
-#include "common/vertex_parameters.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "kernels/device_types.h"
 
 #include <string>

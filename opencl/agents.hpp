@@ -1,11 +1,11 @@
 #pragma once
-// The agent population on the device (the state of common/agents.hpp, plus each agent's id): one buffer per attribute
+// The agent population on the device (the state of common/model/agents.hpp, plus each agent's id): one buffer per attribute
 // (structure of arrays), plus each agent's id, the key of its random streams, so agents can be
 // reordered in memory without changing what they draw. The host-side exchange type is the
 // reference's Agents, so tests can hand identical states to both backends.
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
-#include "common/agents.hpp"
+#include "common/model/agents.hpp"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #include "opencl/conjugate_gradients.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "kernels/device_types.h"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"

@@ -1,9 +1,9 @@
 #pragma once
 // Jacobi-preconditioned conjugate gradients for S x = b on the device (kernels/conjugate_gradients.cl),
 // S symmetric positive definite: the backward Euler system of the pheromone field
-// (common/pheromone_operators.hpp). The solver's scalars stay on the device; the host enqueues
+// (common/model/pheromone_operators.hpp). The solver's scalars stay on the device; the host enqueues
 // iterations in batches and reads only the 32-byte solver state between two batches.
-#include "common/csr_matrix.hpp"
+#include "common/numerics/csr_matrix.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 

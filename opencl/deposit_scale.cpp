@@ -1,6 +1,6 @@
 #include "opencl/deposit_scale.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <vector>
 
 
-#include "common/element_data.hpp"
+#include "common/base/element_data.hpp"
 #include "opencl/device_selection.hpp"
 
 namespace physarum::opencl {

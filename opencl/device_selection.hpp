@@ -1,6 +1,6 @@
 #pragma once
 // Enumerating OpenCL platforms and devices, and choosing one by --device SPEC or PHYSARUM_DEVICE.
-#include "common/errors.hpp"  // DeviceError, thrown by select_device
+#include "common/base/errors.hpp"  // DeviceError, thrown by select_device
 #include "opencl/opencl_api.hpp"
 
 #include <cstdint>

@@ -1,8 +1,8 @@
 #include "opencl/diffusion_decay.hpp"
 
-#include "common/errors.hpp"
-#include "common/diffusion_decay.hpp"
-#include "common/pheromone_operators.hpp"
+#include "common/base/errors.hpp"
+#include "common/model/diffusion_decay.hpp"
+#include "common/model/pheromone_operators.hpp"
 #include "kernels/device_types.h"
 #include "opencl/deposit_scale.hpp"
 #include "opencl/flush_denormals.hpp"
@@ -68,7 +68,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
     diffuse_over_mass[i] = params[Param::diffuse_rate][i] / m;
   }
 
-  // ---- forward Euler step limit: the reference's bound (common/diffusion_decay.hpp), in double,
+  // ---- forward Euler step limit: the reference's bound (common/model/diffusion_decay.hpp), in double,
   // so both backends take the same number of sub-steps ----
   stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params[Param::decay_rate]);
   if (integrator == Integrator::ForwardEuler) {
@@ -100,7 +100,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
   if (integrator == Integrator::ForwardEuler) {
-    // The sub-step matrix (common/pheromone_operators.hpp), in double, then in hybrid form with one
+    // The sub-step matrix (common/model/pheromone_operators.hpp), in double, then in hybrid form with one
     // ELL row per work-item of the padded launch.
     const CsrMatrix F = forward_substep_matrix(L, diffuse_over_mass, params[Param::decay_rate], sub_step_);
     const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(un, group_)));
@@ -131,7 +131,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   fill(0.0);
 
   if (integrator == Integrator::BackwardEuler) {
-    // Eq. 7 as S u' = B u, S symmetric positive definite (common/pheromone_operators.hpp): B u on
+    // Eq. 7 as S u' = B u, S symmetric positive definite (common/model/pheromone_operators.hpp): B u on
     // this program's csr_multiply, S by conjugate gradients.
     const BackwardEulerSystem system =
         backward_euler_system(L, domain.vertex_mass, params[Param::diffuse_rate], params[Param::decay_rate], time_step);

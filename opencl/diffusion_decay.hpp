@@ -1,15 +1,15 @@
 #pragma once
-// The diffusion-decay field model on the OpenCL device (common/diffusion_decay.hpp defines it;
+// The diffusion-decay field model on the OpenCL device (common/model/diffusion_decay.hpp defines it;
 // reference/diffusion_decay.hpp is the serial counterpart): one layer of one float per intrinsic
 // vertex, advanced by Eq. 1 with the cotan Laplacian L and lumped mass M (Eq. 6 forward Euler with
 // automatic sub-steps, Eq. 7 backward Euler by conjugate gradients on the device). The field stays on
 // the device; the host reads it only on demand. An optional write rate (Sec. 3.3 write-stimuli) is a
 // source term, added and clamped at zero exactly where the reference does (pheromone_add_source).
-#include "common/element_data.hpp"
-#include "common/field_statistics.hpp"
-#include "common/scene.hpp"
-#include "common/surface_domain.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/base/element_data.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/model/diffusion_decay.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/conjugate_gradients.hpp"
 #include "opencl/device_buffer.hpp"
@@ -38,7 +38,7 @@ struct OpenCLDiffusionDecayOptions {
   // step). The same arithmetic either way: the fields agree bit for bit.
   bool host_solve_in_queue = true;
   // Backward Euler stops when ||b - S x|| <= tolerance ||b|| (S, b: the symmetrised system,
-  // common/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
+  // common/model/pheromone_operators.hpp). 1e-6 is about 10 float ulps: tighter is not reachable in float32.
   double cg_relative_tolerance = 1e-6;
   int cg_max_iterations = 1000;  // a bound, so a solve always ends
   // Iterations enqueued between two reads of the solver state (a 32-byte read): fewer reads, but up
@@ -139,7 +139,7 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
   double forward_bytes_per_sub_step_ = 0.0;
   DeviceBuffer forward_column_, forward_value_, decay_rate_;
   DeviceBuffer forward_overflow_row_, forward_overflow_start_, forward_overflow_column_, forward_overflow_value_;
-  // Backward Euler: S x = B u (common/pheromone_operators.hpp); B here, S in the solver (absent when
+  // Backward Euler: S x = B u (common/model/pheromone_operators.hpp); B here, S in the solver (absent when
   // the system is diagonal).
   DeviceBuffer rhs_row_start_, rhs_column_, rhs_value_;
   std::unique_ptr<DeviceConjugateGradients> solver_;   // one of these two

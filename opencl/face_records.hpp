@@ -9,9 +9,9 @@
 // line (or page) at every crossing. A breadth-first order over face adjacency keeps neighbours a
 // ring apart (~sqrt(F) records, like Cuthill-McKee), and agents sorted by device face then walk
 // through memory that their neighbours in the agent arrays have just brought into cache.
-#include "common/element_data.hpp"
-#include "common/surface_domain.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/base/element_data.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "kernels/device_types.h"
 
 #include <vector>

@@ -4,8 +4,8 @@
 // OpenCL simulation offers, dynamic (opencl/field_model.hpp: advanced each step) or static
 // (opencl/static_field.hpp: a fixed map). The counterpart of one entry of the reference simulation's
 // layer list (reference/simulation.hpp).
-#include "common/element_data.hpp"
-#include "common/field_statistics.hpp"
+#include "common/base/element_data.hpp"
+#include "common/simulation/field_statistics.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/opencl_api.hpp"

@@ -3,7 +3,7 @@
 // and the coverage fractions above kCoverageMultiples x U, from a float field that stays on the
 // device. Only four floats come back per call. Sums run in a fixed order (work-group tree, then one
 // group over the partials), so repeated calls on one device give identical results.
-#include "common/field_statistics.hpp"
+#include "common/simulation/field_statistics.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 

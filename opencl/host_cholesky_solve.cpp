@@ -1,8 +1,8 @@
 #include "opencl/host_cholesky_solve.hpp"
 
-#include "common/errors.hpp"
-#include "common/shared_cholesky.hpp"
-#include "common/supernodal_solve.hpp"
+#include "common/base/errors.hpp"
+#include "common/numerics/shared_cholesky.hpp"
+#include "common/numerics/supernodal_solve.hpp"
 #include "opencl/device_tuning.hpp"
 #include "opencl/flush_denormals.hpp"
 
@@ -145,7 +145,7 @@ struct LdltSweeps {
 };
 
 // P S P^T = L L^T in CHOLMOD's supernodal layout (METIS nested dissection), kept at Scalar and solved
-// by common/supernodal_solve.hpp: dense column blocks that carry one row index per block row, not one
+// by common/numerics/supernodal_solve.hpp: dense column blocks that carry one row index per block row, not one
 // per entry (half the bytes of an (index, value) pair in float), and the elimination tree's subtrees
 // on both cores once the factor is past the cache.
 template <class Scalar>

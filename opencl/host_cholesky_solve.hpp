@@ -1,5 +1,5 @@
 #pragma once
-// A backward-Euler / IMEX system S x = b of a device field (common/pheromone_operators.hpp,
+// A backward-Euler / IMEX system S x = b of a device field (common/model/pheromone_operators.hpp,
 // opencl/reaction_diffusion.hpp) solved on the host by a sparse Cholesky factorization computed
 // once, instead of conjugate gradients on the device. Where the OpenCL device is the host's own CPU
 // (PoCL) the device's memory is the host's: the field is mapped in place (opencl/mapped_buffer.hpp),
@@ -26,7 +26,7 @@
 // sizes, where the solve is the whole step.
 //
 // Past kMinSupernodalRows the factor is CHOLMOD's supernodal L L^T instead (METIS nested dissection),
-// rounded to the field's precision and solved by common/supernodal_solve.hpp: dense column blocks
+// rounded to the field's precision and solved by common/numerics/supernodal_solve.hpp: dense column blocks
 // carry one row index per block row rather than one per entry, so a float entry costs 4 bytes
 // instead of 8, and the elimination tree's subtrees are solved on both cores. At 10^5-10^6
 // vertices that solve is 3-4x faster than the simplicial one, which was bound by L's bytes and
@@ -34,7 +34,7 @@
 //
 // Where it solves is the caller's choice (implicit_solve_on_host below): the class itself only
 // works on host memory, so it serves any device.
-#include "common/csr_matrix.hpp"
+#include "common/numerics/csr_matrix.hpp"
 #include "opencl/device_selection.hpp"
 
 #include <cstddef>

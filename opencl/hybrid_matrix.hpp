@@ -9,7 +9,7 @@
 // the result stays deterministic. Rows with fewer entries are padded with value 0 at their own column
 // (a valid index whose value the row reads anyway); rows past the matrix's end (up to stride) with
 // value 0 at column rows - 1. Entries keep their CSR order within a row.
-#include "common/csr_matrix.hpp"
+#include "common/numerics/csr_matrix.hpp"
 #include "kernels/device_types.h"
 
 #include <vector>

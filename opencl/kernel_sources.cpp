@@ -1,6 +1,6 @@
 #include "opencl/kernel_sources.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/agent_parameters.hpp"
 
 #include <set>

@@ -1,6 +1,6 @@
 #include "opencl/memory_bandwidth.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/device_tuning.hpp"
 #include "opencl/kernel_arguments.hpp"
 #include "opencl/kernel_sources.hpp"

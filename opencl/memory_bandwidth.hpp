@@ -1,5 +1,5 @@
 #pragma once
-// The bandwidth of a device's own memory (mirrors common/memory_bandwidth.hpp, the host's): a
+// The bandwidth of a device's own memory (mirrors common/numerics/memory_bandwidth.hpp, the host's): a
 // STREAM-style triad a = b + s c in kernels/memory_bandwidth.cl over three arrays of at least 64 MB
 // and four times the device's global-memory cache, so that a GPU's L2 does not answer for its memory.
 #include "opencl/compute_context.hpp"

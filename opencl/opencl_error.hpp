@@ -1,6 +1,6 @@
 #pragma once
 // Turning OpenCL status codes into readable errors.
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <string>
 

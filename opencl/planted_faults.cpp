@@ -1,6 +1,6 @@
 #include "opencl/planted_faults.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 namespace physarum::opencl {
 

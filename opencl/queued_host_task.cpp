@@ -1,6 +1,6 @@
 #include "opencl/queued_host_task.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/opencl_error.hpp"
 
 #include <exception>

@@ -1,7 +1,7 @@
 #include "opencl/reaction_diffusion.hpp"
 
-#include "common/errors.hpp"
-#include "common/simulation_state.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/simulation_state.hpp"
 #include "kernels/device_types.h"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/kernel_arguments.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// A reaction-diffusion system (common/reaction_diffusion_system.hpp) advanced on an OpenCL device,
+// A reaction-diffusion system (common/reaction_diffusion/reaction_diffusion_system.hpp) advanced on an OpenCL device,
 // as a SimulationBackend whose dynamic layers are the morphogens (layer m = morphogen m) and which
 // has no agents. The morphogens stay on the device; the host reads them only on demand.
 //
@@ -21,9 +21,9 @@
 // vertices keep their values exactly, in both integrators.
 //
 // Vertices are in the domain's (= the system's) order; there is no device renumbering here.
-#include "common/reaction_diffusion_system.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/surface_domain.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/conjugate_gradients.hpp"
 #include "opencl/device_buffer.hpp"

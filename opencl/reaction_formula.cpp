@@ -1,6 +1,6 @@
 #include "opencl/reaction_formula.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -1,5 +1,5 @@
 #pragma once
-// A reaction formula of the reaction-diffusion contract (common/reaction_diffusion_system.hpp: the
+// A reaction formula of the reaction-diffusion contract (common/reaction_diffusion/reaction_diffusion_system.hpp: the
 // muparser syntax the reference evaluates) rewritten as an OpenCL C float expression, so the device
 // evaluates the user's kinetics inline in the step kernel, compiled, with no interpreter on the
 // device. The host parses the formula once (recursive descent here is fine: it never runs in a

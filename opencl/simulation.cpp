@@ -1,8 +1,8 @@
 #include "opencl/simulation.hpp"
 
-#include "common/simulation_state.hpp"
+#include "common/simulation/simulation_state.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/agent_order.hpp"
 #include "opencl/agent_parameters.hpp"
 #include "opencl/deposit_scale.hpp"
@@ -13,10 +13,10 @@
 #include "opencl/opencl_error.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl/work_group_size.hpp"
-#include "common/random_streams.hpp"
-#include "common/trace.hpp"
-#include "common/agent_model.hpp"
-#include "common/spawn_distribution.hpp"
+#include "common/base/random_streams.hpp"
+#include "common/surface/trace.hpp"
+#include "common/model/agent_model.hpp"
+#include "common/model/spawn_distribution.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -83,11 +83,6 @@ size_t species_cell_stride(const DeviceInfo& device, size_t vertex_count, size_t
 }  // namespace
 
 OpenCLSimulation::~OpenCLSimulation() = default;
-
-OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
-                                   const OpenCLSimulationOptions& options)
-    : OpenCLSimulation(compute, domain, VertexParameters::constant(scene.parameters, domain.vertex_count),
-                       simulation_settings(scene), options) {}
 
 OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationSettings& settings,

@@ -6,7 +6,7 @@
 //        memory order only: results do not change
 //   1-3. agent_step kernel (kernels/agent_step.cl): sense + steer (+ bias), move + deposit, turnover
 //
-// The controls of Sec. 3.3 (common/simulation_controls.hpp) are compiled into the kernels as build
+// The controls of Sec. 3.3 (common/model/simulation_controls.hpp) are compiled into the kernels as build
 // options only when present (read-stimulus, spawn weights, bias, spawn heading, terminate) and the
 // write rate is one extra launch per sub-step of the field model: default controls run the same
 // kernels, bit for bit, at the same speed as before controls existed.
@@ -14,7 +14,7 @@
 //        them (opencl/field_model.hpp; one diffusion-decay layer per species,
 //        opencl/diffusion_decay.hpp); static layers (opencl/static_field.hpp) do not take part
 //
-// Competing species (common/species.hpp, kernels/species.cl) are compiled in only when there are
+// Competing species (common/model/species.hpp, kernels/species.cl) are compiled in only when there are
 // several (-DPHYSARUM_SPECIES=K): before the sensing, each species' sensed field sum_j m_sj layer_j
 // is built on the device; the kernels take each agent's species from its id. One species runs the
 // base model's kernels, bit for bit.
@@ -28,12 +28,11 @@
 // k is the largest that keeps the worst case of one step (every agent's whole deposit into one
 // vertex) below 2^62, and the constructor refuses a scene where even that leaves fewer than 2^20
 // units for one agent's deposit of one step (rounding would then matter at the 1e-6 level).
-#include "common/scene.hpp"
-#include "common/simulation_controls.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/species.hpp"
-#include "common/surface_domain.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/model/species.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "kernels/device_types.h"
 #include "opencl/agent_order.hpp"
 #include "opencl/agents.hpp"
@@ -78,13 +77,11 @@ class OpenCLSimulation final : public SimulationBackend {
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    const SimulationControls& controls, const SimulationSettings& settings,
                    const OpenCLSimulationOptions& options = {});
-  // Competing species (common/species.hpp; copied); settings.agents must be their total. The same
+  // Competing species (common/model/species.hpp; copied); settings.agents must be their total. The same
   // InputErrors as ReferenceSimulation's species constructor, and one more: species whose sinks
   // differ (they would spawn in different places; the kernels keep one spawn table).
   OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
                    const SimulationControls& controls, const SimulationSettings& settings,
-                   const OpenCLSimulationOptions& options = {});
-  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const Scene& scene,
                    const OpenCLSimulationOptions& options = {});
   ~OpenCLSimulation() override;
   OpenCLSimulation(const OpenCLSimulation&) = delete;

@@ -1,6 +1,6 @@
 #include "opencl/static_field.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/opencl_error.hpp"
 
 namespace physarum::opencl {

@@ -4,8 +4,8 @@
 // through set_concentration / fill. The counterpart of a static entry of the reference simulation's
 // layer list (reference/simulation.hpp). It keeps its own masses for its statistics, so it needs no
 // dynamic layer beside it.
-#include "common/element_data.hpp"
-#include "common/field_statistics.hpp"
+#include "common/base/element_data.hpp"
+#include "common/simulation/field_statistics.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/field.hpp"

@@ -1,7 +1,7 @@
 #include "reference/agents.hpp"
 
-#include "common/domain_sampling.hpp"
-#include "common/random_streams.hpp"
+#include "common/model/domain_sampling.hpp"
+#include "common/base/random_streams.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,9 +1,9 @@
 #pragma once
 // The initial state of the agent population (paper Sec. 3.2-3.3), serially: the state itself
 // (Agents) and the sampling it uses live in common/ (agents.hpp, domain_sampling.hpp).
-#include "common/agents.hpp"
-#include "common/element_data.hpp"
-#include "common/surface_domain.hpp"
+#include "common/model/agents.hpp"
+#include "common/base/element_data.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "reference/turnover.hpp"
 
 #include <cstdint>
@@ -38,7 +38,7 @@ namespace physarum {
 // place it stands: no inspection-paradox bias and no start-up transient there either. With a
 // SpawnRule the placement follows its spawn density (RandomPurpose::InitialSpawnCorner for the
 // in-face corner) and the heading its spawn heading. Agent a draws from the streams of id first_id + a
-// (a species' agents after those of the species before it: common/species.hpp).
+// (a species' agents after those of the species before it: common/model/species.hpp).
 Agents initialise_agents(const SurfaceDomain& domain, const IntrinsicVertexData<double>& hazard_rate,
                          const IntrinsicVertexData<double>& turn_frequency, const IntrinsicVertexData<double>& turn_rate,
                          int count, std::uint32_t seed, const SpawnRule& rule = {}, int first_id = 0);

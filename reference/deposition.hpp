@@ -4,9 +4,9 @@
 // functions the line integral over each per-face segment equals a point deposit at the segment's
 // midpoint, so each segment deposits (its length / the step length) of the amount at its midpoint,
 // split over the face's three vertices by the midpoint's barycentric weights.
-#include "common/surface_domain.hpp"
-#include "common/element_data.hpp"
-#include "common/trace.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/base/element_data.hpp"
+#include "common/surface/trace.hpp"
 
 #include <Eigen/Core>
 #include <vector>

@@ -1,6 +1,6 @@
 #include "reference/diffusion_decay.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ ReferenceDiffusionDecay::ReferenceDiffusionDecay(const SurfaceDomain& domain, co
     diffuse_over_mass_[i] = diffuse_rate[i] / m;
   }
 
-  // Forward Euler step limit (common/diffusion_decay.hpp has the derivation).
+  // Forward Euler step limit (common/model/diffusion_decay.hpp has the derivation).
   const CsrMatrix& L = domain.laplacian;
   stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass_, decay_rate_);
 

@@ -1,5 +1,5 @@
 #pragma once
-// The diffusion-decay field model in the serial reference (common/diffusion_decay.hpp defines it):
+// The diffusion-decay field model in the serial reference (common/model/diffusion_decay.hpp defines it):
 // paper Eq. 1 discretised with the cotan Laplacian L and lumped mass M, with per-vertex rates R_dif,
 // R_dec (Eq. 6 forward Euler with sub-steps under the stability limit, Eq. 7 backward Euler by a
 // sparse factorisation made once). An optional write rate w (Sec. 3.3 write-stimuli, concentration
@@ -7,11 +7,11 @@
 // each sub-step, backward Euler solves A u' = M (u + dt w); with diffusion off both reach exactly
 // u = w / r_dec. The concentration is clamped at zero after each sub-step (forward) or the solve
 // (backward), so a negative rate removes pheromone but never makes it negative.
-#include "common/diffusion_decay.hpp"
-#include "common/element_data.hpp"
-#include "common/scene.hpp"
-#include "common/surface_domain.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/model/diffusion_decay.hpp"
+#include "common/base/element_data.hpp"
+#include "common/model/diffusion_decay.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "reference/field_model.hpp"
 
 #include <Eigen/SparseCholesky>
@@ -42,7 +42,7 @@ class ReferenceDiffusionDecay final : public ReferenceFieldModel {
 
   double time_step() const { return time_step_; }
   Integrator integrator() const { return integrator_; }
-  // Forward Euler: the largest sub-step this model takes (common/diffusion_decay.hpp has the bound),
+  // Forward Euler: the largest sub-step this model takes (common/model/diffusion_decay.hpp has the bound),
   // and how many sub-steps one step takes (1 when time_step is within the bound). Backward Euler: 1.
   double stable_time_step() const { return stable_time_step_; }
   int sub_steps() const { return sub_steps_; }

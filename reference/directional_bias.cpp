@@ -1,7 +1,7 @@
 #include "reference/directional_bias.hpp"
 
-#include "common/directional_bias.hpp"
-#include "common/domain_sampling.hpp"
+#include "common/model/directional_bias.hpp"
+#include "common/model/domain_sampling.hpp"
 #include "reference/sensing_steering.hpp"
 
 namespace physarum {

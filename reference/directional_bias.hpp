@@ -1,10 +1,10 @@
 #pragma once
 // Directional bias (paper Sec. 3.3, Fig. 6) in the serial reference: after sensing and steering,
 // every agent's heading relaxes toward the closest copy of the local bias direction
-// (common/directional_bias.hpp has the rule; kernels/bias.cl is the device side).
-#include "common/agents.hpp"
-#include "common/simulation_controls.hpp"
-#include "common/surface_domain.hpp"
+// (common/model/directional_bias.hpp has the rule; kernels/bias.cl is the device side).
+#include "common/model/agents.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/surface/surface_domain.hpp"
 
 namespace physarum {
 

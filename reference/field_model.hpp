@@ -4,7 +4,7 @@
 // themselves belong to the simulation, so one model advances any number of layers (one per species).
 // Where the step's deposits enter (before or after the transport) is the model's choice, so a
 // reaction term later is a new model, not an edit of the simulation step.
-#include "common/element_data.hpp"
+#include "common/base/element_data.hpp"
 
 namespace physarum {
 

@@ -3,9 +3,9 @@
 // its heading across the intrinsic faces; at a boundary it reflects (BoundaryRule::Reflect), so it
 // never leaves the surface, or, with BoundaryBehaviour::Terminate (Sec. 3.3), stops there
 // (BoundaryRule::Stop) to be respawned by the turnover of the same step.
-#include "common/surface_domain.hpp"
-#include "common/trace.hpp"
-#include "common/agents.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/surface/trace.hpp"
+#include "common/model/agents.hpp"
 
 #include <vector>
 

@@ -1,7 +1,7 @@
 #include "reference/reaction_diffusion.hpp"
 
-#include "common/errors.hpp"
-#include "common/simulation_state.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/simulation_state.hpp"
 
 #include <Eigen/SparseCholesky>
 

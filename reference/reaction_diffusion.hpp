@@ -1,5 +1,5 @@
 #pragma once
-// The serial reference backend of a reaction–diffusion system (common/reaction_diffusion_system.hpp):
+// The serial reference backend of a reaction–diffusion system (common/reaction_diffusion/reaction_diffusion_system.hpp):
 // the oracle the OpenCL backend is judged against. Its dynamic layers are the morphogens, in the
 // system's order; it has no agents (agent_faces() is empty, the counters stay zero).
 //
@@ -11,10 +11,10 @@
 //             sparse LDL^T factorization per morphogen, made once), the reaction explicit.
 // Vertices with `fixed` set keep their values (a Dirichlet region: in IMEX they are moved to the
 // right-hand side, and the factored system is the one of the free vertices).
-// The reaction formulas are evaluated per vertex with muparser (common/reaction_formula.hpp).
-#include "common/reaction_diffusion_system.hpp"
-#include "common/reaction_formula.hpp"
-#include "common/simulation_backend.hpp"
+// The reaction formulas are evaluated per vertex with muparser (common/reaction_diffusion/reaction_formula.hpp).
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/reaction_diffusion/reaction_formula.hpp"
+#include "common/simulation/simulation_backend.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>

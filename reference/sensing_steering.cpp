@@ -1,8 +1,8 @@
 #include "reference/sensing_steering.hpp"
 
-#include "common/domain_sampling.hpp"
-#include "common/random_streams.hpp"
-#include "common/trace.hpp"
+#include "common/model/domain_sampling.hpp"
+#include "common/base/random_streams.hpp"
+#include "common/surface/trace.hpp"
 
 #include <algorithm>
 #include <cmath>

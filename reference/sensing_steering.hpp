@@ -3,11 +3,11 @@
 // pheromone with three sensors at distance d along the directions -theta, 0, +theta from its
 // heading, and turns at the fixed turn-decision frequency f_i by the turn rate omega integrated over
 // the decision period (omega / f_i for a constant omega), independently of the time step.
-#include "common/surface_domain.hpp"
-#include "common/vertex_parameters.hpp"
-#include "common/agent_model.hpp"
-#include "common/agents.hpp"
-#include "common/element_data.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/vertex_parameters.hpp"
+#include "common/model/agent_model.hpp"
+#include "common/model/agents.hpp"
+#include "common/base/element_data.hpp"
 
 #include <cstdint>
 #include <vector>

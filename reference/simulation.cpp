@@ -1,11 +1,11 @@
 #include "reference/simulation.hpp"
 
-#include "common/simulation_state.hpp"
+#include "common/simulation/simulation_state.hpp"
 
-#include "common/agent_model.hpp"
-#include "common/directional_bias.hpp"
-#include "common/domain_sampling.hpp"
-#include "common/errors.hpp"
+#include "common/model/agent_model.hpp"
+#include "common/model/directional_bias.hpp"
+#include "common/model/domain_sampling.hpp"
+#include "common/base/errors.hpp"
 #include "reference/agents.hpp"
 #include "reference/deposition.hpp"
 #include "reference/directional_bias.hpp"
@@ -86,9 +86,6 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Spec
   segments_.reserve(64);
   if (controls_.boundary == BoundaryBehaviour::Terminate) terminated_.assign(static_cast<size_t>(settings.agents), 0);
 }
-
-ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene)
-    : ReferenceSimulation(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), simulation_settings(scene)) {}
 
 void ReferenceSimulation::move_and_deposit() {
   const double dt = settings_.time_step;

@@ -13,30 +13,29 @@
 //   5. time += dt
 //
 // The simulation holds a list of per-vertex field layers: the dynamic ones first (one pheromone
-// layer per species, common/species.hpp: species i deposits only into layer i and its sensors read
+// layer per species, common/model/species.hpp: species i deposits only into layer i and its sensors read
 // sum_j m_ij * layer_j, each layer decaying and diffusing with its species' rates), then static ones
 // (fixed maps). Agents are numbered species by species, so every species works on a contiguous run
 // of ids and the random streams stay keyed by id; one species reading its layer with weight 1 is
 // the base model bit for bit (the sensors then read layer 0 itself).
 //
-// The controls of Sec. 3.3 (common/simulation_controls.hpp) arrive evaluated; default controls are
+// The controls of Sec. 3.3 (common/model/simulation_controls.hpp) arrive evaluated; default controls are
 // the base model bit for bit (every control's work is skipped when it is absent).
 //
 // All randomness comes from Philox streams keyed (seed, agent), counter (step, purpose)
-// (common/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
+// (common/base/random_streams.hpp), so a run is bit-reproducible. step() allocates nothing and
 // recomputes no geometry: every buffer is sized once here (counted in
 // tests/test_reference_allocations.cpp; with a spatially varying diffuse rate the backward-Euler
 // solve goes through Eigen's SparseLU, whose solve() allocates).
-#include "common/scene.hpp"
-#include "common/simulation_controls.hpp"
-#include "common/spawn_distribution.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/surface_domain.hpp"
-#include "common/trace.hpp"
-#include "common/species.hpp"
-#include "common/vertex_parameters.hpp"
-#include "common/agents.hpp"
-#include "common/element_data.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/model/spawn_distribution.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/surface/trace.hpp"
+#include "common/model/species.hpp"
+#include "common/model/vertex_parameters.hpp"
+#include "common/model/agents.hpp"
+#include "common/base/element_data.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "reference/turnover.hpp"
 
@@ -56,11 +55,9 @@ class ReferenceSimulation final : public SimulationBackend {
   ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationControls& controls,
                       const SimulationSettings& settings);
   // Competing species (copied); settings.agents must be their total. Throws InputError when the set
-  // does not match the domain (common/species.hpp: check_species) or the count differs.
+  // does not match the domain (common/model/species.hpp: check_species) or the count differs.
   ReferenceSimulation(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationControls& controls,
                       const SimulationSettings& settings);
-  // Convenience: constant parameters from a scene (agents, time_step, seed, integrator from it too).
-  ReferenceSimulation(const SurfaceDomain& domain, const Scene& scene);
   // Not copyable: the spawn rule points into this object's own controls.
   ReferenceSimulation(const ReferenceSimulation&) = delete;
   ReferenceSimulation& operator=(const ReferenceSimulation&) = delete;
@@ -103,7 +100,7 @@ class ReferenceSimulation final : public SimulationBackend {
   void restore_state(const SimulationState& state) override;
   std::string backend_name() const override { return "reference"; }
   std::string device_name() const override { return "CPU (serial reference, 1 thread)"; }
-  // Species 0's hazard rate 1/tau per vertex (common/agent_model.hpp).
+  // Species 0's hazard rate 1/tau per vertex (common/model/agent_model.hpp).
   const IntrinsicVertexData<double>& hazard_rate() const { return species_.front()->hazard_rate; }
 
  private:

@@ -1,8 +1,8 @@
 #include "reference/turnover.hpp"
 
-#include "common/directional_bias.hpp"
-#include "common/domain_sampling.hpp"
-#include "common/random_streams.hpp"
+#include "common/model/directional_bias.hpp"
+#include "common/model/domain_sampling.hpp"
+#include "common/base/random_streams.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,16 +7,16 @@
 // age 0, exposure 0 and a fresh threshold. With a constant tau, lifetimes are Exp(tau).
 //
 // Controls (Sec. 3.3): with spawn weights or sinks the rebirth point follows the linear spawn
-// density (common/spawn_distribution.hpp), and with SpawnHeading::Bias the newborn faces along the
-// local bias direction (common/directional_bias.hpp). A sink (hazard +infinity at any corner of the
+// density (common/model/spawn_distribution.hpp), and with SpawnHeading::Bias the newborn faces along the
+// local bias direction (common/model/directional_bias.hpp). A sink (hazard +infinity at any corner of the
 // agent's face: mean lifetime 0 there) removes an agent at once, whatever its threshold, and so does
 // a boundary with BoundaryBehaviour::Terminate (the caller flags those agents): either way the agent
 // is reborn in the same step, so a sink face holds no agent at the end of a step.
-#include "common/simulation_controls.hpp"
-#include "common/spawn_distribution.hpp"
-#include "common/surface_domain.hpp"
-#include "common/agents.hpp"
-#include "common/element_data.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/model/spawn_distribution.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/model/agents.hpp"
+#include "common/base/element_data.hpp"
 
 #include <cstdint>
 #include <vector>

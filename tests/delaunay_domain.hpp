@@ -1,9 +1,9 @@
 #pragma once
 // The surface domain most tests simulate on: a mesh (file or shape:NAME) flipped to intrinsic
 // Delaunay, so its cotan weights are non-negative, without scaling or refinement — through the
-// loader every command uses (common/scene_surface.hpp).
-#include "common/scene_surface.hpp"
-#include "common/surface_domain.hpp"
+// loader every command uses (common/setup/scene_surface.hpp).
+#include "common/setup/scene_surface.hpp"
+#include "common/surface/surface_domain.hpp"
 
 #include <string>
 

@@ -1,10 +1,10 @@
 #pragma once
 // Known answers for the geodesic tests: great-circle distance on the unit sphere, Euclidean distance
 // on flat meshes, and the largest error of a computed distance against them.
-#include "common/element_data.hpp"
-#include "common/fe_operators.hpp"
-#include "common/input_mesh.hpp"
-#include "common/surface_domain.hpp"
+#include "common/base/element_data.hpp"
+#include "common/surface/fe_operators.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/surface/surface_domain.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 #pragma once
 // A scene given as JSON in a test, loaded as `physarum run` loads a file: the scene, its surface and
 // the arrays (parameters, controls, species) the backends are built from.
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "test_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -16,7 +16,7 @@ namespace physarum::testing {
 
 struct LoadedScene {
   Scene scene;
-  SceneSurface surface;
+  PreparedSurface surface;
   SceneArrays arrays;
 };
 
@@ -30,7 +30,7 @@ inline Scene scene_from_json(const nlohmann::json& j) {
 
 inline LoadedScene load_scene_json(const nlohmann::json& j) {
   Scene scene = scene_from_json(j);
-  SceneSurface surface = prepare_scene_surface(scene);
+  PreparedSurface surface = prepare_scene_surface(scene);
   SceneArrays arrays = scene_arrays(scene, surface);
   return LoadedScene{std::move(scene), std::move(surface), std::move(arrays)};
 }

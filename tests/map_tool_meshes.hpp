@@ -2,10 +2,10 @@
 // Meshes built inline for the map-tool tests (tests/test_map_tools_*.cpp), each with a known answer
 // in mind: a jittered flat rectangle (linear harmonic functions), a flat annulus (the log profile),
 // a sphere with bumps of known places (the elevation proxy), and helpers shared by those tests.
-#include "common/input_mesh.hpp"
-#include "common/map_definition.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/scene_surface.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <Eigen/Core>
@@ -89,7 +89,7 @@ InputMesh make_displaced_sphere(int levels, double amplitude, Bumps bumps) {
 }
 
 // The intrinsic vertices' positions in input coordinates (from their barycentrics on the input).
-inline std::vector<Eigen::Vector3d> intrinsic_vertex_positions(const SceneSurface& s) {
+inline std::vector<Eigen::Vector3d> intrinsic_vertex_positions(const PreparedSurface& s) {
   std::vector<Eigen::Vector3d> p(static_cast<size_t>(s.domain.vertex_count));
   for (int v = 0; v < s.domain.vertex_count; ++v) {
     const SurfacePoint& l = s.domain.vertex_location[v];
@@ -100,13 +100,13 @@ inline std::vector<Eigen::Vector3d> intrinsic_vertex_positions(const SceneSurfac
   return p;
 }
 
-inline SceneSurface surface_from(InputMesh mesh, std::optional<double> max_circumradius = std::nullopt,
+inline PreparedSurface surface_from(InputMesh mesh, std::optional<double> max_circumradius = std::nullopt,
                                  std::optional<double> area = std::nullopt) {
   const std::string name = mesh.source;
   return prepare_surface(std::move(mesh), SurfaceSpec{name, area, max_circumradius, 0.0});
 }
 
-inline EvaluatedMaps evaluate_json(const nlohmann::json& maps, const SceneSurface& surface) {
+inline EvaluatedMaps evaluate_json(const nlohmann::json& maps, const PreparedSurface& surface) {
   return evaluate_maps(parse_maps(maps, ".", "scene.json"), surface, "scene.json");
 }
 

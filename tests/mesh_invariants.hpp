@@ -2,7 +2,7 @@
 // Independent check of the InputMesh contract (input_mesh.hpp), written without the repair code:
 // indices in range, distinct corners, every edge on at most two triangles with opposite
 // directions, and every vertex a single fan (its link is one connected path or cycle).
-#include "common/input_mesh.hpp"
+#include "common/mesh/input_mesh.hpp"
 
 #include <gtest/gtest.h>
 

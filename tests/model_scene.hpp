@@ -2,7 +2,7 @@
 // The model parameters the simulation tests share (the default scene's, with a faster decay so a
 // test reaches steady state in a few simulated seconds): one description for the reference tests,
 // the OpenCL tests and the device check, so they test the same model.
-#include "common/default_scene.hpp"
+#include "common/scene/default_scene.hpp"
 
 #include <limits>
 #include <optional>

@@ -3,6 +3,7 @@
 // device check: one step from identical states. What may differ afterwards is float32 against
 // double: positions and headings agree to ~1e-6 unless a sensor comparison is a near-tie or a trace
 // passes within float rounding of a vertex; callers bound the number of disagreeing agents.
+#include "common/setup/agent_inputs.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 
@@ -30,16 +31,16 @@ struct StepComparison {
 // one step on each.
 inline StepComparison compare_one_step(const ComputeContext& compute, const SurfaceDomain& domain,
                                        const Scene& scene, int warmup, const OpenCLSimulationOptions& options = {}) {
-  ReferenceSimulation developed(domain, scene);
+  ReferenceSimulation developed(domain, constant_parameters(scene, domain), simulation_settings(scene));
   developed.run(warmup);
 
-  OpenCLSimulation device(compute, domain, scene, options);
+  OpenCLSimulation device(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
   device.write_agents(developed.agents());
   device.set_field(developed.field());
   const Agents start = device.read_agents();  // float-rounded: the common starting point
   const IntrinsicVertexData<double> field = device.field_values();
 
-  ReferenceSimulation reference(domain, scene);
+  ReferenceSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
   reference.agents() = start;
   reference.set_field(field);
 

@@ -1,14 +1,14 @@
 #pragma once
 // The dominant wavenumber of a grown pattern, for the reaction-diffusion known-answer tests: where
 // the power spectrum of a field peaks, estimated below the spectrum's bin width, on a flat surface
-// (the radially averaged 2D FFT spectrum of common/spectral_metrics.hpp) and on a sphere (the power
+// (the radially averaged 2D FFT spectrum of common/harness/spectral_metrics.hpp) and on a sphere (the power
 // per spherical-harmonic degree, projected here on Y_lm from Boost.Math's associated Legendre
 // functions, so the reference owes nothing to the discrete Laplacian under test). Also the
 // "connectivity Laplacian" a graph-based tool diffuses with, to show what the cotan Laplacian buys.
-#include "common/reaction_diffusion_system.hpp"
-#include "common/scene_surface.hpp"
-#include "common/spectral_metrics.hpp"
-#include "common/surface_domain.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/harness/spectral_metrics.hpp"
+#include "common/surface/surface_domain.hpp"
 
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/math/special_functions/legendre.hpp>
@@ -61,7 +61,7 @@ struct RadialPeak {
   RadialSpectrum spectrum;
 };
 
-inline RadialPeak radial_peak(const SceneSurface& surface, const IntrinsicVertexData<double>& field, int grid,
+inline RadialPeak radial_peak(const PreparedSurface& surface, const IntrinsicVertexData<double>& field, int grid,
                               int first_radius = 2) {
   RadialPeak r;
   r.spectrum = radial_power_spectrum(planar_vertex_coordinates(surface.domain, surface.simulated),

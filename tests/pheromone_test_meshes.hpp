@@ -1,10 +1,10 @@
 #pragma once
 // Small meshes built inline for the tests, so they depend only on the code under test and not on
 // mesh loading or intrinsic refinement.
-#include "common/fe_operators.hpp"
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/surface_domain.hpp"
+#include "common/surface/fe_operators.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/surface/surface_domain.hpp"
 
 #include <Eigen/Geometry>
 #include <cmath>

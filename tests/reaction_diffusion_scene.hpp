@@ -1,10 +1,10 @@
 #pragma once
 // Reaction-diffusion scenes given as JSON in a test (the scene alone: loaded_scene.hpp's
 // scene_from_json), and for the numerical tests its surface, evaluated maps and the built system.
-#include "common/map_evaluation.hpp"
-#include "common/reaction_diffusion_build.hpp"
-#include "common/scene.hpp"
-#include "common/scene_surface.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "loaded_scene.hpp"
 
 #include <nlohmann/json.hpp>
@@ -17,7 +17,7 @@ namespace physarum::testing {
 
 struct LoadedReactionDiffusion {
   Scene scene;
-  SceneSurface surface;
+  PreparedSurface surface;
   EvaluatedMaps maps;
   ReactionDiffusionSystem system;
 };
@@ -32,7 +32,7 @@ inline LoadedReactionDiffusion load_rd_system(const nlohmann::json& j) {
 }
 
 // The intrinsic vertices' positions on the simulated (scaled) surface, from their barycentrics.
-inline std::vector<Eigen::Vector3d> vertex_positions(const SceneSurface& surface) {
+inline std::vector<Eigen::Vector3d> vertex_positions(const PreparedSurface& surface) {
   std::vector<Eigen::Vector3d> p;
   for (const SurfacePoint& s : surface.domain.vertex_location) {
     const auto& t = surface.simulated.triangles[static_cast<size_t>(s.face)];

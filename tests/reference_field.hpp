@@ -2,8 +2,8 @@
 // One pheromone layer with its diffusion-decay model, for tests that advance a field alone: the
 // simulation keeps layers and model apart (reference/field_model.hpp); a test of the PDE wants them
 // together, as one object that steps its own values.
-#include "common/element_data.hpp"
-#include "common/errors.hpp"
+#include "common/base/element_data.hpp"
+#include "common/base/errors.hpp"
 #include "reference/diffusion_decay.hpp"
 
 #include <string>

@@ -5,8 +5,8 @@
 // from any steady state, so an implicit solve has real work to do in every timed step (near (1, 0)
 // the warm start alone converges); on flat square grids whose interior vertices have six
 // neighbours, as on a regular triangle mesh.
-#include "common/reaction_diffusion_system.hpp"
-#include "common/surface_domain.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 // Vose alias table: exact implied probabilities, a chi-square goodness of fit of sampled
 // frequencies, zero weights never drawn, and bad weights rejected.
-#include "common/alias_table.hpp"
-#include "common/errors.hpp"
-#include "common/philox.hpp"
+#include "common/base/alias_table.hpp"
+#include "common/base/errors.hpp"
+#include "common/base/philox.hpp"
 
 #include <gtest/gtest.h>
 

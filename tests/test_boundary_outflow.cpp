@@ -1,10 +1,10 @@
-// Outflow extrapolation at the boundary (common/boundary_outflow.hpp), on a jittered flat square
+// Outflow extrapolation at the boundary (common/map_tools/boundary_outflow.hpp), on a jittered flat square
 // (every face has a frame of its own, so directions really are carried across edges) with a radial
 // field from a point just outside the corner at the origin: it leaves the square through the two far
 // sides (x = 1, y = 1) and enters through the two near ones. The boundary faces get a wrong field
 // (turned by 60 degrees); the faces at the far sides must come back to the radial direction, those
 // at the near sides must be left as they are.
-#include "common/boundary_outflow.hpp"
+#include "common/map_tools/boundary_outflow.hpp"
 #include "map_tool_meshes.hpp"
 #include "pheromone_test_meshes.hpp"
 

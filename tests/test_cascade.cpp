@@ -10,11 +10,11 @@
 //   - the new spots are smaller: Gray-Scott's length scale goes as sqrt(D), so D / 4 halves a spot's
 //     diameter and quarters its area; we require the median new spot's area to be below half the
 //     median first-run spot's (a margin of 2 over the scaling answer, for the coarse mesh).
-// Spots are the pieces of {v > 0.1} (common/pattern_segmentation.hpp): 0.1 is the freezing
+// Spots are the pieces of {v > 0.1} (common/pattern/pattern_segmentation.hpp): 0.1 is the freezing
 // threshold of the scene too, well above the background (v = 0) and below a spot's plateau (~0.3).
 // A run on another surface is refused, naming the file and the vertex counts.
-#include "common/pattern_segmentation.hpp"
-#include "common/ply_reader.hpp"
+#include "common/pattern/pattern_segmentation.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -1,11 +1,12 @@
-// Checkpoints (common/checkpoint.hpp, SimulationBackend::save_state / restore_state): a state saved
+// Checkpoints (common/run/checkpoint.hpp, SimulationBackend::save_state / restore_state): a state saved
 // mid-run and restored into a fresh backend of the same scene continues bit for bit as the
 // uninterrupted run (both backends); the file round-trips exactly and refuses corruption, truncation
 // and a run it does not belong to.
-#include "common/checkpoint.hpp"
-#include "common/errors.hpp"
-#include "common/scene_surface.hpp"
-#include "common/simulation_state.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/run/checkpoint.hpp"
+#include "common/base/errors.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/simulation/simulation_state.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 #include "model_scene.hpp"
@@ -22,7 +23,7 @@ namespace physarum {
 namespace {
 
 const SurfaceDomain& sphere() {
-  static const SceneSurface surface = [] {
+  static const PreparedSurface surface = [] {
     SurfaceSpec spec;
     spec.mesh = "shape:sphere";
     return prepare_surface(spec);
@@ -79,7 +80,7 @@ void expect_resume_is_bit_identical(const std::function<std::unique_ptr<Simulati
 TEST(Checkpoint, ReferenceResumesBitIdentically) {
   for (const Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
     const Scene scene = small_scene(integrator);
-    expect_resume_is_bit_identical([&] { return std::make_unique<ReferenceSimulation>(sphere(), scene); });
+    expect_resume_is_bit_identical([&] { return std::make_unique<ReferenceSimulation>(sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
   }
 }
 
@@ -92,12 +93,12 @@ TEST(Checkpoint, OpenCLResumesBitIdentically) {
   }
   for (const Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
     const Scene scene = small_scene(integrator);
-    expect_resume_is_bit_identical([&] { return std::make_unique<opencl::OpenCLSimulation>(*compute, sphere(), scene); });
+    expect_resume_is_bit_identical([&] { return std::make_unique<opencl::OpenCLSimulation>(*compute, sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
   }
 }
 
 TEST(Checkpoint, RestoreRefusesAStateThatDoesNotFit) {
-  ReferenceSimulation sim(sphere(), small_scene(Integrator::ForwardEuler));
+  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::ForwardEuler), sphere()), simulation_settings(small_scene(Integrator::ForwardEuler)));
   SimulationState state = sim.save_state();
   state.agents.resize(state.agents.count() - 1);
   EXPECT_THROW(sim.restore_state(state), InputError);
@@ -121,7 +122,7 @@ CheckpointHeader header_of(const SimulationBackend& sim) {
 }
 
 TEST(CheckpointFile, RoundTripsExactly) {
-  ReferenceSimulation sim(sphere(), small_scene(Integrator::ForwardEuler));
+  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::ForwardEuler), sphere()), simulation_settings(small_scene(Integrator::ForwardEuler)));
   sim.run(7);
   testing::TempDir dir;
   const std::string path = (dir.path / "checkpoint.bin").string();
@@ -146,7 +147,7 @@ std::string message_of(const std::function<void()>& f) {
 }
 
 TEST(CheckpointFile, RefusesCorruptionTruncationAndOtherFiles) {
-  ReferenceSimulation sim(sphere(), small_scene(Integrator::ForwardEuler));
+  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::ForwardEuler), sphere()), simulation_settings(small_scene(Integrator::ForwardEuler)));
   sim.run(3);
   const std::string good = checkpoint_bytes(header_of(sim), sim.save_state());
   testing::TempDir dir;
@@ -169,7 +170,7 @@ TEST(CheckpointFile, RefusesCorruptionTruncationAndOtherFiles) {
 }
 
 TEST(CheckpointFile, RefusesAnotherRunsCheckpointNamingWhatDiffers) {
-  ReferenceSimulation sim(sphere(), small_scene(Integrator::ForwardEuler));
+  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::ForwardEuler), sphere()), simulation_settings(small_scene(Integrator::ForwardEuler)));
   const CheckpointHeader saved = header_of(sim);
   EXPECT_NO_THROW(check_checkpoint_matches(saved, saved, "c.bin"));
   CheckpointHeader other = saved;

@@ -1,9 +1,9 @@
-// Fail fast on inputs that cannot work (common/run_feasibility.hpp), through the command line as a
+// Fail fast on inputs that cannot work (common/setup/run_feasibility.hpp), through the command line as a
 // user meets them: each scene below used to refine, allocate or simulate for minutes (or GBs)
 // before failing or finishing with a meaningless result. Each is now refused (exit 1, nothing
 // written, the message naming the numbers) or warned about, within seconds.
-#include "common/intrinsic_triangulation.hpp"
-#include "common/run_feasibility.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/setup/run_feasibility.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // full-resolution fields_full.ply (one vertex per intrinsic vertex, agreeing with pheromone.ply on
 // the input vertices) and texture.png (or .exr / 16-bit PNG as asked), leaves no temporary files,
 // refuses a UV map it cannot bake before writing anything, and notes a mesh without UVs.
-#include "common/input_mesh.hpp"
+#include "common/mesh/input_mesh.hpp"
 #include "ply_layout_parser.hpp"
 #include "test_support.hpp"
 #include "uv_test_meshes.hpp"

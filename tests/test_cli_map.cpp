@@ -3,7 +3,7 @@
 // asked size), vector maps per face, helper maps from --maps, the usage errors (exit 2) of a
 // malformed --arg or a mesh/scene mix-up, one picture per map of a scene, and the map cache seen
 // from the command line ("from cache" on a second run, nothing stored with PHYSARUM_NO_CACHE=1).
-#include "common/ply_reader.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "cache_environment.hpp"
 #include "test_support.hpp"
 

@@ -3,7 +3,7 @@
 // writes (both backends); --maps-out writes the scene's maps (checked against the map's definition,
 // not against the code's output); a second run reads its maps from the map cache.
 #include "cache_environment.hpp"
-#include "common/ply_reader.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "killed_run.hpp"
 #include "test_support.hpp"
 

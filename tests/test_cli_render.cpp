@@ -1,8 +1,8 @@
 // `physarum render` as a user runs it on a finished run: the values come back unchanged, the colours
 // are the requested map over the run's 0..2U range, every requested view is drawn at the requested
 // size, and a folder that is not a run writes nothing.
-#include "common/colormap.hpp"
-#include "common/ply_reader.hpp"
+#include "common/color/colormap.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>

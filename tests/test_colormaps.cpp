@@ -2,16 +2,16 @@
 // validation, the reparameterisation (levels, gamma, remap) against hand-computed values, colour-map
 // files and the scene key, the image-assisted (ISOMAP) maps on exemplars whose answer is known, and
 // `physarum colormap` / `physarum run` as a user runs them.
-#include "common/color_map_json.hpp"
-#include "common/color_mapping.hpp"
-#include "common/colormap.hpp"
-#include "common/colormap_strip.hpp"
-#include "common/errors.hpp"
-#include "common/isomap_colormap.hpp"
-#include "common/ply_reader.hpp"
-#include "common/preview_image.hpp"
-#include "common/scene.hpp"
-#include "common/scene_keys.hpp"
+#include "common/color/color_map_json.hpp"
+#include "common/color/color_mapping.hpp"
+#include "common/color/colormap.hpp"
+#include "common/output/colormap_strip.hpp"
+#include "common/base/errors.hpp"
+#include "common/color/isomap_colormap.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_keys.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>

@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <ostream>
 #include <string>
@@ -75,15 +77,52 @@ TEST(CompareAnyScene, TeapotIsJudgedEquivalentAtDefaultSettings) {
 }
 
 // The default scene's 48 eigenpairs reach wavelengths far above its pattern (sensor distance 5 cm):
-// the harmonic bands are left out, and the verdict says why.
+// the harmonic bands are left out, and the verdict says why. With --out, the folder gets the verdict
+// and no spectra.png (nothing to draw), and the verdict's exit code stands: a picture with nothing
+// to show never turns a verdict into bad input (exit 1).
 TEST(CompareAnyScene, SpectralBandsAboveThePatternAreLeftOutWithAReason) {
-  const Verdict v = compare("default", "--max-seeds 8");
+  TempDir out;
+  const Verdict v = compare("default", "--max-seeds 8 --out " + quoted(out.path));
   ASSERT_TRUE(v.json.is_object()) << v.run.err;
+  EXPECT_NE(v.run.exit_code, 1) << v.run.err;
+  EXPECT_TRUE(std::filesystem::exists(out.path / "verdict.json"));
+  EXPECT_TRUE(std::filesystem::exists(out.path / "seed_metrics.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out.path / "spectra.png"));
+  EXPECT_NE(v.run.err.find("spectra.png not written"), std::string::npos) << v.run.err;
   bool harmonic = false;
   for (const auto& m : v.json["metrics"]) harmonic = harmonic || m["name"].get<std::string>().rfind("harmonic", 0) == 0;
   EXPECT_FALSE(harmonic);
   ASSERT_EQ(v.json["left_out"].size(), 1u);
   EXPECT_NE(v.json["left_out"][0].get<std::string>().find("compare_eigenpairs"), std::string::npos);
+}
+
+// ---- each arm against theory, apart from the arms against each other ----
+
+// Long steps (k dt = 0.1) and a diffusion fast enough for several forward-Euler sub-steps: both
+// backends settle ~4 % above Eq. 5's U, beyond the 3 % margin on mean / U, exactly as the
+// time-discrete model does (common/model/discrete_steady_state.hpp). The arms agree with each other
+// and with that model: the verdict is equivalent (exit 0), and the theory section reports each arm
+// against the discrete model's value, not against 1.
+TEST(CompareAnyScene, ArmsAboveUByTheTimeDiscretisationAreJudgedAgainstEachOther) {
+  TempDir dir;
+  const std::filesystem::path scene = dir.path / "long_steps.json";
+  std::ofstream(scene) << R"({"mesh": "shape:sphere", "scale_to_area": 4.0, "max_circumradius": 0.05,
+    "agents": 4000, "time_step": 0.04, "sensor_distance": 0.1, "turn_frequency": 10, "decay_rate": 2.5,
+    "diffuse_rate": 0.05, "mean_lifetime": 0.2, "activation_time": 0.08, "seed": 3})";
+  const CommandResult run = run_physarum("compare " + quoted(scene));
+  nlohmann::json v;
+  ASSERT_NO_THROW(v = nlohmann::json::parse(run.out)) << run.err;
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_EQ(v["verdict"], "equivalent");
+  ASSERT_TRUE(v["theory"].is_object()) << v.dump(1);
+  ASSERT_EQ(v["theory"]["arms"].size(), 2u);
+  for (const auto& arm : v["theory"]["arms"]) {
+    EXPECT_GT(arm["expected_mean_over_U"].get<double>(), 1.03) << arm.dump();
+    EXPECT_GT(arm["mean_over_U"].get<double>(), 1.03) << arm.dump();
+    EXPECT_EQ(arm["verdict"], "equivalent") << arm.dump();
+  }
+  for (const auto& m : v["metrics"]) EXPECT_NE(m["name"], "mean_over_U_vs_analytic");
+  EXPECT_NE(run.err.find("physarum compare: theory:"), std::string::npos) << run.err;
 }
 
 // ---- every core: the same verdict with one worker and with two ----

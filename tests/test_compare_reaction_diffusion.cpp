@@ -9,8 +9,8 @@
 // flat square (radial spectrum), Turk's Turing model from noise on a sphere (manifold harmonics;
 // stopped while the growth is still linear: unclamped, Turk's model diverges once v goes negative,
 // here after about 12 s). Their margins are in the scene files and tools/scenes/compare/README.md.
-#include "common/eigenvalues.hpp"
-#include "common/reaction_diffusion_metrics.hpp"
+#include "common/surface/eigenvalues.hpp"
+#include "common/harness/reaction_diffusion_metrics.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "test_support.hpp"
 

@@ -3,10 +3,10 @@
 // time step and be measured against its own U. Measuring with the first arm's dt and U made
 // `--arm time_step=X --arm time_step=X/2` run the second arm for half the simulated time, so its
 // pattern looked about half as strong at every dt (a harness artefact, not a model one).
-#include "common/comparison_metrics.hpp"
+#include "common/harness/comparison_metrics.hpp"
 
-#include "common/scene.hpp"
-#include "common/scene_surface.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "reference/simulation.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +28,7 @@ Scene small_scene(double time_step, double deposit_rate) {
 TEST(ComparisonMetrics, AMeasuredSeedRunsItsOwnScenesTimeStepAndU) {
   const Scene built_from = small_scene(0.01, 1.0);
   const Scene measured = small_scene(0.005, 2.0);  // half the step, twice the U of Eq. 5
-  const SceneSurface surface = prepare_scene_surface(built_from);
+  const PreparedSurface surface = prepare_scene_surface(built_from);
   const ComparisonMetrics metrics(surface, built_from);
 
   ReferenceSimulation sim(surface.domain, measured);

@@ -1,16 +1,17 @@
-// The controls of paper Sec. 3.3 (common/simulation_controls.hpp) on both backends: read- and
+// The controls of paper Sec. 3.3 (common/model/simulation_controls.hpp) on both backends: read- and
 // write-stimuli, spawn weights, sinks, directional bias with spawn headings, a terminating boundary
 // and parameter maps read at the agent's position. Each check compares against a value derived
 // independently of the code (an analytic steady state, a conservation law, an exact density, a
 // counting identity), and the planted faults of the harness that concern controls are shown to fail
 // the check they belong to.
-#include "common/directional_bias.hpp"
-#include "common/errors.hpp"
-#include "common/field_statistics.hpp"
-#include "common/scene_surface.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/simulation_controls.hpp"
-#include "common/spawn_distribution.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/model/directional_bias.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/model/simulation_controls.hpp"
+#include "common/model/spawn_distribution.hpp"
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
@@ -48,7 +49,7 @@ struct TestSurface {
 TestSurface make_surface(const std::string& spec) {
   SurfaceSpec s;
   s.mesh = spec;
-  SceneSurface surface = prepare_surface(s);
+  PreparedSurface surface = prepare_surface(s);
   TestSurface t;
   t.domain = std::move(surface.domain);
   for (int v = 0; v < t.domain.vertex_count; ++v) {

@@ -3,7 +3,7 @@
 // would get fewer than 2^20 units.
 #include "opencl/deposit_scale.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <gtest/gtest.h>
 

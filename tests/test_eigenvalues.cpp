@@ -1,11 +1,11 @@
 // Smallest eigenvalues of L x = lambda M x: the sphere's spherical harmonics, and known values of
 // spot's intrinsic Delaunay triangulation computed by an independent implementation.
-#include "common/eigenvalues.hpp"
-#include "common/errors.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
+#include "common/surface/eigenvalues.hpp"
+#include "common/base/errors.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "tests/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -3,8 +3,8 @@
 // t tables, numerical quadrature of the t density (Simpson's rule on the substituted tail integral,
 // 200,000 panels, done separately in Python), TOST examples worked out by hand, and a Monte Carlo
 // check of the power formula.
-#include "common/equivalence_test.hpp"
-#include "common/errors.hpp"
+#include "common/harness/equivalence_test.hpp"
+#include "common/base/errors.hpp"
 
 #include <gtest/gtest.h>
 

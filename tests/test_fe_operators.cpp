@@ -1,13 +1,13 @@
 // FE operators: per-face gradients, the Dirichlet-energy identity of the cotan Laplacian (also on
 // intrinsic meshes with self-loops and parallel edges), cotan edge weights, and the Fig. 4 effect:
 // extrinsic skinny triangles break the discrete maximum principle, intrinsic Delaunay flips restore it.
-#include "common/errors.hpp"
-#include "common/fe_operators.hpp"
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/fe_operators.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,9 @@
 // Statistics of a per-vertex field (paper Sec. 3.2): lumped-mass mean, the analytic U of Eq. 5,
 // coverage fractions, and the stats.csv line format the README documents.
-#include "common/field_statistics.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/simulation/field_statistics.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
-// Values moving between numberings (common/element_data.hpp, common/field_transfer.hpp): the types
+// Values moving between numberings (common/base/element_data.hpp, common/surface/field_transfer.hpp): the types
 // keep numberings apart at compile time, and the one transfer between input and intrinsic vertices
 // is exact where it must be: at input vertices, and for linear fields at every intrinsic vertex.
-#include "common/element_data.hpp"
-#include "common/errors.hpp"
-#include "common/field_transfer.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
+#include "common/base/element_data.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/field_transfer.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

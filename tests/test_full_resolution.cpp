@@ -3,11 +3,11 @@
 // an independent reader); on a flat surface the full mesh re-tiles the input exactly, so a linear
 // function of position is reproduced everywhere. The multi-field PLY writer keeps pheromone.ply's
 // layout byte for byte, refuses bad field lists, and the previewer draws degenerate faces safely.
-#include "common/errors.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/ply_writer.hpp"
-#include "common/preview_image.hpp"
-#include "common/scene_surface.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "ply_layout_parser.hpp"
 #include "test_support.hpp"
@@ -54,7 +54,7 @@ double distance_to_mesh(const Eigen::Vector3d& p, const InputMesh& mesh) {
 
 // An icosphere refined intrinsically: inserted vertices lie inside input faces, and Delaunay flips
 // make intrinsic edges cross input edges.
-SceneSurface refined_sphere() {
+PreparedSurface refined_sphere() {
   SurfaceSpec spec;
   spec.mesh = "inline icosphere";
   spec.max_circumradius = 0.12;
@@ -62,7 +62,7 @@ SceneSurface refined_sphere() {
 }
 
 TEST(FullResolutionMesh, VerticesAreTheIntrinsicVerticesOnTheInputSurface) {
-  const SceneSurface surface = refined_sphere();
+  const PreparedSurface surface = refined_sphere();
   const SurfaceDomain& domain = surface.domain;
   ASSERT_GT(domain.vertex_count, 3 * surface.input.vertex_count()) << "the refinement should insert many vertices";
   const FullResolutionMesh full = build_full_resolution_mesh(surface.input, domain);
@@ -87,7 +87,7 @@ TEST(FullResolutionMesh, PositionsAreInTheInputsCoordinatesWhenTheSimulationIsSc
   spec.mesh = "inline uv rectangle";
   spec.scale_to_area = 48.0;  // 16 x the rectangle's area 3: lengths x 4
   spec.max_circumradius = 0.4;
-  const SceneSurface surface = prepare_surface(testing::make_uv_rectangle(), spec);
+  const PreparedSurface surface = prepare_surface(testing::make_uv_rectangle(), spec);
   const FullResolutionMesh full = build_full_resolution_mesh(surface.input, surface.domain);
   for (const Eigen::Vector3d& p : full.mesh.positions) {
     ASSERT_GE(p.x(), -1e-12);
@@ -105,7 +105,7 @@ TEST(FullResolutionMesh, LinearFieldIsExactEverywhereOnAFlatSurface) {
   SurfaceSpec spec;
   spec.mesh = "inline uv rectangle";
   spec.max_circumradius = 0.15;
-  const SceneSurface surface = prepare_surface(testing::make_uv_rectangle(), spec);
+  const PreparedSurface surface = prepare_surface(testing::make_uv_rectangle(), spec);
   const FullResolutionMesh full = build_full_resolution_mesh(surface.input, surface.domain);
   ASSERT_GT(full.mesh.triangle_count(), 2 * surface.input.triangle_count());
   double area = 0.0;
@@ -134,7 +134,7 @@ TEST(FullResolutionMesh, LinearFieldIsExactEverywhereOnAFlatSurface) {
 }
 
 TEST(FullResolutionMesh, FieldsFullPlyHoldsEveryIntrinsicValueExactly) {
-  const SceneSurface surface = refined_sphere();
+  const PreparedSurface surface = refined_sphere();
   const FullResolutionMesh full = build_full_resolution_mesh(surface.input, surface.domain);
   const int n = surface.domain.vertex_count;
   IntrinsicVertexData<double> pheromone(static_cast<size_t>(n)), second(static_cast<size_t>(n));

@@ -1,13 +1,13 @@
-// Fast marching (common/fast_marching.hpp) against distances known in closed form: Euclidean
+// Fast marching (common/map_tools/fast_marching.hpp) against distances known in closed form: Euclidean
 // distance from a corner of the flat square (exact up to rounding: every update is a two-point
 // update through a right or acute corner), from a vertex of a flat mesh full of obtuse triangles
 // (exact only because the obtuse corners are split by unfolding), great circles on the unit
 // icosphere (within 0.5 % of pi at the default resolution, falling with refinement), and
 // |grad distance| = 1 away from the source and cut locus.
-#include "common/errors.hpp"
-#include "common/fast_marching.hpp"
-#include "common/fe_operators.hpp"
-#include "common/scene_surface.hpp"
+#include "common/base/errors.hpp"
+#include "common/map_tools/fast_marching.hpp"
+#include "common/surface/fe_operators.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "geodesic_test_support.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "test_support.hpp"
@@ -27,7 +27,7 @@ using testing::great_circle;
 using testing::max_error;
 
 TEST(FastMarching, EuclideanDistanceOnTheSquareFromACorner) {
-  const SceneSurface s = prepare_surface(SurfaceSpec{"shape:square", std::nullopt, std::nullopt, 0.0});
+  const PreparedSurface s = prepare_surface(SurfaceSpec{"shape:square", std::nullopt, std::nullopt, 0.0});
   int corner = -1;
   for (int v = 0; v < s.input.vertex_count(); ++v)
     if (s.input.positions[static_cast<size_t>(v)].norm() < 1e-12) corner = s.input_to_intrinsic[static_cast<size_t>(v)];
@@ -78,7 +78,7 @@ double great_circle_error(const InputMesh& mesh, const FastMarchingGeodesics& ma
 // through the unfoldings gives the polyhedron's own geodesics, whose gap to the great circles (chord
 // against arc) is second order, so the error also has to fall as the sphere is refined.
 TEST(FastMarching, GreatCircleDistanceOnTheIcosphereWithinHalfAPercentOfPi) {
-  const SceneSurface s = prepare_surface(SurfaceSpec{"shape:sphere", std::nullopt, std::nullopt, 0.0});
+  const PreparedSurface s = prepare_surface(SurfaceSpec{"shape:sphere", std::nullopt, std::nullopt, 0.0});
   ASSERT_EQ(s.input.vertex_count(), 2562);  // level 4
   const FastMarchingGeodesics marching(s.domain);
   for (const int source : {0, 100, 2000}) {
@@ -119,7 +119,7 @@ TEST(FastMarching, GreatCircleErrorFallsAsTheIcosphereIsRefined) {
 TEST(FastMarching, NeverShorterThanTheStraightLineThroughSpaceOnRealMeshes) {
   for (const char* name : {"spot.obj", "cow.obj"}) {
     PHYSARUM_REQUIRE_SHARED_MESH(path, name);
-    const SceneSurface s = prepare_surface(SurfaceSpec{path, std::nullopt, std::nullopt, 0.0});
+    const PreparedSurface s = prepare_surface(SurfaceSpec{path, std::nullopt, std::nullopt, 0.0});
     const FastMarchingGeodesics marching(s.domain);
     for (const int source : {0, s.input.vertex_count() / 2}) {
       const IntrinsicVertexData<double> d = marching.distance({s.input_to_intrinsic[static_cast<size_t>(source)]});

@@ -1,13 +1,13 @@
-// Seed sets (common/seed_set.hpp) and the geodesic_distance map source (common/geodesic_distance.hpp
+// Seed sets (common/map_tools/seed_set.hpp) and the geodesic_distance map source (common/map_tools/geodesic_distance.hpp
 // through common/map_definition + map_evaluation): points snap to the nearest vertex, regions are
 // their vertices >= 0.5, the boundary is every boundary vertex or one every `spacing` metres of the
 // scaled surface; a scene's geodesic_distance maps parse, order after the maps they read, and
 // evaluate to the known distances; every bad seed set is refused with a message saying what and where.
-#include "common/errors.hpp"
-#include "common/map_definition.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/scene_surface.hpp"
-#include "common/seed_set.hpp"
+#include "common/base/errors.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/map_tools/seed_set.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -22,11 +22,11 @@ using nlohmann::json;
 using testing::input_error_of;
 
 struct Prepared {
-  SceneSurface surface;
+  PreparedSurface surface;
   std::vector<Eigen::Vector3d> position;  // intrinsic vertices in input coordinates
   std::map<std::string, IntrinsicVertexData<double>> maps;
 
-  explicit Prepared(SceneSurface s) : surface(std::move(s)) {
+  explicit Prepared(PreparedSurface s) : surface(std::move(s)) {
     for (int v = 0; v < surface.domain.vertex_count; ++v) {
       const SurfacePoint& l = surface.domain.vertex_location[v];
       const auto& t = surface.input.triangles[static_cast<size_t>(l.face)];
@@ -114,7 +114,7 @@ TEST(SeedSet, BadSeedSetsAreRefusedSayingWhatAndWhere) {
 
 // ---- the map source in a scene ------------------------------------------------------------------
 
-EvaluatedMaps evaluate(const json& maps, const SceneSurface& surface) {
+EvaluatedMaps evaluate(const json& maps, const PreparedSurface& surface) {
   return evaluate_maps(parse_maps(maps, ".", "scene.json"), surface, "scene.json");
 }
 
@@ -148,7 +148,7 @@ TEST(GeodesicDistanceMap, ParsesOrdersAndEvaluatesInAScene) {
 }
 
 TEST(GeodesicDistanceMap, BadDefinitionsAreRefusedNamingTheMap) {
-  const SceneSurface sphere = prepare_surface(SurfaceSpec{"shape:sphere", std::nullopt, std::nullopt, 0.0});
+  const PreparedSurface sphere = prepare_surface(SurfaceSpec{"shape:sphere", std::nullopt, std::nullopt, 0.0});
   auto parse_error = [](const char* maps) {
     return input_error_of([&] { parse_maps(json::parse(maps), ".", "scene.json"); });
   };

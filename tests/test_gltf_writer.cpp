@@ -3,9 +3,9 @@
 // of the texture coordinates, vertices split exactly where a vertex has several UVs, the embedded
 // PNG (its size read from the PNG header by hand, its pixels through OpenImageIO), and failed
 // writes that leave no file.
-#include "common/errors.hpp"
-#include "common/gltf_writer.hpp"
-#include "common/mesh_loading.hpp"
+#include "common/base/errors.hpp"
+#include "common/output/gltf_writer.hpp"
+#include "common/mesh/mesh_loading.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "test_support.hpp"
 

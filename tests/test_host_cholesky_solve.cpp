@@ -2,7 +2,7 @@
 // against known answers: S x = b for an x chosen first (b = S x computed in double), at both
 // precisions, in place and not, in each of the factor's layouts; an indefinite S refused at both; and the automatic placement of
 // the solve (every size on a CPU device).
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/host_cholesky_solve.hpp"
 #include "opencl/compute_context.hpp"
 

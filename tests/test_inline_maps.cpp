@@ -1,9 +1,9 @@
-// Map definitions written inline where a map is expected (common/inline_maps.hpp): each becomes a
+// Map definitions written inline where a map is expected (common/maps/inline_maps.hpp): each becomes a
 // named map, named after where it was written, and the composed map is the same as the one spelled
 // out with names — so the known answers of the map tools carry over. On the flat square the
 // normalised gradient of the fast-marching distance from a corner points away from that corner.
-#include "common/errors.hpp"
-#include "common/inline_maps.hpp"
+#include "common/base/errors.hpp"
+#include "common/maps/inline_maps.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -57,7 +57,7 @@ TEST(InlineMaps, SeedSetsStayWhereTheyAre) {
 // the flat square the normalised gradient of the fast-marching distance from the corner (0, 0) is
 // the unit vector away from the corner (the distance is Euclidean there).
 TEST(InlineMaps, AComposedMapEqualsTheSameMapSpelledOutWithNames) {
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 16, 16, 0.2));
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 16, 16, 0.2));
   const json corner = json::parse(R"({"sphere": {"center": [0, 0, 0], "radius": 0.01}})");
   const EvaluatedMaps inline_maps = evaluate_json(
       {{"corner", corner},

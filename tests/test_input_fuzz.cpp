@@ -4,9 +4,9 @@
 // bound (a hang or a runaway allocation from a corrupted count shows up as a slow case). Each case
 // runs in a child process, so a crash or a hang is reported as that case's failure. Seeded, so a
 // failure names the format, the case and the bytes that reproduce it.
-#include "common/errors.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/scene.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/scene/scene.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -2,10 +2,10 @@
 // locations of inserted vertices on the input mesh. Expected values are analytic (areas, Euler
 // characteristics, developed lengths of flat/developable surfaces) or come from an independent
 // implementation (vertex counts of geometry-central's delaunayRefine on the shared meshes).
-#include "common/errors.hpp"
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
 #include "tests/test_support.hpp"
 
 #include <Eigen/Geometry>

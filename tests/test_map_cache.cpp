@@ -1,14 +1,14 @@
-// The on-disk map cache (common/map_cache.hpp, common/cached_map_evaluation.hpp): a second evaluation
+// The on-disk map cache (common/maps/map_cache.hpp, common/setup/cached_map_evaluation.hpp): a second evaluation
 // of the same maps on the same surface reads every map back, bit for bit what evaluate_maps gives;
 // changing a map's definition, a file it reads or the refinement recomputes exactly the maps that
 // depend on the change; a corrupt or truncated entry is never trusted but recomputed and rewritten;
 // an entry is used only for its own key, kind and count; the folder keeps to its size budget; and
 // PHYSARUM_NO_CACHE turns it off.
-#include "common/cached_map_evaluation.hpp"
-#include "common/map_cache.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/ply_writer.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/maps/map_cache.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -47,7 +47,7 @@ class ScopedEnv {
 };
 
 // Writes a PLY with the property "w" = a * x + 1 on the square's input vertices.
-void write_weight_ply(const fs::path& path, const SceneSurface& surface, double a) {
+void write_weight_ply(const fs::path& path, const PreparedSurface& surface, double a) {
   InputVertexData<double> w(static_cast<size_t>(surface.input.vertex_count()));
   for (int v = 0; v < surface.input.vertex_count(); ++v) w[v] = a * surface.input.positions[static_cast<size_t>(v)].x() + 1.0;
   write_field_ply(path.string(), surface.input, w, {}, "w");
@@ -70,13 +70,13 @@ class MapCacheTest : public ::testing::Test {
   }
 
   // One cached evaluation of `maps` (parsed afresh, as a new run would) on `surface`.
-  EvaluatedMaps evaluate(const json& maps, MapEvaluationReport& report, const SceneSurface* surface = nullptr,
+  EvaluatedMaps evaluate(const json& maps, MapEvaluationReport& report, const PreparedSurface* surface = nullptr,
                          const SurfaceSpec* spec = nullptr) {
     const MapSet set = parse_maps(maps, dir_.path.string(), "scene.json");
     return cached_evaluate_maps(MapSources{set, maps, dir_.path.string(), spec ? *spec : spec_, "scene.json"},
                                 surface ? *surface : surface_, cache_, &report);
   }
-  EvaluatedMaps uncached(const json& maps, const SceneSurface* surface = nullptr) {
+  EvaluatedMaps uncached(const json& maps, const PreparedSurface* surface = nullptr) {
     return evaluate_maps(parse_maps(maps, dir_.path.string(), "scene.json"), surface ? *surface : surface_, "scene.json");
   }
   fs::path entry_of(const json& maps, const std::string& name) {
@@ -92,7 +92,7 @@ class MapCacheTest : public ::testing::Test {
 
   TempDir dir_, cache_dir_;
   SurfaceSpec spec_{"shape:square", std::nullopt, std::nullopt, 0.0};
-  SceneSurface surface_;
+  PreparedSurface surface_;
   MapCache cache_{cache_dir_.path};
 };
 
@@ -135,7 +135,7 @@ TEST_F(MapCacheTest, ChangingAMapRecomputesItAndEveryMapThatReadsIt) {
     EXPECT_NEAR(m.scalar.at("scaled")[surface_.input_to_intrinsic[v]], 2.0 + 2.0 * surface_.input.positions[static_cast<size_t>(v)].y(), 1e-12);
 }
 
-// Inline definitions (common/inline_maps.hpp) are maps of their own: cached like named ones, and a
+// Inline definitions (common/maps/inline_maps.hpp) are maps of their own: cached like named ones, and a
 // change in the outer map alone leaves the inner one in the cache (a bias's "normalize" flag does
 // not recompute the distance under it).
 TEST_F(MapCacheTest, InlineMapsAreCachedAndAnOuterChangeKeepsTheInnerOne) {
@@ -171,7 +171,7 @@ TEST_F(MapCacheTest, ChangingTheRefinementRecomputesEveryMap) {
   MapEvaluationReport first, refined_report, again;
   evaluate(five_maps(), first);
   const SurfaceSpec refined_spec{"shape:square", std::nullopt, 0.015, 0.0};  // the grid's faces: 0.022
-  const SceneSurface refined = prepare_surface(refined_spec);
+  const PreparedSurface refined = prepare_surface(refined_spec);
   ASSERT_GT(refined.domain.vertex_count, surface_.domain.vertex_count);
   const EvaluatedMaps m = evaluate(five_maps(), refined_report, &refined, &refined_spec);
   EXPECT_EQ(refined_report.computed.size(), 5u);

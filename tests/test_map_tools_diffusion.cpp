@@ -1,11 +1,11 @@
-// Short-time diffusion of a map (common/surface_diffusion.hpp, the "diffuse" map source): it keeps
+// Short-time diffusion of a map (common/map_tools/surface_diffusion.hpp, the "diffuse" map source): it keeps
 // the mass-weighted integral, never raises the maximum nor lowers the minimum, damps a first
 // spherical harmonic at the rate backward Euler predicts (which fixes the time's units), composes
 // with the other maps in a scene, and refuses bad times, step counts and operands.
-#include "common/errors.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/surface_diffusion.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/map_tools/surface_diffusion.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -32,7 +32,7 @@ double mass_integral(const SurfaceDomain& d, const IntrinsicVertexData<double>& 
 // integral of m u stays (the columns of L sum to zero), and every step is a weighted average of the
 // step before (M + h L is an M-matrix on the intrinsic Delaunay triangulation).
 TEST(MapToolsDiffusion, ConservesTheIntegralAndNeverExceedsTheExtremes) {
-  const SceneSurface s = surface_from(testing::make_icosphere(3), 0.1);
+  const PreparedSurface s = surface_from(testing::make_icosphere(3), 0.1);
   const EvaluatedMaps m = evaluate_json(
       {{"seed", {{"sphere", {{"center", {0.0, 0.0, 1.0}}, {"radius", 0.5}}}}},
        {"ramp", {{"axis", "x"}}},
@@ -62,7 +62,7 @@ TEST(MapToolsDiffusion, ConservesTheIntegralAndNeverExceedsTheExtremes) {
 // (1 + 2T/n)^-n -> exp(-2T). The axis ramp (an affine function of z) keeps its mean and its z part
 // shrinks by that factor (the discrete eigenvalue is 2 up to O(h^2)). Time is in the domain's m^2.
 TEST(MapToolsDiffusion, DampsAFirstHarmonicAtTheBackwardEulerRate) {
-  const SceneSurface s = surface_from(testing::make_icosphere(4));
+  const PreparedSurface s = surface_from(testing::make_icosphere(4));
   const double T = 0.1;
   for (const int steps : {1, 4}) {
     const EvaluatedMaps m = evaluate_json(
@@ -98,7 +98,7 @@ TEST(MapToolsDiffusion, ComposesWithOtherMapsInAScene) {
   const std::string path = (dir.path / "scene.json").string();
   std::ofstream(path) << scene.dump(2);
   const Scene loaded = load_scene(path);
-  const SceneSurface surface = prepare_scene_surface(loaded);
+  const PreparedSurface surface = prepare_scene_surface(loaded);
   const SceneArrays arrays = scene_arrays(loaded, surface);
   const EvaluatedMaps maps = evaluate_maps(loaded.maps, surface, path);
   const IntrinsicVertexData<double>& scale = maps.scalar_map("scale");
@@ -131,7 +131,7 @@ TEST(MapToolsDiffusion, BadDiffusionsAreRefusedNamingTheMap) {
   EXPECT_NE(e.find("unknown field \"method\""), std::string::npos) << e;
 
   // The library function refuses the same, for callers that do not come through a scene.
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 4, 4));
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 4, 4));
   const IntrinsicVertexData<double> u(static_cast<size_t>(s.domain.vertex_count), 1.0);
   EXPECT_NE(testing::input_error_of([&] { diffuse_on_surface(s.domain, u, 0.0); }).find("must be a positive finite time"),
             std::string::npos);

@@ -1,9 +1,9 @@
-// The elevation proxy (common/elevation_proxy.hpp, the "elevation" map source): a sphere has no
+// The elevation proxy (common/map_tools/elevation_proxy.hpp, the "elevation" map source): a sphere has no
 // relief, a sphere with bumps is higher on every bump than in every valley, a height field is highest
 // at its peak, the smoothed copy keeps the enclosed volume, the result does not depend on the
 // mesh's units, and bad settings are refused.
-#include "common/elevation_proxy.hpp"
-#include "common/errors.hpp"
+#include "common/map_tools/elevation_proxy.hpp"
+#include "common/base/errors.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -78,7 +78,7 @@ TEST(MapToolsElevation, EachClosedComponentKeepsItsOwnVolume) {
 // Bumps of 10 % of the radius: every vertex near a bump's top is higher than every vertex near a
 // valley's bottom, and the relief spans exactly 0..1.
 TEST(MapToolsElevation, BumpsAreHigherThanValleys) {
-  const SceneSurface s = surface_from(testing::make_displaced_sphere(4, 0.1, five_bumps));
+  const PreparedSurface s = surface_from(testing::make_displaced_sphere(4, 0.1, five_bumps));
   const EvaluatedMaps m = evaluate_json({{"height", {{"elevation", {{"time", 0.01}}}}}}, s);
   const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
   double lowest_top = 1.0, highest_bottom = 0.0, low = 1.0, high = 0.0;
@@ -138,7 +138,7 @@ TEST(MapToolsElevation, DoesNotDependOnTheMeshUnits) {
 // elsewhere; "slope" composes with it.
 TEST(MapToolsElevation, ReachesIntrinsicVerticesThroughTheirInputLocations) {
   const InputMesh bumpy = testing::make_displaced_sphere(2, 0.1, five_bumps);
-  const SceneSurface s = surface_from(bumpy, 0.1);
+  const PreparedSurface s = surface_from(bumpy, 0.1);
   ASSERT_GT(s.domain.vertex_count, s.input.vertex_count());
   const EvaluatedMaps m = evaluate_json({{"height", {{"elevation", {{"time", 0.01}}}}}, {"steep", {{"slope", "height"}}}}, s);
   const ElevationProxy proxy = elevation_proxy(bumpy, 0.01, 1, "test");

@@ -1,9 +1,9 @@
-// Finite-element gradients as maps (common/surface_gradient.hpp, the "gradient" and "slope" map
+// Finite-element gradients as maps (common/map_tools/surface_gradient.hpp, the "gradient" and "slope" map
 // sources): the gradient of a linear function is exact on every face, in the face's own frame and in
 // the domain's units; normalised it has unit length, and zero where the map is flat; written back
 // onto the input it is the same vector in input coordinates; the slope is its length.
-#include "common/errors.hpp"
-#include "common/surface_gradient.hpp"
+#include "common/base/errors.hpp"
+#include "common/map_tools/surface_gradient.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -24,7 +24,7 @@ using testing::surface_from;
 // counter-clockwise perpendicular (surface_domain.hpp); computed here from the corners' input
 // positions, so the expected vector does not come from the code under test.
 TEST(MapToolsGradient, GradientOfALinearFunctionIsExactOnEveryFace) {
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 10, 10, 0.3), 0.03, 4.0);
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 10, 10, 0.3), 0.03, 4.0);
   ASSERT_GT(s.domain.vertex_count, s.input.vertex_count());
   const json maps = {{"ramp_x", {{"axis", "x"}}},
                      {"ramp_y", {{"axis", "y"}}},
@@ -68,7 +68,7 @@ TEST(MapToolsGradient, GradientOfALinearFunctionIsExactOnEveryFace) {
 // sphere has length sin(polar angle) = sqrt(1 - z^2) (the tangential part of e_z), to the
 // discretisation's accuracy, and normalised it has length 1.
 TEST(MapToolsGradient, GradientOfHeightOnASphereHasTheTangentialLength) {
-  const SceneSurface s = surface_from(testing::make_icosphere(4));
+  const PreparedSurface s = surface_from(testing::make_icosphere(4));
   const EvaluatedMaps m = evaluate_json(
       {{"h", {{"axis", "z"}}}, {"g", {{"gradient", "h"}}}, {"n", {{"gradient", "h"}, {"normalize", true}}}}, s);
   const std::vector<Eigen::Vector3d> p = intrinsic_vertex_positions(s);
@@ -91,7 +91,7 @@ TEST(MapToolsGradient, GradientOfHeightOnASphereHasTheTangentialLength) {
 // Where the map is flat there is no direction: the normalised gradient is the zero vector (the
 // bias reads it as "no bias here"), never a NaN.
 TEST(MapToolsGradient, NormalisedGradientOfAFlatMapIsZero) {
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 6, 6));
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 6, 6));
   const EvaluatedMaps m = evaluate_json({{"one", 1.0}, {"flat", {{"gradient", "one"}, {"normalize", true}}}}, s);
   for (int f = 0; f < s.domain.face_count; ++f) {
     EXPECT_EQ(m.vector_map("flat")[f][0], 0.0);

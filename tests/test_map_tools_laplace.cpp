@@ -1,8 +1,8 @@
-// Laplace interpolation (common/laplace_interpolation.hpp, the "laplace" map source): exact on a
+// Laplace interpolation (common/map_tools/laplace_interpolation.hpp, the "laplace" map source): exact on a
 // flat strip where the harmonic function is linear, converging at second order to the log profile
 // on a flat annulus, within the regions' values everywhere, and every bad setup refused clearly.
-#include "common/errors.hpp"
-#include "common/laplace_interpolation.hpp"
+#include "common/base/errors.hpp"
+#include "common/map_tools/laplace_interpolation.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -25,7 +25,7 @@ using testing::surface_from;
 // is zero). Jittered input vertices and intrinsic refinement (inserted vertices off the input's
 // vertices) do not change that.
 TEST(MapToolsLaplace, IsLinearBetweenTheShortSidesOfAFlatStrip) {
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 4.0, 0.0, 1.0, 24, 6, 0.3), 0.08);
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 4.0, 0.0, 1.0, 24, 6, 0.3), 0.08);
   ASSERT_GT(s.domain.vertex_count, s.input.vertex_count());  // refinement inserted vertices
   const EvaluatedMaps m = evaluate_json(
       {{"left", {{"box", {{"min", {-1.0, -1.0, -1.0}}, {"max", {1e-9, 2.0, 1.0}}}}}},
@@ -52,7 +52,7 @@ TEST(MapToolsLaplace, MatchesTheLogProfileOnAFlatAnnulusAtSecondOrder) {
       {"profile", {{"laplace", json::array({{{"region", "inner"}, {"value", 0.0}}, {{"region", "outer"}, {"value", 1.0}}})}}}};
   std::vector<double> h, error;
   for (const int segments : {24, 48, 96}) {
-    const SceneSurface s = surface_from(testing::make_flat_annulus(a, b, segments, segments / 8));
+    const PreparedSurface s = surface_from(testing::make_flat_annulus(a, b, segments, segments / 8));
     const EvaluatedMaps m = evaluate_json(maps, s);
     const std::vector<Eigen::Vector3d> p = intrinsic_vertex_positions(s);
     double worst = 0.0;
@@ -77,7 +77,7 @@ TEST(MapToolsLaplace, MatchesTheLogProfileOnAFlatAnnulusAtSecondOrder) {
 // Several regions with several values: the result equals each value on its region and stays within
 // the smallest and largest value elsewhere (the discrete maximum principle of a Delaunay mesh).
 TEST(MapToolsLaplace, HoldsEachRegionAtItsValueAndStaysBetweenThem) {
-  const SceneSurface s = surface_from(testing::make_icosphere(3));
+  const PreparedSurface s = surface_from(testing::make_icosphere(3));
   const EvaluatedMaps m = evaluate_json(
       {{"north", {{"half_space", {{"point", {0.0, 0.0, 0.8}}, {"normal", {0.0, 0.0, 1.0}}}}}},
        {"south", {{"half_space", {{"point", {0.0, 0.0, -0.8}}, {"normal", {0.0, 0.0, -1.0}}}}}},
@@ -111,7 +111,7 @@ TEST(MapToolsLaplace, HoldsEachRegionAtItsValueAndStaysBetweenThem) {
 }
 
 TEST(MapToolsLaplace, BadSetupsAreRefusedNamingTheMapAndTheRegion) {
-  const SceneSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 8, 8));
+  const PreparedSurface s = surface_from(testing::make_flat_rectangle(0.0, 1.0, 0.0, 1.0, 8, 8));
   const json left = {{"box", {{"min", {-1.0, -1.0, -1.0}}, {"max", {0.01, 2.0, 1.0}}}}};
   const json nowhere = {{"sphere", {{"center", {5.0, 5.0, 5.0}}, {"radius", 0.1}}}};
   const json wide = {{"box", {{"min", {-1.0, -1.0, -1.0}}, {"max", {0.5, 2.0, 1.0}}}}};
@@ -153,7 +153,7 @@ TEST(MapToolsLaplace, AComponentWithoutARegionIsRefused) {
   const int offset = two.vertex_count();
   for (const Eigen::Vector3d& p : other.positions) two.positions.push_back(p), two.file_vertex.push_back(two.vertex_count() - 1);
   for (const auto& t : other.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  const SceneSurface s = surface_from(two);
+  const PreparedSurface s = surface_from(two);
   const std::string e = testing::input_error_of([&] {
     evaluate_json({{"left", {{"box", {{"min", {-1.0, -1.0, -1.0}}, {"max", {0.01, 2.0, 1.0}}}}}},
                    {"f", {{"laplace", json::array({{{"region", "left"}, {"value", 1.0}}})}}}},

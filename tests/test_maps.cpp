@@ -2,15 +2,15 @@
 // answer on a known surface, maps authored on the input mesh (PLY properties, textures) reproduce a
 // linear function on spot.obj to interpolation accuracy, vector maps land in each face's frame at
 // the right angle and length, and every bad map is refused with a message naming the map.
-#include "common/errors.hpp"
-#include "common/map_definition.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/ply_reader.hpp"
-#include "common/ply_writer.hpp"
-#include "common/scene_surface.hpp"
-#include "common/texture_bake.hpp"
-#include "common/texture_image.hpp"
+#include "common/base/errors.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/texture_image.hpp"
 #include "map_tool_meshes.hpp"
 #include "test_support.hpp"
 
@@ -28,12 +28,12 @@ namespace {
 using nlohmann::json;
 using testing::TempDir;
 
-SceneSurface surface_of(const std::string& mesh, std::optional<double> max_circumradius = std::nullopt,
+PreparedSurface surface_of(const std::string& mesh, std::optional<double> max_circumradius = std::nullopt,
                         std::optional<double> area = std::nullopt) {
   return prepare_surface(SurfaceSpec{mesh, area, max_circumradius, 0.0});
 }
 
-EvaluatedMaps evaluate(const json& maps, const SceneSurface& surface, const std::string& folder = ".") {
+EvaluatedMaps evaluate(const json& maps, const PreparedSurface& surface, const std::string& folder = ".") {
   return evaluate_maps(parse_maps(maps, folder, "scene.json"), surface, "scene.json");
 }
 
@@ -42,7 +42,7 @@ EvaluatedMaps evaluate(const json& maps, const SceneSurface& surface, const std:
 TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
   // The unit square, scaled to 4 m^2 (factor 2): regions stay in INPUT coordinates, so the answers
   // below are those of the unit square.
-  const SceneSurface s = surface_of("shape:square", 0.05, 4.0);
+  const PreparedSurface s = surface_of("shape:square", 0.05, 4.0);
   const EvaluatedMaps m = evaluate(
       {{"ball", {{"sphere", {{"center", {0.5, 0.5, 0.0}}, {"radius", 0.25}}}}},
        {"soft", {{"sphere", {{"center", {0.5, 0.5, 0.0}}, {"radius", 0.25}}}, {"falloff", 0.125}}},
@@ -93,7 +93,7 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
 TEST(Maps, AxisRampOfASphereAveragesOneHalf) {
   // Archimedes' hat-box theorem: a sphere's area is uniform in height, so a y-ramp averages 1/2
   // over it (the icosphere's facets approximate that to the order of their size).
-  const SceneSurface s = surface_of("shape:sphere");
+  const PreparedSurface s = surface_of("shape:sphere");
   const EvaluatedMaps m = evaluate({{"ramp", {{"axis", "y"}}}}, s);
   double weighted = 0.0, mass = 0.0;
   for (int v = 0; v < s.domain.vertex_count; ++v)
@@ -104,7 +104,7 @@ TEST(Maps, AxisRampOfASphereAveragesOneHalf) {
 // ---- arithmetic --------------------------------------------------------------------------------------
 
 TEST(Maps, EachArithmeticOperationGivesItsKnownAnswer) {
-  const SceneSurface s = surface_of("shape:square");
+  const PreparedSurface s = surface_of("shape:square");
   const EvaluatedMaps m = evaluate({{"quarter", 0.25},
                                     {"three", 3.0},
                                     {"ranged", {{"map", "quarter"}, {"range", {2.0, 6.0}}}},
@@ -178,7 +178,7 @@ TEST(Maps, BadMapsAreRefusedNamingTheMap) {
 
 TEST(Maps, SourcesThatDoNotFitTheSurfaceAreRefused) {
   TempDir dir;
-  const SceneSurface square = surface_of("shape:square");
+  const PreparedSurface square = surface_of("shape:square");
   // A PLY on another mesh: its vertex count is not the square's.
   const InputMesh sphere = load_mesh("shape:sphere");
   const InputVertexData<double> ones(static_cast<size_t>(sphere.vertex_count()), 1.0);
@@ -212,7 +212,7 @@ TEST(Maps, SourcesThatDoNotFitTheSurfaceAreRefused) {
     m.triangle_uvs = m.triangles;
     return m;
   }();
-  const SceneSurface textured = prepare_surface(with_uvs, SurfaceSpec{"square with UVs", std::nullopt, std::nullopt, 0.0});
+  const PreparedSurface textured = prepare_surface(with_uvs, SurfaceSpec{"square with UVs", std::nullopt, std::nullopt, 0.0});
   message = testing::input_error_of([&] { evaluate({{"t", {{"texture", "grey.png"}, {"channel", "a"}}}}, textured, dir.path.string()); });
   EXPECT_NE(message.find("no alpha"), std::string::npos) << message;
   // A ramp along an axis the flat square has no extent in.
@@ -229,7 +229,7 @@ double linear_function(const Eigen::Vector3d& x) { return 0.7 * x.x() - 0.4 * x.
 TEST(Maps, PlyVertexPropertyReproducesALinearFunctionOnSpot) {
   PHYSARUM_REQUIRE_SHARED_MESH(spot, "spot.obj");
   // Refined, so most intrinsic vertices lie inside input faces (not on input vertices).
-  const SceneSurface s = surface_of(spot, 0.02, 1.0);
+  const PreparedSurface s = surface_of(spot, 0.02, 1.0);
   TempDir dir;
   InputVertexData<double> f(static_cast<size_t>(s.input.vertex_count()));
   double largest = 0.0;
@@ -248,7 +248,7 @@ TEST(Maps, PlyVertexPropertyReproducesALinearFunctionOnSpot) {
 
 TEST(Maps, TextureReproducesALinearFunctionOnSpot) {
   PHYSARUM_REQUIRE_SHARED_MESH(spot, "spot.obj");
-  const SceneSurface s = surface_of(spot, 0.005, 1.0);
+  const PreparedSurface s = surface_of(spot, 0.005, 1.0);
   const InputMesh& in = s.input;
   ASSERT_FALSE(in.uvs.empty());
   // The texture, rasterised here from spot's UV map: each texel whose centre lies in a UV triangle
@@ -323,7 +323,7 @@ TEST(Maps, TextureReproducesALinearFunctionOnSpot) {
 // The 3D vector (in input units) a face's 2D vector stands for, through the face's own intrinsic
 // layout: v = a c1 + b c2 in the layout (corners c0 = 0, c1, c2) is a (P1 - P0) + b (P2 - P0) on the
 // input triangle, rescaled from the layout's (scaled) units to input units.
-Eigen::Vector3d through_layout(const SceneSurface& s, int face, const std::array<double, 2>& v, double scale) {
+Eigen::Vector3d through_layout(const PreparedSurface& s, int face, const std::array<double, 2>& v, double scale) {
   const auto& c = s.domain.face_corners[static_cast<size_t>(face)];
   Eigen::Matrix2d basis;
   basis << c[1].x(), c[2].x(), c[1].y(), c[2].y();
@@ -340,7 +340,7 @@ Eigen::Vector3d through_layout(const SceneSurface& s, int face, const std::array
 
 TEST(Maps, DirectionHasTheRightAngleInEachFaceOfTheSquare) {
   // Scaled to 4 m^2 (factor 2): the direction is in input coordinates and keeps its length.
-  const SceneSurface s = surface_of("shape:square", 0.05, 4.0);
+  const PreparedSurface s = surface_of("shape:square", 0.05, 4.0);
   const Eigen::Vector3d d(3.0, 4.0, 0.0);
   const EvaluatedMaps m = evaluate({{"d", {{"direction", {3.0, 4.0, 0.0}}}}}, s);
   const auto& v = m.vector_map("d");
@@ -369,7 +369,7 @@ TEST(Maps, DirectionHasTheRightAngleInEachFaceOfTheSquare) {
 // point seen from the face's centroid (both read off the corners' input positions here); "away_from"
 // is its opposite.
 TEST(Maps, TowardPointsFromEachFaceToThePoint) {
-  const SceneSurface s = surface_of("shape:square", 0.05, 4.0);
+  const PreparedSurface s = surface_of("shape:square", 0.05, 4.0);
   const Eigen::Vector3d c(0.3, 0.6, 0.0);
   const EvaluatedMaps m = evaluate({{"in", {{"toward", {0.3, 0.6, 0.0}}}}, {"out", {{"away_from", {0.3, 0.6, 0.0}}}}}, s);
   const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
@@ -390,7 +390,7 @@ TEST(Maps, TowardPointsFromEachFaceToThePoint) {
 TEST(Maps, DirectionIsTangentWithItsProjectedLengthOnACurvedSurface) {
   // The icosphere: flat facets meeting at angles. An intrinsic face lying in one facet must carry d
   // projected into that facet's plane: tangent to it and of the projected length (both to rounding).
-  const SceneSurface s = surface_of("shape:sphere", 0.015);
+  const PreparedSurface s = surface_of("shape:sphere", 0.015);
   const Eigen::Vector3d d(1.0, 0.5, -0.25);
   const EvaluatedMaps m = evaluate({{"d", {{"direction", {1.0, 0.5, -0.25}}}}}, s);
   const auto& v = m.vector_map("d");
@@ -427,7 +427,7 @@ TEST(Maps, PlyFaceVectorIsReadUnderEachFace) {
   // that vector's angle in every intrinsic face, whichever input face lies under it; a field that
   // differs per input face must give each intrinsic face the vector of the input face holding its
   // centroid.
-  const SceneSurface s = surface_of("shape:square", 0.02);
+  const PreparedSurface s = surface_of("shape:square", 0.02);
   TempDir dir;
   std::vector<double> x(s.input.triangles.size()), y(x.size()), z(x.size(), 0.0);
   for (size_t t = 0; t < x.size(); ++t) {

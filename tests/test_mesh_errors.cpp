@@ -3,8 +3,8 @@
 // `physarum mesh FILE --json` (exit 1, message on stderr, nothing on stdout, no file written) and
 // through `physarum run` of a scene whose mesh is that file (exit 1, no output folder). Each bad
 // file is its own parameterized test case, named after the file.
-#include "common/errors.hpp"
-#include "common/mesh_loading.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/mesh_loading.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>

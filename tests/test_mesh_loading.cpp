@@ -12,7 +12,7 @@
 //   bunny    V 34834 F 69451 E 104288 components 1 boundary 5  genus 0  (35947 v lines)
 //   suzanne  V 507  F 968   E 1473   components 3  boundary 4  genus 0  (468 quads)
 //   teapot   V 3691 F 6320  E 9998   components 19 boundary 25 genus 0  split 38 (47 extra fans; 3644 v lines)
-#include "common/mesh_loading.hpp"
+#include "common/mesh/mesh_loading.hpp"
 #include "mesh_invariants.hpp"
 #include "test_support.hpp"
 

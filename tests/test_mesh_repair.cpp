@@ -1,8 +1,8 @@
 // Repair of polygon soups (mesh_repair.hpp) and the statistics of InputMesh, on small hand-made
 // inputs whose answers are known by construction.
-#include "common/errors.hpp"
-#include "common/mesh_polygon_triangulation.hpp"
-#include "common/mesh_repair.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/mesh_polygon_triangulation.hpp"
+#include "common/mesh/mesh_repair.hpp"
 #include "mesh_invariants.hpp"
 
 #include <Eigen/Geometry>

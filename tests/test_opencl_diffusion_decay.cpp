@@ -6,7 +6,7 @@
 // O(1) terms per vertex, so it agrees to 1e-5 of the field's maximum; conjugate gradients stop at a
 // relative residual of 1e-6 on a system whose condition number here is ~10-100, so 1e-4 of the
 // maximum bounds the solve's error with room for float rounding.
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "kernels/device_types.h"
 #include "opencl/device_tuning.hpp"
 #include "opencl/diffusion_decay.hpp"
@@ -184,7 +184,7 @@ TEST(OpenCLDiffusionDecay, ForwardStepWithPaddedAndOverflowingRowsEqualsReferenc
 TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
   const int n = sphere_domain().vertex_count;
   VertexParameters mixed = varying_rates(n, 0.01, 0.5, 9);
-  // Some vertices that do not diffuse at all: their rows leave the CG system (common/pheromone_operators.hpp).
+  // Some vertices that do not diffuse at all: their rows leave the CG system (common/model/pheromone_operators.hpp).
   for (int i = 0; i < n; i += 7) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = 0.0;
   struct Case {
     const char* name;

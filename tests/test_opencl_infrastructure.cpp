@@ -1,8 +1,8 @@
 // The OpenCL plumbing every backend kernel relies on: device choice, embedded sources, program
 // build and cache, the device's Philox against the host's known answers, the deposits' rounding, and
 // the device's memory-bandwidth triad.
-#include "common/memory_bandwidth.hpp"
-#include "common/philox.hpp"
+#include "common/numerics/memory_bandwidth.hpp"
+#include "common/base/philox.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/device_tuning.hpp"

@@ -9,7 +9,8 @@
 // and allows 0.1 % (the OpenCL issue's bound), and prints the worst disagreements when it fails.
 //
 // Statistical layer: the U metric (Eq. 5) holds on the device exactly as in the reference test.
-#include "common/field_statistics.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/simulation/field_statistics.hpp"
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
@@ -97,8 +98,8 @@ TEST(OpenCLSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
 TEST(OpenCLSimulation, InitialStateIsTheReferences) {
   const SurfaceDomain domain = delaunay_domain("shape:torus");
   const Scene scene = model_scene(5000, 0.5, Integrator::ForwardEuler);
-  ReferenceSimulation reference(domain, scene);
-  OpenCLSimulation device(compute(), domain, scene);
+  ReferenceSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  OpenCLSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   const Agents a = reference.agents(), b = device.read_agents();
   int mismatched = 0;
   for (int i = 0; i < a.count(); ++i) {
@@ -118,13 +119,13 @@ TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
   scene.parameters[Param::decay_rate] = 0.0;
   scene.parameters[Param::diffuse_rate] = 0.0;
   scene.parameters[Param::activation_time] = 0.0;
-  OpenCLSimulation device(compute(), domain, scene);
+  OpenCLSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   device.run(3);
   const double expected = 3 * scene.agents * scene.parameters[Param::deposit_rate] * scene.time_step;
   EXPECT_NEAR(device.layer(0).total_amount() / expected, 1.0, 1e-5);
   if (device.fixed_point_deposits()) {
     // Order independence: a second run gives the very same bits.
-    OpenCLSimulation again(compute(), domain, scene);
+    OpenCLSimulation again(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
     again.run(3);
     EXPECT_EQ(device.field_values(), again.field_values());
   }
@@ -138,7 +139,7 @@ TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
   OpenCLSimulationOptions sorted, unsorted;
   sorted.sort_interval = 3;
   unsorted.sort_interval = 0;
-  OpenCLSimulation a(compute(), domain, scene, sorted), b(compute(), domain, scene, unsorted);
+  OpenCLSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), sorted), b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), unsorted);
   a.run(20);
   b.run(20);
   if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
@@ -158,7 +159,7 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
   const Scene scene = model_scene(4001, 0.3, Integrator::ForwardEuler);
   OpenCLSimulationOptions alone;
   alone.agents_per_work_item = 1;
-  OpenCLSimulation a(compute(), domain, scene, alone);
+  OpenCLSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), alone);
   a.run(20);
   if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
   const Agents x = a.read_agents();
@@ -166,7 +167,7 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
   for (int lanes : {3, 4}) {
     OpenCLSimulationOptions grouped;
     grouped.agents_per_work_item = lanes;
-    OpenCLSimulation b(compute(), domain, scene, grouped);
+    OpenCLSimulation b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), grouped);
     b.run(20);
     EXPECT_EQ(a.field_values(), b.field_values()) << lanes << " agents per work-item";
     const Agents y = b.read_agents();
@@ -179,13 +180,13 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
   }
   OpenCLSimulationOptions bad;
   bad.agents_per_work_item = 5;
-  EXPECT_THROW(OpenCLSimulation(compute(), domain, scene, bad), InputError);
+  EXPECT_THROW(OpenCLSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), bad), InputError);
 }
 
 // Same check as the reference's: the time-averaged mean equals U within 1 % (see
 // test_reference_simulation.cpp for why the bound is that tight).
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
-  OpenCLSimulation sim(compute(), domain, scene);
+  OpenCLSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   sim.fill_field(U);
   double sum = 0.0;
@@ -208,7 +209,7 @@ TEST(OpenCLSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("sh
 
 TEST(OpenCLSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
-  OpenCLSimulation sim(compute(), domain, model_scene(3000, 0.5, Integrator::ForwardEuler));
+  OpenCLSimulation sim(compute(), domain, constant_parameters(model_scene(3000, 0.5, Integrator::ForwardEuler), domain), simulation_settings(model_scene(3000, 0.5, Integrator::ForwardEuler)));
   sim.run(200);
   const Agents a = sim.read_agents();
   for (int i = 0; i < a.count(); ++i) {
@@ -229,10 +230,10 @@ TEST(OpenCLSimulation, RejectsBadSettingsAndOversizedAgentCounts) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
   Scene scene = model_scene(100, 0.5, Integrator::ForwardEuler);
   scene.time_step = 0.0;
-  EXPECT_THROW(OpenCLSimulation(compute(), domain, scene), InputError);
+  EXPECT_THROW(OpenCLSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene)), InputError);
   scene = model_scene(2'000'000'000, 0.5, Integrator::ForwardEuler);
   try {
-    OpenCLSimulation sim(compute(), domain, scene);
+    OpenCLSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
     FAIL() << "2e9 agents fit on " << compute().device.device_name;
   } catch (const DeviceError& e) {
     EXPECT_NE(std::string(e.what()).find("2000000000 agents"), std::string::npos) << e.what();

@@ -1,11 +1,11 @@
 // Result outputs: the PLY file (parsed back here byte by byte),
 // the preview PNG (read back through OpenImageIO), the colour maps, and atomic writes that leave no
 // partial file behind.
-#include "common/atomic_write.hpp"
-#include "common/colormap.hpp"
-#include "common/errors.hpp"
-#include "common/ply_writer.hpp"
-#include "common/preview_image.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/color/colormap.hpp"
+#include "common/base/errors.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "ply_layout_parser.hpp"
 #include "test_support.hpp"

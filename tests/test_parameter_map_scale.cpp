@@ -1,11 +1,12 @@
 // A parameter map changes the pattern where it says (Sec. 3.3, "Parameter maps"): on a square whose
 // right half has twice the sensor distance of its left half, the right half's pattern is coarser.
-// Measured with the harness's detail energy (common/comparison_metrics.hpp): the energy of u - G u
+// Measured with the harness's detail energy (common/harness/comparison_metrics.hpp): the energy of u - G u
 // with G the diffusion smoother at the LEFT half's sensor distance, over the variance of u, per
 // half, time-averaged. A pattern of larger cells keeps less of its variance at that fine scale.
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/simulation.hpp"
 #include "test_support.hpp"
@@ -44,7 +45,7 @@ HalfEnergies run_halves(int coarse_half) {
       {"sensor_distance", {{"map", "coarse"}, {"range", {0.04, 0.08}}}}};
   std::ofstream(dir.path / "scene.json") << j.dump();
   const Scene scene = load_scene((dir.path / "scene.json").string());
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const SurfaceDomain& d = surface.domain;
   const SceneArrays arrays = scene_arrays(scene, surface);
   static const opencl::ComputeContext compute = opencl::make_compute_context("");

@@ -1,11 +1,11 @@
-// The parameter table (common/model_parameters.hpp) is the one description of the model's
+// The parameter table (common/model/model_parameters.hpp) is the one description of the model's
 // parameters: the scene keys, their checks, run.json's "parameters", the kernels' record and the
-// README's table of keys all follow from it. These tests fail when any of them drifts from it.
-#include "common/errors.hpp"
-#include "common/model_parameters.hpp"
-#include "common/scene.hpp"
-#include "common/scene_json.hpp"
-#include "common/scene_keys.hpp"
+// table of keys in docs/scenes.md all follow from it. These tests fail when any of them drifts from it.
+#include "common/base/errors.hpp"
+#include "common/model/model_parameters.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_json.hpp"
+#include "common/scene/scene_keys.hpp"
 #include "opencl/agent_parameters.hpp"
 #include "test_support.hpp"
 
@@ -32,7 +32,7 @@ std::string read_file(const std::filesystem::path& path) {
   return buffer.str();
 }
 
-// The README's table of scene keys: the text between its two markers.
+// The table of scene keys in docs/scenes.md: the text between its two markers.
 std::string readme_scene_keys(const std::string& readme) {
   const std::string begin = "<!-- scene-keys:", end = "<!-- end scene-keys -->";
   const auto b = readme.find(begin), e = readme.find(end);
@@ -41,12 +41,12 @@ std::string readme_scene_keys(const std::string& readme) {
   return table < e ? readme.substr(table, e - table) : std::string();
 }
 
-// The README shows exactly the keys the parser takes, with their units, ranges and defaults: a key
-// added to the table but not to the README (or the reverse, or a changed range) fails here.
+// docs/scenes.md shows exactly the keys the parser takes, with their units, ranges and defaults: a key
+// added to the table but not to docs/scenes.md (or the reverse, or a changed range) fails here.
 TEST(ParameterTable, ReadmeTableIsTheGeneratedOne) {
-  const std::string readme = read_file(std::filesystem::path(PHYSARUM_SOURCE_DIR) / "README.md");
+  const std::string readme = read_file(std::filesystem::path(PHYSARUM_SOURCE_DIR) / "docs" / "scenes.md");
   const std::string shown = readme_scene_keys(readme);
-  ASSERT_FALSE(shown.empty()) << "README.md has no scene-keys block";
+  ASSERT_FALSE(shown.empty()) << "docs/scenes.md has no scene-keys block";
   EXPECT_EQ(shown, scene_keys_markdown()) << "regenerate it with ./build/physarum scene-keys";
   // The check itself can fail: a README without one row is caught.
   const std::string row = "| `diffuse_rate` |";

@@ -2,14 +2,14 @@
 // Gaussian disks (area pi r^2, converging as O(h^2)), rotated ellipses (aspect a/b, orientation theta),
 // a hexagonal lattice (spacing s), parallel stripes, a stadium and a ring (width w), caps on the unit
 // sphere (area 2 pi (1 - cos rho), spacing pi/2) — and `physarum analyze` on a run folder.
-#include "common/errors.hpp"
-#include "common/face_direction_field.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/pattern_analysis.hpp"
-#include "common/pattern_histograms.hpp"
-#include "common/pattern_segmentation.hpp"
-#include "common/ply_writer.hpp"
-#include "common/stripe_width.hpp"
+#include "common/base/errors.hpp"
+#include "common/pattern/face_direction_field.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/pattern/pattern_analysis.hpp"
+#include "common/output/pattern_histograms.hpp"
+#include "common/pattern/pattern_segmentation.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/pattern/stripe_width.hpp"
 #include "tests/test_support.hpp"
 
 #include <OpenImageIO/imageio.h>

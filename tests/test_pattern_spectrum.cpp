@@ -16,7 +16,7 @@ TEST(PatternSpectrum, ZonalHarmonicHasAllItsPowerInItsDegree) {
   // 1 + 0.1 P_6(z) on the unit sphere: degree 6 only (the 1 is the mean, removed).
   SurfaceSpec spec;
   spec.mesh = "shape:sphere";
-  const SceneSurface surface = prepare_surface(spec);
+  const PreparedSurface surface = prepare_surface(spec);
   const auto p = testing::vertex_positions(surface);
   IntrinsicVertexData<double> field(p.size());
   for (size_t i = 0; i < p.size(); ++i) {
@@ -40,7 +40,7 @@ TEST(PatternSpectrum, PlaneWaveOnTheSquarePeaksAtItsCyclesPerSide) {
   SurfaceSpec spec;
   spec.mesh = "shape:square";
   spec.max_circumradius = 0.01;
-  const SceneSurface surface = prepare_surface(spec);
+  const PreparedSurface surface = prepare_surface(spec);
   const auto xy = planar_vertex_coordinates(surface.domain, surface.simulated);
   IntrinsicVertexData<double> field(xy.size());
   for (size_t i = 0; i < xy.size(); ++i) field[i] = 2.0 + std::cos(2.0 * std::numbers::pi * 7.0 * xy[i].x());

@@ -3,7 +3,7 @@
 #include "pheromone_test_meshes.hpp"
 #include "reference_field.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-// The pheromone operators of common/pheromone_operators.hpp against the same operators built as
+// The pheromone operators of common/model/pheromone_operators.hpp against the same operators built as
 // dense Eigen matrices from Eq. 6 and Eq. 7 on small meshes: the forward Euler sub-step matrix
 // entry by entry, and the symmetrised backward Euler system by its structure (S symmetric positive
 // definite, identity rows where nothing diffuses) and by its solution, which must be Eq. 7's.
-#include "common/pheromone_operators.hpp"
+#include "common/model/pheromone_operators.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <Eigen/Dense>

@@ -1,5 +1,5 @@
 // Philox4x32-10 wrapper: Random123's published known answers and the open-interval uniforms.
-#include "common/philox.hpp"
+#include "common/base/philox.hpp"
 
 #include <gtest/gtest.h>
 

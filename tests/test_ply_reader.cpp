@@ -1,9 +1,9 @@
 // Reading results back (common/ply_reader): what write_field_ply wrote comes back exactly (float
 // values are stored as float, so the round trip is exact for float-representable inputs), and every
 // malformed file is refused with its name and the problem.
-#include "common/errors.hpp"
-#include "common/ply_reader.hpp"
-#include "common/ply_writer.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/ply_writer.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "test_support.hpp"
 

@@ -2,8 +2,8 @@
 // (tools/backend_factory.hpp from the scene's system): the OpenCL backend follows the reference
 // element by element within float rounding over many steps of a growing Gray-Scott pattern, in both
 // integrators; each planted fault moves it far outside that; and a saved state restored into a fresh
-// backend continues bit for bit (the checkpoint/resume contract of common/simulation_backend.hpp).
-#include "common/simulation_state.hpp"
+// backend continues bit for bit (the checkpoint/resume contract of common/simulation/simulation_backend.hpp).
+#include "common/simulation/simulation_state.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/planted_faults.hpp"
 #include "reaction_diffusion_scene.hpp"

@@ -1,5 +1,5 @@
 // From a reaction-diffusion scene to the system the backends advance
-// (common/reaction_diffusion_build.hpp): the stiffness of each morphogen against the finite-element
+// (common/setup/reaction_diffusion_build.hpp): the stiffness of each morphogen against the finite-element
 // facts it must satisfy, the explicit stability limit against a dense eigen-solve, and the initial
 // state and Dirichlet mask against the scene's regions.
 #include "reaction_diffusion_scene.hpp"

@@ -3,7 +3,7 @@
 // has v's floor at 0 by default, as Turk's own implementation clamps it), and the OpenCL backend
 // applies the floor where the reference does: it follows the reference through a run in which the
 // floor holds many vertices, in both integrators.
-#include "common/simulation_state.hpp"
+#include "common/simulation/simulation_state.hpp"
 #include "opencl/compute_context.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "tools/backend_factory.hpp"

@@ -14,8 +14,8 @@
 // With a negative weight w_ij both arguments fail: a spike at i pushes its neighbour j below its
 // surroundings. The spike sits at an end of the most negative extrinsic edge, as in
 // test_fe_operators' pure-diffusion version of Fig. 4.
-#include "common/intrinsic_mesh.hpp"
-#include "common/reaction_diffusion_build.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "reference/reaction_diffusion.hpp"
 

@@ -1,5 +1,5 @@
 // Reaction-diffusion on the OpenCL device (opencl/reaction_diffusion.hpp) against plain
-// double-precision loops written here, from the equations of common/reaction_diffusion_system.hpp:
+// double-precision loops written here, from the equations of common/reaction_diffusion/reaction_diffusion_system.hpp:
 //   explicit sub-step  u_m += h (-(K_m u_m)_i / m_i + R_m(u)_i)
 //   IMEX step          (M + h K_m) u_m' = M (u_m + h R_m(u)), solved by Eigen's SimplicialLDLT
 // with Gray-Scott kinetics (Pearson 1993), K_m = D_m L on shape:sphere, shape:square and the
@@ -14,10 +14,10 @@
 // IMEX: the right-hand side is float32 and the device CG stops at a relative residual of 1e-6 on a
 // system M + h K whose condition number is ~1 + h D lambda_max / m ~ 10 here: 1e-5 absolute on O(1)
 // values; the host factorization solves in double from the float right-hand side: the same bound.
-#include "common/errors.hpp"
-#include "common/field_statistics.hpp"
-#include "common/reaction_diffusion_system.hpp"
-#include "common/simulation_state.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/simulation/simulation_state.hpp"
 #include "delaunay_domain.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "rough_gray_scott.hpp"

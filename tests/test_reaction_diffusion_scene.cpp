@@ -1,8 +1,8 @@
-// The reaction-diffusion keys of a scene (common/scene_reaction_diffusion.hpp): a named model fills
+// The reaction-diffusion keys of a scene (common/scene/scene_reaction_diffusion.hpp): a named model fills
 // in its formulas and the papers' defaults, the file overrides them, custom kinetics are parsed, and
 // every bad value is refused with the key (and, for a formula, the position) in the message.
-#include "common/reaction_formula.hpp"
-#include "common/reaction_models.hpp"
+#include "common/reaction_diffusion/reaction_formula.hpp"
+#include "common/reaction_diffusion/reaction_models.hpp"
 #include "reaction_diffusion_scene.hpp"
 
 #include <gtest/gtest.h>

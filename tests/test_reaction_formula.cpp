@@ -5,7 +5,7 @@
 // one-line kernel and evaluated at random points against the formula written out in C++ by hand
 // (Gray-Scott as Pearson 1993 writes it; Turk's model as Eq. 20 of paper 002; precedence cases whose
 // values are known by arithmetic). float32 against double with O(1) inputs: 1e-5 relative.
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/device_buffer.hpp"
 #include "opencl/kernel_arguments.hpp"

@@ -4,9 +4,10 @@
 // glibc also interposes malloc/calloc/realloc, because Eigen (the backward-Euler solve) allocates
 // its temporaries with std::malloc, not with operator new. Outside an armed window both only
 // forward to the normal allocator, so every other test is unaffected.
-#include "common/default_scene.hpp"
-#include "common/scene.hpp"
-#include "common/surface_domain.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/scene/default_scene.hpp"
+#include "common/scene/scene.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "reference/simulation.hpp"
 #include "delaunay_domain.hpp"
 
@@ -145,7 +146,7 @@ Scene uniform_scene(Integrator integrator) {
 // steps: every agent moves, senses across faces and deposits, agents respawn, the pheromone steps.
 void expect_steps_allocate_nothing(Integrator integrator) {
   const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
-  ReferenceSimulation sim(domain, uniform_scene(integrator));
+  ReferenceSimulation sim(domain, constant_parameters(uniform_scene(integrator), domain), simulation_settings(uniform_scene(integrator)));
   sim.run(10);
   const long long respawns_before = sim.counters().respawns;
   AllocationCounter counter;

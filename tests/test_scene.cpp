@@ -1,11 +1,12 @@
 // Scene files (the README's "Scene files"): every key, every bad value named with its value and the
 // allowed range, unknown keys with a suggestion, JSON errors with line and column.
-#include "common/scene.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/scene/scene.hpp"
 
-#include "common/default_scene.hpp"
-#include "common/errors.hpp"
-#include "common/field_statistics.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/scene/default_scene.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/model/vertex_parameters.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

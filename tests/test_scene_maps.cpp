@@ -3,12 +3,12 @@
 // constant base model, the controls of Sec. 3.3 are the documented sums and conversions, every bad
 // reference is refused naming its key, and the command line runs such a scene on both backends and
 // writes the maps (`physarum map`, `run --maps-out`) as the values evaluated here.
-#include "common/errors.hpp"
-#include "common/ply_reader.hpp"
-#include "common/ply_writer.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "opencl/compute_context.hpp"
 #include "test_support.hpp"
 #include "tools/backend_factory.hpp"
@@ -58,7 +58,7 @@ std::string scene_error(const json& scene) {
   const std::string path = write_scene(dir, scene);
   return testing::input_error_of([&] {
     const Scene s = load_scene(path);
-    const SceneSurface surface = prepare_scene_surface(s);
+    const PreparedSurface surface = prepare_scene_surface(s);
     scene_arrays(s, surface);
   });
 }
@@ -66,7 +66,7 @@ std::string scene_error(const json& scene) {
 TEST(SceneMaps, ASceneWithoutMapsIsExactlyTheConstantModel) {
   TempDir dir;
   const Scene scene = load_scene(write_scene(dir, base_scene()));
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const SceneArrays arrays = scene_arrays(scene, surface);
   const VertexParameters constant = VertexParameters::constant(scene.parameters, surface.domain.vertex_count);
   for (const ParameterSpec& p : kParameterTable) EXPECT_EQ(arrays.parameters[p.id], constant[p.id]) << p.key;
@@ -91,7 +91,7 @@ TEST(SceneMaps, ParametersTakeTheMapsValuesInFileUnits) {
   j["move_rate"] = {{"map", "ramp_y"}};                                // no range: the map's values (m/s)
   const Scene scene = load_scene(write_scene(dir, j));
   EXPECT_TRUE(std::isnan(scene.parameters[Param::sensor_distance]));  // per vertex until evaluated
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const VertexParameters p = vertex_parameters(scene, surface);
   for (int v = 0; v < surface.domain.vertex_count; ++v) {
     const int input_vertex = v < surface.input.vertex_count() ? v : -1;
@@ -119,7 +119,7 @@ TEST(SceneMaps, AMeanLifetimeMapMayMakeASink) {
   j["maps"] = square_maps();
   j["mean_lifetime"] = {{"map", "ramp_x"}, {"range", {0.0, 2.0}}};  // 0 on the left edge
   const Scene scene = load_scene(write_scene(dir, j));
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const VertexParameters p = vertex_parameters(scene, surface);
   int sinks = 0;
   for (int v = 0; v < surface.domain.vertex_count; ++v) {
@@ -166,7 +166,7 @@ TEST(SceneMaps, ControlsAreTheDocumentedSumsAndConversions) {
   j["spawn_heading"] = "bias";
   j["boundary"] = "terminate";
   const Scene scene = load_scene(write_scene(dir, j));
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const SimulationControls c = simulation_controls(scene, surface);
   const int n = surface.domain.vertex_count;
   ASSERT_EQ(static_cast<int>(c.read_stimulus.size()), n);
@@ -243,7 +243,7 @@ TEST(SceneMaps, ADepositMapReachesBothBackends) {
   j["maps"] = {{"ramp", {{"axis", "x"}}}, {"right", {{"threshold", "ramp"}, {"at", 0.5 + 1e-9}}}};
   j["deposit_rate"] = {{"map", "right"}, {"range", {0.0, 2.0}}};
   const Scene scene = load_scene(write_scene(dir, j));
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const opencl::ComputeContext compute = opencl::make_compute_context("");
   for (const BackendChoice backend : {BackendChoice::Reference, BackendChoice::OpenCL}) {
     const auto sim = make_backend(backend, &compute, surface, scene);
@@ -310,7 +310,7 @@ TEST(SceneMaps, MapCommandWritesTheEvaluatedValues) {
 
   // The same evaluation here, in process.
   const Scene scene = load_scene(scene_path);
-  const SceneSurface surface = prepare_scene_surface(scene);
+  const PreparedSurface surface = prepare_scene_surface(scene);
   const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene_path);
   const InputMaps expected = maps_on_input(scene.maps, surface, maps, scene_path);
 

@@ -1,9 +1,9 @@
-// Scene overrides with nested keys (common/scene_overrides.hpp): the dotted-key rule reaches object
+// Scene overrides with nested keys (common/scene/scene_overrides.hpp): the dotted-key rule reaches object
 // members and list elements, creates missing objects, and refuses paths that do not exist; values
 // parse as JSON or stay strings.
-#include "common/errors.hpp"
-#include "common/scene.hpp"
-#include "common/scene_overrides.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_overrides.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
-// The group-sequential three-way decision (common/sequential_equivalence.hpp): the spending
+// The group-sequential three-way decision (common/harness/sequential_equivalence.hpp): the spending
 // function against values computed separately in Python (statistics.NormalDist), verdicts on data
 // whose answer is known, and Monte Carlo checks that each kind of false verdict stays at or below
 // the declared alpha while clear comparisons stop early.
-#include "common/sequential_equivalence.hpp"
-#include "common/errors.hpp"
+#include "common/harness/sequential_equivalence.hpp"
+#include "common/base/errors.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Procedural shapes: topology (Euler characteristic, genus, boundary loops) and area against
 // analytic values, orientation, and the skinny sphere's defining property (negative cotan
 // weights). Every expected value below comes from geometry, not from running the code.
-#include "common/errors.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/shapes.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/mesh/shapes.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>

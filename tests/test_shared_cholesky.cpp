@@ -1,8 +1,8 @@
-// SharedCholesky (common/shared_cholesky.hpp): matrices of one pattern factored on one analysis
+// SharedCholesky (common/numerics/shared_cholesky.hpp): matrices of one pattern factored on one analysis
 // solve their own systems (checked against Eigen's dense LDLT), and a matrix of another pattern is
-// refused rather than factored on the wrong analysis. Our supernodal solve (common/supernodal_solve.hpp),
+// refused rather than factored on the wrong analysis. Our supernodal solve (common/numerics/supernodal_solve.hpp),
 // serial and split into subtrees, matches CHOLMOD's own cholmod_solve and repeats itself bit for bit.
-#include "common/shared_cholesky.hpp"
+#include "common/numerics/shared_cholesky.hpp"
 #include "tests/pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

@@ -4,10 +4,11 @@
 // agent by agent and layer by layer (float32 against double); each layer's steady mean is its own
 // species' U (Eq. 5); row i of the matrix is what species i reads. The planted fault
 // species-matrix-transposed fails the last two comparisons it concerns.
-#include "common/field_statistics.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "opencl/planted_faults.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"

@@ -1,9 +1,9 @@
-// What `physarum run` writes for competing species (common/species_statistics.hpp,
-// common/preview_image.hpp): a preview where each species' network shows in its own colour, stats.csv
+// What `physarum run` writes for competing species (common/setup/species_statistics.hpp,
+// common/output/preview_image.hpp): a preview where each species' network shows in its own colour, stats.csv
 // columns mean_i,U_i per species with U_i from Eq. 5 (derived here from the scene's numbers and the
 // reported area), and run.json's species_layers. One species keeps its outputs as they were.
-#include "common/errors.hpp"
-#include "common/preview_image.hpp"
+#include "common/base/errors.hpp"
+#include "common/output/preview_image.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "test_support.hpp"
 

@@ -1,14 +1,15 @@
-// Competing species in the reference simulation (common/species.hpp, reference/simulation.hpp): one
+// Competing species in the reference simulation (common/model/species.hpp, reference/simulation.hpp): one
 // species reading its own layer is the base model bit for bit; each layer's steady mean is its own
 // species' U (Eq. 5 with that species' count and rates: deposits go only into its own layer); a
 // negative cross term makes the species avoid each other (the layers' correlation drops); and row i
 // of the sensing matrix is what species i reads (an asymmetric matrix tells the two orientations
 // apart).
-#include "common/field_statistics.hpp"
-#include "common/ply_reader.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "reference/simulation.hpp"
 #include "loaded_scene.hpp"
 #include "test_support.hpp"

@@ -1,13 +1,13 @@
-// Competing species in a scene file ("species", "sensing"; common/scene_species.hpp) and as the
-// arrays a backend reads (common/species.hpp): each species takes the top-level parameters with its
+// Competing species in a scene file ("species", "sensing"; common/scene/scene_species.hpp) and as the
+// arrays a backend reads (common/model/species.hpp): each species takes the top-level parameters with its
 // own overrides (numbers or maps, checked like the top-level keys), the agents add up, the sensing
 // matrix defaults to the identity, and every bad entry is refused naming "species[i].KEY" or
 // "sensing".
-#include "common/errors.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
-#include "common/species.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/model/species.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -3,14 +3,14 @@
 // 4 pi/15 and 4 pi/105), single eigenvectors, Parseval totals computed directly from the field,
 // plane waves on the unit square whose DFT peaks at a known integer wavevector, and agent
 // placements whose density variance is worked out by hand.
-#include "common/spectral_metrics.hpp"
+#include "common/harness/spectral_metrics.hpp"
 
-#include "common/eigenvalues.hpp"
-#include "common/errors.hpp"
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
+#include "common/surface/eigenvalues.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,14 @@
-// Static field layers (common/simulation_backend.hpp) on both backends: fixed per-vertex maps after
+// Static field layers (common/simulation/simulation_backend.hpp) on both backends: fixed per-vertex maps after
 // the dynamic layers, which step() never advances and the agents never deposit into.
 //
 // Each check runs on the reference and on the OpenCL simulation. A static layer keeps its values
 // over a run (the reference exactly; the device as floats), adding one leaves the dynamic layer's
 // run bit for bit as it was, its statistics are the mass-weighted mean and coverage computed here
 // independently, and bad indices, sizes and values are refused with InputError naming the layer.
-#include "common/errors.hpp"
-#include "common/field_statistics.hpp"
-#include "common/simulation_backend.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/simulation/simulation_backend.hpp"
 #include "opencl/simulation.hpp"
 #include "reference/simulation.hpp"
 #include "delaunay_domain.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the test suites: locating the shared test meshes (skipping cleanly when the
 // folder is absent) and running the `physarum` program as a user would.
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <gtest/gtest.h>
 

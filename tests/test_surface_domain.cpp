@@ -1,12 +1,12 @@
 // Surface domain: face layouts, transitions between face frames, areas, lumped mass and the cotan
 // Laplacian, on small meshes built inline (flat grids, an irregular flat mesh, an icosphere).
-#include "common/errors.hpp"
-#include "common/fe_operators.hpp"
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/fe_operators.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

@@ -4,13 +4,13 @@
 // intrinsic faces are exactly their chord triangles) and within |gradient| x (largest intrinsic
 // circumradius) on a curved one (spot.obj), the bound derived in ChordBoundOnSpot. Padding fills
 // exactly the margin; UVs wrap; meshes that cannot be baked are refused; the image files read back.
-#include "common/errors.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/input_face_overlaps.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/scene_surface.hpp"
-#include "common/texture_bake.hpp"
-#include "common/texture_image.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/surface/input_face_overlaps.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/texture_image.hpp"
 #include "test_support.hpp"
 #include "uv_test_meshes.hpp"
 
@@ -74,7 +74,7 @@ IntrinsicVertexData<double> linear_field(const InputMesh& input, const SurfaceDo
 
 // The rectangle, simulated at 4x the size (scale_to_area 48 = 16 x 3) and refined: the bake must
 // recover the scale, and flips plus insertions give intrinsic faces spanning input faces.
-SceneSurface rectangle_surface() {
+PreparedSurface rectangle_surface() {
   SurfaceSpec spec;
   spec.mesh = "inline uv rectangle";
   spec.scale_to_area = 48.0;
@@ -87,7 +87,7 @@ SceneSurface rectangle_surface() {
 constexpr double kClearlyInside = 1e-6;
 
 TEST(TextureBake, FlatChartsBakeALinearFieldToFloatPrecision) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   const int W = 128, H = 96;
   const TexelLocations locations = locate_texels(surface.input, surface.domain, W, H);
   const IntrinsicVertexData<double> field = linear_field(surface.input, surface.domain);
@@ -121,7 +121,7 @@ TEST(TextureBake, FlatChartsBakeALinearFieldToFloatPrecision) {
 }
 
 TEST(TextureBake, PaddingFillsExactlyTheMarginAndNeverTouchesCharts) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   const int W = 96, H = 64, margin = 3;
   const TexelLocations locations = locate_texels(surface.input, surface.domain, W, H);
   const IntrinsicVertexData<double> field = linear_field(surface.input, surface.domain);
@@ -167,7 +167,7 @@ TEST(TextureBake, PaddingFillsExactlyTheMarginAndNeverTouchesCharts) {
 // Moving every UV by whole tiles changes nothing; moving by half a tile moves the image by half its
 // width, the charts crossing u = 1 continuing at the left edge.
 TEST(TextureBake, UvsOutsideTheUnitSquareWrap) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   const int W = 64, H = 48;
   const IntrinsicVertexData<double> field = linear_field(surface.input, surface.domain);
   auto bake_shifted = [&](const Eigen::Vector2d& shift) {
@@ -195,7 +195,7 @@ TEST(TextureBake, UvsOutsideTheUnitSquareWrap) {
 }
 
 TEST(TextureBake, RefusesWhatCannotBeBaked) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   auto message_of = [&](const InputMesh& mesh, int width, int height) {
     try {
       locate_texels(mesh, surface.domain, width, height);
@@ -225,7 +225,7 @@ TEST(TextureBake, RefusesWhatCannotBeBaked) {
   const InputMesh sphere = load_mesh("shape:sphere");
   SurfaceSpec spec;
   spec.mesh = "shape:sphere";
-  const SceneSurface sphere_surface = prepare_surface(sphere, spec);
+  const PreparedSurface sphere_surface = prepare_surface(sphere, spec);
   EXPECT_THROW(locate_texels(sphere_surface.input, sphere_surface.domain, 16, 16), InputError);
   const IntrinsicVertexData<double> wrong_size{1.0, 2.0};
   const TexelLocations locations = locate_texels(surface.input, surface.domain, 8, 8);
@@ -236,7 +236,7 @@ TEST(TextureBake, RefusesWhatCannotBeBaked) {
 // and the lists cover every point of the surface: here checked on the flat rectangle, where the
 // input face under each intrinsic face's centroid is known exactly.
 TEST(InputFaceOverlaps, ListsHoldTheFacesUnderEveryIntrinsicFace) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   const std::vector<ChordTriangle> chords = chord_triangles(surface.input, surface.domain);
   const InputFaceOverlaps overlaps(surface.input, surface.domain, chords);
   EXPECT_NEAR(overlaps.length_scale(), 0.25, 1e-12);  // simulated 4x larger
@@ -275,7 +275,7 @@ TEST(TextureBake, ChordBoundOnSpot) {
     SurfaceSpec spec;
     spec.mesh = spot;
     if (refine) spec.max_circumradius = 0.02;
-    const SceneSurface surface = prepare_surface(spec);
+    const PreparedSurface surface = prepare_surface(spec);
     double largest_circumradius = 0.0;
     for (const auto& c : surface.domain.face_corners) {
       const double a = (c[1] - c[0]).norm(), b = (c[2] - c[1]).norm(), d = (c[0] - c[2]).norm();
@@ -321,7 +321,7 @@ std::vector<T> read_image(const std::string& path, OIIO::TypeDesc type, OIIO::Im
 }
 
 TEST(TextureFiles, PngAndExrReadBackWithTheBakedValues) {
-  const SceneSurface surface = rectangle_surface();
+  const PreparedSurface surface = rectangle_surface();
   const int W = 80, H = 60;
   const IntrinsicVertexData<double> field = linear_field(surface.input, surface.domain);
   const BakedTexture texture = bake_fields(locate_texels(surface.input, surface.domain, W, H), surface.domain,

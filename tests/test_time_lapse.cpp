@@ -1,8 +1,8 @@
 // Time-lapse (`physarum run --frames K`): frames fall on evenly spaced steps with the last on the
 // final step; the sequence and the animated GIF hold K pictures; the last frame is the preview
 // (same state, same view, same colours); impossible requests are usage errors.
-#include "common/errors.hpp"
-#include "common/time_lapse.hpp"
+#include "common/base/errors.hpp"
+#include "common/output/time_lapse.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>

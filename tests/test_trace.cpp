@@ -1,12 +1,12 @@
 // Straight-line walks across face frames: exact answers on flat and developable surfaces
 // (Euclidean segments, mirror images, a closed loop around a prism), boundary rules, degenerate
 // starts and headings, and robustness on a closed curved surface.
-#include "common/input_mesh.hpp"
-#include "common/intrinsic_mesh.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
-#include "common/trace.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/intrinsic/intrinsic_mesh.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/surface/trace.hpp"
 #include "pheromone_test_meshes.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,8 @@
 // One workload description for the tests, the benchmarks, `physarum bench` and the device check
-// (common/workload.hpp): the surface it names is built once per spec and has the benchmarks' area,
+// (common/setup/workload.hpp): the surface it names is built once per spec and has the benchmarks' area,
 // and the backend built from it runs the scene it carries.
-#include "common/workload.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "tools/backend_factory.hpp"
 
@@ -16,9 +17,9 @@ TEST(Workload, SurfacesAreBuiltOncePerSpecAtTheBenchmarkArea) {
   SurfaceCache surfaces;
   const Workload coarse = bench_workload("shape:torus", "shape:torus", 0.04, bench_scene(10), BackendChoice::Reference);
   const Workload fine = bench_workload("shape:torus", "shape:torus", 0.02, bench_scene(10), BackendChoice::Reference);
-  const SceneSurface& a = surfaces.get(coarse.surface);
+  const PreparedSurface& a = surfaces.get(coarse.surface);
   EXPECT_EQ(&a, &surfaces.get(coarse.surface)) << "an equal spec must not build the surface again";
-  const SceneSurface& b = surfaces.get(fine.surface);
+  const PreparedSurface& b = surfaces.get(fine.surface);
   EXPECT_NE(&a, &b);
   EXPECT_NEAR(a.domain.total_area, kBenchArea, 1e-9 * kBenchArea);
   EXPECT_NEAR(b.domain.total_area, kBenchArea, 1e-9 * kBenchArea);

@@ -7,7 +7,7 @@
 //   right (x >= 1.5): u = 0.55 + 0.4 ((x - 1.5) / 1.5), v = 0.1 + 0.8 y
 // so the charts are u in [0.05, 0.45] and [0.55, 0.95], v in [0.1, 0.9], with gaps between them and
 // to the image edges. Vertices on the seam have one UV per chart (per-corner UVs, as OBJ files do).
-#include "common/input_mesh.hpp"
+#include "common/mesh/input_mesh.hpp"
 
 #include <Eigen/Core>
 #include <map>

@@ -1,8 +1,9 @@
 #include "tools/backend_factory.hpp"
 
-#include "common/errors.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/reaction_diffusion_build.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/base/errors.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
 #include "reference/agents.hpp"
 #include "reference/reaction_diffusion.hpp"
 #include "opencl/reaction_diffusion.hpp"
@@ -70,7 +71,7 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
                                                 const opencl::OpenCLSimulationOptions& options) {
   if (is_reaction_diffusion(scene))
     throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
-                     "(make_backend with a SceneSurface, or make_reaction_diffusion_backend), not the agent arrays");
+                     "(make_backend with a PreparedSurface, or make_reaction_diffusion_backend), not the agent arrays");
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
   if (backend == BackendChoice::Reference) {
@@ -91,7 +92,7 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 }
 
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
-                                                const SceneSurface& surface, const Scene& scene,
+                                                const PreparedSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLSimulationOptions& options) {
   if (is_reaction_diffusion(scene)) {
     const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);

@@ -5,14 +5,14 @@
 // physarum_backends (CMakeLists.txt), so that bench/ and tests/ link it without the tools' commands.
 // Before anything is allocated it estimates the memory the agents and the surface need on the host
 // and on the device and refuses (InputError) what does not fit.
-#include "common/reaction_diffusion_system.hpp"
-#include "common/run_feasibility.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/surface_domain.hpp"
-#include "common/workload.hpp"
+#include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "common/setup/run_feasibility.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/simulation.hpp"
 
@@ -31,20 +31,20 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 
 // Checks memory (check_memory against the host's available memory and, for OpenCL, the device's
 // global memory and largest allocation), then builds the backend from the scene's arrays evaluated
-// on `surface` (common/scene_maps.hpp: the per-vertex parameters; the controls are evaluated with
+// on `surface` (common/setup/scene_maps.hpp: the per-vertex parameters; the controls are evaluated with
 // them). `compute` is required for OpenCL.
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
-                                                const SceneSurface& surface, const Scene& scene,
+                                                const PreparedSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLSimulationOptions& options = {});
 // The same with the arrays evaluated once beforehand (a harness builds one backend per seed).
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLSimulationOptions& options = {});
 
-// A reaction-diffusion system's backend (common/reaction_diffusion_build.hpp builds the system from
+// A reaction-diffusion system's backend (common/setup/reaction_diffusion_build.hpp builds the system from
 // a scene, on `domain`): the reference (reference/reaction_diffusion.hpp) or the OpenCL backend
 // (opencl/reaction_diffusion.hpp, with `options`' planted faults), after the memory check. The
-// make_backend overload from a SceneSurface takes a reaction-diffusion scene too (it evaluates the
+// make_backend overload from a PreparedSurface takes a reaction-diffusion scene too (it evaluates the
 // scene's maps and builds the system); the one from SceneArrays refuses it (they are the agent model's).
 std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
                                                                    const opencl::ComputeContext* compute,

@@ -1,7 +1,7 @@
 #include "tools/bench_report.hpp"
 
-#include "common/atomic_write.hpp"
-#include "common/line_plot.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/output/line_plot.hpp"
 
 #include <algorithm>
 #include <array>

@@ -5,7 +5,7 @@
 #include "opencl/diffusion_decay.hpp"
 #include "reference/diffusion_decay.hpp"
 #include "tools/backend_factory.hpp"
-#include "common/vertex_parameters.hpp"
+#include "common/model/vertex_parameters.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,11 +4,11 @@
 // measured so far. What is timed: full steps (agents + pheromone) after three warm-up steps, until
 // at least a minimum time has passed (and at least three steps); the pheromone step alone (forward
 // and backward Euler). The domain's preprocessing is not timed (bench/bench_refinement covers it).
-#include "common/memory_bandwidth.hpp"
-#include "common/scene.hpp"
-#include "common/simulation_backend.hpp"
-#include "common/surface_domain.hpp"
-#include "common/workload.hpp"
+#include "common/numerics/memory_bandwidth.hpp"
+#include "common/scene/scene.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/memory_bandwidth.hpp"
 

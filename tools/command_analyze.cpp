@@ -1,19 +1,19 @@
 // `physarum analyze RUN_DIR [--field NAME] [--threshold T] [--below] [--min-area A] [--direction MAP.ply NAME] [--out DIR]`:
 // pattern analysis of a finished run (issue 21). The field is read back from the run's finest result
 // (RUN_DIR/fields_full.ply: every intrinsic vertex, exact values; else pheromone.ply on the input
-// mesh), segmented into spots and stripes and measured (common/pattern_analysis.hpp):
+// mesh), segmented into spots and stripes and measured (common/pattern/pattern_analysis.hpp):
 //   DIR/analysis.json  per region area, centre, aspect ratio, orientation, stripe width; spacing of
 //                      neighbouring spots; summary statistics
 //   DIR/analysis.png   histograms of spot area, spacing and aspect ratio
 // The field defaults to run.json's "preview_morphogen" (a reaction-diffusion run's shown morphogen)
 // when it records one, else "pheromone". Everything is read and analysed before DIR is touched, and
 // both files are written under temporary names and renamed, so a bad run folder writes nothing.
-#include "common/atomic_write.hpp"
-#include "common/errors.hpp"
-#include "common/face_direction_field.hpp"
-#include "common/pattern_analysis.hpp"
-#include "common/pattern_histograms.hpp"
-#include "common/ply_reader.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
+#include "common/pattern/face_direction_field.hpp"
+#include "common/pattern/pattern_analysis.hpp"
+#include "common/output/pattern_histograms.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "tools/commands.hpp"
 
 #include <nlohmann/json.hpp>
@@ -42,19 +42,29 @@ struct AnalyzeOptions {
   std::string out;                     // "" = RUN_DIR
 };
 
-// run.json's "preview_morphogen", when the run recorded one (reaction-diffusion runs).
-std::optional<std::string> preview_morphogen(const fs::path& run_dir) {
+// What run.json says of the files: the field the pictures show ("preview_morphogen" of
+// reaction-diffusion runs) and the name of the result on the input mesh ("fields_file": pheromone.ply
+// or morphogens.ply; runs before the key wrote pheromone.ply).
+struct RunHints {
+  std::optional<std::string> preview_morphogen;
+  std::string fields_file = "pheromone.ply";
+};
+
+RunHints run_hints(const fs::path& run_dir) {
   const fs::path path = run_dir / "run.json";
   std::ifstream in(path);
-  if (!in) return std::nullopt;  // the PLY files are what the analysis needs; run.json is optional
+  RunHints hints;
+  if (!in) return hints;  // the PLY files are what the analysis needs; run.json is optional
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path.string() + ": not valid JSON: " + e.what());
   }
-  if (j.contains("preview_morphogen") && j["preview_morphogen"].is_string()) return j["preview_morphogen"].get<std::string>();
-  return std::nullopt;
+  if (j.contains("preview_morphogen") && j["preview_morphogen"].is_string())
+    hints.preview_morphogen = j["preview_morphogen"].get<std::string>();
+  if (j.contains("fields_file") && j["fields_file"].is_string()) hints.fields_file = j["fields_file"].get<std::string>();
+  return hints;
 }
 
 // The direction map: face properties NAME_x, NAME_y, NAME_z (as `physarum map` writes vector maps).
@@ -80,12 +90,13 @@ int run_analyze(const AnalyzeOptions& o) {
   // ---- read everything first ----
   const fs::path run_dir(o.run_dir);
   if (!fs::is_directory(run_dir)) throw InputError(run_dir.string() + ": no such folder (give a `physarum run` output folder)");
+  const RunHints hints = run_hints(run_dir);
   fs::path source = run_dir / "fields_full.ply";
-  if (!fs::exists(source)) source = run_dir / "pheromone.ply";
-  if (!fs::exists(source)) throw InputError(run_dir.string() + ": has neither fields_full.ply nor pheromone.ply");
+  if (!fs::exists(source)) source = run_dir / hints.fields_file;
+  if (!fs::exists(source)) throw InputError(run_dir.string() + ": has neither fields_full.ply nor " + hints.fields_file);
   const PlyFields ply = read_ply_fields(source.string());
   std::string field_name = o.field;
-  if (field_name.empty()) field_name = preview_morphogen(run_dir).value_or("pheromone");
+  if (field_name.empty()) field_name = hints.preview_morphogen.value_or("pheromone");
   const InputVertexData<double> field(ply.property(field_name));
 
   std::optional<FaceDirectionField> direction;
@@ -132,6 +143,7 @@ Command add_analyze_command(CLI::App& parent) {
   auto options = std::make_shared<AnalyzeOptions>();
   CLI::App* app = parent.add_subcommand(
       "analyze",
+      "Pattern analysis of a finished run: spots, stripes and their spacing\n"
       "Pattern analysis of a finished run: segments the spots and stripes of a field (the part above a threshold) "
       "on the surface and writes DIR/analysis.json (per spot area, centre, aspect ratio, orientation; spacing of "
       "neighbouring spots; stripe width) and DIR/analysis.png (histograms). Example: physarum analyze out --field v");

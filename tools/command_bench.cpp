@@ -9,8 +9,8 @@
 // The steps, in order: the agent sweep, the in-cache crossing rate, the resolution sweep (with the
 // pheromone step alone at each resolution), the paper-size case, the roofline, the outputs. How a
 // workload is timed lives in tools/bench_session.hpp, the outputs in tools/bench_report.hpp.
-#include "common/errors.hpp"
-#include "common/workload.hpp"
+#include "common/base/errors.hpp"
+#include "common/setup/workload.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/bench_session.hpp"
@@ -157,7 +157,7 @@ nlohmann::ordered_json paper_case(BenchSession& bench) {
 }
 
 // The roofline estimate of the agent step (the last OpenCL row of the fixed-agent resolution sweep
-// against agent_step_bytes, common/workload.hpp: in cache the face records cost no DRAM traffic;
+// against agent_step_bytes, common/setup/workload.hpp: in cache the face records cost no DRAM traffic;
 // this is the DRAM bound when nothing is reused) and of the forward pheromone step.
 nlohmann::ordered_json roofline(BenchSession& bench, const nlohmann::ordered_json& pheromone) {
   const double bandwidth = bench.bandwidth().bytes_per_second(5);

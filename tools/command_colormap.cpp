@@ -1,14 +1,14 @@
 // `physarum colormap IMAGE --out MAP.json [--strip STRIP.png] [--stops N]`: extracts a colour map
 // from an exemplar picture (image-assisted colourisation, Sec. 3.4 of the paper; the method is in
-// common/isomap_colormap.hpp) and writes it as a colour-map file that a scene's "colormap" key or
+// common/color/isomap_colormap.hpp) and writes it as a colour-map file that a scene's "colormap" key or
 // `physarum render --colormap` can use, plus the map drawn as a strip to look at (low end left).
 //
 // The image is read and the map built before anything is written, and both files are written under
 // temporary names and renamed, so an unreadable image leaves nothing behind.
-#include "common/color_map_json.hpp"
-#include "common/colormap_strip.hpp"
-#include "common/errors.hpp"
-#include "common/isomap_colormap.hpp"
+#include "common/color/color_map_json.hpp"
+#include "common/output/colormap_strip.hpp"
+#include "common/base/errors.hpp"
+#include "common/color/isomap_colormap.hpp"
 #include "tools/commands.hpp"
 
 #include <filesystem>
@@ -67,6 +67,7 @@ Command add_colormap_command(CLI::App& parent) {
   auto options = std::make_shared<ColormapOptions>();
   CLI::App* app = parent.add_subcommand(
       "colormap",
+      "Extract a colour map from an exemplar image\n"
       "Extract a colour map from an exemplar image (ISOMAP over its pixel colours + smoothing splines; the "
       "background, the dominant colour of the image's border, becomes the low end). Writes MAP.json (for a "
       "scene's \"colormap\" key or `physarum render --colormap`) and the map drawn as a strip. "

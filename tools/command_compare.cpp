@@ -4,11 +4,11 @@
 // the differential harness. Runs independent seeds of two arms (by default the OpenCL backend and
 // the reference on one scene; with --arm, one scene under two settings or discretisations,
 // tools/comparison_arms.hpp), time-averages dimensionless pattern metrics per seed after a burn-in
-// (common/comparison_metrics.hpp) and decides, metric by metric, whether the arms agree within the
+// (common/harness/comparison_metrics.hpp) and decides, metric by metric, whether the arms agree within the
 // scene's declared margins.
 //
 // Seeds run in batches of kBatch per arm, on every core and device at once (tools/seed_runner.hpp);
-// after each batch a group-sequential test (common/sequential_equivalence.hpp: O'Brien-Fleming alpha
+// after each batch a group-sequential test (common/harness/sequential_equivalence.hpp: O'Brien-Fleming alpha
 // spending over the looks, Sidak over the metrics) says, for each metric still open, equivalent (its
 // confidence interval lies inside the margin), different (it lies entirely outside) or undecided.
 // The run stops as soon as one metric is different or all are equivalent, and at --max-seeds it
@@ -16,8 +16,12 @@
 // them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
 // statistics, 2 on usage errors.
 //
+// Apart from that verdict, each arm whose continuous mean is Eq. 5's U is checked against the
+// steady mean of the time-discrete model it runs (tools/theory_check.hpp): its own section of
+// verdict.json ("theory") and a line on stderr, never part of the verdict or the exit code.
+//
 // Reaction-diffusion scenes (model gray-scott, turing, ...): the same test on their own metric set
-// (common/reaction_diffusion_metrics.hpp: each morphogen's mean and variance / mean^2, coverage of
+// (common/harness/reaction_diffusion_metrics.hpp: each morphogen's mean and variance / mean^2, coverage of
 // the preview morphogen above fractions of its range, band shares of its spectrum), each seed a
 // system built with that seed, run for the scene's steps: by default the first half is the burn-in
 // and the second half is averaged (compare_burn_in / compare_duration override). Their planted
@@ -27,18 +31,19 @@
 // writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
 // runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
 // (a two-sided t test per metric at the Sidak level, see drift_p_value; drift is an error, exit 1).
-#include "common/atomic_write.hpp"
-#include "common/comparison_metrics.hpp"
-#include "common/equivalence_test.hpp"
-#include "common/errors.hpp"
-#include "common/scene.hpp"
-#include "common/scene_json.hpp"
-#include "common/sequential_equivalence.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/harness/comparison_metrics.hpp"
+#include "common/harness/equivalence_test.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_json.hpp"
+#include "common/harness/sequential_equivalence.hpp"
 #include "opencl/planted_faults.hpp"
 #include "tools/commands.hpp"
 #include "tools/comparison_arms.hpp"
 #include "tools/comparison_plot.hpp"
 #include "tools/seed_runner.hpp"
+#include "tools/theory_check.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -78,8 +83,6 @@ constexpr double kFamilyAlpha = 0.05;  // each kind of false verdict (equivalent
 // Seeds per arm between two looks: enough that the first look has a usable spread, few enough that
 // an easy verdict comes after a handful of batches.
 constexpr int kBatch = 8;
-// The analytic check's name: the first arm's mean / U against Eq. 5's exact 1.
-constexpr const char* kAnalyticMetric = "mean_over_U_vs_analytic";
 
 using Matrix = std::vector<std::vector<double>>;  // [seed][metric]
 
@@ -181,26 +184,19 @@ std::vector<SeedTask> tasks_for(int arm, int first, int end) {
   return tasks;
 }
 
-// The arms' per-metric summaries and the margins (absolute, or relative to the second arm's mean),
-// with the analytic row appended when it is judged.
+// The arms' per-metric summaries and the margins (absolute, or relative to the second arm's mean).
 struct Look {
   std::vector<SampleSummary> a, b;
   std::vector<double> margins;
 };
 
-Look summarise(const std::vector<MetricInfo>& info, const Matrix& a, const Matrix& b, bool analytic) {
+Look summarise(const std::vector<MetricInfo>& info, const Matrix& a, const Matrix& b) {
   Look look;
   for (size_t j = 0; j < info.size(); ++j) {
     look.a.push_back(summarize_samples(column(a, j)));
     look.b.push_back(summarize_samples(column(b, j)));
     const double scale = info[j].kind == MarginKind::Absolute ? 1.0 : std::abs(look.b.back().mean);
     look.margins.push_back(info[j].margin * scale);
-  }
-  if (analytic) {
-    // The first arm's mean / U against Eq. 5's exact value 1 (a one-sample test: no spread on that side).
-    look.a.push_back(look.a[0]);
-    look.b.push_back(SampleSummary{look.a[0].n, 1.0, 0.0});
-    look.margins.push_back(look.margins[0]);
   }
   return look;
 }
@@ -250,7 +246,8 @@ int exit_code(Verdict v) {
   }
 }
 
-int run_compare(const CompareOptions& o) {
+// What this harness cannot do, refused before anything runs.
+void refuse_what_cannot_be_compared(const CompareOptions& o) {
   if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds (--seeds) must be >= 2");
   if (o.reference_seeds < 2) throw UsageError("--reference-seeds must be >= 2");
   if (o.jobs < 0) throw UsageError("--jobs must be >= 1");
@@ -258,30 +255,192 @@ int run_compare(const CompareOptions& o) {
     throw UsageError("--store-reference runs only the reference: it takes neither --reference-stats, --fault nor --arm");
   if (!o.reference_stats.empty() && !o.arms.empty())
     throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
-  {
-    // What this harness cannot do with a reaction-diffusion scene, refused before anything runs.
-    const Scene scene = load_scene(o.scene);
-    const bool rd = scene.reaction_diffusion.has_value();
-    if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
-      throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
-                       "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
-    // A planted fault of the other model would change nothing, and the harness would rightly call
-    // the arms equivalent: a power check that proves nothing.
-    const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
-    if (!o.fault.empty() && rd != rd_fault)
-      throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
-                       " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
-                       " (it would change nothing)");
-    // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
-    // a model without F (turing, ...) runs unchanged.
-    if (rd && o.fault == "rd-no-feed") {
-      bool has_feed = false;
-      for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
-      if (!has_feed)
-        throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
-                         ") has no feed coefficient F (it would change nothing)");
+  const Scene scene = load_scene(o.scene);
+  const bool rd = scene.reaction_diffusion.has_value();
+  if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
+    throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
+                     "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
+  // A planted fault of the other model would change nothing, and the harness would rightly call
+  // the arms equivalent: a power check that proves nothing.
+  const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
+  if (!o.fault.empty() && rd != rd_fault)
+    throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
+                     " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
+                     " (it would change nothing)");
+  // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
+  // a model without F (turing, ...) runs unchanged.
+  if (rd && o.fault == "rd-no-feed") {
+    bool has_feed = false;
+    for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
+    if (!has_feed)
+      throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
+                       ") has no feed coefficient F (it would change nothing)");
+  }
+}
+
+// The seeds of both arms (the second stored, or run here batch by batch beside the first) and the
+// sequential test that judged them.
+struct SequentialRun {
+  Matrix a_values, b_values, fresh_reference;
+  std::vector<std::string> names;
+  int max_seeds = 0;
+  SequentialEquivalence test{1, 0.05, 2};
+  Verdict verdict = Verdict::Continue;
+};
+
+SequentialRun run_sequential_test(const CompareOptions& o, const std::vector<Arm>& arms, int jobs) {
+  const Arm &A = arms[0], &B = arms[1];
+  SequentialRun r;
+  r.names = metric_names(A.metrics);
+  r.max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
+  const bool stored = !o.reference_stats.empty();
+  if (stored) {
+    r.b_values = load_reference(o.reference_stats, B.scene, B.metrics);
+    // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
+    if (r.max_seeds > static_cast<int>(r.b_values.size())) {
+      r.max_seeds = static_cast<int>(r.b_values.size());
+      std::cerr << "physarum compare: at most " << r.max_seeds << " seeds per arm, as many as " << o.reference_stats
+                << " holds\n";
     }
   }
+  r.test = SequentialEquivalence(static_cast<int>(r.names.size()), kFamilyAlpha, r.max_seeds);
+  const auto start = std::chrono::steady_clock::now();
+  while (r.verdict == Verdict::Continue) {
+    const int n = static_cast<int>(r.a_values.size());
+    const int end = std::min(n + kBatch, r.max_seeds);
+    std::vector<SeedTask> tasks = tasks_for(0, n, end);
+    if (!stored) {
+      const std::vector<SeedTask> more = tasks_for(1, n, end);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    } else if (n == 0) {
+      // Fresh reference seeds the stored file does not hold (it used indices 0 .. stored - 1).
+      const int first = static_cast<int>(r.b_values.size());
+      const std::vector<SeedTask> more = tasks_for(1, first, first + o.reference_seeds);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    }
+    run_batch(arms, tasks, jobs, {&r.a_values, stored ? &r.fresh_reference : &r.b_values},
+              "look " + std::to_string(r.test.looks() + 1));
+    const Look look = summarise(A.metrics, r.a_values, r.b_values);
+    r.verdict = r.test.look(look.a, look.b, look.margins);
+    if (show_progress()) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const int done = static_cast<int>(r.a_values.size());
+      std::cerr << "\rphysarum compare: look " << r.test.looks() << ", " << done << "/" << r.max_seeds
+                << " seeds per arm: " << to_string(r.verdict) << " (" << progress_summary(r.test, r.names) << ")";
+      if (r.verdict == Verdict::Continue)
+        std::cerr << ", at most " << duration_text(elapsed / done * (r.max_seeds - done)) << " more";
+      std::cerr << "\n";
+    }
+  }
+  return r;
+}
+
+// Drift of stored statistics: fresh reference seeds against the stored ones, one row per metric.
+nlohmann::ordered_json drift_rows(const std::vector<MetricInfo>& info, const SequentialRun& r, bool& drift) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  const double alpha = sidak_alpha(kFamilyAlpha, static_cast<int>(info.size()));
+  for (size_t j = 0; j < info.size(); ++j) {
+    const double p = drift_p_value(column(r.fresh_reference, j), column(r.b_values, j));
+    drift = drift || p < alpha;
+    rows.push_back({{"name", info[j].name}, {"p_value", p}, {"drift", p < alpha}});
+  }
+  return rows;
+}
+
+// What each arm ran: backend, device, surface, and for reaction-diffusion arms the system.
+nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const Arm& arm : arms) {
+    nlohmann::ordered_json a = {{"label", arm.label},
+                                {"backend", to_string(arm.backend)},
+                                {"device", arm.compute ? arm.compute->device.describe() : "host"},
+                                {"faces", arm.surface->domain.face_count},
+                                {"agents", arm.scene.agents},
+                                {"time_step", arm.scene.time_step}};
+    if (arm.reaction_diffusion()) {
+      // The run length is the scene's, not the agent model's compare defaults, so the report says it.
+      const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion;
+      a.erase("agents");
+      a["model"] = rd.model;
+      a["integrator"] = rd.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+      a["preview_morphogen"] = rd.preview_morphogen;
+    }
+    list.push_back(a);
+  }
+  return list;
+}
+
+nlohmann::ordered_json verdict_report(const CompareOptions& o, const std::vector<Arm>& arms, const SequentialRun& r,
+                                      const std::vector<TheoryRow>& theory, int jobs, double seconds, bool& drift) {
+  const Arm &A = arms[0], &B = arms[1];
+  const bool stored = !o.reference_stats.empty();
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array(), unsettled = nlohmann::ordered_json::array();
+  for (size_t j = 0; j < r.names.size(); ++j) {
+    const MetricLook& m = r.test.metrics()[j];
+    rows.push_back(metric_row(r.names[j], &A.metrics[j], m, A.label, B.label));
+    if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
+      unsettled.push_back({{"name", r.names[j]}, {"seeds_per_arm_to_settle", m.seeds_to_settle},
+                           {"achieved_power", m.achieved_power}});
+  }
+  const nlohmann::ordered_json drifted = stored ? drift_rows(A.metrics, r, drift) : nlohmann::ordered_json();
+
+  nlohmann::ordered_json report;
+  report["verdict"] = to_string(r.verdict);
+  report["equivalent"] = r.verdict == Verdict::Equivalent && !drift;
+  report["scene"] = o.scene;
+  if (A.reaction_diffusion()) {
+    const ComparisonSettings& c = A.scene.comparison;
+    report["run_length"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval}};
+  }
+  report["arms"] = arm_list(arms);
+  report["seeds"] = {{A.label, r.a_values.size()}, {B.label, r.b_values.size()}};
+  report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
+  report["sequential"] = {{"family_alpha", kFamilyAlpha},
+                          {"alpha_spending", "O'Brien-Fleming (Lan-DeMets), union bound over the looks"},
+                          {"batch", kBatch},
+                          {"max_seeds", r.max_seeds},
+                          {"looks", r.test.looks()},
+                          {"alpha_spent", r.test.alpha_spent()}};
+  // How this run went (the rest of the report is the same whatever the threads and the machine's load).
+  report["run"] = {{"jobs", jobs}, {"seconds", seconds}};
+  report["left_out"] = A.left_out;
+  if (!unsettled.empty()) report["unsettled"] = unsettled;
+  report["reference_source"] = stored ? o.reference_stats : "run here";
+  if (stored) report["drift"] = {{"fresh_reference_seeds", r.fresh_reference.size()}, {"drift", drift}, {"metrics", drifted}};
+  report["metrics"] = rows;
+  report["theory"] = theory_json(theory);
+  return report;
+}
+
+// DIR/verdict.json, DIR/seed_metrics.csv and, when there are spectral bands to draw, DIR/spectra.png.
+void write_compare_folder(const std::string& folder, const std::string& verdict_text, const std::vector<Arm>& arms,
+                          const SequentialRun& r) {
+  const Arm &A = arms[0], &B = arms[1];
+  create_output_folder(folder);
+  const std::filesystem::path out(folder);
+  write_text_file_atomically((out / "verdict.json").string(), verdict_text);
+  std::ostringstream csv;
+  csv << "arm,seed_index";
+  for (const MetricInfo& m : A.metrics) csv << "," << m.name;
+  csv << "\n";
+  csv.precision(17);
+  for (const auto& [label, matrix] : {std::pair<std::string, const Matrix*>{B.label, &r.b_values}, {A.label, &r.a_values}})
+    for (size_t i = 0; i < matrix->size(); ++i) {
+      csv << label << "," << i;
+      for (double v : (*matrix)[i]) csv << "," << v;
+      csv << "\n";
+    }
+  write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
+  // A verdict never turns into bad input: a scene without drawable bands gets no picture, and says so.
+  const std::filesystem::path plot = out / "spectra.png";
+  if (!write_comparison_plot(plot.string(), metric_names(A.metrics), r.b_values, r.a_values)) {
+    std::filesystem::remove(plot);
+    std::cerr << "physarum compare: no spectral band power to draw on this scene; " << plot.string() << " not written\n";
+  }
+}
+
+int run_compare(const CompareOptions& o) {
+  refuse_what_cannot_be_compared(o);
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   ArmsRequest request;
@@ -303,148 +462,20 @@ int run_compare(const CompareOptions& o) {
     return 0;
   }
 
-  const Arm &A = arms[0], &B = arms[1];
-  const std::vector<MetricInfo>& info = A.metrics;
-  // The two backends on one scene: the analytic row is judged too, where the scene's mean is U.
-  const bool analytic = o.arms.empty() && !A.reaction_diffusion() && steady_mean_is_U(A.scene);
-  std::vector<std::string> names = metric_names(A.metrics);
-  if (analytic) names.push_back(kAnalyticMetric);
-  int max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
-
-  // ---- the second arm: stored, or run here batch by batch beside the first ----
-  const bool stored = !o.reference_stats.empty();
-  Matrix a_values, b_values, fresh_reference;
-  if (stored) {
-    b_values = load_reference(o.reference_stats, B.scene, B.metrics);
-    // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
-    if (max_seeds > static_cast<int>(b_values.size())) {
-      max_seeds = static_cast<int>(b_values.size());
-      std::cerr << "physarum compare: at most " << max_seeds << " seeds per arm, as many as " << o.reference_stats
-                << " holds\n";
-    }
-  }
-  SequentialEquivalence test(static_cast<int>(names.size()), kFamilyAlpha, max_seeds);
-
   const auto start = std::chrono::steady_clock::now();
-  Verdict verdict = Verdict::Continue;
-  while (verdict == Verdict::Continue) {
-    const int n = static_cast<int>(a_values.size());
-    const int end = std::min(n + kBatch, max_seeds);
-    std::vector<SeedTask> tasks = tasks_for(0, n, end);
-    Matrix fresh_batch;
-    if (!stored) {
-      const std::vector<SeedTask> more = tasks_for(1, n, end);
-      tasks.insert(tasks.end(), more.begin(), more.end());
-    } else if (n == 0) {
-      // Fresh reference seeds the stored file does not hold (it used indices 0 .. stored - 1).
-      const int first = static_cast<int>(b_values.size());
-      const std::vector<SeedTask> more = tasks_for(1, first, first + o.reference_seeds);
-      tasks.insert(tasks.end(), more.begin(), more.end());
-    }
-    run_batch(arms, tasks, jobs, {&a_values, stored ? &fresh_reference : &b_values},
-              "look " + std::to_string(test.looks() + 1));
-    const Look look = summarise(info, a_values, b_values, analytic);
-    verdict = test.look(look.a, look.b, look.margins);
-    if (show_progress()) {
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const int done = static_cast<int>(a_values.size());
-      std::cerr << "\rphysarum compare: look " << test.looks() << ", " << done << "/" << max_seeds
-                << " seeds per arm: " << to_string(verdict) << " (" << progress_summary(test, names) << ")";
-      if (verdict == Verdict::Continue)
-        std::cerr << ", at most " << duration_text(elapsed / done * (max_seeds - done)) << " more";
-      std::cerr << "\n";
-    }
-  }
-
-  // ---- report ----
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array(), unsettled = nlohmann::ordered_json::array();
-  for (size_t j = 0; j < names.size(); ++j) {
-    const MetricLook& m = test.metrics()[j];
-    rows.push_back(metric_row(names[j], j < info.size() ? &info[j] : nullptr, m, A.label, B.label));
-    if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
-      unsettled.push_back({{"name", names[j]}, {"seeds_per_arm_to_settle", m.seeds_to_settle},
-                           {"achieved_power", m.achieved_power}});
-  }
-
-  // Drift of stored statistics: fresh reference seeds against the stored ones.
+  const SequentialRun r = run_sequential_test(o, arms, jobs);
+  const std::vector<TheoryRow> theory = check_against_theory({&arms[0], &arms[1]}, {&r.a_values, &r.b_values}, kFamilyAlpha);
+  for (const TheoryRow& row : theory) std::cerr << theory_line(row) << "\n";
   bool drift = false;
-  nlohmann::ordered_json drift_rows = nlohmann::ordered_json::array();
-  if (stored) {
-    const double alpha = sidak_alpha(kFamilyAlpha, static_cast<int>(info.size()));
-    for (size_t j = 0; j < info.size(); ++j) {
-      const double p = drift_p_value(column(fresh_reference, j), column(b_values, j));
-      drift = drift || p < alpha;
-      drift_rows.push_back({{"name", info[j].name}, {"p_value", p}, {"drift", p < alpha}});
-    }
-  }
-
-  nlohmann::ordered_json report;
-  report["verdict"] = to_string(verdict);
-  report["equivalent"] = verdict == Verdict::Equivalent && !drift;
-  report["scene"] = o.scene;
-  nlohmann::ordered_json arm_list = nlohmann::ordered_json::array();
-  for (const Arm& arm : arms)
-    arm_list.push_back({{"label", arm.label},
-                        {"backend", to_string(arm.backend)},
-                        {"device", arm.compute ? arm.compute->device.describe() : "host"},
-                        {"faces", arm.surface->domain.face_count},
-                        {"agents", arm.scene.agents},
-                        {"time_step", arm.scene.time_step}});
-  if (A.reaction_diffusion()) {
-    // What a seed of a reaction-diffusion arm ran: the run length is the scene's, not the agent
-    // model's compare defaults, so the report says it.
-    const ComparisonSettings& c = A.scene.comparison;
-    for (size_t i = 0; i < arms.size(); ++i) {
-      const ReactionDiffusionSpec& rd = *arms[i].scene.reaction_diffusion;
-      arm_list[i].erase("agents");
-      arm_list[i]["model"] = rd.model;
-      arm_list[i]["integrator"] = rd.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
-      arm_list[i]["preview_morphogen"] = rd.preview_morphogen;
-    }
-    report["run_length"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval}};
-  }
-  report["arms"] = arm_list;
-  report["seeds"] = {{A.label, a_values.size()}, {B.label, b_values.size()}};
-  report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
-  report["sequential"] = {{"family_alpha", kFamilyAlpha},
-                          {"alpha_spending", "O'Brien-Fleming (Lan-DeMets), union bound over the looks"},
-                          {"batch", kBatch},
-                          {"max_seeds", max_seeds},
-                          {"looks", test.looks()},
-                          {"alpha_spent", test.alpha_spent()}};
-  // How this run went (the rest of the report is the same whatever the threads and the machine's load).
-  report["run"] = {{"jobs", jobs},
-                   {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
-  report["left_out"] = A.left_out;
-  if (!unsettled.empty()) report["unsettled"] = unsettled;
-  report["reference_source"] = stored ? o.reference_stats : "run here";
-  if (stored) report["drift"] = {{"fresh_reference_seeds", fresh_reference.size()}, {"drift", drift}, {"metrics", drift_rows}};
-  report["metrics"] = rows;
+  const nlohmann::ordered_json report =
+      verdict_report(o, arms, r, theory, jobs, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), drift);
   const std::string text = report.dump(2) + "\n";
   std::cout << text;
-
-  if (!o.out.empty()) {
-    create_output_folder(o.out);
-    const std::filesystem::path out(o.out);
-    write_text_file_atomically((out / "verdict.json").string(), text);
-    std::ostringstream csv;
-    csv << "arm,seed_index";
-    for (const MetricInfo& m : info) csv << "," << m.name;
-    csv << "\n";
-    csv.precision(17);
-    for (const auto& [label, matrix] : {std::pair<std::string, const Matrix*>{B.label, &b_values}, {A.label, &a_values}})
-      for (size_t i = 0; i < matrix->size(); ++i) {
-        csv << label << "," << i;
-        for (double v : (*matrix)[i]) csv << "," << v;
-        csv << "\n";
-      }
-    write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
-    write_comparison_plot((out / "spectra.png").string(), metric_names(A.metrics), b_values, a_values);
-  }
+  if (!o.out.empty()) write_compare_folder(o.out, text, arms, r);
   if (drift)
     throw InputError(o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "
                      "above); the reference changed: regenerate the file with --store-reference");
-  return exit_code(verdict);
+  return exit_code(r.verdict);
 }
 
 }  // namespace
@@ -453,6 +484,7 @@ Command add_compare_command(CLI::App& parent) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App* app = parent.add_subcommand(
       "compare",
+      "Differential harness: do two arms (the backends, or two --arm settings) simulate the same thing?\n"
       "Differential harness: decide whether two arms (the OpenCL backend and the reference, or one scene under two "
       "--arm settings) simulate the same thing (prints a JSON verdict; exit 0 equivalent, 3 different, "
       "4 inconclusive, 1 bad input, 2 usage error)");

@@ -5,7 +5,7 @@
 //                [--scale-to-area A] [--max-circumradius R | --max-circumradius-rel F] [--min-angle D]
 //                [--out N.ply]                   one map on a mesh file or shape:NAME
 // Scalar maps become vertex properties of their names, vector maps face properties NAME_x, NAME_y,
-// NAME_z in input coordinates. Each map also gets a picture (common/map_preview.hpp): FILE.png beside
+// NAME_z in input coordinates. Each map also gets a picture (common/output/map_preview.hpp): FILE.png beside
 // the PLY for one map, FILE_NAME.png per map for a scene.
 //
 // One map is built as JSON and goes through the scene's own parser (parse_maps), so every source
@@ -16,19 +16,20 @@
 // object: {"diffuse": "seed", "time": 0.01}. A KEY starting with '/' is a JSON pointer from the map's
 // own object, for a field beside the kind's object: --arg /falloff=0.1.
 //
-// Maps go through the on-disk map cache (common/cached_map_evaluation.hpp). For a scene, the
+// Maps go through the on-disk map cache (common/setup/cached_map_evaluation.hpp). For a scene, the
 // parameters and controls that use the maps are evaluated too, so a map value out of a parameter's
 // range is refused here as `run` would.
-#include "common/cached_map_evaluation.hpp"
-#include "common/errors.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/input_mesh.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/map_preview.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
+#include "common/output/maps_ply.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/output/map_preview.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "tools/commands.hpp"
 #include "tools/refinement_options.hpp"
 
@@ -154,7 +155,7 @@ void print_report(const MapEvaluationReport& report) {
 
 // Writes the PLY and the pictures of `maps` on `surface` (one picture FILE.png for `one_map`, else
 // FILE_NAME.png per map, even when a scene has a single map); prints one line per map.
-void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps, const SceneSurface& surface,
+void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps, const PreparedSurface& surface,
                 const EvaluatedMaps& evaluated, const std::string& where, bool one_map) {
   const InputMaps on_input = maps_on_input(maps, surface, evaluated, where);
   // Pictures first: rendering can fail on a bad size, and then nothing should have been written.
@@ -204,7 +205,7 @@ void write_maps(const MapOptions& o, const std::string& out, const MapSet& maps,
 int run_scene_maps(const MapOptions& o) {
   const Scene scene = load_scene(o.input);
   if (scene.maps.empty()) throw InputError(o.input + ": key 'maps': the scene defines no maps");
-  const SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
+  const PreparedSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   MapEvaluationReport report;
   const EvaluatedMaps maps = cached_evaluate_maps(map_sources_of(scene), surface, MapCache::from_environment(), &report);
@@ -250,7 +251,7 @@ int run_one_map(const MapOptions& o) {
     const double scale = o.scale_to_area ? std::sqrt(*o.scale_to_area / statistics.area) : 1.0;
     spec.max_circumradius = o.refinement.absolute_max_circumradius(statistics.bounding_box_diagonal * scale);
   }
-  const SceneSurface surface = prepare_surface(std::move(input), spec, [](const std::string& line) { std::cerr << line << "\n"; });
+  const PreparedSurface surface = prepare_surface(std::move(input), spec, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
 
   MapEvaluationReport report;
@@ -295,6 +296,7 @@ Command add_map_command(CLI::App& parent) {
   auto options = std::make_shared<MapOptions>();
   CLI::App* app = parent.add_subcommand(
       "map",
+      "Evaluate surface maps on the intrinsic triangulation and write them onto the input mesh\n"
       "Evaluate surface maps on the intrinsic triangulation and write them onto the input mesh as a PLY (scalar maps "
       "per vertex under their names, vector maps per face as NAME_x, NAME_y, NAME_z in input coordinates) with a "
       "preview picture per map. Given a scene: every named map (key 'maps'). Given a mesh file or shape:NAME: one "

@@ -1,10 +1,10 @@
 // `physarum mesh MESH ...`: load, repair and validate a surface, build its intrinsic Delaunay
 // triangulation (optionally refined), and report statistics and Laplace eigenvalues.
-#include "common/eigenvalues.hpp"
-#include "common/errors.hpp"
-#include "common/intrinsic_triangulation.hpp"
-#include "common/mesh_loading.hpp"
-#include "common/surface_domain.hpp"
+#include "common/surface/eigenvalues.hpp"
+#include "common/base/errors.hpp"
+#include "common/intrinsic/intrinsic_triangulation.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/surface/surface_domain.hpp"
 #include "tools/commands.hpp"
 #include "tools/refinement_options.hpp"
 

@@ -8,15 +8,15 @@
 //
 // Everything is read and checked before DIR is touched, and every file is written under a
 // temporary name and renamed (as `physarum run` does), so a bad run folder writes nothing.
-#include "common/atomic_write.hpp"
-#include "common/camera_views.hpp"
-#include "common/color_map_json.hpp"
-#include "common/errors.hpp"
-#include "common/ply_reader.hpp"
-#include "common/ply_writer.hpp"
-#include "common/preview_image.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/scene_surface.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/output/camera_views.hpp"
+#include "common/color/color_map_json.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "tools/commands.hpp"
 #include "tools/surface_exports.hpp"
 
@@ -51,6 +51,7 @@ struct RunRecord {
   ColorMapSettings colormap;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
   std::optional<SurfaceSpec> surface;      // how to rebuild the surface (runs before it was recorded: none)
   std::optional<TextureSettings> texture;  // how the run baked texture.png (none: the mesh has no UVs)
+  std::string fields_file = "pheromone.ply";  // the result on the input mesh (morphogens.ply for reaction-diffusion)
 };
 
 RunRecord read_run_record(const fs::path& run_dir) {
@@ -72,6 +73,7 @@ RunRecord read_run_record(const fs::path& run_dir) {
   if (j.contains("colormap")) r.colormap = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
   if (j.contains("surface")) r.surface = surface_spec_from_json(j["surface"], path.string() + ": key 'surface'");
   if (j.contains("texture")) r.texture = TextureSettings::from_json(j["texture"], path.string() + ": key 'texture'");
+  if (j.contains("fields_file") && j["fields_file"].is_string()) r.fields_file = j["fields_file"].get<std::string>();
   return r;
 }
 
@@ -131,7 +133,7 @@ void check_same_triangulation(const InputMesh& rebuilt, const InputMesh& recorde
 
 // What re-baking the texture needs: the surface and where each texel lies on it.
 struct SurfaceForExports {
-  SceneSurface surface;
+  PreparedSurface surface;
   TexelLocations texels;
 };
 
@@ -144,8 +146,8 @@ int run_render(const RenderOptions& o) {
   const fs::path run_dir(o.run_dir);
   const RunRecord run = read_run_record(run_dir);
   const std::optional<ResultFile> full = read_result(run_dir, "fields_full.ply", run.field);
-  const std::optional<ResultFile> on_input = read_result(run_dir, "pheromone.ply", run.field);
-  if (!full && !on_input) throw InputError(run_dir.string() + ": has neither fields_full.ply nor pheromone.ply");
+  const std::optional<ResultFile> on_input = read_result(run_dir, run.fields_file, run.field);
+  if (!full && !on_input) throw InputError(run_dir.string() + ": has neither fields_full.ply nor " + run.fields_file);
   // Pictures come from the finest result there is.
   const ResultFile& picture_source = full ? *full : *on_input;
 
@@ -154,8 +156,8 @@ int run_render(const RenderOptions& o) {
   if (run.texture) {
     if (!run.surface) throw InputError((run_dir / "run.json").string() + ": records a texture but not the surface to bake it on");
     if (!full || !on_input)
-      throw InputError(run_dir.string() + ": re-baking texture.png needs both fields_full.ply and pheromone.ply");
-    SceneSurface surface = prepare_surface(*run.surface);
+      throw InputError(run_dir.string() + ": re-baking texture.png needs both fields_full.ply and " + run.fields_file);
+    PreparedSurface surface = prepare_surface(*run.surface);
     check_same_triangulation(build_full_resolution_mesh(surface.input, surface.domain).mesh, full->ply.mesh,
                              (run_dir / full->name).string(), run.surface->mesh);
     if (surface.input.triangles != on_input->ply.mesh.triangles)
@@ -222,7 +224,8 @@ Command add_render_command(CLI::App& parent) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* app = parent.add_subcommand(
       "render",
-      "Re-colour a finished run without simulating again: reads RUN_DIR/fields_full.ply (else pheromone.ply) and "
+      "Re-colour a finished run without simulating again\n"
+      "Re-colour a finished run without simulating again: reads RUN_DIR/fields_full.ply (else pheromone.ply or morphogens.ply) and "
       "RUN_DIR/run.json, and writes DIR/preview.png, one DIR/view_NAME.png per view and the re-coloured PLY files. "
       "Example: physarum render out --colormap magma --views 3 --out out/magma");
   app->footer("Exit codes: 0 success, 1 bad input (a missing or malformed run folder; nothing is written), 2 usage error.");

@@ -1,7 +1,7 @@
 // `physarum run SCENE.json [--set KEY=VALUE ...] [--backend auto|reference|opencl] [--steps N | --sim-time T]
 //  [--seed S] [--out DIR] [--frames K] [--texture-size N] [--texture-margin PX] [--texture-format png|png16|exr]
 //  [--checkpoint-every T]`, or `physarum run --resume DIR`:
-// grows a pattern on a surface and writes (the README's "The command line")
+// grows a pattern on a surface and writes (docs/commands.md)
 //   DIR/pheromone.ply    the input mesh with the field at its vertices,
 //   DIR/fields_full.ply  the result at full resolution: every intrinsic vertex at its place on the
 //                        input surface, intrinsic connectivity, the exact values (full_resolution_mesh.hpp),
@@ -14,34 +14,36 @@
 // with --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
 // With --checkpoint-every T, DIR/checkpoint.bin holds the whole state every T simulated seconds
-// (common/checkpoint.hpp), replaced atomically; `physarum run --resume DIR` continues from it bit for
+// (common/run/checkpoint.hpp), replaced atomically; `physarum run --resume DIR` continues from it bit for
 // bit (same build, backend and device; the scene unchanged) and writes what the uninterrupted run
 // would have written. The checkpoint is removed once the run's outputs are complete.
 //
 // Everything that can fail on bad input (scene, mesh, triangulation, the UV map) happens before DIR
 // is touched, so a bad scene exits 1 with its message and writes nothing; every file is written under
 // a temporary name and renamed, so a reader never sees a half-written one.
-#include "common/atomic_write.hpp"
-#include "common/checkpoint.hpp"
-#include "common/color_map_json.hpp"
-#include "common/errors.hpp"
-#include "common/field_statistics.hpp"
-#include "common/field_transfer.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/input_mesh.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/ply_writer.hpp"
-#include "common/preview_image.hpp"
-#include "common/scene.hpp"
-#include "common/scene_json.hpp"
-#include "common/scene_maps.hpp"
-#include "common/simulation_state.hpp"
-#include "common/scene_surface.hpp"
-#include "common/species_statistics.hpp"
-#include "common/surface_domain.hpp"
-#include "common/texture_bake.hpp"
-#include "common/time_lapse.hpp"
-#include "common/workload.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/output/maps_ply.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/run/checkpoint.hpp"
+#include "common/color/color_map_json.hpp"
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/surface/field_transfer.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_json.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/simulation/simulation_state.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/setup/species_statistics.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/time_lapse.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/commands.hpp"
@@ -49,6 +51,7 @@
 #include "tools/run_options.hpp"
 #include "tools/resume_point.hpp"
 #include "tools/run_checkpoints.hpp"
+#include "tools/run_loop.hpp"
 #include "tools/run_reaction_diffusion.hpp"
 #include "tools/surface_exports.hpp"
 
@@ -63,15 +66,13 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
 namespace physarum::cli {
 namespace {
 
-
-// About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
-constexpr long long kStatsRows = 100;
 
 long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
   auto steps_for = [&](double seconds) {
@@ -85,35 +86,46 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
   throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
 }
 
-// A one-line progress bar with ETA on stderr, drawn only when stderr is a terminal.
-class ProgressBar {
- public:
-  explicit ProgressBar(long long total) : total_(total), enabled_(::isatty(STDERR_FILENO) == 1) {}
-  void update(long long done) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(200)) return;
-    last_draw_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
-    const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stderr, "\r[%s%s] %5.1f%%  step %lld/%lld  ETA %.0f s ", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction, done, total_, eta);
-    if (done >= total_) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
+// The agent model's run.json keys: throughput, Eq. 5's U and the final statistics, per species its
+// own, and the parameters as run.
+void agent_run_json(nlohmann::ordered_json& j, const SimulationBackend& simulation, const Scene& scene,
+                    const SceneArrays& arrays, double U, const std::vector<double>& species_U, double seconds) {
+  const SimulationCounters c = simulation.counters();
+  j["agent_steps_per_second"] = seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0;
+  j["face_crossings_per_agent_step"] = c.crossings_per_agent_step();
+  j["face_crossings_per_second"] =
+      seconds > 0 ? static_cast<double>(c.face_crossings + c.sensor_face_crossings) / seconds : 0.0;
+  j["move_crossings_per_agent_step"] =
+      c.agent_steps > 0 ? static_cast<double>(c.face_crossings) / static_cast<double>(c.agent_steps) : 0.0;
+  const FieldStatistics final_stats = simulation.field_statistics(U);
+  j["U"] = U;
+  j["mean"] = final_stats.mean;
+  j["coverage_0.5U"] = final_stats.coverage[0];
+  j["coverage_1U"] = final_stats.coverage[1];
+  j["coverage_2U"] = final_stats.coverage[2];
+  j["respawns"] = c.respawns;
+  // Competing species: per species its agents, steady state U_i, and its layer's mean and coverage
+  // (the keys above are layer 0's); the preview's colour of each as #rrggbb.
+  for (size_t s = 0; s < species_U.size(); ++s) {
+    const FieldStatistics f = simulation.field_statistics(species_U[s], static_cast<int>(s));
+    const std::array<double, 3> colour = species_colour(static_cast<int>(s));
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<unsigned>(std::lround(colour[0] * 255)),
+                  static_cast<unsigned>(std::lround(colour[1] * 255)), static_cast<unsigned>(std::lround(colour[2] * 255)));
+    j["species_layers"].push_back({{"species", s},
+                                   {"agents", arrays.species.species[s].agents},
+                                   {"U", f.U},
+                                   {"mean", f.mean},
+                                   {"coverage_0.5U", f.coverage[0]},
+                                   {"coverage_1U", f.coverage[1]},
+                                   {"coverage_2U", f.coverage[2]},
+                                   {"preview_colour", hex}});
   }
+  j["parameters"] = scene_parameters_json(scene);
+}
 
- private:
-  long long total_;
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_draw_{};
-};
-
-
-int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume) {
+// The flags' own checks, before the scene is read.
+void check_run_options(const RunOptions& o) {
   if (!o.device.empty() && o.backend == "reference") throw UsageError("--device applies to the OpenCL backend only");
   if (o.steps && *o.steps < 1) throw UsageError("--steps " + std::to_string(*o.steps) + " must be >= 1");
   if (o.sim_time && !(*o.sim_time > 0.0)) throw UsageError("--sim-time must be > 0");
@@ -122,21 +134,17 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
     throw UsageError("--frames does not go with --checkpoint-every: the frames drawn before a stop are not in the "
                      "checkpoint, so a resumed run's time-lapse would miss them");
   o.texture.check();
+}
 
-  // ---- everything that can reject the input, before any output exists ----
-  Scene given_scene = load_scene(o.scene, o.overrides());
-  if (o.seed) given_scene.seed = *o.seed;
-  if (!o.maps_out.empty() && given_scene.maps.empty())
-    throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
-  const long long steps = run_length_in_steps(o, given_scene);
-  if (is_reaction_diffusion(given_scene)) return run_reaction_diffusion(given_scene, o, steps, resume);
+// The agent model's run: its surface, maps and backend, and what it writes.
+int run_agents(const Scene& given_scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
   TimeLapse time_lapse(o.frames, steps);
 
   // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
   // controls the backend is built from, and what --maps-out writes. `scene` summarises each mapped
   // parameter by its mean (U, run.json).
   const FeasibleSurface feasible = prepare_feasible_surface(given_scene, steps, MapCache::from_environment());
-  const SceneSurface& surface = feasible.surface;
+  const PreparedSurface& surface = feasible.surface;
   const SurfaceDomain& domain = surface.domain;
   const EvaluatedMaps& maps = feasible.maps;
   if (!given_scene.maps.empty()) {
@@ -165,7 +173,7 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   const FieldColoring coloring = scene.colormap.mapping(U);
   PreviewOptions preview;
   preview.coloring = coloring;
-  // Competing species (common/species_statistics.hpp): each species' U and layer statistics beside
+  // Competing species (common/setup/species_statistics.hpp): each species' U and layer statistics beside
   // the existing columns (which stay layer 0's, with the scene's U), and pictures in one colour per
   // species, each layer coloured over its own species' levels.
   const int species_layers = simulation.dynamic_layer_count();
@@ -191,139 +199,45 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
     return render_species_preview(full.mesh, layers, species_colorings, preview);
   };
 
-  // ---- checkpoints, and where the run starts ----
-  RunCheckpoints checkpoints(simulation, o, given_scene.mesh, scene.time_step, steps, resume);
-  std::string stats;
-  if (const std::string* resumed = checkpoints.resumed_stats()) {
-    stats = *resumed;
-  } else {
-    stats = stats_csv_header() + species_stats_csv_columns(species_layers) + "\n";
-    stats += stats_row() + "\n";
-  }
+  // ---- what the agent model writes (the run itself is the one run loop's) ----
+  ModelRun model;
+  model.fields_file = "pheromone.ply";
+  model.fields_description = "pheromone";
+  model.stats_header = stats_csv_header() + species_stats_csv_columns(species_layers);
+  model.stats_row = stats_row;
+  model.frame = picture;
+  model.result = [&] {
+    ModelResult r;
+    r.coloring = coloring;
+    // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
+    // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
+    r.layers.emplace_back("pheromone", simulation.field_values());
+    for (int layer = 0; species_layers > 1 && layer < species_layers; ++layer)
+      r.layers.emplace_back("pheromone_" + std::to_string(layer), simulation.field_values(layer));
+    if (species_layers > 1) r.preview = picture();
+    return r;
+  };
+  model.run_json = [&](nlohmann::ordered_json& j, double seconds) { agent_run_json(j, simulation, scene, arrays, U, species_U, seconds); };
+  model.summary = [&](double seconds) {
+    const SimulationCounters c = simulation.counters();
+    std::ostringstream line;
+    line << steps << " steps (" << simulation.time() << " s simulated) in " << seconds << " s, "
+         << (seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0) << " agent-steps/s; mean "
+         << simulation.field_statistics(U).mean << ", U " << U;
+    return line.str();
+  };
+  return run_and_write(simulation, RunSetup{o, scene, steps, resume, surface, full, texels, time_lapse}, model);
+}
 
-  // ---- simulate ----
-  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  ProgressBar progress(steps);
-  checkpoints.start();
-  double stats_seconds = 0.0;
-  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
-    simulation.step();
-    if (s % stats_every == 0 || s == steps) {
-      simulation.finish();
-      const auto ts = std::chrono::steady_clock::now();
-      stats += stats_row() + "\n";
-      stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
-    }
-    if (time_lapse.due(s)) {
-      simulation.finish();
-      const auto tf = std::chrono::steady_clock::now();
-      time_lapse.add(picture());
-      stats_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
-    }
-    checkpoints.after_step(s, simulation, stats, stats_seconds);
-    progress.update(s);
-  }
-  simulation.finish();
-  // Throughput counts the simulation alone, not the statistics rows, the time-lapse frames or the
-  // checkpoints; a resumed run adds the seconds before its checkpoint.
-  const double seconds = checkpoints.simulation_seconds(stats_seconds);
-  const FieldStatistics final_stats = simulation.field_statistics(U);
-  const std::vector<FieldStatistics> final_species_stats = species_statistics();
-
-  // ---- outputs ----
-  create_output_folder(o.out);
-  const std::filesystem::path out(o.out);
-
-  const IntrinsicVertexData<double> field = simulation.field_values();
-  const InputVertexData<double> on_input = intrinsic_to_input(surface.input_to_intrinsic, field);
-  const InputVertexData<double> on_full = full.vertex_values(field);
-  std::string written = "pheromone.ply, fields_full.ply";
-  // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
-  // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
-  std::vector<InputVertexData<double>> species_on_input, species_on_full;
-  for (int layer = 0; species_layers > 1 && layer < species_layers; ++layer) {
-    const IntrinsicVertexData<double> values = simulation.field_values(layer);
-    species_on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
-    species_on_full.push_back(full.vertex_values(values));
-  }
-  std::vector<PlyField> input_fields{PlyField{"pheromone", on_input}}, full_fields{PlyField{"pheromone", on_full}};
-  for (size_t layer = 0; layer < species_on_input.size(); ++layer) {
-    input_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_input[layer]});
-    full_fields.push_back(PlyField{"pheromone_" + std::to_string(layer), species_on_full[layer]});
-  }
-  write_fields_ply((out / "pheromone.ply").string(), input, input_fields, coloring, "pheromone per input vertex");
-  write_fields_ply((out / "fields_full.ply").string(), full.mesh, full_fields, coloring,
-                   "pheromone per intrinsic vertex (full resolution)");
-  if (species_layers > 1)
-    write_rgb_png((out / "preview.png").string(), render_species_preview(full.mesh, species_on_full, species_colorings, preview));
-  else
-    write_preview_png((out / "preview.png").string(), full.mesh, on_full, preview);
-  const SurfaceExportsWritten exports =
-      write_surface_exports(out, input, domain, texels, field, on_input, coloring, o.texture);
-  for (const std::string& name : exports.files) written += ", " + name;
-  write_text_file_atomically((out / "stats.csv").string(), stats);
-  time_lapse.write(o.out);
-
-  const SimulationCounters c = simulation.counters();
-  nlohmann::ordered_json j;
-  j["backend"] = simulation.backend_name();
-  j["backend_requested"] = o.backend;
-  j["device"] = simulation.device_name();
-  j["steps"] = steps;
-  j["sim_time"] = simulation.time();
-  j["seconds"] = seconds;
-  j["agent_steps_per_second"] = seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0;
-  j["face_crossings_per_agent_step"] = c.crossings_per_agent_step();
-  j["face_crossings_per_second"] =
-      seconds > 0 ? static_cast<double>(c.face_crossings + c.sensor_face_crossings) / seconds : 0.0;
-  j["move_crossings_per_agent_step"] =
-      c.agent_steps > 0 ? static_cast<double>(c.face_crossings) / static_cast<double>(c.agent_steps) : 0.0;
-  j["U"] = U;
-  j["mean"] = final_stats.mean;
-  j["coverage_0.5U"] = final_stats.coverage[0];
-  j["coverage_1U"] = final_stats.coverage[1];
-  j["coverage_2U"] = final_stats.coverage[2];
-  j["intrinsic_vertices"] = domain.vertex_count;
-  j["intrinsic_faces"] = domain.face_count;
-  j["area"] = domain.total_area;
-  j["respawns"] = c.respawns;
-  // Competing species: per species its agents, steady state U_i, and its layer's mean and coverage
-  // (the keys above are layer 0's); the preview's colour of each as #rrggbb.
-  for (size_t s = 0; s < final_species_stats.size(); ++s) {
-    const FieldStatistics& f = final_species_stats[s];
-    const std::array<double, 3> colour = species_colour(static_cast<int>(s));
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<unsigned>(std::lround(colour[0] * 255)),
-                  static_cast<unsigned>(std::lround(colour[1] * 255)), static_cast<unsigned>(std::lround(colour[2] * 255)));
-    j["species_layers"].push_back({{"species", s},
-                                   {"agents", arrays.species.species[s].agents},
-                                   {"U", f.U},
-                                   {"mean", f.mean},
-                                   {"coverage_0.5U", f.coverage[0]},
-                                   {"coverage_1U", f.coverage[1]},
-                                   {"coverage_2U", f.coverage[2]},
-                                   {"preview_colour", hex}});
-  }
-  // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
-  j["result_glb_vertices"] = exports.glb.vertices;
-  j["result_glb_seam_splits"] = exports.glb.seam_splits;
-  j["scene_file"] = o.scene;
-  // What `physarum render` needs to rebuild the surface and bake the texture again.
-  j["surface"] = surface_spec_json(SurfaceSpec::of(scene));
-  if (texels) j["texture"] = o.texture.to_json();
-  j["parameters"] = scene_parameters_json(scene);
-  // The colours as used (stops, levels in multiples of U): `physarum render` re-colours with it.
-  j["colormap"] = color_map_settings_json(scene.colormap);
-  checkpoints.record(j);
-  write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
-  checkpoints.remove_file();
-
-  std::cout << "physarum run: " << steps << " steps (" << simulation.time() << " s simulated) in " << seconds
-            << " s, " << j["agent_steps_per_second"].get<double>() << " agent-steps/s; mean " << final_stats.mean
-            << ", U " << U << "; wrote " << out.string() << "/{" << written << ", preview.png, stats.csv, run.json"
-            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}"
-            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
-  return 0;
+// Reads the scene (with the options' overrides and seed) and dispatches once, on its model.
+int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume) {
+  check_run_options(o);
+  // ---- everything that can reject the input, before any output exists ----
+  Scene scene = load_scene(o.scene, o.overrides());
+  if (o.seed) scene.seed = *o.seed;
+  if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
+  const long long steps = run_length_in_steps(o, scene);
+  return is_reaction_diffusion(scene) ? run_reaction_diffusion(scene, o, steps, resume) : run_agents(scene, o, steps, resume);
 }
 
 int run_run(const RunOptions& given) {
@@ -355,6 +269,7 @@ Command add_run_command(CLI::App& parent) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* app = parent.add_subcommand(
       "run",
+      "Grow a pattern (agents or reaction-diffusion) on a surface and write its outputs\n"
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
       "pheromone), DIR/fields_full.ply (the result at full resolution: every intrinsic vertex on the input surface, "
       "exact values), DIR/texture.png (the pheromone baked onto the mesh's UVs; not for meshes without UVs), "
@@ -366,7 +281,7 @@ Command add_run_command(CLI::App& parent) {
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "
-      "'mesh' is a file path relative to the scene file or shape:NAME (tools/scenes/ has examples; README.md "
+      "'mesh' is a file path relative to the scene file or shape:NAME (tools/scenes/ has examples; docs/scenes.md "
       "lists every key). Exit codes: 0 success, 1 bad input (nothing is written), 2 usage error.");
   app->add_option("scene", options->scene,
                   "Scene file (JSON), e.g. tools/scenes/default.json, the built-in default scene (a sphere); "

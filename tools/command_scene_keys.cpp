@@ -1,7 +1,7 @@
 // `physarum scene-keys`: every key a scene file may contain, with its unit, allowed values, default
-// and meaning, as the Markdown table the README shows (common/scene_keys.hpp; the README's copy is
+// and meaning, as the Markdown table the README shows (common/scene/scene_keys.hpp; the README's copy is
 // checked against this by tests/test_parameter_table.cpp).
-#include "common/scene_keys.hpp"
+#include "common/scene/scene_keys.hpp"
 #include "tools/commands.hpp"
 
 #include <cstdio>

@@ -8,8 +8,8 @@
 // runs job i (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`), or DIR/jobs.txt, one `physarum run`
 // command per line for GNU parallel. The runs share nothing but their output folders. --collect
 // writes DIR/sweep.csv and DIR/contact_sheet.png (tools/sweep_collect.hpp).
-#include "common/atomic_write.hpp"
-#include "common/errors.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
 #include "opencl/device_selection.hpp"
 #include "tools/commands.hpp"
 #include "tools/sweep_collect.hpp"
@@ -190,6 +190,7 @@ Command add_sweep_command(CLI::App& parent) {
   auto options = std::make_shared<SweepOptions>();
   CLI::App* app = parent.add_subcommand(
       "sweep",
+      "Parameter sweeps: plan them, run them here or on a cluster, collect the results\n"
       "Parameter sweeps: expand a scene's variants (--vary grids or --csv rows) x seeds into DIR/jobs.jsonl, run "
       "them here on a pool of processes (--run, resumable), or write them for a cluster (--emit slurm: DIR/sweep.slurm; "
       "--emit parallel: DIR/jobs.txt); --collect DIR gathers DIR/sweep.csv and DIR/contact_sheet.png. Example: "

@@ -1,10 +1,11 @@
 #include "tools/comparison_arms.hpp"
 
-#include "common/errors.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/reaction_diffusion_build.hpp"
-#include "common/reaction_diffusion_metrics.hpp"
-#include "common/scene_overrides.hpp"
+#include "common/base/errors.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
+#include "common/harness/reaction_diffusion_metrics.hpp"
+#include "common/scene/scene_overrides.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/feasible_surface.hpp"
 
@@ -53,13 +54,15 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
     std::optional<EvaluatedMaps> maps;
     if (!a.surface) {
       FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache);
-      a.surface = std::make_shared<const SceneSurface>(std::move(feasible.surface));
+      a.surface = std::make_shared<const PreparedSurface>(std::move(feasible.surface));
       maps = std::move(feasible.maps);
     } else {
       maps = cached_evaluate_maps(map_sources_of(a.scene), *a.surface, cache);
     }
     arrays[i] = std::make_shared<const SceneArrays>(scene_arrays(a.scene, *a.surface, *maps));
     a.scene = with_mean_parameters(a.scene, arrays[i]->parameters, a.surface->domain);
+    if (steady_mean_is_U(a.scene))
+      a.expected_mean_over_U = expected_mean_over_U(a.scene, arrays[i]->parameters, a.surface->domain);
   }
 
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
@@ -81,10 +84,9 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
     arms[i].measure = [arrays = arrays[i], metrics = metrics[i]](const Arm& arm, const Scene& seeded,
                                                                  const opencl::ComputeContext* compute) {
       const auto sim = make_backend(arm.backend, compute, arm.surface->domain, seeded, *arrays, arm.options);
-      return metrics->measure_seed(*sim, seeded);
+      return metrics->measure_seed(*sim, seeded, arm.expected_mean_over_U.value_or(1.0));
     };
   }
-
 }
 
 // Reaction-diffusion arms: the surface (built once where shared) and maps as `physarum run` builds
@@ -98,7 +100,7 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
     for (size_t j = 0; j < i; ++j)
       if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
     if (!a.surface)
-      a.surface = std::make_shared<const SceneSurface>(
+      a.surface = std::make_shared<const PreparedSurface>(
           prepare_scene_surface(a.scene, [](const std::string& line) { std::cerr << line << "\n"; }));
     maps[i] = std::make_shared<const EvaluatedMaps>(evaluate_maps(a.scene.maps, *a.surface, a.scene.source));
   }

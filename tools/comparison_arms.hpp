@@ -10,11 +10,11 @@
 //
 // An arm's seeds never overlap the other's: arm 0 runs seeds scene.seed + i, arm 1 scene.seed +
 // 100000 + i (the reference arm's numbering, which stored statistics depend on).
-#include "common/comparison_metrics.hpp"
-#include "common/scene.hpp"
-#include "common/scene_maps.hpp"
-#include "common/scene_surface.hpp"
-#include "common/workload.hpp"
+#include "common/harness/comparison_metrics.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/compute_context.hpp"
 #include "opencl/simulation.hpp"
 
@@ -46,7 +46,7 @@ constexpr std::uint32_t kSecondArmSeedOffset = 100000;
 
 // One arm of a comparison: a scene, the backend that runs it, and how one seed of it is run and
 // measured. The agent model and reaction-diffusion systems differ only in that last part (their
-// metric sets, common/comparison_metrics.hpp and common/reaction_diffusion_metrics.hpp, and how a
+// metric sets, common/harness/comparison_metrics.hpp and common/harness/reaction_diffusion_metrics.hpp, and how a
 // fresh simulation is built), so it is a function of the arm; the seed numbering, the threads that
 // run the seeds (tools/seed_runner.hpp) and the verdict (tools/command_compare.cpp) are shared.
 struct Arm {
@@ -55,12 +55,15 @@ struct Arm {
   // (with_mean_parameters: what U and the metrics' length scales read).
   Scene scene;
   BackendChoice backend = BackendChoice::Reference;
-  std::shared_ptr<const SceneSurface> surface;
+  std::shared_ptr<const PreparedSurface> surface;
   std::vector<MetricInfo> metrics;     // what measure returns, in order, with the margins
   std::vector<std::string> left_out;   // metrics of the documented set this scene cannot judge, and why
   std::optional<opencl::ComputeContext> compute;  // OpenCL arms
   opencl::OpenCLSimulationOptions options;        // OpenCL arms: planted faults
   std::uint32_t seed_offset = 0;
+  // The steady mean / U the arm's time-discrete model reaches (common/setup/agent_inputs.hpp:
+  // expected_mean_over_U) where its continuous mean is U (steady_mean_is_U); unset otherwise.
+  std::optional<double> expected_mean_over_U;
   // Builds a fresh simulation of `seeded` (the arm's scene with one seed) on `arm`'s backend, with
   // its planted faults (`compute`: the OpenCL context or queue to run it on, null for the reference),
   // and returns its time-averaged metrics. Safe to call from several threads at once.
@@ -85,7 +88,7 @@ struct ArmsRequest {
 // margins). Surfaces that are the same are built once; when the arms differ in surface or agent
 // count, the metrics tied to one discretisation are left out (ArmsShare). A reaction-diffusion
 // scene gets reaction-diffusion arms: each seed builds the system with its own seed (its noise and
-// spots) and is measured by common/reaction_diffusion_metrics.hpp, with the pattern scale of the
+// spots) and is measured by common/harness/reaction_diffusion_metrics.hpp, with the pattern scale of the
 // arm judged against. `agents` in an --arm
 // without `deposit_rate` rescales the deposit so that U (Eq. 5) stays the scene's, as the paper's
 // agent-count study does (Fig. 10c). Throws InputError when the arms' metric sets differ.

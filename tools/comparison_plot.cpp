@@ -1,11 +1,13 @@
 #include "tools/comparison_plot.hpp"
 
-#include "common/equivalence_test.hpp"
-#include "common/line_plot.hpp"
+#include "common/harness/equivalence_test.hpp"
+#include "common/output/line_plot.hpp"
+
+#include <cmath>
 
 namespace physarum::cli {
 
-void write_comparison_plot(const std::string& path, const std::vector<std::string>& metric_names,
+bool write_comparison_plot(const std::string& path, const std::vector<std::string>& metric_names,
                            const std::vector<std::vector<double>>& reference,
                            const std::vector<std::vector<double>>& opencl) {
   std::vector<PlotSeries> series;
@@ -37,12 +39,17 @@ void write_comparison_plot(const std::string& path, const std::vector<std::strin
       if (!s.x.empty()) series.push_back(std::move(s));
     }
   }
+  bool drawable = false;
+  for (const PlotSeries& s : series)
+    for (double y : s.y) drawable = drawable || (std::isfinite(y) && y > 0.0);
+  if (!drawable) return false;
   PlotOptions options;
   options.log_y = true;
   options.title = "Spectral band powers, mean +- 1 sd over seeds";
   options.x_label = "band (low to high spatial frequency)";
   options.y_label = "power / mean^2";
   write_line_plot_png(path, series, options);
+  return true;
 }
 
 }  // namespace physarum::cli

@@ -7,7 +7,9 @@
 
 namespace physarum::cli {
 
-void write_comparison_plot(const std::string& path, const std::vector<std::string>& metric_names,
+// False, writing nothing, when no band power can be drawn (no band metric, or none finite and > 0 on
+// the logarithmic axis): a comparison's verdict never depends on its picture.
+bool write_comparison_plot(const std::string& path, const std::vector<std::string>& metric_names,
                            const std::vector<std::vector<double>>& reference,
                            const std::vector<std::vector<double>>& opencl);
 

@@ -1,6 +1,6 @@
 #include "tools/contact_sheet.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

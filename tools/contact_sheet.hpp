@@ -9,7 +9,7 @@
 // row_label_width is 0 when the rows carry no labels (one row). Thumbnails keep their preview's
 // aspect ratio, centred in a thumbnail x thumbnail square. Labels are drawn in DejaVu Sans
 // (fonts-dejavu-core); without the font the sheet is drawn unlabelled, with a note on stderr.
-#include "common/preview_image.hpp"
+#include "common/output/preview_image.hpp"
 
 #include <string>
 #include <vector>

@@ -1,8 +1,8 @@
 #include "tools/feasible_surface.hpp"
 
-#include "common/agent_model.hpp"
-#include "common/run_feasibility.hpp"
-#include "common/scene_maps.hpp"
+#include "common/model/agent_model.hpp"
+#include "common/setup/run_feasibility.hpp"
+#include "common/setup/scene_maps.hpp"
 
 #include <iostream>
 #include <string>
@@ -24,7 +24,7 @@ FeasibleSurface prepare_feasible_surface(const Scene& given, long long steps, co
   if (!mapped) check_scales(given);
   FeasibleSurface feasible;
   feasible.surface = prepare_scene_surface(given, [](const std::string& line) { std::cerr << line << "\n"; });
-  const SceneSurface& surface = feasible.surface;
+  const PreparedSurface& surface = feasible.surface;
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   feasible.maps = cached_evaluate_maps(map_sources_of(given), surface, cache, &feasible.maps_report);
   const Scene scene =

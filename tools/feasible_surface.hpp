@@ -1,18 +1,18 @@
 #pragma once
-// The fail-fast checks of a scene that is about to be simulated (common/run_feasibility.hpp), in the
+// The fail-fast checks of a scene that is about to be simulated (common/setup/run_feasibility.hpp), in the
 // order the command line runs them before writing anything: the time step against the model's
 // time scales (warnings on stderr, or InputError), the surface (refused before refining when the
 // refinement would exceed its budget, announced when it will be long), then the run's work: one
 // estimate line on stderr (on a terminal, or for a long run), and InputError when a length exceeds the surface or the work is absurd.
-#include "common/cached_map_evaluation.hpp"
-#include "common/map_cache.hpp"
-#include "common/scene.hpp"
-#include "common/scene_surface.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/maps/map_cache.hpp"
+#include "common/scene/scene.hpp"
+#include "common/setup/scene_surface.hpp"
 
 namespace physarum::cli {
 
 struct FeasibleSurface {
-  SceneSurface surface;
+  PreparedSurface surface;
   // The scene's maps on the surface, evaluated once here through the map cache: a scene with
   // parameter maps needs them for its checks, and the caller builds its backend from them.
   EvaluatedMaps maps;

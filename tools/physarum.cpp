@@ -1,15 +1,36 @@
 // The `physarum` command-line program: one entry point for users, tests and benchmarks.
-// Exit codes (the README's "Exit codes"): 0 success, 1 bad input or a failed check, 2 usage error.
-#include "common/errors.hpp"
+// Exit codes (docs/commands.md, "Exit codes"): 0 success, 1 bad input or a failed check, 2 usage error.
+#include "common/base/errors.hpp"
 #include "tools/commands.hpp"
 
 #include <iostream>
+#include <sstream>
+#include <string>
 #include <vector>
+
+namespace {
+
+// `physarum --help` lists each command in one line: the first line of its description. The whole
+// description stays in the command's own --help.
+class OneLineCommandList : public CLI::Formatter {
+ public:
+  std::string make_subcommand(const CLI::App* sub) const override {
+    const std::string& description = sub->get_description();
+    std::stringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(true), description.substr(0, description.find('\n')),
+                             column_width_);
+    return out.str();
+  }
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"physarum — Physarum slime-mold patterns grown on intrinsic triangulations of curved surfaces"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "physarum 0.1");
+  app.formatter(std::make_shared<OneLineCommandList>());
+  app.footer("Each command's own --help has the details; docs/commands.md is the manual.\n");
 
   std::vector<physarum::cli::Command> commands;
   commands.push_back(physarum::cli::add_mesh_command(app));

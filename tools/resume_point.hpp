@@ -3,7 +3,7 @@
 // DIR/checkpoint.bin, already checked for corruption, and its path for messages. Both models' run
 // loops (tools/command_run.cpp, tools/run_reaction_diffusion.cpp) restore their backend from it and
 // take the run's bookkeeping (stats rows so far, seconds so far) from its header.
-#include "common/checkpoint.hpp"
+#include "common/run/checkpoint.hpp"
 
 #include <string>
 

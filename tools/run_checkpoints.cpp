@@ -1,7 +1,7 @@
 #include "tools/run_checkpoints.hpp"
 
-#include "common/atomic_write.hpp"
-#include "common/errors.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
 
 #include <algorithm>
 #include <cmath>

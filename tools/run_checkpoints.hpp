@@ -6,8 +6,8 @@
 // simulated time (atomically replaced), run.json's record of it, and removing it once the outputs are
 // complete. The seconds in a checkpoint are simulation seconds: the loop passes what it spent on
 // anything else (statistics rows, frames), and the time spent writing checkpoints is left out here.
-#include "common/checkpoint.hpp"
-#include "common/simulation_backend.hpp"
+#include "common/run/checkpoint.hpp"
+#include "common/simulation/simulation_backend.hpp"
 #include "tools/resume_point.hpp"
 #include "tools/run_options.hpp"
 

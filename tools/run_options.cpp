@@ -1,8 +1,8 @@
 #include "tools/run_options.hpp"
 
-#include "common/content_hash.hpp"
-#include "common/errors.hpp"
-#include "common/scene_overrides.hpp"
+#include "common/base/content_hash.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene_overrides.hpp"
 
 #include <filesystem>
 

@@ -16,7 +16,7 @@ namespace physarum::cli {
 
 struct RunOptions {
   std::string scene;
-  std::vector<std::string> sets;  // --set KEY=VALUE (common/scene_overrides.hpp), in the order given
+  std::vector<std::string> sets;  // --set KEY=VALUE (common/scene/scene_overrides.hpp), in the order given
   std::string backend = "auto";
   std::string device;  // --device SPEC (auto or opencl); "" = $PHYSARUM_DEVICE or the default choice
   std::optional<long long> steps;
@@ -39,7 +39,7 @@ struct RunOptions {
 nlohmann::json run_options_json(const RunOptions& o);
 RunOptions run_options_from_json(const nlohmann::json& j, const std::string& where);
 
-// What the run simulates, hashed (common/content_hash.hpp): the scene file's bytes, the overrides,
+// What the run simulates, hashed (common/base/content_hash.hpp): the scene file's bytes, the overrides,
 // the seed override and the mesh file's bytes (not for shape:NAME). A checkpoint stores it; a
 // resume whose hash differs is refused. `mesh` is the scene's resolved mesh (Scene::mesh).
 std::string scene_identity_hash(const RunOptions& o, const std::string& mesh);

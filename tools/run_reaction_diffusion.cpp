@@ -1,21 +1,22 @@
 #include "tools/run_reaction_diffusion.hpp"
 
-#include "common/atomic_write.hpp"
-#include "common/cached_map_evaluation.hpp"
-#include "common/errors.hpp"
-#include "common/field_transfer.hpp"
-#include "common/full_resolution_mesh.hpp"
-#include "common/map_cache.hpp"
-#include "common/map_evaluation.hpp"
-#include "common/scene_maps.hpp"
-#include "common/ply_writer.hpp"
-#include "common/preview_image.hpp"
-#include "common/reaction_diffusion_build.hpp"
-#include "common/scene_surface.hpp"
-#include "common/texture_bake.hpp"
-#include "common/time_lapse.hpp"
+#include "common/output/maps_ply.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/field_transfer.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/maps/map_cache.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/time_lapse.hpp"
 #include "tools/backend_factory.hpp"
-#include "tools/run_checkpoints.hpp"
+#include "tools/run_loop.hpp"
 #include "tools/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
@@ -26,17 +27,24 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace physarum::cli {
 namespace {
-
-// About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
-constexpr long long kStatsRows = 100;
 
 std::string number(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", x);
   return buffer;
+}
+
+// The run diverged when a morphogen is no longer finite: an error, not a result.
+void check_finite(const SimulationBackend& simulation, const std::vector<std::string>& morphogens, const std::string& source) {
+  for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
+    for (const double x : simulation.field_values(m))
+      if (!std::isfinite(x))
+        throw InputError(source + ": morphogen '" + morphogens[static_cast<size_t>(m)] +
+                         "' is no longer finite: the run diverged (a smaller time_step, or \"integrator\": \"imex\")");
 }
 
 }  // namespace
@@ -72,7 +80,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   TimeLapse time_lapse(o.frames, steps);
 
   // ---- everything that can reject the input, before any output exists ----
-  const SceneSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
+  const PreparedSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
   for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
   const SurfaceDomain& domain = surface.domain;
   // Through the map cache, as the agent model's maps: a geodesic distance or a direction field is
@@ -107,128 +115,61 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   };
   // Colours over 0 .. the preview morphogen's largest value (levels in multiples of half of it), so
   // the picture uses the whole colour map whatever the model's units.
-  auto coloring_of = [&](const IntrinsicVertexData<double>& values) {
-    const double top = values.empty() ? 1.0 : *std::max_element(values.begin(), values.end());
-    return scene.colormap.mapping(top > 0.0 ? top / 2.0 : 1.0);
+  auto color_unit = [](const IntrinsicVertexData<double>& values) {
+    const double top = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+    return top > 0.0 ? top / 2.0 : 1.0;
   };
-  auto picture = [&] {
+
+  // ---- what a reaction-diffusion system writes (the run itself is the one run loop's) ----
+  ModelRun model;
+  model.fields_file = "morphogens.ply";
+  model.fields_description = "morphogens";
+  model.stats_header = morphogen_stats_header(morphogens);
+  model.stats_row = [&] { return morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass); };
+  model.frame = [&] {
     const IntrinsicVertexData<double> values = simulation.field_values(preview_layer);
     PreviewOptions preview;
-    preview.coloring = coloring_of(values);
+    preview.coloring = scene.colormap.mapping(color_unit(values));
     return render_preview(full.mesh, full.vertex_values(values), preview);
   };
-
-  // ---- checkpoints, and where the run starts ----
-  RunCheckpoints checkpoints(simulation, o, scene.mesh, scene.time_step, steps, resume);
-  std::string stats;
-  if (const std::string* resumed = checkpoints.resumed_stats()) {
-    stats = *resumed;
-  } else {
-    stats = morphogen_stats_header(morphogens) + "\n";
-    stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
-  }
-
-  // ---- simulate ----
-  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  checkpoints.start();
-  double side_seconds = 0.0;  // statistics rows and frames: not simulation
-  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
-    simulation.step();
-    if (s % stats_every == 0 || s == steps || time_lapse.due(s)) {
-      simulation.finish();  // the steps enqueued so far count as simulation, not as the reading below
-      const auto ts = std::chrono::steady_clock::now();
-      if (s % stats_every == 0 || s == steps)
-        stats += morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass) + "\n";
-      if (time_lapse.due(s)) time_lapse.add(picture());
-      side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
+  model.check_end = [&] { check_finite(simulation, morphogens, scene.source); };
+  model.result = [&] {
+    // The preview morphogen first: the colours, the preview and the exports show the first layer.
+    ModelResult r;
+    r.layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], simulation.field_values(preview_layer));
+    for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
+      if (m != preview_layer) r.layers.emplace_back(morphogens[static_cast<size_t>(m)], simulation.field_values(m));
+    r.coloring = scene.colormap.mapping(color_unit(r.layers.front().second));
+    return r;
+  };
+  model.run_json = [&](nlohmann::ordered_json& j, double seconds) {
+    j["model"] = spec.model;
+    j["morphogens"] = morphogens;
+    j["preview_morphogen"] = spec.preview_morphogen;
+    j["time_step"] = scene.time_step;
+    j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
+    j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+    j["substeps"] = substeps;
+    j["seed"] = scene.seed;
+    const std::vector<IntrinsicVertexData<double>> final_layers = layers();
+    for (size_t m = 0; m < final_layers.size(); ++m) {
+      const auto& u = final_layers[m];
+      j["final"][morphogens[m]] = {{"min", *std::min_element(u.begin(), u.end())},
+                                   {"max", *std::max_element(u.begin(), u.end())}};
     }
-    checkpoints.after_step(s, simulation, stats, side_seconds);
-  }
-  simulation.finish();
-  // A resumed run adds the seconds before its checkpoint.
-  const double seconds = checkpoints.simulation_seconds(side_seconds);
-  for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
-    for (const double x : simulation.field_values(m))
-      if (!std::isfinite(x))
-        throw InputError(scene.source + ": morphogen '" + morphogens[static_cast<size_t>(m)] +
-                         "' is no longer finite: the run diverged (a smaller time_step, or \"integrator\": \"imex\")");
-
-  // ---- outputs ----
-  create_output_folder(o.out);
-  const std::filesystem::path out(o.out);
-  const std::vector<IntrinsicVertexData<double>> final_layers = layers();
-  const IntrinsicVertexData<double>& shown = final_layers[static_cast<size_t>(preview_layer)];
-  const double top = shown.empty() ? 0.0 : *std::max_element(shown.begin(), shown.end());
-  const ColorMapping coloring = coloring_of(shown);
-  std::vector<InputVertexData<double>> on_input, on_full;
-  for (const auto& values : final_layers) {
-    on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
-    on_full.push_back(full.vertex_values(values));
-  }
-  // The preview morphogen first: PLY vertex colours are the first field's.
-  std::vector<size_t> order{static_cast<size_t>(preview_layer)};
-  for (size_t m = 0; m < final_layers.size(); ++m)
-    if (m != static_cast<size_t>(preview_layer)) order.push_back(m);
-  std::vector<PlyField> input_fields, full_fields;
-  for (const size_t m : order) {
-    input_fields.push_back(PlyField{morphogens[m], on_input[m]});
-    full_fields.push_back(PlyField{morphogens[m], on_full[m]});
-  }
-  write_fields_ply((out / "pheromone.ply").string(), input, input_fields, coloring, "morphogens per input vertex");
-  write_fields_ply((out / "fields_full.ply").string(), full.mesh, full_fields, coloring,
-                   "morphogens per intrinsic vertex (full resolution)");
-  PreviewOptions preview;
-  preview.coloring = coloring;
-  write_preview_png((out / "preview.png").string(), full.mesh, on_full[static_cast<size_t>(preview_layer)], preview);
-  const SurfaceExportsWritten exports = write_surface_exports(out, input, domain, texels, shown,
-                                                              on_input[static_cast<size_t>(preview_layer)], coloring, o.texture);
-  std::string written = "pheromone.ply, fields_full.ply, preview.png";
-  for (const std::string& name : exports.files) written += ", " + name;
-  write_text_file_atomically((out / "stats.csv").string(), stats);
-  time_lapse.write(o.out);
-
-  nlohmann::ordered_json j;
-  j["backend"] = simulation.backend_name();
-  j["backend_requested"] = o.backend;
-  j["device"] = simulation.device_name();
-  j["model"] = spec.model;
-  j["morphogens"] = morphogens;
-  j["preview_morphogen"] = spec.preview_morphogen;
-  j["steps"] = steps;
-  j["time_step"] = scene.time_step;
-  j["sim_time"] = simulation.time();
-  j["seconds"] = seconds;
-  j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
-  j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
-  j["substeps"] = substeps;
-  j["seed"] = scene.seed;
-  for (size_t m = 0; m < final_layers.size(); ++m) {
-    const auto& u = final_layers[m];
-    j["final"][morphogens[m]] = {{"min", *std::min_element(u.begin(), u.end())},
-                                 {"max", *std::max_element(u.begin(), u.end())}};
-  }
-  j["intrinsic_vertices"] = domain.vertex_count;
-  j["intrinsic_faces"] = domain.face_count;
-  j["area"] = domain.total_area;
-  j["scene_file"] = o.scene;
-  j["surface"] = surface_spec_json(SurfaceSpec::of(scene));
-  if (texels) j["texture"] = o.texture.to_json();
-  // What `physarum render` recolours by: the colour map and the unit its levels count in (half the
-  // preview morphogen's largest value, as coloring_of chose; an agent run's unit is U).
-  j["colormap"] = color_map_settings_json(scene.colormap);
-  j["color_unit"] = top > 0.0 ? top / 2.0 : 1.0;
-  j["reaction_diffusion"] = reaction_diffusion_json(spec);
-  if (!scene.maps.empty()) j["maps"] = scene.maps_given;
-  checkpoints.record(j);
-  write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
-  checkpoints.remove_file();
-
-  std::cout << "physarum run: " << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, "
-            << substeps << " sub-step" << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s; wrote "
-            << out.string() << "/{" << written << ", stats.csv, run.json"
-            << (time_lapse.enabled() ? ", frames/, frames.gif" : "") << "}"
-            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
-  return 0;
+    // What `physarum render` recolours by: the unit the colour map's levels count in (half the
+    // preview morphogen's largest value; an agent run's unit is U).
+    j["color_unit"] = color_unit(final_layers[static_cast<size_t>(preview_layer)]);
+    j["reaction_diffusion"] = reaction_diffusion_json(spec);
+    if (!scene.maps.empty()) j["maps"] = scene.maps_given;
+  };
+  model.summary = [&](double seconds) {
+    std::ostringstream line;
+    line << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, " << substeps << " sub-step"
+         << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s";
+    return line.str();
+  };
+  return run_and_write(simulation, RunSetup{o, scene, steps, resume, surface, full, texels, time_lapse}, model);
 }
 
 }  // namespace physarum::cli

@@ -1,7 +1,8 @@
 #pragma once
-// `physarum run` for a reaction-diffusion scene (common/scene_reaction_diffusion.hpp): the same
-// command, flags and output files as for the agent model, with the morphogens as the fields:
-//   DIR/pheromone.ply     the input mesh with every morphogen as a float vertex property of its name
+// `physarum run` for a reaction-diffusion scene (common/scene/scene_reaction_diffusion.hpp): the same
+// command, flags, run loop (tools/run_loop.hpp) and output files as for the agent model, with the
+// morphogens as the fields:
+//   DIR/morphogens.ply    the input mesh with every morphogen as a float vertex property of its name
 //                         (the preview morphogen first: the vertex colours are its),
 //   DIR/fields_full.ply   the same at full resolution (every intrinsic vertex, exact values),
 //   DIR/preview.png       the preview morphogen ("preview_morphogen", default the second), coloured
@@ -10,14 +11,14 @@
 //   DIR/stats.csv         time,<m>_mean,<m>_variance,... per morphogen (area-weighted over the surface),
 //   DIR/run.json          model, morphogens, steps, seconds, sub-steps, the system as run, the surface;
 // with --maps-out FILE the scene's maps on the input mesh (written before simulating, as for agents).
-// The maps come through the map cache (common/cached_map_evaluation.hpp), as for the agent model.
+// The maps come through the map cache (common/setup/cached_map_evaluation.hpp), as for the agent model.
 // With --checkpoint-every T, DIR/checkpoint.bin holds every morphogen (the backend's save_state)
 // every T simulated seconds; `physarum run --resume DIR` continues bit for bit and writes what the
 // uninterrupted run would have (tools/command_run.cpp says the rules; they are the agent model's).
 // As for the agent model, everything that can reject the input happens before DIR is touched, and
 // every file is written under a temporary name and renamed.
-#include "common/element_data.hpp"
-#include "common/scene.hpp"
+#include "common/base/element_data.hpp"
+#include "common/scene/scene.hpp"
 #include "tools/resume_point.hpp"
 #include "tools/run_options.hpp"
 

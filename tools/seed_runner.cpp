@@ -1,6 +1,6 @@
 #include "tools/seed_runner.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <atomic>
 #include <exception>

@@ -1,10 +1,22 @@
 #!/usr/bin/env bash
-# Installs every Debian package physarum needs (idempotent, as root), creates the Python environment
-# .venv that the independent reader test uses (tests/read_exports.py: trimesh, numpy, pillow at
-# pinned versions), and builds physarum in Release into ./build. Safe to run again: packages
-# already present are not reinstalled, a .venv that already holds the pinned versions is kept.
+# Installs every Debian package physarum needs (idempotent, as root) and builds the `physarum`
+# program in Release into ./build: what a first run needs, nothing more.
+#   bash tools/setup.sh           the program only (the README's first command)
+#   bash tools/setup.sh --tests   also the Python environment .venv that the independent reader test
+#                                 uses (tests/read_exports.py: trimesh, numpy, pillow at pinned
+#                                 versions) and every target: the test program, the benchmarks, the
+#                                 device check (the README's second command, CI)
+# Safe to run again: packages already present are not reinstalled, a .venv that already holds the
+# pinned versions is kept, and the build is incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+with_tests=false
+case "${1:-}" in
+  "") ;;
+  --tests) with_tests=true ;;
+  *) echo "usage: bash tools/setup.sh [--tests]" >&2; exit 2 ;;
+esac
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -43,7 +55,7 @@ except PackageNotFoundError:
     sys.exit(1)
 PY
 }
-if ! venv_is_current; then
+if $with_tests && ! venv_is_current; then
   echo "setup: creating $venv with ${python_packages[*]}"
   python3 -m venv "$venv"
   "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "${python_packages[@]}"
@@ -51,4 +63,8 @@ if ! venv_is_current; then
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j "$(nproc)"
+if $with_tests; then
+  cmake --build build -j "$(nproc)"
+else
+  cmake --build build -j "$(nproc)" --target physarum
+fi

@@ -1,7 +1,7 @@
 #include "tools/surface_exports.hpp"
 
-#include "common/errors.hpp"
-#include "common/texture_image.hpp"
+#include "common/base/errors.hpp"
+#include "common/output/texture_image.hpp"
 
 #include <iostream>
 

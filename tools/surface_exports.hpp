@@ -4,13 +4,13 @@
 // texture. `physarum run` writes them after simulating; `physarum render` writes them again with
 // other colours, rebuilding the surface from what run.json records (so both go through this one
 // function and a re-coloured texture is made exactly as the run's was).
-#include "common/color_mapping.hpp"
-#include "common/element_data.hpp"
-#include "common/gltf_writer.hpp"
-#include "common/input_mesh.hpp"
-#include "common/scene_surface.hpp"
-#include "common/surface_domain.hpp"
-#include "common/texture_bake.hpp"
+#include "common/color/color_mapping.hpp"
+#include "common/base/element_data.hpp"
+#include "common/output/gltf_writer.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/surface/surface_domain.hpp"
+#include "common/output/texture_bake.hpp"
 
 #include <nlohmann/json.hpp>
 

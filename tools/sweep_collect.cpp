@@ -1,7 +1,7 @@
 #include "tools/sweep_collect.hpp"
 
-#include "common/atomic_write.hpp"
-#include "common/errors.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,9 +1,9 @@
 #include "tools/sweep_plan.hpp"
 
-#include "common/atomic_write.hpp"
-#include "common/errors.hpp"
-#include "common/scene.hpp"
-#include "common/scene_overrides.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_overrides.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,7 +1,7 @@
 #pragma once
 // A parameter sweep as a list of independent runs (`physarum sweep`, tools/command_sweep.cpp): the
 // scene's variants (a grid of --vary values, or the rows of a CSV file) times the seeds, each run one
-// `physarum run` of its own with the variant as --set overrides (common/scene_overrides.hpp) and its
+// `physarum run` of its own with the variant as --set overrides (common/scene/scene_overrides.hpp) and its
 // own output folder. Written to the sweep folder DIR as
 //
 //   DIR/sweep.json   what was asked: the scene, the varied keys and their values (or the CSV rows),

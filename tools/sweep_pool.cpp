@@ -1,6 +1,6 @@
 #include "tools/sweep_pool.hpp"
 
-#include "common/errors.hpp"
+#include "common/base/errors.hpp"
 
 #include <chrono>
 #include <cstdio>

@@ -9,9 +9,10 @@
 // step against the triad.
 //   physarum_device_check [--device SPEC] [--only SECTION[,SECTION...]]
 // SECTION: checks, throughput, implicit, rd (all when --only is not given).
-#include "common/field_statistics.hpp"
-#include "common/scene_surface.hpp"
-#include "common/workload.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/setup/workload.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/host_cholesky_solve.hpp"
 #include "opencl/hybrid_matrix.hpp"
@@ -66,7 +67,7 @@ void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const 
 
 void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
   const Scene sc = scene(5000, integrator);
-  OpenCLSimulation sim(compute, domain, sc);
+  OpenCLSimulation sim(compute, domain, constant_parameters(sc, domain), simulation_settings(sc));
   const double U = uniform_steady_state(sc, domain.total_area);
   sim.fill_field(U);
   double sum = 0.0;

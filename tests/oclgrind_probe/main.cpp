@@ -5,7 +5,8 @@
 //   physarum_oclgrind_probe               the clean run
 //   physarum_oclgrind_probe --fault-demo  a kernel that writes one element past its buffer: proves
 //                                         the oclgrind check can fail
-#include "common/errors.hpp"
+#include "common/setup/agent_inputs.hpp"
+#include "common/base/errors.hpp"
 #include "delaunay_domain.hpp"
 #include "kernels/device_types.h"
 #include "opencl/compute_context.hpp"
@@ -91,7 +92,7 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   options.agents_per_work_item = agents_per_work_item;
   options.pheromone.cg_max_iterations = 64;
   options.pheromone.cg_check_interval = 8;
-  OpenCLSimulation sim(compute, domain, scene, options);
+  OpenCLSimulation sim(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
   sim.run(3);
   const SimulationCounters c = sim.counters();
   const FieldStatistics stats = sim.field_statistics(1.0);
@@ -105,7 +106,7 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   check(damaged.empty(), label + ": canaries intact" + names);
 }
 
-// The same agents with every control of Sec. 3.3 switched on (common/simulation_controls.hpp), so
+// The same agents with every control of Sec. 3.3 switched on (common/model/simulation_controls.hpp), so
 // their kernel paths run under the checker too: a read-stimulus and a write rate (with negative
 // values, clamped), spawn weights with a zero region and a sink (mean lifetime 0), a bias of
 // symmetry 3 with spawn headings along it and a zero-direction face, a terminating boundary on the

@@ -1,5 +1,5 @@
 """Writes checker.ply for activation_map.json: the vertices of shape:square (a 33 x 33 grid on the
-unit square, row by row, as common/shapes.cpp builds it) with a per-vertex property "checker" that
+unit square, row by row, as common/mesh/shapes.cpp builds it) with a per-vertex property "checker" that
 alternates 0 / 1 between neighbouring grid vertices. A parameter map that changes at every vertex
 makes reading it at the face centroid (the planted fault map-at-centroid) differ from interpolating
 it at the agent's position in every face, not only along a few region borders.

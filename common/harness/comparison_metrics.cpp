@@ -1,0 +1,218 @@
+#include "common/setup/agent_inputs.hpp"
+#include "common/harness/comparison_metrics.hpp"
+
+#include "common/base/errors.hpp"
+#include "common/simulation/field_statistics.hpp"
+#include "common/harness/harmonic_bands.hpp"
+#include "common/harness/spectral_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace physarum {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Scales of the detail metrics, in sensor distances: the pattern's own scale is set by the sensor
+// distance d (an agent steers towards pheromone d ahead of it, so strands and the gaps between them
+// are a few d apart), and 1/4 .. 4 d brackets it from the strands' width to the network's cells.
+constexpr double kDetailScales[] = {0.25, 0.5, 1.0, 2.0, 4.0};
+constexpr double kCoarsestDetailScale = 4.0;
+
+std::string metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g m", v);
+  return text;
+}
+
+}  // namespace
+
+double mean_edge_length(const SurfaceDomain& domain) {
+  return std::sqrt(4.0 / std::sqrt(3.0) * domain.total_area / domain.face_count);
+}
+
+ComparisonMetrics::ComparisonMetrics(const PreparedSurface& surface, const Scene& scene, ArmsShare share)
+    : domain_(surface.domain), settings_(scene.comparison) {
+  const ComparisonSettings& c = settings_;
+  const double d = scene.parameters[Param::sensor_distance];
+  // The coarsest scale the pattern has: spectral bands above it see only how the network's cells
+  // happen to be laid out on the surface, which is metastable and differs from seed to seed by as
+  // much as a third, so no affordable number of seeds decides them.
+  const double pattern_scale = kCoarsestDetailScale * d;
+  const bool same_discretisation = share.discretisation;
+
+  // mean / U: the model's one analytic answer (Eq. 5); a backend that loses or invents mass fails
+  // here before anything else.
+  metrics_.push_back({"mean_over_U", MarginKind::Absolute, c.margin_mean});
+  // Coverage above 0.5, 1 and 2 U: how the mass is distributed between strands and background,
+  // whatever the pattern's geometry; cheap, dimensionless and steady from seed to seed.
+  for (const char* name : {"coverage_0.5U", "coverage_1U", "coverage_2U"})
+    metrics_.push_back({name, MarginKind::Absolute, c.margin_coverage});
+
+  // Harmonic bands (common/harness/harmonic_bands.hpp: equal mode counts, whole eigenspaces): only the
+  // modes at the pattern's scale or finer (wavelength 2 pi / sqrt(lambda) at most 4 d), where they
+  // add how the power is spread over the scales the detail energies summarise. Without enough such
+  // modes among the computed eigenpairs, no bands.
+  if (!same_discretisation) {
+    left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ");
+  } else {
+    eigenpairs_ = smallest_eigenpairs(domain_, settings_.eigenpairs, true);
+    const Eigen::VectorXd& lambda = eigenpairs_.values;
+    const int computed = static_cast<int>(lambda.size());
+    const double lambda_max = computed > 0 ? lambda.maxCoeff() : 0.0;
+    const double lambda_pattern = (2.0 * kPi / pattern_scale) * (2.0 * kPi / pattern_scale);
+    const HarmonicBandAssignment assignment = assign_harmonic_bands(lambda, lambda_pattern, c.spectrum_bands);
+    if (assignment.bands < 1) {
+      // Weyl's law, N(lambda) ~ area lambda / (4 pi): the modes above the pattern's scale, plus one band.
+      const double needed = domain_.total_area * lambda_pattern / (4.0 * kPi) + kMinModesPerBand + 1;
+      const double shortest = lambda_max > 0.0 ? 2.0 * kPi / std::sqrt(lambda_max) : INFINITY;
+      left_out_.push_back("harmonic bands: " + std::to_string(assignment.usable) + " of the " + std::to_string(computed) +
+                          " eigenpairs (shortest wavelength " + metres(shortest) + ") lie at the pattern's scale 4 d = " +
+                          metres(pattern_scale) + " or finer, fewer than the " + std::to_string(kMinModesPerBand) +
+                          " a band needs (compare_eigenpairs of about " +
+                          std::to_string(static_cast<long long>(std::ceil(needed))) + " would give one)");
+    } else {
+      harmonic_band_of_mode_ = assignment.band_of_mode;
+      for (int b = 1; b <= assignment.bands; ++b)
+        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+      harmonic_bands_ = assignment.bands;
+    }
+  }
+
+  // Detail energies at 1/4 .. 4 sensor distances (scene value; maps would use their mean): they see
+  // the pattern at its own scale on any surface, with any number of eigenpairs, and average over
+  // many of the pattern's cells, so they vary little from seed to seed. They are continuum
+  // quantities, comparable between two triangulations of one surface.
+  const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
+  for (double multiple : kDetailScales) {
+    const double scale = multiple * d;
+    char name[32];
+    std::snprintf(name, sizeof name, "detail_%gd", multiple);
+    if (!same_discretisation && scale < kResolvedScaleInEdges * share.coarsest_edge_length) {
+      left_out_.push_back(std::string(name) + ": its scale " + metres(scale) + " is below " +
+                          std::to_string(static_cast<int>(kResolvedScaleInEdges)) +
+                          " edge lengths of the coarser arm's triangulation (" + metres(share.coarsest_edge_length) +
+                          " each), where the two triangulations resolve the field differently");
+      continue;
+    }
+    const double t = (scale / (2.0 * kPi)) * (scale / (2.0 * kPi));
+    Eigen::SparseMatrix<double> S = t * L;
+    for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
+    auto solver = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(S);
+    if (solver->info() != Eigen::Success) throw InputError("compare: cannot factorise the diffusion smoother");
+    smoothers_.push_back(solver);
+    metrics_.push_back({name, MarginKind::Relative, c.margin_detail});
+  }
+
+  // Radial bands on flat domains: the power spectrum on a grid independent of the triangulation.
+  // In the set under the same rule as the harmonic bands: only when the grid resolves the pattern's
+  // scale (side / (grid / 2) at most 4 d).
+  try {
+    plane_xy_ = planar_vertex_coordinates(domain_, surface.simulated);
+    flat_ = true;
+  } catch (const InputError&) {
+    flat_ = false;  // curved: the manifold harmonics are the spectrum
+  }
+  if (flat_) {
+    Eigen::Vector2d low = plane_xy_.front(), high = plane_xy_.front();
+    for (const Eigen::Vector2d& p : plane_xy_) low = low.cwiseMin(p), high = high.cwiseMax(p);
+    const double finest = (high - low).maxCoeff() / (grid_size_ / 2);
+    if (finest > pattern_scale) {
+      left_out_.push_back("radial bands: the " + std::to_string(grid_size_) + "-cell grid resolves " +
+                          metres(finest) + ", coarser than the pattern's scale 4 d = " + metres(pattern_scale));
+    } else {
+      radial_bands_ = c.spectrum_bands;
+      for (int b = 1; b <= radial_bands_; ++b)
+        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+    }
+  }
+
+  // Agent-density dispersion: whether the agents cluster on the strands as they should. It is the
+  // one metric of the agents rather than the field, so a fault that moves agents without yet
+  // changing the field shows here first. Its shot-noise floor (F - 1) / N depends on the faces and
+  // the agent count, so it compares arms on one discretisation only.
+  agent_density_ = same_discretisation;
+  if (agent_density_)
+    metrics_.push_back({"agent_density", MarginKind::Relative, c.margin_density});
+  else
+    left_out_.push_back("agent_density: its shot-noise floor (F - 1) / N differs between the arms' discretisations");
+}
+
+std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim, double U) const {
+  std::vector<double> m;
+  m.reserve(metrics_.size());
+  const FieldStatistics stats = sim.field_statistics(U);
+  m.push_back(stats.mean / U);
+  for (double coverage : stats.coverage) m.push_back(coverage);
+
+  const IntrinsicVertexData<double> field = sim.field_values();
+  // Band power: sum of c_k^2 over the band's modes / (area * mean^2), dimensionless (as in
+  // spectral_metrics.hpp).
+  const double mean = stats.mean;
+  if (harmonic_bands_ > 0) {
+    const Eigen::VectorXd c = manifold_harmonic_coefficients(eigenpairs_, domain_.vertex_mass, field);
+    std::vector<double> power(static_cast<size_t>(harmonic_bands_), 0.0);
+    for (int k = 0; k < c.size(); ++k)
+      if (harmonic_band_of_mode_[static_cast<size_t>(k)] >= 0)
+        power[static_cast<size_t>(harmonic_band_of_mode_[static_cast<size_t>(k)])] += c[k] * c[k];
+    for (double p : power) m.push_back(mean > 0.0 ? p / (domain_.total_area * mean * mean) : 0.0);
+  }
+
+  {
+    Eigen::VectorXd u(domain_.vertex_count), mu(domain_.vertex_count);
+    for (int i = 0; i < domain_.vertex_count; ++i) {
+      u[i] = field[static_cast<size_t>(i)];
+      mu[i] = domain_.vertex_mass[static_cast<size_t>(i)] * u[i];
+    }
+    for (const auto& smoother : smoothers_) {
+      const Eigen::VectorXd detail = u - smoother->solve(mu);
+      double energy = 0.0;
+      for (int i = 0; i < domain_.vertex_count; ++i) energy += domain_.vertex_mass[static_cast<size_t>(i)] * detail[i] * detail[i];
+      m.push_back(mean > 0.0 ? energy / (domain_.total_area * mean * mean) : 0.0);
+    }
+  }
+
+  if (radial_bands_ > 0) {
+    // Radii 1 .. grid/2 (whole annuli) in equal bands; radius 0 is the mean, left out.
+    const RadialSpectrum spectrum = radial_power_spectrum(plane_xy_, domain_.face_vertices, field, grid_size_);
+    const int top = grid_size_ / 2;
+    std::vector<double> band(static_cast<size_t>(radial_bands_), 0.0);
+    for (int r = 1; r <= top; ++r) {
+      const int b = std::min(radial_bands_ - 1, (r - 1) * radial_bands_ / top);
+      band[static_cast<size_t>(b)] += spectrum.power[static_cast<size_t>(r)] * spectrum.count[static_cast<size_t>(r)];
+    }
+    for (double p : band) m.push_back(p);
+  }
+
+  if (agent_density_) m.push_back(agent_density_dispersion(sim.agent_faces(), domain_.face_area).dispersion);
+  return m;
+}
+
+std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim, const Scene& scene,
+                                                     double steady_mean_over_U) const {
+  // Run length, time step and U from the measured arm's own scene: an arm that shares these metrics
+  // with another of a different time step must still run the same SIMULATED time (with the other
+  // arm's dt it ran burn_in and duration scaled by the ratio of the steps).
+  const ComparisonSettings& run = scene.comparison;
+  const double U = uniform_steady_state(scene, domain_.total_area);
+  const auto steps_for = [&](double seconds) { return std::max<long long>(0, std::llround(seconds / scene.time_step)); };
+  const long long burn_in = steps_for(run.burn_in);
+  const long long every = std::max<long long>(1, steps_for(run.sample_interval));
+  const long long samples = std::max<long long>(1, steps_for(run.duration) / every);
+  // The field starts at its steady mean (U, or the time-discrete model's where that differs:
+  // common/model/discrete_steady_state.hpp), so the burn-in only has to let the pattern form.
+  sim.fill_field(steady_mean_over_U == 1.0 ? U : steady_mean_over_U * U);
+  sim.run(burn_in);
+  std::vector<double> sum(metrics_.size(), 0.0);
+  for (long long s = 0; s < samples; ++s) {
+    sim.run(every);
+    const std::vector<double> m = snapshot(sim, U);
+    for (size_t i = 0; i < m.size(); ++i) sum[i] += m[i];
+  }
+  for (double& x : sum) x /= static_cast<double>(samples);
+  return sum;
+}
+
+}  // namespace physarum

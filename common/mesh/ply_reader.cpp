@@ -1,0 +1,227 @@
+#include "common/mesh/ply_reader.hpp"
+
+#include "common/base/errors.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+namespace physarum {
+namespace {
+
+enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+PlyType parse_type(const std::string& name, const std::string& path) {
+  if (name == "char" || name == "int8") return PlyType::Int8;
+  if (name == "uchar" || name == "uint8") return PlyType::UInt8;
+  if (name == "short" || name == "int16") return PlyType::Int16;
+  if (name == "ushort" || name == "uint16") return PlyType::UInt16;
+  if (name == "int" || name == "int32") return PlyType::Int32;
+  if (name == "uint" || name == "uint32") return PlyType::UInt32;
+  if (name == "float" || name == "float32") return PlyType::Float32;
+  if (name == "double" || name == "float64") return PlyType::Float64;
+  throw InputError(path + ": unknown PLY property type '" + name + "'");
+}
+
+size_t type_size(PlyType t) {
+  switch (t) {
+    case PlyType::Int8:
+    case PlyType::UInt8: return 1;
+    case PlyType::Int16:
+    case PlyType::UInt16: return 2;
+    case PlyType::Int32:
+    case PlyType::UInt32:
+    case PlyType::Float32: return 4;
+    case PlyType::Float64: return 8;
+  }
+  return 0;
+}
+
+// Little-endian bytes to a value, whatever the host's byte order.
+double decode(const unsigned char* p, PlyType t) {
+  std::uint64_t bits = 0;
+  for (size_t b = 0; b < type_size(t); ++b) bits |= static_cast<std::uint64_t>(p[b]) << (8 * b);
+  switch (t) {
+    case PlyType::Int8: return static_cast<std::int8_t>(bits);
+    case PlyType::UInt8: return static_cast<std::uint8_t>(bits);
+    case PlyType::Int16: return static_cast<std::int16_t>(bits);
+    case PlyType::UInt16: return static_cast<std::uint16_t>(bits);
+    case PlyType::Int32: return static_cast<std::int32_t>(bits);
+    case PlyType::UInt32: return static_cast<std::uint32_t>(bits);
+    case PlyType::Float32: return std::bit_cast<float>(static_cast<std::uint32_t>(bits));
+    case PlyType::Float64: return std::bit_cast<double>(bits);
+  }
+  return 0.0;
+}
+
+struct ScalarProperty {
+  std::string name;
+  PlyType type;
+};
+
+struct Element {
+  std::string name;
+  long long count = 0;
+  std::vector<ScalarProperty> scalars;
+  bool has_list = false;
+  size_t scalars_before_list = 0;  // scalar properties declared before the list
+  PlyType list_count_type = PlyType::UInt8, list_item_type = PlyType::Int32;
+};
+
+const std::vector<double>& named_column(const std::map<std::string, std::vector<double>>& columns,
+                                        const std::vector<std::string>& names, const std::string& name,
+                                        const std::string& source, const char* element) {
+  const auto it = columns.find(name);
+  if (it != columns.end()) return it->second;
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(source + ": no " + element + " property '" + name + "' (it has: " + (known.empty() ? "none" : known) +
+                   ")");
+}
+
+}  // namespace
+
+const std::vector<double>& PlyFields::property(const std::string& name) const {
+  return named_column(properties, property_names, name, mesh.source, "vertex");
+}
+
+const std::vector<double>& PlyFields::face_property(const std::string& name) const {
+  return named_column(face_properties, face_property_names, name, mesh.source, "face");
+}
+
+PlyFields read_ply_fields(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t end = bytes.find("end_header\n");
+  if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos) throw InputError(path + ": not a PLY file");
+
+  std::vector<Element> elements;
+  std::stringstream header(bytes.substr(0, end));
+  for (std::string line; std::getline(header, line);) {
+    std::stringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "format") {
+      std::string format;
+      words >> format;
+      if (format != "binary_little_endian")
+        throw InputError(path + ": PLY format '" + format + "' is not read (physarum writes binary_little_endian)");
+    } else if (keyword == "element") {
+      Element e;
+      words >> e.name >> e.count;
+      if (e.count < 0) throw InputError(path + ": negative count for element '" + e.name + "'");
+      elements.push_back(e);
+    } else if (keyword == "property") {
+      if (elements.empty()) throw InputError(path + ": property before any element");
+      std::string type;
+      words >> type;
+      Element& e = elements.back();
+      if (type == "list") {
+        std::string count_type, item_type, name;
+        words >> count_type >> item_type >> name;
+        if (e.has_list) throw InputError(path + ": element '" + e.name + "' has more than one list property");
+        e.has_list = true;
+        e.scalars_before_list = e.scalars.size();
+        e.list_count_type = parse_type(count_type, path);
+        e.list_item_type = parse_type(item_type, path);
+      } else {
+        std::string name;
+        words >> name;
+        e.scalars.push_back({name, parse_type(type, path)});
+      }
+    }
+  }
+
+  PlyFields result;
+  result.mesh.source = path;
+  size_t at = end + std::strlen("end_header\n");
+  auto need = [&](size_t n) {
+    if (at + n > bytes.size()) throw InputError(path + ": file ends early (truncated body)");
+  };
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (const Element& e : elements) {
+    if (e.name == "vertex") {
+      if (e.has_list) throw InputError(path + ": list properties on vertices are not read");
+      int xyz[3] = {-1, -1, -1};
+      std::vector<std::vector<double>*> columns;
+      for (size_t p = 0; p < e.scalars.size(); ++p) {
+        const std::string& n = e.scalars[p].name;
+        if (n == "x" || n == "y" || n == "z") {
+          xyz[n[0] - 'x'] = static_cast<int>(p);
+          columns.push_back(nullptr);
+        } else {
+          result.property_names.push_back(n);
+          columns.push_back(&result.properties[n]);
+        }
+      }
+      if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) throw InputError(path + ": vertices lack x, y or z");
+      result.mesh.positions.resize(static_cast<size_t>(e.count));
+      for (auto* c : columns)
+        if (c) c->reserve(static_cast<size_t>(e.count));
+      for (long long v = 0; v < e.count; ++v) {
+        for (size_t p = 0; p < e.scalars.size(); ++p) {
+          const size_t size = type_size(e.scalars[p].type);
+          need(size);
+          const double value = decode(data + at, e.scalars[p].type);
+          at += size;
+          if (columns[p])
+            columns[p]->push_back(value);
+          else
+            result.mesh.positions[static_cast<size_t>(v)][e.scalars[p].name[0] - 'x'] = value;
+        }
+      }
+    } else if (e.name == "face") {
+      if (!e.has_list) throw InputError(path + ": faces must have a list property (vertex indices)");
+      // Where the list sits among the scalars: the header lists it in order, but this reader keeps
+      // scalars and the list apart, so they are read in the order the header gave them.
+      std::vector<std::vector<double>*> columns;
+      for (const ScalarProperty& p : e.scalars) {
+        if (result.face_properties.count(p.name) > 0) throw InputError(path + ": face property '" + p.name + "' appears twice");
+        result.face_property_names.push_back(p.name);
+        columns.push_back(&result.face_properties[p.name]);
+        columns.back()->reserve(static_cast<size_t>(e.count));
+      }
+      result.mesh.triangles.reserve(static_cast<size_t>(e.count));
+      const size_t count_size = type_size(e.list_count_type), item_size = type_size(e.list_item_type);
+      auto read_scalars = [&](size_t from, size_t to) {
+        for (size_t p = from; p < to; ++p) {
+          const size_t size = type_size(e.scalars[p].type);
+          need(size);
+          columns[p]->push_back(decode(data + at, e.scalars[p].type));
+          at += size;
+        }
+      };
+      for (long long f = 0; f < e.count; ++f) {
+        read_scalars(0, e.scalars_before_list);
+        need(count_size);
+        const double corners = decode(data + at, e.list_count_type);
+        at += count_size;
+        if (corners != 3) throw InputError(path + ": face " + std::to_string(f) + " is not a triangle");
+        std::array<int, 3> t{};
+        for (int c = 0; c < 3; ++c) {
+          need(item_size);
+          const double index = decode(data + at, e.list_item_type);
+          at += item_size;
+          if (index < 0 || index >= static_cast<double>(result.mesh.positions.size()))
+            throw InputError(path + ": face " + std::to_string(f) + " has vertex index " +
+                             std::to_string(static_cast<long long>(index)) + " out of range");
+          t[c] = static_cast<int>(index);
+        }
+        result.mesh.triangles.push_back(t);
+        read_scalars(e.scalars_before_list, e.scalars.size());
+      }
+    } else {
+      throw InputError(path + ": element '" + e.name + "' is not read (only vertex and face)");
+    }
+  }
+  if (at != bytes.size()) throw InputError(path + ": unexpected bytes after the last element");
+  result.mesh.file_vertex.resize(result.mesh.positions.size());
+  for (size_t v = 0; v < result.mesh.file_vertex.size(); ++v) result.mesh.file_vertex[v] = static_cast<int>(v);
+  return result;
+}
+
+}  // namespace physarum

@@ -1,0 +1,215 @@
+#include "common/setup/reaction_diffusion_build.hpp"
+
+#include "common/base/errors.hpp"
+#include "common/base/random_streams.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymEigsSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace physarum {
+namespace {
+
+std::string where(const Scene& scene) { return scene.source.empty() ? std::string("scene") : scene.source; }
+
+// A number everywhere, or the map's values; every value finite (and >= 0 when `non_negative`).
+IntrinsicVertexData<double> per_vertex(const MapOperand& operand, const EvaluatedMaps& maps, int vertex_count,
+                                       const Scene& scene, const std::string& key, bool non_negative) {
+  IntrinsicVertexData<double> values =
+      std::holds_alternative<double>(operand)
+          ? IntrinsicVertexData<double>(static_cast<size_t>(vertex_count), std::get<double>(operand))
+          : maps.scalar_map(std::get<std::string>(operand));
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]) || (non_negative && values[i] < 0.0))
+      throw InputError(where(scene) + ": key '" + key + "': the value " + ValueRange::number(values[i]) +
+                       " at intrinsic vertex " + std::to_string(i) +
+                       (non_negative ? " must be >= 0 (a diffusion rate)" : " must be finite"));
+  return values;
+}
+
+// Gradients of the three hat functions of face f, in the face's frame: grad(phi_i) is the edge
+// opposite corner i turned a quarter counter-clockwise, over twice the area.
+std::array<Eigen::Vector2d, 3> hat_gradients(const SurfaceDomain& domain, int f) {
+  const auto& p = domain.face_corners[static_cast<size_t>(f)];
+  const double twice_area = 2.0 * domain.face_area[static_cast<size_t>(f)];
+  std::array<Eigen::Vector2d, 3> g;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d e = p[static_cast<size_t>((i + 2) % 3)] - p[static_cast<size_t>((i + 1) % 3)];
+    g[static_cast<size_t>(i)] = Eigen::Vector2d(-e.y(), e.x()) / twice_area;
+  }
+  return g;
+}
+
+// The index of entry (row, col) in the CSR pattern; the pattern is the Laplacian's, which holds
+// every pair of vertices sharing a face.
+int entry_index(const CsrMatrix& m, int row, int col) {
+  for (int k = m.row_start[static_cast<size_t>(row)]; k < m.row_start[static_cast<size_t>(row) + 1]; ++k)
+    if (m.column[static_cast<size_t>(k)] == col) return k;
+  throw std::logic_error("diffusion_stiffness: entry (" + std::to_string(row) + ", " + std::to_string(col) +
+                         ") is not in the Laplacian's pattern");
+}
+
+}  // namespace
+
+CsrMatrix diffusion_stiffness(const SurfaceDomain& domain, const IntrinsicVertexData<double>& rate,
+                              const IntrinsicFaceData<std::array<double, 2>>* direction, double ratio) {
+  if (static_cast<int>(rate.size()) != domain.vertex_count)
+    throw std::invalid_argument("diffusion_stiffness: one rate per vertex is needed");
+  CsrMatrix k = domain.laplacian;
+  std::fill(k.value.begin(), k.value.end(), 0.0);
+  for (int f = 0; f < domain.face_count; ++f) {
+    const auto& v = domain.face_vertices[static_cast<size_t>(f)];
+    const double a = (rate[static_cast<size_t>(v[0])] + rate[static_cast<size_t>(v[1])] + rate[static_cast<size_t>(v[2])]) / 3.0;
+    Eigen::Matrix2d tensor = a * Eigen::Matrix2d::Identity();
+    if (direction) {
+      const auto& d = (*direction)[static_cast<size_t>(f)];
+      const Eigen::Vector2d dir(d[0], d[1]);
+      const double length = dir.norm();
+      if (length > 0.0 && std::isfinite(length)) {
+        const Eigen::Vector2d unit = dir / length;
+        const Eigen::Matrix2d along = unit * unit.transpose();
+        tensor = a * along + ratio * a * (Eigen::Matrix2d::Identity() - along);
+      }
+    }
+    const auto g = hat_gradients(domain, f);
+    const double area = domain.face_area[static_cast<size_t>(f)];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        k.value[static_cast<size_t>(entry_index(k, v[static_cast<size_t>(i)], v[static_cast<size_t>(j)]))] +=
+            area * g[static_cast<size_t>(i)].dot(tensor * g[static_cast<size_t>(j)]);
+  }
+  return k;
+}
+
+double largest_diffusion_eigenvalue(const CsrMatrix& stiffness, const IntrinsicVertexData<double>& mass) {
+  const int n = stiffness.rows;
+  if (n == 0) return 0.0;
+  // S = M^-1/2 K M^-1/2 is symmetric and similar to M^-1 K: same eigenvalues, and Lanczos applies.
+  Eigen::SparseMatrix<double> s = stiffness.to_eigen();
+  Eigen::VectorXd scale(n);
+  for (int i = 0; i < n; ++i) scale[i] = 1.0 / std::sqrt(mass[static_cast<size_t>(i)]);
+  s = scale.asDiagonal() * s * scale.asDiagonal();
+  if (s.norm() == 0.0) return 0.0;
+  if (n <= 3) return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(s)).eigenvalues().maxCoeff();
+  Spectra::SparseSymMatProd<double> op(s);
+  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double>> solver(op, 1, std::min(n, 24));
+  solver.init();
+  solver.compute(Spectra::SortRule::LargestAlge, 10000, 1e-10);
+  if (solver.info() != Spectra::CompInfo::Successful)
+    throw InputError("reaction-diffusion: the largest diffusion eigenvalue (the explicit stability limit) did not converge");
+  return solver.eigenvalues()[0];
+}
+
+double explicit_stability_limit(const ReactionDiffusionSystem& system) {
+  double largest = 0.0;
+  for (const CsrMatrix& k : system.stiffness) largest = std::max(largest, largest_diffusion_eigenvalue(k, system.mass));
+  return largest > 0.0 ? 2.0 / largest : std::numeric_limits<double>::infinity();
+}
+
+int explicit_substeps(double time_step, double stability_limit) {
+  if (!std::isfinite(stability_limit)) return 1;
+  const double n = std::ceil(time_step / (kExplicitSafety * stability_limit));
+  if (n > 1e7)
+    throw InputError("reaction-diffusion: the time step " + ValueRange::number(time_step) + " s needs " +
+                     ValueRange::number(n) + " explicit sub-steps (stability limit " + ValueRange::number(stability_limit) +
+                     " s); use \"integrator\": \"imex\" or a smaller time_step");
+  return std::max(1, static_cast<int>(n));
+}
+
+ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, const PreparedSurface& surface,
+                                                        const EvaluatedMaps& maps) {
+  if (!scene.reaction_diffusion) throw std::logic_error("build_reaction_diffusion_system: not a reaction-diffusion scene");
+  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
+  const SurfaceDomain& domain = surface.domain;
+  const int n = domain.vertex_count;
+  const size_t count = spec.morphogens.size();
+  ReactionDiffusionSystem system;
+  system.reaction = spec.reaction;
+  for (const MorphogenSpec& m : spec.morphogens) system.morphogens.push_back(m.name);
+  for (const auto& [name, value] : spec.coefficients) {
+    system.coefficient_names.push_back(name);
+    system.coefficients.push_back(per_vertex(value, maps, n, scene, "parameters." + name, false));
+  }
+  system.mass = domain.vertex_mass;
+  for (const MorphogenSpec& m : spec.morphogens) {
+    const IntrinsicVertexData<double> rate = per_vertex(m.diffusion, maps, n, scene, "morphogens." + m.name + ".diffusion", true);
+    if (m.anisotropy)
+      system.stiffness.push_back(diffusion_stiffness(domain, rate, &maps.vector_map(m.anisotropy->direction), m.anisotropy->ratio));
+    else
+      system.stiffness.push_back(diffusion_stiffness(domain, rate));
+  }
+
+  // ---- initial state and floors ----
+  for (const MorphogenSpec& m : spec.morphogens) {
+    system.initial.push_back(per_vertex(m.initial, maps, n, scene, "morphogens." + m.name + ".initial", false));
+    system.minimum.push_back(m.minimum);
+  }
+  auto set_value = [&](const MorphogenValues& values, size_t vertex, double weight) {
+    for (const auto& [name, value] : values) {
+      double& x = system.initial[static_cast<size_t>(spec.morphogen_index(name))][vertex];
+      x = (1.0 - weight) * x + weight * value;
+    }
+  };
+  // The held vertices first: noise skips them, so a held vertex keeps exactly its initial (or given)
+  // value — a cascade's frozen layer is the earlier run's, bit for bit.
+  if (spec.dirichlet) {
+    const IntrinsicVertexData<double>& region = maps.scalar_map(spec.dirichlet->map);
+    system.fixed.assign(static_cast<size_t>(n), 0);
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v) system.fixed[v] = region[v] >= 0.5 ? 1 : 0;
+  }
+  auto held = [&](size_t v) { return !system.fixed.empty() && system.fixed[v] != 0; };
+  if (spec.initial.seed_region) {
+    const IntrinsicVertexData<double>& w = maps.scalar_map(spec.initial.seed_region->map);
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i)
+      if (!held(i)) set_value(spec.initial.seed_region->values, i, std::clamp(w[i], 0.0, 1.0));
+  }
+  if (spec.initial.spots) {
+    // Positions of the intrinsic vertices on the simulated (scaled) surface, for the spot radius.
+    std::vector<Eigen::Vector3d> position(static_cast<size_t>(n));
+    for (int v = 0; v < n; ++v) {
+      const SurfacePoint& p = domain.vertex_location[static_cast<size_t>(v)];
+      const auto& t = surface.simulated.triangles[static_cast<size_t>(p.face)];
+      position[static_cast<size_t>(v)] = p.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
+                                         p.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
+                                         p.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])];
+    }
+    std::vector<double> cumulative(static_cast<size_t>(n));
+    double total = 0.0;
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v) cumulative[v] = total += domain.vertex_mass[v];
+    const double r2 = spec.initial.spots->radius * spec.initial.spots->radius;
+    for (int s = 0; s < spec.initial.spots->count; ++s) {
+      const double u = first_uniform(random_words(scene.seed, static_cast<std::uint32_t>(s), 0,
+                                                  static_cast<std::uint32_t>(RandomPurpose::ReactionSpot)));
+      const size_t centre = static_cast<size_t>(
+          std::min<std::ptrdiff_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u * total) - cumulative.begin(), n - 1));
+      for (size_t v = 0; v < static_cast<size_t>(n); ++v)
+        if (!held(v) && (position[v] - position[centre]).squaredNorm() <= r2) set_value(spec.initial.spots->values, v, 1.0);
+    }
+  }
+  if (spec.initial.noise > 0.0)
+    for (size_t m = 0; m < count; ++m)
+      for (size_t v = 0; v < static_cast<size_t>(n); ++v)
+        if (!held(v))
+          system.initial[m][v] += spec.initial.noise *
+                                  (2.0 * first_uniform(random_words(scene.seed, static_cast<std::uint32_t>(v), 0,
+                                                                    static_cast<std::uint32_t>(RandomPurpose::ReactionNoise),
+                                                                    static_cast<std::uint32_t>(m))) - 1.0);
+  if (spec.dirichlet)
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v)
+      if (held(v)) set_value(spec.dirichlet->values, v, 1.0);
+
+  // ---- time ----
+  system.integrator = spec.integrator;
+  system.time_step = scene.time_step;
+  system.substeps = spec.integrator == ReactionIntegrator::Explicit
+                        ? explicit_substeps(scene.time_step, explicit_stability_limit(system))
+                        : 1;
+  return system;
+}
+
+}  // namespace physarum
