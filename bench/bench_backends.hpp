@@ -3,7 +3,7 @@
 // device (chosen once per process, by $PHYSARUM_DEVICE or the default rule), and spot.obj at a
 // resolution, skipping the benchmark with a message when the shared meshes are absent.
 #include "bench/bench_support.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 
 #include <benchmark/benchmark.h>
 

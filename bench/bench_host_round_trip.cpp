@@ -1,4 +1,4 @@
-// What it costs the host to work on a device field in place (opencl/mapped_buffer.hpp, the host
+// What it costs the host to work on a device field in place (opencl/runtime/mapped_buffer.hpp, the host
 // implicit solves of opencl/host_cholesky_solve.hpp): one round trip of n floats through the queue,
 // three ways, each ending with the queue drained as a step does:
 //   0  a launch (an empty kernel standing in for the right-hand side), a blocking read, a blocking
@@ -9,8 +9,8 @@
 // On a CPU device (PoCL) every variant's cost is mostly waits for the runtime's worker threads, so
 // it grows with the machine's load; the map itself moves no data there.
 #include "bench/bench_backends.hpp"
-#include "opencl/device_buffer.hpp"
-#include "opencl/mapped_buffer.hpp"
+#include "opencl/runtime/device_buffer.hpp"
+#include "opencl/runtime/mapped_buffer.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -6,12 +6,12 @@
 // step the bytes per second its sub-step matrix and fields move, to set against the machine's
 // bandwidth (`physarum bench` prints both as a roofline). The backward step four ways: the reference,
 // the OpenCL field as it runs here (a CPU device: the host's float Cholesky factor,
-// opencl/host_cholesky_solve.hpp, run in the device's queue, opencl/queued_host_task.hpp), the same
+// opencl/host_cholesky_solve.hpp, run in the device's queue, opencl/runtime/queued_host_task.hpp), the same
 // factor on the field mapped by the host (a GPU's path for small fields), and the OpenCL field with
 // device conjugate gradients (a GPU's path for large ones).
 #include "bench/bench_backends.hpp"
 #include "common/model/vertex_parameters.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "opencl/face_records.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/host_cholesky_solve.hpp"
@@ -27,7 +27,7 @@ namespace {
 // on the device even where the automatic choice is the host's Cholesky factor (a CPU device).
 constexpr int kOpenCLWithDeviceCG = 2;
 // Backend argument 3: the OpenCL field with the host factor solving on the field mapped by the host
-// (one wait per step) even where the device could run it in its queue (opencl/queued_host_task.hpp).
+// (one wait per step) even where the device could run it in its queue (opencl/runtime/queued_host_task.hpp).
 constexpr int kOpenCLMapped = 3;
 // Mesh argument 3: spot.obj, or the built-in square (32 x 32 cells: scaled to 4 m^2 its triangles'
 // circumradius is 4.4 cm, so a 10 cm bound leaves its 1,089 vertices as they are).

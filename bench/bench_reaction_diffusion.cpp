@@ -14,7 +14,7 @@
 //                       SimplicialLDLT solves), what a host reference backend pays.
 #include "bench/bench_backends.hpp"
 #include "common/reaction_diffusion/reaction_diffusion_system.hpp"
-#include "opencl/memory_bandwidth.hpp"
+#include "opencl/runtime/memory_bandwidth.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "reference/reaction_diffusion.hpp"
 #include "tests/rough_gray_scott.hpp"

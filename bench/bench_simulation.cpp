@@ -4,7 +4,7 @@
 // not timed; each benchmark first takes a few steps so there is pheromone to sense. Counters: agent
 // steps per second, face crossings (movement + sensors) per agent step and per second.
 #include "bench/bench_backends.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "tools/backend_factory.hpp"
 
 #include <benchmark/benchmark.h>

@@ -1,8 +1,8 @@
 #include "opencl/agent_order.hpp"
 
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/opencl_error.hpp"
-#include "opencl/work_group_size.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/opencl_error.hpp"
+#include "opencl/runtime/work_group_size.hpp"
 
 #include <algorithm>
 #include <utility>

@@ -4,8 +4,8 @@
 // than kMaxBins, scattering into a second set of agent arrays that then takes the first's place.
 // An order of work only: no result changes.
 #include "opencl/agents.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 
 #include <cstddef>
 #include <string>

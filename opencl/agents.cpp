@@ -1,7 +1,7 @@
 #include "opencl/agents.hpp"
 
 #include "common/base/errors.hpp"
-#include "opencl/opencl_error.hpp"
+#include "opencl/runtime/opencl_error.hpp"
 
 namespace physarum::opencl {
 namespace {

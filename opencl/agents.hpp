@@ -3,8 +3,8 @@
 // (structure of arrays), plus each agent's id, the key of its random streams, so agents can be
 // reordered in memory without changing what they draw. The host-side exchange type is the
 // reference's Agents, so tests can hand identical states to both backends.
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 #include "common/model/agents.hpp"
 
 #include <string>

@@ -4,8 +4,8 @@
 // (common/model/pheromone_operators.hpp). The solver's scalars stay on the device; the host enqueues
 // iterations in batches and reads only the 32-byte solver state between two batches.
 #include "common/numerics/csr_matrix.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 
 #include <memory>
 #include <string>

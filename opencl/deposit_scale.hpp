@@ -5,7 +5,7 @@
 
 
 #include "common/base/element_data.hpp"
-#include "opencl/device_selection.hpp"
+#include "opencl/runtime/device_selection.hpp"
 
 namespace physarum::opencl {
 

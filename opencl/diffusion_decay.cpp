@@ -5,14 +5,14 @@
 #include "common/model/pheromone_operators.hpp"
 #include "kernels/device_types.h"
 #include "opencl/deposit_scale.hpp"
-#include "opencl/flush_denormals.hpp"
+#include "opencl/runtime/flush_denormals.hpp"
 #include "opencl/hybrid_matrix.hpp"
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/kernel_sources.hpp"
-#include "opencl/mapped_buffer.hpp"
-#include "opencl/opencl_error.hpp"
-#include "opencl/program_cache.hpp"
-#include "opencl/work_group_size.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/kernel_sources.hpp"
+#include "opencl/runtime/mapped_buffer.hpp"
+#include "opencl/runtime/opencl_error.hpp"
+#include "opencl/runtime/program_cache.hpp"
+#include "opencl/runtime/work_group_size.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -334,7 +334,7 @@ void OpenCLDiffusionDecay::host_backward_step() {
 
 // b = B u (B is mostly diagonal), then x = S^-1 b written over u.
 void OpenCLDiffusionDecay::host_backward_solve(float* u) {
-  const FlushDenormalsToZero flush;  // the field's tails (opencl/flush_denormals.hpp)
+  const FlushDenormalsToZero flush;  // the field's tails (opencl/runtime/flush_denormals.hpp)
   const CsrMatrix& B = host_rhs_operator_;
   for (int i = 0; i < vertex_count_; ++i) {
     double sum = 0.0;

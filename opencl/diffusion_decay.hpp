@@ -10,13 +10,13 @@
 #include "common/model/diffusion_decay.hpp"
 #include "common/surface/surface_domain.hpp"
 #include "common/model/vertex_parameters.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "opencl/conjugate_gradients.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 #include "opencl/field_model.hpp"
 #include "opencl/field_statistics.hpp"
 #include "opencl/host_cholesky_solve.hpp"
-#include "opencl/queued_host_task.hpp"
+#include "opencl/runtime/queued_host_task.hpp"
 
 #include <memory>
 #include <string>
@@ -33,7 +33,7 @@ enum class ImplicitSolver { Automatic, DeviceConjugateGradients, HostCholesky };
 struct OpenCLDiffusionDecayOptions {
   ImplicitSolver implicit_solver = ImplicitSolver::Automatic;
   // With the host factor: solve inside the device's queue, as a native kernel on the field in place
-  // (opencl/queued_host_task.hpp), where the device runs them (PoCL's CPU device), so a step never
+  // (opencl/runtime/queued_host_task.hpp), where the device runs them (PoCL's CPU device), so a step never
   // waits for the device; elsewhere, or when false, the host maps the field and solves (one wait per
   // step). The same arithmetic either way: the fields agree bit for bit.
   bool host_solve_in_queue = true;

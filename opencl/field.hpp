@@ -6,9 +6,9 @@
 // layer list (reference/simulation.hpp).
 #include "common/base/element_data.hpp"
 #include "common/simulation/field_statistics.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
-#include "opencl/opencl_api.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
+#include "opencl/runtime/opencl_api.hpp"
 
 #include <string>
 #include <vector>

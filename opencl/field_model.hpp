@@ -5,7 +5,7 @@
 // bind the buffer once, and a model's launches are built around it. Where the step's deposits enter
 // is the model's choice, so the simulation step only asks each layer to advance. The values and
 // their statistics are every field's (opencl/field.hpp); a static field has them without advance.
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 #include "opencl/field.hpp"
 
 namespace physarum::opencl {

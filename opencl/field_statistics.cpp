@@ -1,11 +1,11 @@
 #include "opencl/field_statistics.hpp"
 
 #include "kernels/device_types.h"
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/kernel_sources.hpp"
-#include "opencl/opencl_error.hpp"
-#include "opencl/program_cache.hpp"
-#include "opencl/work_group_size.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/kernel_sources.hpp"
+#include "opencl/runtime/opencl_error.hpp"
+#include "opencl/runtime/program_cache.hpp"
+#include "opencl/runtime/work_group_size.hpp"
 
 #include <limits>
 

@@ -4,8 +4,8 @@
 // device. Only four floats come back per call. Sums run in a fixed order (work-group tree, then one
 // group over the partials), so repeated calls on one device give identical results.
 #include "common/simulation/field_statistics.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 
 #include <array>
 #include <string>

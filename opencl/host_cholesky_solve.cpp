@@ -3,8 +3,8 @@
 #include "common/base/errors.hpp"
 #include "common/numerics/shared_cholesky.hpp"
 #include "common/numerics/supernodal_solve.hpp"
-#include "opencl/device_tuning.hpp"
-#include "opencl/flush_denormals.hpp"
+#include "opencl/runtime/device_tuning.hpp"
+#include "opencl/runtime/flush_denormals.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -248,7 +248,7 @@ HostCholeskySolve::HostCholeskySolve(const CsrMatrix& system, FactorPrecision pr
 }
 
 void HostCholeskySolve::solve(const float* b, float* x) {
-  // Decayed fields' tails (opencl/flush_denormals.hpp). The supernodal solve's helper threads start
+  // Decayed fields' tails (opencl/runtime/flush_denormals.hpp). The supernodal solve's helper threads start
   // from this one and inherit its floating-point environment (POSIX threads; Linux copies it).
   const FlushDenormalsToZero flush;
   Factor& f = *factor_;

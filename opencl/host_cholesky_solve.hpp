@@ -2,7 +2,7 @@
 // A backward-Euler / IMEX system S x = b of a device field (common/model/pheromone_operators.hpp,
 // opencl/reaction_diffusion.hpp) solved on the host by a sparse Cholesky factorization computed
 // once, instead of conjugate gradients on the device. Where the OpenCL device is the host's own CPU
-// (PoCL) the device's memory is the host's: the field is mapped in place (opencl/mapped_buffer.hpp),
+// (PoCL) the device's memory is the host's: the field is mapped in place (opencl/runtime/mapped_buffer.hpp),
 // and one pair of triangular solves replaces the dozens of CG iterations whose launches and
 // reductions dominate a field's step. Both device field models use this one class: the pheromone
 // and every morphogen of the reaction-diffusion IMEX step.
@@ -35,7 +35,7 @@
 // Where it solves is the caller's choice (implicit_solve_on_host below): the class itself only
 // works on host memory, so it serves any device.
 #include "common/numerics/csr_matrix.hpp"
-#include "opencl/device_selection.hpp"
+#include "opencl/runtime/device_selection.hpp"
 
 #include <cstddef>
 #include <memory>

@@ -4,13 +4,13 @@
 #include "common/simulation/simulation_state.hpp"
 #include "kernels/device_types.h"
 #include "opencl/hybrid_matrix.hpp"
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/kernel_sources.hpp"
-#include "opencl/mapped_buffer.hpp"
-#include "opencl/opencl_error.hpp"
-#include "opencl/program_cache.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/kernel_sources.hpp"
+#include "opencl/runtime/mapped_buffer.hpp"
+#include "opencl/runtime/opencl_error.hpp"
+#include "opencl/runtime/program_cache.hpp"
 #include "opencl/reaction_formula.hpp"
-#include "opencl/work_group_size.hpp"
+#include "opencl/runtime/work_group_size.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,76 +29,8 @@ namespace {
 
 const char* const kWho = "opencl reaction-diffusion";
 
-bool is_identifier(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-}
-
 bool uniform(const IntrinsicVertexData<double>& v) {
   return std::all_of(v.begin(), v.end(), [&](double x) { return x == v[0]; });
-}
-
-void check_system(const SurfaceDomain& domain, const ReactionDiffusionSystem& s) {
-  const int n = domain.vertex_count;
-  const size_t un = static_cast<size_t>(n);
-  const std::string who = kWho;
-  const size_t count = s.morphogens.size();
-  if (count < 2 || count > 4)
-    throw InputError(who + ": " + std::to_string(count) + " morphogens (2 to 4 are supported)");
-  if (s.reaction.size() != count)
-    throw InputError(who + ": " + std::to_string(s.reaction.size()) + " reaction formulas for " +
-                     std::to_string(count) + " morphogens");
-  if (s.coefficients.size() != s.coefficient_names.size())
-    throw InputError(who + ": " + std::to_string(s.coefficients.size()) + " coefficient arrays for " +
-                     std::to_string(s.coefficient_names.size()) + " coefficient names");
-  std::set<std::string> names;
-  for (const auto* list : {&s.morphogens, &s.coefficient_names})
-    for (const std::string& name : *list) {
-      if (!is_identifier(name))
-        throw InputError(who + ": '" + name + "' is not a usable name (letters, digits, '_', not starting with a digit)");
-      if (!names.insert(name).second) throw InputError(who + ": the name '" + name + "' is given twice");
-    }
-  if (s.stiffness.size() != count || s.initial.size() != count)
-    throw InputError(who + ": " + std::to_string(s.stiffness.size()) + " stiffness matrices and " +
-                     std::to_string(s.initial.size()) + " initial states for " + std::to_string(count) + " morphogens");
-  if (s.mass.size() != un)
-    throw InputError(who + ": " + std::to_string(s.mass.size()) + " masses for " + std::to_string(n) + " vertices");
-  for (int i = 0; i < n; ++i)
-    if (!(s.mass[i] > 0.0) || !std::isfinite(s.mass[i]))
-      throw InputError(who + ": vertex " + std::to_string(i) + " has lumped mass " + std::to_string(s.mass[i]) +
-                       " (must be > 0)");
-  for (size_t c = 0; c < s.coefficients.size(); ++c) {
-    if (s.coefficients[c].size() != un)
-      throw InputError(who + ": coefficient '" + s.coefficient_names[c] + "' has " +
-                       std::to_string(s.coefficients[c].size()) + " values for " + std::to_string(n) + " vertices");
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(s.coefficients[c][i]))
-        throw InputError(who + ": coefficient '" + s.coefficient_names[c] + "' is not finite at vertex " + std::to_string(i));
-  }
-  for (size_t m = 0; m < count; ++m) {
-    const CsrMatrix& K = s.stiffness[m];
-    if (K.rows != n || K.cols != n || K.row_start.size() != un + 1)
-      throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' is " + std::to_string(K.rows) + " x " +
-                       std::to_string(K.cols) + " for " + std::to_string(n) + " vertices");
-    if (K.row_start != s.stiffness[0].row_start || K.column != s.stiffness[0].column)
-      throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' has another sparsity pattern than that of '" +
-                       s.morphogens[0] + "' (all share the Laplacian's)");
-    for (double v : K.value)
-      if (!std::isfinite(v)) throw InputError(who + ": the stiffness of '" + s.morphogens[m] + "' has a non-finite entry");
-    if (s.initial[m].size() != un)
-      throw InputError(who + ": the initial state of '" + s.morphogens[m] + "' has " +
-                       std::to_string(s.initial[m].size()) + " values for " + std::to_string(n) + " vertices");
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(s.initial[m][i]))
-        throw InputError(who + ": the initial state of '" + s.morphogens[m] + "' is not finite at vertex " +
-                         std::to_string(i));
-  }
-  if (!s.fixed.empty() && s.fixed.size() != un)
-    throw InputError(who + ": " + std::to_string(s.fixed.size()) + " held-vertex flags for " + std::to_string(n) +
-                     " vertices");
-  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
-    throw InputError(who + ": time step " + std::to_string(s.time_step) + " must be > 0");
-  if (s.substeps < 1) throw InputError(who + ": substeps " + std::to_string(s.substeps) + " must be >= 1");
 }
 
 // Whether every row of K sums to zero up to its rounding (|sum| <= 1e-9 sum |K_ij|): true of a
@@ -145,7 +77,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
                                                  const ReactionDiffusionSystem& system,
                                                  const OpenCLReactionDiffusionOptions& options)
     : compute_(compute), options_(options), integrator_(system.integrator) {
-  check_system(domain, system);
+  check_reaction_diffusion_system(system, domain.vertex_count, kWho);
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
   vertex_count_ = n;
@@ -440,7 +372,7 @@ void OpenCLReactionDiffusion::apply_floors(const cl::Buffer& u) {
 
 // Every morphogen's system solved by its host factor on the right-hand sides and fields mapped in
 // place: one wait for the queue (the second map; the right-hand side kernel runs before it) and no
-// copies where the device's memory is the host's (opencl/mapped_buffer.hpp).
+// copies where the device's memory is the host's (opencl/runtime/mapped_buffer.hpp).
 void OpenCLReactionDiffusion::host_imex_solve() {
   const size_t un = static_cast<size_t>(vertex_count_);
   const size_t all = static_cast<size_t>(morphogen_count_) * stride_;

@@ -36,8 +36,8 @@
 #include "kernels/device_types.h"
 #include "opencl/agent_order.hpp"
 #include "opencl/agents.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 #include "opencl/field.hpp"
 #include "opencl/field_model.hpp"
 #include "opencl/face_records.hpp"
@@ -56,7 +56,7 @@ struct OpenCLSimulationOptions {
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
   int sort_interval = 8;
   // Agents per move walker, 1..4 (kernels/agent_step.cl); 0 takes the device's tuning
-  // (opencl/device_tuning.hpp: 4 on CPU devices, where agents moving in vector lanes overlap their
+  // (opencl/runtime/device_tuning.hpp: 4 on CPU devices, where agents moving in vector lanes overlap their
   // face reads, and 1 elsewhere). More than 1 also makes the
   // walks vector lanes (kernels/lanes.h), 1 scalars, and gives each agent_step work-item
   // PHYSARUM_VECTOR_MOVE_WALKERS walkers. Changes no result.

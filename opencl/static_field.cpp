@@ -1,7 +1,7 @@
 #include "opencl/static_field.hpp"
 
 #include "common/base/errors.hpp"
-#include "opencl/opencl_error.hpp"
+#include "opencl/runtime/opencl_error.hpp"
 
 namespace physarum::opencl {
 

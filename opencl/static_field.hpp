@@ -6,8 +6,8 @@
 // dynamic layer beside it.
 #include "common/base/element_data.hpp"
 #include "common/simulation/field_statistics.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
 #include "opencl/field.hpp"
 #include "opencl/field_statistics.hpp"
 

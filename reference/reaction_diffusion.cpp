@@ -14,36 +14,15 @@ namespace {
 
 const char* const kWho = "reaction-diffusion";
 
-[[noreturn]] void fail(const std::string& problem) { throw InputError(std::string(kWho) + ": " + problem); }
-
 }  // namespace
 
-ReferenceReactionDiffusion::ReferenceReactionDiffusion(ReactionDiffusionSystem system) : system_(std::move(system)) {
+ReferenceReactionDiffusion::ReferenceReactionDiffusion(ReactionDiffusionSystem system)
+    : system_(std::move(system)), layers_(system_.initial, static_cast<int>(system_.mass.size()), kWho) {
   const ReactionDiffusionSystem& s = system_;
   const size_t count = s.morphogens.size();
   vertex_count_ = static_cast<int>(s.mass.size());
   const size_t n = s.mass.size();
-  if (count < 2 || count > 4) fail(std::to_string(count) + " morphogens; a system has 2 to 4");
-  if (s.reaction.size() != count || s.stiffness.size() != count || s.initial.size() != count)
-    fail("one reaction formula, stiffness matrix and initial layer per morphogen are needed");
-  if (s.coefficients.size() != s.coefficient_names.size()) fail("one value array per coefficient name is needed");
-  for (size_t m = 0; m < count; ++m) {
-    if (s.stiffness[m].rows != vertex_count_ || s.stiffness[m].cols != vertex_count_)
-      fail("the stiffness of '" + s.morphogens[m] + "' is not " + std::to_string(n) + " x " + std::to_string(n));
-    if (s.initial[m].size() != n) fail("the initial layer of '" + s.morphogens[m] + "' has the wrong size");
-    for (const double x : s.initial[m])
-      if (!std::isfinite(x)) fail("the initial layer of '" + s.morphogens[m] + "' is not finite");
-  }
-  for (size_t c = 0; c < s.coefficients.size(); ++c)
-    if (s.coefficients[c].size() != n) fail("coefficient '" + s.coefficient_names[c] + "' has the wrong size");
-  for (const double m : s.mass)
-    if (!(m > 0.0)) fail("every lumped mass must be > 0");
-  if (!s.fixed.empty() && s.fixed.size() != n) fail("'fixed' must be empty or one entry per vertex");
-  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step)) fail("time_step must be > 0 and finite");
-  if (s.substeps < 1) fail("substeps must be >= 1");
-  if (!s.minimum.empty() && s.minimum.size() != count) fail("'minimum' must be empty or one floor per morphogen");
-  for (const double floor : s.minimum)
-    if (std::isnan(floor) || floor == std::numeric_limits<double>::infinity()) fail("every floor must be finite or -infinity");
+  check_reaction_diffusion_system(s, vertex_count_, kWho);
 
   std::vector<std::string> names = s.morphogens;
   names.insert(names.end(), s.coefficient_names.begin(), s.coefficient_names.end());
@@ -54,7 +33,6 @@ ReferenceReactionDiffusion::ReferenceReactionDiffusion(ReactionDiffusionSystem s
     formulas_.emplace_back(s.reaction[m], names, std::string(kWho) + ": reaction." + s.morphogens[m]);
     formulas_.back().bind(addresses);
   }
-  layers_ = s.initial;
   reaction_.assign(count, std::vector<double>(n, 0.0));
   diffused_.assign(n, 0.0);
   if (s.integrator == ReactionIntegrator::Imex) factor_implicit_systems();
@@ -87,7 +65,8 @@ void ReferenceReactionDiffusion::factor_implicit_systems() {
     Eigen::SparseMatrix<double> a(free_count, free_count);
     a.setFromTriplets(inner.begin(), inner.end());
     auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(a);
-    if (factor->info() != Eigen::Success) fail("the implicit diffusion system of '" + s.morphogens[m] + "' could not be factored");
+    if (factor->info() != Eigen::Success)
+      throw InputError(std::string(kWho) + ": the implicit diffusion system of '" + s.morphogens[m] + "' could not be factored");
     factor_.push_back(std::move(factor));
     Eigen::SparseMatrix<double, Eigen::RowMajor> c(free_count, vertex_count_);
     c.setFromTriplets(outer.begin(), outer.end());
@@ -153,51 +132,21 @@ void ReferenceReactionDiffusion::step() {
   time_ = static_cast<double>(steps_taken_) * system_.time_step;
 }
 
-const IntrinsicVertexData<double>& ReferenceReactionDiffusion::checked_layer(int layer, const char* what) const {
-  check_layer_index(layer, layer_count(), kWho, what);
-  return layers_[static_cast<size_t>(layer)];
-}
-
-int ReferenceReactionDiffusion::add_static_layer(const IntrinsicVertexData<double>& values) {
-  const int layer = layer_count();
-  check_layer_values(values, vertex_count_, layer, kWho, "add_static_layer");
-  layers_.push_back(values);
-  return layer;
-}
-
-IntrinsicVertexData<double> ReferenceReactionDiffusion::field_values(int layer) const {
-  return checked_layer(layer, "field_values");
-}
-
-void ReferenceReactionDiffusion::set_field(const IntrinsicVertexData<double>& values, int layer) {
-  checked_layer(layer, "set_field");
-  check_layer_values(values, vertex_count_, layer, kWho, "set_field");
-  layers_[static_cast<size_t>(layer)] = values;
-}
-
-void ReferenceReactionDiffusion::fill_field(double value, int layer) {
-  checked_layer(layer, "fill_field");
-  check_layer_value(value, layer, kWho, "fill_field");
-  IntrinsicVertexData<double>& f = layers_[static_cast<size_t>(layer)];
-  f.assign(f.size(), value);
-}
-
 FieldStatistics ReferenceReactionDiffusion::field_statistics(double U, int layer) const {
-  return compute_field_statistics(checked_layer(layer, "field_statistics"), system_.mass, U);
+  return compute_field_statistics(layers_.checked(layer, "field_statistics"), system_.mass, U);
 }
 
 SimulationState ReferenceReactionDiffusion::save_state() const {
   SimulationState state;
   state.steps_taken = steps_taken_;
   state.time = time_;
-  state.layers = layers_;
+  state.layers = layers_.all();
   return state;
 }
 
 void ReferenceReactionDiffusion::restore_state(const SimulationState& state) {
   check_state_fits(state, layer_count(), vertex_count_, 0, 0, "reaction-diffusion");
-  for (size_t layer = 0; layer < layers_.size(); ++layer)
-    std::copy(state.layers[layer].begin(), state.layers[layer].end(), layers_[layer].begin());
+  layers_.copy_from(state.layers);
   steps_taken_ = state.steps_taken;
   time_ = state.time;
 }

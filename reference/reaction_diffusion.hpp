@@ -13,6 +13,7 @@
 // right-hand side, and the factored system is the one of the free vertices).
 // The reaction formulas are evaluated per vertex with muparser (common/reaction_diffusion/reaction_formula.hpp).
 #include "common/reaction_diffusion/reaction_diffusion_system.hpp"
+#include "reference/field_layers.hpp"
 #include "common/reaction_diffusion/reaction_formula.hpp"
 #include "common/simulation/simulation_backend.hpp"
 
@@ -38,15 +39,15 @@ class ReferenceReactionDiffusion final : public SimulationBackend {
   const ReactionDiffusionSystem& system() const { return system_; }
   int morphogen_count() const { return static_cast<int>(system_.morphogens.size()); }
   // The layer itself (any layer; std::out_of_range past the end).
-  const IntrinsicVertexData<double>& field(int layer) const { return layers_.at(static_cast<size_t>(layer)); }
+  const IntrinsicVertexData<double>& field(int layer) const { return layers_.at(layer); }
 
   // ---- SimulationBackend ----
-  int layer_count() const override { return static_cast<int>(layers_.size()); }
+  int layer_count() const override { return layers_.size(); }
   int dynamic_layer_count() const override { return morphogen_count(); }
-  int add_static_layer(const IntrinsicVertexData<double>& values) override;
-  IntrinsicVertexData<double> field_values(int layer = 0) const override;
-  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
-  void fill_field(double value, int layer = 0) override;
+  int add_static_layer(const IntrinsicVertexData<double>& values) override { return layers_.add_static(values); }
+  IntrinsicVertexData<double> field_values(int layer = 0) const override { return layers_.checked(layer, "field_values"); }
+  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override { layers_.set(values, layer); }
+  void fill_field(double value, int layer = 0) override { layers_.fill(value, layer); }
   FieldStatistics field_statistics(double U, int layer = 0) const override;
   double time() const override { return time_; }
   long long steps_taken() const override { return steps_taken_; }
@@ -66,12 +67,11 @@ class ReferenceReactionDiffusion final : public SimulationBackend {
   void factor_implicit_systems();
   // Raises the free vertices of morphogen m below its floor (ReactionDiffusionSystem::minimum) to it.
   void apply_floor(size_t m);
-  const IntrinsicVertexData<double>& checked_layer(int layer, const char* what) const;
   bool is_fixed(size_t vertex) const { return !system_.fixed.empty() && system_.fixed[vertex] != 0; }
 
   ReactionDiffusionSystem system_;
   int vertex_count_ = 0;
-  std::vector<IntrinsicVertexData<double>> layers_;  // morphogens, then static layers
+  FieldLayers layers_;  // morphogens, then static layers
   double time_ = 0.0;
   long long steps_taken_ = 0;
 

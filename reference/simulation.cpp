@@ -64,7 +64,9 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Spec
       species_set_(checked(domain, species, settings)),
       controls_(checked(domain, controls)),
       settings_(settings),
-      layers_(static_cast<size_t>(species.count()), IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)) {
+      layers_(std::vector<IntrinsicVertexData<double>>(static_cast<size_t>(species.count()),
+                                                   IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)),
+              domain.vertex_count, "simulation") {
   for (int s = 0; s < species_set_.count(); ++s) {
     const Species& given = species_set_.species[static_cast<size_t>(s)];
     auto state = std::make_unique<SpeciesState>();
@@ -164,40 +166,11 @@ void ReferenceSimulation::step() {
   time_ = static_cast<double>(steps_taken_) * dt;
 }
 
-const IntrinsicVertexData<double>& ReferenceSimulation::checked_layer(int layer, const char* what) const {
-  check_layer_index(layer, layer_count(), "simulation", what);
-  return layers_[static_cast<size_t>(layer)];
-}
-
-int ReferenceSimulation::add_static_layer(const IntrinsicVertexData<double>& values) {
-  const int layer = layer_count();
-  check_layer_values(values, domain_.vertex_count, layer, "simulation", "add_static_layer");
-  layers_.push_back(values);
-  return layer;
-}
-
-IntrinsicVertexData<double> ReferenceSimulation::field_values(int layer) const {
-  return checked_layer(layer, "field_values");
-}
-
-void ReferenceSimulation::set_field(const IntrinsicVertexData<double>& values, int layer) {
-  checked_layer(layer, "set_field");
-  check_layer_values(values, domain_.vertex_count, layer, "simulation", "set_field");
-  layers_[static_cast<size_t>(layer)] = values;
-}
-
-void ReferenceSimulation::fill_field(double value, int layer) {
-  checked_layer(layer, "fill_field");
-  check_layer_value(value, layer, "simulation", "fill_field");
-  IntrinsicVertexData<double>& f = layers_[static_cast<size_t>(layer)];
-  f.assign(f.size(), value);
-}
-
 SimulationState ReferenceSimulation::save_state() const {
   SimulationState state;
   state.steps_taken = steps_taken_;
   state.time = time_;
-  state.layers = layers_;
+  state.layers = layers_.all();
   state.agents = agents_;
   state.counters = counters_;
   return state;
@@ -208,8 +181,7 @@ SimulationState ReferenceSimulation::save_state() const {
 // rewritten before it is read in every step, so it is not part of the state.
 void ReferenceSimulation::restore_state(const SimulationState& state) {
   check_state_fits(state, layer_count(), domain_.vertex_count, agents_.count(), domain_.face_count, "simulation");
-  for (size_t layer = 0; layer < layers_.size(); ++layer)
-    std::copy(state.layers[layer].begin(), state.layers[layer].end(), layers_[layer].begin());
+  layers_.copy_from(state.layers);
   agents_ = state.agents;
   counters_ = state.counters;
   steps_taken_ = state.steps_taken;
@@ -217,7 +189,7 @@ void ReferenceSimulation::restore_state(const SimulationState& state) {
 }
 
 FieldStatistics ReferenceSimulation::field_statistics(double U, int layer) const {
-  return compute_field_statistics(checked_layer(layer, "field_statistics"), domain_.vertex_mass, U);
+  return compute_field_statistics(layers_.checked(layer, "field_statistics"), domain_.vertex_mass, U);
 }
 
 }  // namespace physarum

@@ -37,6 +37,7 @@
 #include "common/model/agents.hpp"
 #include "common/base/element_data.hpp"
 #include "reference/diffusion_decay.hpp"
+#include "reference/field_layers.hpp"
 #include "reference/turnover.hpp"
 
 #include <cstdint>
@@ -80,20 +81,20 @@ class ReferenceSimulation final : public SimulationBackend {
   Agents& agents() { return agents_; }  // tests place agents by hand
   // A layer itself (any layer; std::out_of_range past the end). The reference may be invalidated
   // by add_static_layer.
-  const IntrinsicVertexData<double>& field(int layer = 0) const { return layers_.at(static_cast<size_t>(layer)); }
-  IntrinsicVertexData<double>& field(int layer = 0) { return layers_.at(static_cast<size_t>(layer)); }
+  const IntrinsicVertexData<double>& field(int layer = 0) const { return layers_.at(layer); }
+  IntrinsicVertexData<double>& field(int layer = 0) { return layers_.at(layer); }
   // Species 0's field model (the pheromone's, in a one-species simulation).
   ReferenceDiffusionDecay& field_model() { return *species_.front()->field_model; }
   const ReferenceDiffusionDecay& field_model() const { return *species_.front()->field_model; }
   SimulationCounters counters() const override { return counters_; }
 
   // ---- SimulationBackend ----
-  int layer_count() const override { return static_cast<int>(layers_.size()); }
+  int layer_count() const override { return layers_.size(); }
   int dynamic_layer_count() const override { return species_count(); }
-  int add_static_layer(const IntrinsicVertexData<double>& values) override;
-  IntrinsicVertexData<double> field_values(int layer = 0) const override;
-  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override;
-  void fill_field(double value, int layer = 0) override;
+  int add_static_layer(const IntrinsicVertexData<double>& values) override { return layers_.add_static(values); }
+  IntrinsicVertexData<double> field_values(int layer = 0) const override { return layers_.checked(layer, "field_values"); }
+  void set_field(const IntrinsicVertexData<double>& values, int layer = 0) override { layers_.set(values, layer); }
+  void fill_field(double value, int layer = 0) override { layers_.fill(value, layer); }
   FieldStatistics field_statistics(double U, int layer = 0) const override;
   std::vector<int> agent_faces() const override { return agents_.face; }
   SimulationState save_state() const override;
@@ -105,8 +106,6 @@ class ReferenceSimulation final : public SimulationBackend {
 
  private:
   void move_and_deposit();
-  // The layer, after check_layer_index (InputError naming `what` when out of range).
-  const IntrinsicVertexData<double>& checked_layer(int layer, const char* what) const;
 
   // What sensors of species s read: layer s itself for the base model, else sensed_ filled with
   // sum_j m_sj * layer_j.
@@ -130,7 +129,7 @@ class ReferenceSimulation final : public SimulationBackend {
   std::vector<std::unique_ptr<SpeciesState>> species_;
   Agents agents_;
   // The dynamic layers (one per species), then the static ones in the order they were added.
-  std::vector<IntrinsicVertexData<double>> layers_;
+  FieldLayers layers_;
 
   double time_ = 0.0;
   long long steps_taken_ = 0;

@@ -63,7 +63,7 @@ TEST_P(ReactionDiffusionResume, KilledRunResumesToTheUninterruptedRunsBytes) {
 INSTANTIATE_TEST_SUITE_P(Backends, ReactionDiffusionResume, ::testing::Values("reference", "opencl"));
 
 // --maps-out: the ramp {"axis": "x"} is (x - x_min) / (x_max - x_min) at every input vertex (the
-// definition in DESIGN.md), and the range map lo + (hi - lo) x ramp; a second run takes both from
+// definition in docs/maps.md), and the range map lo + (hi - lo) x ramp; a second run takes both from
 // the cache.
 TEST(ReactionDiffusionRun, MapsOutWritesTheScenesMapsAndASecondRunReadsTheCache) {
   TempDir dir;

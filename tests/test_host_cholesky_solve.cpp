@@ -4,7 +4,7 @@
 // the solve (every size on a CPU device).
 #include "common/base/errors.hpp"
 #include "opencl/host_cholesky_solve.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ TEST(HostCholeskySolve, SolvesAKnownSystemAtBothPrecisions) {
 }
 
 // A decayed field's tails below float's smallest normal number (1.2e-38) are solved as zeros
-// (opencl/flush_denormals.hpp: denormal arithmetic is ~2x slower on x86), and the caller's
+// (opencl/runtime/flush_denormals.hpp: denormal arithmetic is ~2x slower on x86), and the caller's
 // floating-point mode is left as it was.
 // A surface-like system: a g x g grid where every node couples to its eight neighbours with weights
 // in [0.5, 2], S = (1 + row sum) I - W, symmetric and diagonally dominant (eigenvalues in [1, 1 + 2

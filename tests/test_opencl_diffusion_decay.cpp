@@ -8,10 +8,10 @@
 // maximum bounds the solve's error with room for float rounding.
 #include "common/base/errors.hpp"
 #include "kernels/device_types.h"
-#include "opencl/device_tuning.hpp"
+#include "opencl/runtime/device_tuning.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/hybrid_matrix.hpp"
-#include "opencl/queued_host_task.hpp"
+#include "opencl/runtime/queued_host_task.hpp"
 #include "reference_field.hpp"
 #include "delaunay_domain.hpp"
 #include "test_support.hpp"
@@ -231,7 +231,7 @@ TEST(OpenCLDiffusionDecay, AutomaticSolverIsTheHostFactorOnACpuDevice) {
   EXPECT_FALSE(OpenCLDiffusionDecay(compute(), d, params, Integrator::BackwardEuler, 1.0, cg).solves_on_host());
 }
 
-// The host factor in the device's queue (a native kernel, opencl/queued_host_task.hpp) and on the
+// The host factor in the device's queue (a native kernel, opencl/runtime/queued_host_task.hpp) and on the
 // field mapped by the host run the same arithmetic on the same floats: bit for bit the same field,
 // over steps with the kernels the queue runs around the solve (the write rate's source before it and
 // its clamp after) and blocking deposits between steps. A queued solve that read the field before the

@@ -3,13 +3,13 @@
 // the device's memory-bandwidth triad.
 #include "common/numerics/memory_bandwidth.hpp"
 #include "common/base/philox.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
-#include "opencl/device_tuning.hpp"
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/kernel_sources.hpp"
-#include "opencl/memory_bandwidth.hpp"
-#include "opencl/program_cache.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
+#include "opencl/runtime/device_tuning.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/kernel_sources.hpp"
+#include "opencl/runtime/memory_bandwidth.hpp"
+#include "opencl/runtime/program_cache.hpp"
 #include "test_support.hpp"
 
 #include <cmath>

@@ -7,7 +7,7 @@
 #include "common/scene/scene.hpp"
 #include "common/setup/scene_maps.hpp"
 #include "common/setup/scene_surface.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "opencl/simulation.hpp"
 #include "test_support.hpp"
 

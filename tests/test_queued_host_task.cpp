@@ -1,9 +1,9 @@
-// Host code run in the device's queue (opencl/queued_host_task.hpp): it sees what the commands
+// Host code run in the device's queue (opencl/runtime/queued_host_task.hpp): it sees what the commands
 // before it wrote and the commands after it see what it wrote, on the buffer it names (not on
 // another one); enqueueing it does not wait for it; a run that throws is reported at the next enqueue. Skipped
 // on a device without native kernels (GPU drivers), where the field models map their buffers instead.
 #include "common/base/errors.hpp"
-#include "opencl/queued_host_task.hpp"
+#include "opencl/runtime/queued_host_task.hpp"
 
 #include <gtest/gtest.h>
 

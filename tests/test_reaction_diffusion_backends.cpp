@@ -4,7 +4,7 @@
 // integrators; each planted fault moves it far outside that; and a saved state restored into a fresh
 // backend continues bit for bit (the checkpoint/resume contract of common/simulation/simulation_backend.hpp).
 #include "common/simulation/simulation_state.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "opencl/planted_faults.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "tools/backend_factory.hpp"

@@ -4,7 +4,7 @@
 // applies the floor where the reference does: it follows the reference through a run in which the
 // floor holds many vertices, in both integrators.
 #include "common/simulation/simulation_state.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "reaction_diffusion_scene.hpp"
 #include "tools/backend_factory.hpp"
 

@@ -6,10 +6,10 @@
 // (Gray-Scott as Pearson 1993 writes it; Turk's model as Eq. 20 of paper 002; precedence cases whose
 // values are known by arithmetic). float32 against double with O(1) inputs: 1e-5 relative.
 #include "common/base/errors.hpp"
-#include "opencl/compute_context.hpp"
-#include "opencl/device_buffer.hpp"
-#include "opencl/kernel_arguments.hpp"
-#include "opencl/program_cache.hpp"
+#include "opencl/runtime/compute_context.hpp"
+#include "opencl/runtime/device_buffer.hpp"
+#include "opencl/runtime/kernel_arguments.hpp"
+#include "opencl/runtime/program_cache.hpp"
 #include "opencl/reaction_formula.hpp"
 
 #include <gtest/gtest.h>

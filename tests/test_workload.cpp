@@ -3,7 +3,7 @@
 // and the backend built from it runs the scene it carries.
 #include "common/setup/agent_inputs.hpp"
 #include "common/setup/workload.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "tools/backend_factory.hpp"
 
 #include <gtest/gtest.h>

@@ -9,7 +9,7 @@
 #include "opencl/reaction_diffusion.hpp"
 #include "reference/simulation.hpp"
 
-#include "opencl/opencl_api.hpp"
+#include "opencl/runtime/opencl_api.hpp"
 
 #include <algorithm>
 

@@ -13,7 +13,7 @@
 #include "common/simulation/simulation_backend.hpp"
 #include "common/surface/surface_domain.hpp"
 #include "common/setup/workload.hpp"
-#include "opencl/compute_context.hpp"
+#include "opencl/runtime/compute_context.hpp"
 #include "opencl/simulation.hpp"
 
 #include <memory>

@@ -1,5 +1,5 @@
 // `physarum devices`: every OpenCL platform and device, with the index `--device` accepts.
-#include "opencl/device_selection.hpp"
+#include "opencl/runtime/device_selection.hpp"
 #include "tools/commands.hpp"
 
 #include <cstdio>

@@ -1,5 +1,5 @@
 #pragma once
-// The geodesic distance map source (DESIGN.md "Scene files: maps and controls"), as parsed:
+// The geodesic distance map source (docs/maps.md), as parsed:
 //   {"geodesic_distance": {"from": SEEDS}, "method": "heat" | "fmm", "time_factor": m}
 // SEEDS is a seed set (common/map_tools/seed_set.hpp). "method" (default "heat") and "time_factor" (heat only,
 // default 1, > 0: t = m h^2) may stand beside "geodesic_distance" or inside it, not both. Computing

@@ -79,7 +79,7 @@ MapCache MapCache::from_environment() {
       throw UsageError(std::string("PHYSARUM_CACHE_MAX_MB=") + limit + " must be a positive whole number of megabytes");
     max_bytes = static_cast<std::uintmax_t>(mb) << 20;
   }
-  // "off" as the OpenCL program cache (opencl/program_cache.hpp) reads it: both share the folder.
+  // "off" as the OpenCL program cache (opencl/runtime/program_cache.hpp) reads it: both share the folder.
   if (const char* dir = env("PHYSARUM_CACHE_DIR")) return std::string_view(dir) == "off" ? disabled() : MapCache(dir, max_bytes);
   if (const char* xdg = env("XDG_CACHE_HOME")) return MapCache(fs::path(xdg) / "physarum", max_bytes);
   if (const char* home = env("HOME")) return MapCache(fs::path(home) / ".cache" / "physarum", max_bytes);

@@ -5,7 +5,7 @@
 // the values back instead.
 //
 // Where: $PHYSARUM_CACHE_DIR, else $XDG_CACHE_HOME/physarum, else ~/.cache/physarum; entries live in
-// its maps/ folder (the OpenCL program cache keeps its binaries in the same root, opencl/program_cache.hpp).
+// its maps/ folder (the OpenCL program cache keeps its binaries in the same root, opencl/runtime/program_cache.hpp).
 // PHYSARUM_NO_CACHE=1 (any value but "" or "0"), or PHYSARUM_CACHE_DIR=off, turns it off. The folder is
 // kept under $PHYSARUM_CACHE_MAX_MB megabytes (default 2048): after a write, the entries used least
 // recently (a hit refreshes an entry's time) are removed until it fits.

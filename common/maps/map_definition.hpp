@@ -1,6 +1,6 @@
 #pragma once
-// Named surface maps (paper Sec. 3.3; the scene's "maps" key, DESIGN.md "Scene files: maps and
-// controls"): what each map IS, parsed and checked once from the scene file into a small typed tree,
+// Named surface maps (paper Sec. 3.3; the scene's "maps" key, docs/maps.md "Surface maps"): what
+// each map IS, parsed and checked once from the scene file into a small typed tree,
 // before any surface exists, so that a bad map is refused before anything is built or written.
 // Evaluating the maps on a surface is common/maps/map_evaluation.hpp.
 //

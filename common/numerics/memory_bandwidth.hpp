@@ -1,7 +1,7 @@
 #pragma once
 // The bandwidth of host memory, for the roofline of kernels that run from it (the reference, and
 // OpenCL on a CPU device): a STREAM-style triad a = b + s c over three arrays far larger than any
-// cache, one thread per core. opencl/memory_bandwidth.hpp measures a device's own memory the same way.
+// cache, one thread per core. opencl/runtime/memory_bandwidth.hpp measures a device's own memory the same way.
 #include <cstddef>
 #include <vector>
 

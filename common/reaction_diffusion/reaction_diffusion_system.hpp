@@ -67,4 +67,11 @@ struct ReactionDiffusionSystem {
   int substeps = 1;
 };
 
+// The checks both backends make before they take a system for `vertex_count` vertices: 2 to 4
+// morphogens with usable, distinct names (letters, digits, '_'), one formula, stiffness (n x n, the
+// pattern of the first, finite), initial state and floor (finite or -infinity) per morphogen,
+// finite coefficient arrays and masses > 0 of one value per vertex, a time step > 0 and sub-steps
+// >= 1. Throws InputError starting with `who` ("reaction-diffusion", "opencl reaction-diffusion").
+void check_reaction_diffusion_system(const ReactionDiffusionSystem& system, int vertex_count, const std::string& who);
+
 }  // namespace physarum

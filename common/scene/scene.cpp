@@ -1,4 +1,6 @@
 #include "common/scene/scene.hpp"
+
+#include "common/scene/scene_fields.hpp"
 #include "common/scene/scene_overrides.hpp"
 
 #include "common/base/errors.hpp"
@@ -29,11 +31,9 @@ const SceneKey& spec_of(std::string_view name) {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-std::string where(const std::string& source) { return source.empty() ? std::string("scene") : source; }
-
 [[noreturn]] void fail_range(const std::string& source, std::string_view key, const std::string& shown_value,
                              const ValueRange& range) {
-  throw InputError(where(source) + ": key '" + std::string(key) + "' = " + shown_value + " is out of range (" +
+  throw InputError(scene_where(source) + ": key '" + std::string(key) + "' = " + shown_value + " is out of range (" +
                    range.describe() + ")");
 }
 
@@ -52,14 +52,14 @@ struct Reader {
     auto it = object.find(std::string(key));
     if (it == object.end()) {
       if (spec_of(key).required)
-        throw InputError(where(source) + ": required key '" + std::string(key) + "' is missing");
+        throw InputError(scene_where(source) + ": required key '" + std::string(key) + "' is missing");
       return nullptr;
     }
     return &*it;
   }
 
   [[noreturn]] void wrong_type(std::string_view key, const json& v, const char* expected) const {
-    throw InputError(where(source) + ": key '" + std::string(key) + "' = " + v.dump() + " has the wrong type (" +
+    throw InputError(scene_where(source) + ": key '" + std::string(key) + "' = " + v.dump() + " has the wrong type (" +
                      v.type_name() + "; expected " + expected + ")");
   }
 
@@ -87,7 +87,7 @@ struct Reader {
     const double x = v->get<double>();
     if (!spec.range.contains(x)) fail_range(source, key, v->dump(), spec.range);
     if (v->is_number_float() && x != std::floor(x))
-      throw InputError(where(source) + ": key '" + std::string(key) + "' = " + v->dump() +
+      throw InputError(scene_where(source) + ": key '" + std::string(key) + "' = " + v->dump() +
                        " must be a whole number (" + spec.range.describe() + ")");
     return v->is_number_unsigned() ? static_cast<long long>(v->get<unsigned long long>())
            : v->is_number_integer() ? v->get<long long>()
@@ -113,9 +113,6 @@ std::vector<std::string> agent_model_keys() {
 
 // ---- maps and controls ------------------------------------------------------------------------------
 
-[[noreturn]] void fail_key(const std::string& source, std::string_view key, const std::string& problem) {
-  throw InputError(where(source) + ": key '" + std::string(key) + "': " + problem);
-}
 
 // A parameter given by a map: a bare map name, or {"map": NAME, "range": [lo, hi]} whose bounds are
 // in the parameter's range (so every map value in 0..1 gives an allowed value). nullopt for a
@@ -167,16 +164,6 @@ std::string map_name(const json& entry, const char* field, const std::string& so
   return it->get<std::string>();
 }
 
-void only_fields(const json& entry, std::initializer_list<const char*> allowed, const std::string& source,
-                 const std::string& key) {
-  if (!entry.is_object()) fail_key(source, key, entry.dump() + " must be an object");
-  for (auto it = entry.begin(); it != entry.end(); ++it)
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; })) {
-      std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
-      fail_key(source, key, "unknown field \"" + it.key() + "\" (it takes " + list + ")");
-    }
-}
 
 // A map name or a number.
 MapOperand operand_value(const json& value, const std::string& source, const std::string& key) {
@@ -312,7 +299,7 @@ void check_map_reference(const Scene& scene, const std::string& key, const std::
   if (!map) {
     std::string known;
     for (const MapDefinition& m : scene.maps.in_dependency_order()) known += (known.empty() ? "" : ", ") + m.name;
-    throw InputError(where(scene.source) + ": key '" + key + "'" + (shown_value.empty() ? "" : " = " + shown_value) +
+    throw InputError(scene_where(scene.source) + ": key '" + key + "'" + (shown_value.empty() ? "" : " = " + shown_value) +
                      ": map '" + name + "' is not defined in 'maps' (" +
                      (known.empty() ? "no maps are defined" : "defined: " + known) + ")");
   }
@@ -579,7 +566,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
 
 void validate_scene(const Scene& scene) {
   const std::string& s = scene.source;
-  if (scene.mesh.empty()) throw InputError(where(s) + ": key 'mesh' is empty (give a file path or shape:NAME)");
+  if (scene.mesh.empty()) throw InputError(scene_where(s) + ": key 'mesh' is empty (give a file path or shape:NAME)");
   if (scene.scale_to_area) check_range(s, "scale_to_area", *scene.scale_to_area);
   if (scene.max_circumradius) check_range(s, "max_circumradius", *scene.max_circumradius);
   check_range(s, "min_angle", scene.min_angle_deg);
@@ -587,7 +574,7 @@ void validate_scene(const Scene& scene) {
   if (scene.steps) check_range(s, "steps", static_cast<double>(*scene.steps));
   if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
   if (scene.steps && scene.sim_time)
-    throw InputError(where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
+    throw InputError(scene_where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
   if (scene.reaction_diffusion) {
     validate_reaction_diffusion(*scene.reaction_diffusion, scene.maps, s);
     return;

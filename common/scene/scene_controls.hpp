@@ -1,7 +1,7 @@
 #pragma once
 // The controls of paper Sec. 3.3 as a scene file states them: by map NAME, before any surface
 // exists (keys "read_stimuli", "write_stimuli", "spawn_weight", "bias", "spawn_heading", "boundary";
-// DESIGN.md "Scene files: maps and controls"). Evaluated on a surface they become the arrays a
+// docs/scenes.md "Controls"). Evaluated on a surface they become the arrays a
 // backend reads, SimulationControls (common/setup/scene_maps.hpp does that).
 #include "common/maps/map_definition.hpp"
 #include "common/model/simulation_controls.hpp"

@@ -1,5 +1,6 @@
 #include "common/scene/scene_reaction_diffusion.hpp"
 
+#include "common/scene/scene_fields.hpp"
 #include "common/base/errors.hpp"
 #include "common/reaction_diffusion/reaction_formula.hpp"
 #include "common/reaction_diffusion/reaction_models.hpp"
@@ -17,41 +18,25 @@ using nlohmann::json;
 constexpr size_t kMinMorphogens = 2;
 constexpr size_t kMaxMorphogens = 4;
 
-std::string where(const std::string& source) { return source.empty() ? std::string("scene") : source; }
-
-[[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& problem) {
-  throw InputError(where(source) + ": key '" + key + "': " + problem);
-}
-
 std::string number_text(double x) { return ValueRange::number(x); }
 
-void only_fields(const json& entry, std::initializer_list<const char*> allowed, const std::string& source,
-                 const std::string& key) {
-  if (!entry.is_object()) fail(source, key, entry.dump() + " must be an object");
-  for (auto it = entry.begin(); it != entry.end(); ++it)
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; })) {
-      std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
-      fail(source, key, "unknown field \"" + it.key() + "\" (it takes " + list + ")");
-    }
-}
 
 double finite_number(const json& v, const std::string& source, const std::string& key) {
-  if (!v.is_number()) fail(source, key, v.dump() + " must be a number");
+  if (!v.is_number()) fail_key(source, key, v.dump() + " must be a number");
   const double x = v.get<double>();
-  if (!std::isfinite(x)) fail(source, key, v.dump() + " must be finite");
+  if (!std::isfinite(x)) fail_key(source, key, v.dump() + " must be finite");
   return x;
 }
 
 std::string map_name(const json& v, const std::string& source, const std::string& key) {
-  if (!v.is_string() || v.get<std::string>().empty()) fail(source, key, v.dump() + " must be a map name");
+  if (!v.is_string() || v.get<std::string>().empty()) fail_key(source, key, v.dump() + " must be a map name");
   return v.get<std::string>();
 }
 
 MapOperand number_or_map(const json& v, const std::string& source, const std::string& key) {
   if (v.is_number()) return finite_number(v, source, key);
   if (v.is_string() && !v.get<std::string>().empty()) return v.get<std::string>();
-  fail(source, key, v.dump() + " must be a number or a scalar map name");
+  fail_key(source, key, v.dump() + " must be a number or a scalar map name");
 }
 
 // A name a formula can use: a letter or '_' first, then letters, digits, '_'; not a function.
@@ -59,10 +44,10 @@ void check_identifier(const std::string& name, const std::string& source, const 
   const bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
                   std::all_of(name.begin(), name.end(),
                               [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-  if (!ok) fail(source, key, "'" + name + "' is not a name a formula can use (letters, digits and _, not a digit first)");
+  if (!ok) fail_key(source, key, "'" + name + "' is not a name a formula can use (letters, digits and _, not a digit first)");
   const auto& functions = reaction_formula_functions();
   if (std::find(functions.begin(), functions.end(), name) != functions.end())
-    fail(source, key, "'" + name + "' is the name of a function");
+    fail_key(source, key, "'" + name + "' is the name of a function");
 }
 
 std::string morphogen_list(const std::vector<MorphogenSpec>& morphogens) {
@@ -73,12 +58,12 @@ std::string morphogen_list(const std::vector<MorphogenSpec>& morphogens) {
 
 MorphogenValues read_values(const json& v, const std::vector<MorphogenSpec>& morphogens, const std::string& source,
                             const std::string& key) {
-  if (!v.is_object()) fail(source, key, v.dump() + " must be an object {MORPHOGEN: value, ...}");
+  if (!v.is_object()) fail_key(source, key, v.dump() + " must be an object {MORPHOGEN: value, ...}");
   MorphogenValues values;
   for (auto it = v.begin(); it != v.end(); ++it) {
     const std::string entry = key + "." + it.key();
     if (std::none_of(morphogens.begin(), morphogens.end(), [&](const MorphogenSpec& m) { return m.name == it.key(); }))
-      fail(source, entry, "no morphogen of that name (the morphogens: " + morphogen_list(morphogens) + ")");
+      fail_key(source, entry, "no morphogen of that name (the morphogens: " + morphogen_list(morphogens) + ")");
     values.emplace_back(it.key(), finite_number(*it, source, entry));
   }
   return values;
@@ -97,7 +82,7 @@ void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_re
   if (const auto d = entry.find("diffusion"); d != entry.end())
     m.diffusion = number_or_map(*d, source, key + ".diffusion");
   else if (diffusion_required)
-    fail(source, key, "missing \"diffusion\" (m^2/s: a number >= 0 or a scalar map name)");
+    fail_key(source, key, "missing \"diffusion\" (m^2/s: a number >= 0 or a scalar map name)");
   if (const auto i = entry.find("initial"); i != entry.end()) m.initial = number_or_map(*i, source, key + ".initial");
   if (const auto floor = entry.find("minimum"); floor != entry.end())
     m.minimum = floor->is_null() ? -std::numeric_limits<double>::infinity() : finite_number(*floor, source, key + ".minimum");
@@ -106,10 +91,10 @@ void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_re
     only_fields(*a, {"direction", "ratio"}, source, akey);
     AnisotropySpec spec;
     const auto dir = a->find("direction");
-    if (dir == a->end()) fail(source, akey, "missing \"direction\" (a vector map)");
+    if (dir == a->end()) fail_key(source, akey, "missing \"direction\" (a vector map)");
     spec.direction = map_name(*dir, source, akey + ".direction");
     const auto ratio = a->find("ratio");
-    if (ratio == a->end()) fail(source, akey, "missing \"ratio\" (rate across the direction / rate along it, > 0)");
+    if (ratio == a->end()) fail_key(source, akey, "missing \"ratio\" (rate across the direction / rate along it, > 0)");
     spec.ratio = finite_number(*ratio, source, akey + ".ratio");
     m.anisotropy = spec;
   }
@@ -136,7 +121,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   };
   std::string model = "physarum";
   if (const json* m = given("model")) {
-    if (!m->is_string()) fail(source, "model", m->dump() + " must be a string");
+    if (!m->is_string()) fail_key(source, "model", m->dump() + " must be a string");
     model = m->get<std::string>();
   }
   const json* reaction = given("reaction");
@@ -144,7 +129,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   if (model == "physarum") {
     for (const std::string& key : reaction_diffusion_keys())
       if (key != "model" && given(key.c_str()))
-        fail(source, key, "belongs to a reaction-diffusion model, and this scene's \"model\" is \"physarum\" "
+        fail_key(source, key, "belongs to a reaction-diffusion model, and this scene's \"model\" is \"physarum\" "
                           "(the default; set \"model\" to one of " + reaction_model_names() + ", or give \"reaction\")");
     return std::nullopt;
   }
@@ -153,18 +138,18 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   spec.model = model;
   const ReactionModel* named = find_reaction_model(model);
   if (model == "custom") {
-    if (!reaction) fail(source, "model", "\"custom\" needs \"reaction\": {MORPHOGEN: FORMULA, ...}");
+    if (!reaction) fail_key(source, "model", "\"custom\" needs \"reaction\": {MORPHOGEN: FORMULA, ...}");
   } else if (!named) {
-    fail(source, "model", "\"" + model + "\" is not a model (physarum, " + reaction_model_names() + ", or custom)");
+    fail_key(source, "model", "\"" + model + "\" is not a model (physarum, " + reaction_model_names() + ", or custom)");
   } else if (reaction) {
-    fail(source, "reaction", "custom kinetics, and \"model\" names the built-in \"" + model +
+    fail_key(source, "reaction", "custom kinetics, and \"model\" names the built-in \"" + model +
                                  "\" (leave \"model\" out or set it to \"custom\")");
   }
 
   // ---- the morphogens and their kinetics ----
   const json* morphogens = given("morphogens");
   if (morphogens && !morphogens->is_object())
-    fail(source, "morphogens", morphogens->dump() + " must be an object {NAME: {\"diffusion\", \"initial\", \"anisotropy\", \"minimum\"}}");
+    fail_key(source, "morphogens", morphogens->dump() + " must be an object {NAME: {\"diffusion\", \"initial\", \"anisotropy\", \"minimum\"}}");
   if (named) {
     for (size_t i = 0; i < named->morphogens.size(); ++i) {
       MorphogenSpec m;
@@ -177,39 +162,39 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
     spec.reaction = named->reaction;
     for (const auto& [name, value] : named->coefficients) spec.coefficients.emplace_back(name, value);
   } else {
-    if (!reaction->is_object()) fail(source, "reaction", reaction->dump() + " must be an object {MORPHOGEN: FORMULA, ...}");
+    if (!reaction->is_object()) fail_key(source, "reaction", reaction->dump() + " must be an object {MORPHOGEN: FORMULA, ...}");
     if (reaction->size() < kMinMorphogens || reaction->size() > kMaxMorphogens)
-      fail(source, "reaction", "has " + std::to_string(reaction->size()) + " morphogens; a system has 2 to 4");
+      fail_key(source, "reaction", "has " + std::to_string(reaction->size()) + " morphogens; a system has 2 to 4");
     for (auto it = reaction->begin(); it != reaction->end(); ++it) {
       const std::string key = "reaction." + it.key();
       check_identifier(it.key(), source, key);
-      if (!it->is_string()) fail(source, key, it->dump() + " must be a formula (a string)");
+      if (!it->is_string()) fail_key(source, key, it->dump() + " must be a formula (a string)");
       MorphogenSpec m;
       m.name = it.key();
       spec.morphogens.push_back(m);
       spec.reaction.push_back(it->get<std::string>());
     }
-    if (!morphogens) fail(source, "morphogens", "missing: custom kinetics need each morphogen's \"diffusion\"");
+    if (!morphogens) fail_key(source, "morphogens", "missing: custom kinetics need each morphogen's \"diffusion\"");
     for (const MorphogenSpec& m : spec.morphogens)
       if (!morphogens->contains(m.name))
-        fail(source, "morphogens", "missing an entry for \"" + m.name + "\" (its \"diffusion\" is required)");
+        fail_key(source, "morphogens", "missing an entry for \"" + m.name + "\" (its \"diffusion\" is required)");
   }
   if (morphogens)
     for (auto it = morphogens->begin(); it != morphogens->end(); ++it) {
       const int index = spec.morphogen_index(it.key());
       if (index < 0)
-        fail(source, "morphogens." + it.key(), "no morphogen of that name (the morphogens: " +
+        fail_key(source, "morphogens." + it.key(), "no morphogen of that name (the morphogens: " +
                                                    morphogen_list(spec.morphogens) + ")");
       read_morphogen_entry(*it, spec.morphogens[static_cast<size_t>(index)], !named, source, "morphogens." + it.key());
     }
 
   // ---- coefficients ----
   if (const json* p = given("parameters")) {
-    if (!p->is_object()) fail(source, "parameters", p->dump() + " must be an object {NAME: number or map, ...}");
+    if (!p->is_object()) fail_key(source, "parameters", p->dump() + " must be an object {NAME: number or map, ...}");
     for (auto it = p->begin(); it != p->end(); ++it) {
       const std::string key = "parameters." + it.key();
       check_identifier(it.key(), source, key);
-      if (spec.morphogen_index(it.key()) >= 0) fail(source, key, "'" + it.key() + "' is a morphogen, not a coefficient");
+      if (spec.morphogen_index(it.key()) >= 0) fail_key(source, key, "'" + it.key() + "' is a morphogen, not a coefficient");
       const MapOperand value = number_or_map(*it, source, key);
       auto existing = std::find_if(spec.coefficients.begin(), spec.coefficients.end(),
                                    [&](const auto& c) { return c.first == it.key(); });
@@ -218,7 +203,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
       } else if (named) {
         std::string known;
         for (const auto& c : named->coefficients) known += (known.empty() ? "" : ", ") + c.first;
-        fail(source, key, "\"" + model + "\" has no coefficient '" + it.key() + "' (it has " + known + ")");
+        fail_key(source, key, "\"" + model + "\" has no coefficient '" + it.key() + "' (it has " + known + ")");
       } else {
         spec.coefficients.emplace_back(it.key(), value);
       }
@@ -232,9 +217,9 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
     if (const auto r = init->find("seed_region"); r != init->end() && !r->is_null()) {
       only_fields(*r, {"map", "values"}, source, "initial.seed_region");
       SeedRegionSpec seed;
-      if (!r->contains("map")) fail(source, "initial.seed_region", "missing \"map\" (a scalar map, 0..1)");
+      if (!r->contains("map")) fail_key(source, "initial.seed_region", "missing \"map\" (a scalar map, 0..1)");
       seed.map = map_name(r->at("map"), source, "initial.seed_region.map");
-      if (!r->contains("values")) fail(source, "initial.seed_region", "missing \"values\" ({MORPHOGEN: value})");
+      if (!r->contains("values")) fail_key(source, "initial.seed_region", "missing \"values\" ({MORPHOGEN: value})");
       seed.values = read_values(r->at("values"), spec.morphogens, source, "initial.seed_region.values");
       spec.initial.seed_region = seed;
     }
@@ -242,10 +227,10 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
       only_fields(*s, {"count", "radius", "values"}, source, "initial.spots");
       SpotsSpec spots;
       for (const char* f : {"count", "radius", "values"})
-        if (!s->contains(f)) fail(source, "initial.spots", std::string("missing \"") + f + "\"");
+        if (!s->contains(f)) fail_key(source, "initial.spots", std::string("missing \"") + f + "\"");
       const double count = finite_number(s->at("count"), source, "initial.spots.count");
       if (count < 1 || count != std::floor(count) || count > 1e7)
-        fail(source, "initial.spots.count", number_text(count) + " must be a whole number 1..1e7");
+        fail_key(source, "initial.spots.count", number_text(count) + " must be a whole number 1..1e7");
       spots.count = static_cast<int>(count);
       spots.radius = finite_number(s->at("radius"), source, "initial.spots.radius");
       spots.values = read_values(s->at("values"), spec.morphogens, source, "initial.spots.values");
@@ -255,7 +240,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   if (const json* d = given("dirichlet")) {
     only_fields(*d, {"map", "values"}, source, "dirichlet");
     DirichletSpec dirichlet;
-    if (!d->contains("map")) fail(source, "dirichlet", "missing \"map\" (a scalar map: fixed where >= 0.5)");
+    if (!d->contains("map")) fail_key(source, "dirichlet", "missing \"map\" (a scalar map: fixed where >= 0.5)");
     dirichlet.map = map_name(d->at("map"), source, "dirichlet.map");
     if (d->contains("values")) dirichlet.values = read_values(d->at("values"), spec.morphogens, source, "dirichlet.values");
     spec.dirichlet = dirichlet;
@@ -263,7 +248,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   spec.preview_morphogen = spec.morphogens[1].name;
   if (const json* p = given("preview_morphogen")) {
     if (!p->is_string() || spec.morphogen_index(p->get<std::string>()) < 0)
-      fail(source, "preview_morphogen", p->dump() + " must be a morphogen's name (" + morphogen_list(spec.morphogens) + ")");
+      fail_key(source, "preview_morphogen", p->dump() + " must be a morphogen's name (" + morphogen_list(spec.morphogens) + ")");
     spec.preview_morphogen = p->get<std::string>();
   }
   return spec;
@@ -272,20 +257,20 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
 void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet& maps, const std::string& source) {
   auto check_map = [&](const std::string& key, const std::string& name, MapKind kind) {
     const MapDefinition* map = maps.find(name);
-    if (!map) fail(source, key, "map '" + name + "' is not defined in 'maps'");
+    if (!map) fail_key(source, key, "map '" + name + "' is not defined in 'maps'");
     if (map->kind != kind)
-      fail(source, key, "map '" + name + "' is a " + std::string(to_string(map->kind)) + " map, but a " +
+      fail_key(source, key, "map '" + name + "' is a " + std::string(to_string(map->kind)) + " map, but a " +
                             to_string(kind) + " map is needed here");
   };
   if (spec.morphogens.size() < kMinMorphogens || spec.morphogens.size() > kMaxMorphogens)
-    fail(source, "morphogens", std::to_string(spec.morphogens.size()) + " morphogens; a system has 2 to 4");
+    fail_key(source, "morphogens", std::to_string(spec.morphogens.size()) + " morphogens; a system has 2 to 4");
   if (spec.reaction.size() != spec.morphogens.size())
-    fail(source, "reaction", "one formula per morphogen is needed");
+    fail_key(source, "reaction", "one formula per morphogen is needed");
   for (const MorphogenSpec& m : spec.morphogens) {
     const std::string key = "morphogens." + m.name;
     if (const auto* rate = std::get_if<double>(&m.diffusion)) {
       if (!(*rate >= 0.0) || !std::isfinite(*rate))
-        fail(source, key + ".diffusion", number_text(*rate) + " m^2/s must be >= 0");
+        fail_key(source, key + ".diffusion", number_text(*rate) + " m^2/s must be >= 0");
     } else {
       check_map(key + ".diffusion", std::get<std::string>(m.diffusion), MapKind::Scalar);
     }
@@ -293,24 +278,24 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
     if (m.anisotropy) {
       check_map(key + ".anisotropy.direction", m.anisotropy->direction, MapKind::Vector);
       if (!(m.anisotropy->ratio > 0.0) || !std::isfinite(m.anisotropy->ratio))
-        fail(source, key + ".anisotropy.ratio", number_text(m.anisotropy->ratio) + " must be > 0");
+        fail_key(source, key + ".anisotropy.ratio", number_text(m.anisotropy->ratio) + " must be > 0");
     }
   }
   for (const auto& [name, value] : spec.coefficients)
     if (const auto* map = std::get_if<std::string>(&value)) check_map("parameters." + name, *map, MapKind::Scalar);
   const std::vector<std::string> names = formula_names(spec);
   for (size_t m = 0; m < spec.reaction.size(); ++m)
-    ReactionFormula(spec.reaction[m], names, where(source) + ": key 'reaction." + spec.morphogens[m].name + "'");
-  if (!(spec.initial.noise >= 0.0)) fail(source, "initial.noise", number_text(spec.initial.noise) + " must be >= 0");
+    ReactionFormula(spec.reaction[m], names, scene_where(source) + ": key 'reaction." + spec.morphogens[m].name + "'");
+  if (!(spec.initial.noise >= 0.0)) fail_key(source, "initial.noise", number_text(spec.initial.noise) + " must be >= 0");
   if (spec.initial.seed_region) check_map("initial.seed_region.map", spec.initial.seed_region->map, MapKind::Scalar);
   if (spec.initial.spots) {
-    if (spec.initial.spots->count < 1) fail(source, "initial.spots.count", "must be >= 1");
+    if (spec.initial.spots->count < 1) fail_key(source, "initial.spots.count", "must be >= 1");
     if (!(spec.initial.spots->radius > 0.0))
-      fail(source, "initial.spots.radius", number_text(spec.initial.spots->radius) + " m must be > 0");
+      fail_key(source, "initial.spots.radius", number_text(spec.initial.spots->radius) + " m must be > 0");
   }
   if (spec.dirichlet) check_map("dirichlet.map", spec.dirichlet->map, MapKind::Scalar);
   if (spec.morphogen_index(spec.preview_morphogen) < 0)
-    fail(source, "preview_morphogen", "'" + spec.preview_morphogen + "' is no morphogen");
+    fail_key(source, "preview_morphogen", "'" + spec.preview_morphogen + "' is no morphogen");
 }
 
 nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec) {

@@ -1,5 +1,5 @@
 #pragma once
-// The reaction–diffusion part of a scene (DESIGN.md "Scene files: field models"): which model, its
+// The reaction–diffusion part of a scene (docs/reaction_diffusion.md): which model, its
 // coefficients, its morphogens with their diffusion and initial state, the Dirichlet region and the
 // morphogen the pictures show. Read from the scene's JSON object by read_reaction_diffusion (the keys
 // "model", "parameters", "morphogens", "initial", "reaction", "dirichlet", "preview_morphogen");

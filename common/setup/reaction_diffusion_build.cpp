@@ -1,6 +1,7 @@
 #include "common/setup/reaction_diffusion_build.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/scene/scene_fields.hpp"
 #include "common/base/random_streams.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -15,7 +16,6 @@
 namespace physarum {
 namespace {
 
-std::string where(const Scene& scene) { return scene.source.empty() ? std::string("scene") : scene.source; }
 
 // A number everywhere, or the map's values; every value finite (and >= 0 when `non_negative`).
 IntrinsicVertexData<double> per_vertex(const MapOperand& operand, const EvaluatedMaps& maps, int vertex_count,
@@ -26,9 +26,8 @@ IntrinsicVertexData<double> per_vertex(const MapOperand& operand, const Evaluate
           : maps.scalar_map(std::get<std::string>(operand));
   for (size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]) || (non_negative && values[i] < 0.0))
-      throw InputError(where(scene) + ": key '" + key + "': the value " + ValueRange::number(values[i]) +
-                       " at intrinsic vertex " + std::to_string(i) +
-                       (non_negative ? " must be >= 0 (a diffusion rate)" : " must be finite"));
+      fail_key(scene.source, key, "the value " + ValueRange::number(values[i]) + " at intrinsic vertex " + std::to_string(i) +
+                                      (non_negative ? " must be >= 0 (a diffusion rate)" : " must be finite"));
   return values;
 }
 

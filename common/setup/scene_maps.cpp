@@ -1,6 +1,7 @@
 #include "common/setup/scene_maps.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/scene/scene_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +11,8 @@
 namespace physarum {
 namespace {
 
-std::string where(const Scene& scene) { return scene.source.empty() ? std::string("scene") : scene.source; }
-
 [[noreturn]] void fail_key(const Scene& scene, const std::string& key, const std::string& problem) {
-  throw InputError(where(scene) + ": key '" + key + "': " + problem);
+  physarum::fail_key(scene.source, key, problem);
 }
 
 IntrinsicVertexData<double> operand_values(const MapOperand& operand, const EvaluatedMaps& maps, int n) {
@@ -133,15 +132,15 @@ SimulationControls simulation_controls(const Scene& scene, const PreparedSurface
 }
 
 VertexParameters vertex_parameters(const Scene& scene, const PreparedSurface& surface) {
-  return vertex_parameters(scene, surface, evaluate_maps(scene.maps, surface, where(scene)));
+  return vertex_parameters(scene, surface, evaluate_maps(scene.maps, surface, scene_where(scene.source)));
 }
 
 SimulationControls simulation_controls(const Scene& scene, const PreparedSurface& surface) {
-  return simulation_controls(scene, surface, evaluate_maps(scene.maps, surface, where(scene)));
+  return simulation_controls(scene, surface, evaluate_maps(scene.maps, surface, scene_where(scene.source)));
 }
 
 SceneArrays scene_arrays(const Scene& scene, const PreparedSurface& surface) {
-  return scene_arrays(scene, surface, evaluate_maps(scene.maps, surface, where(scene)));
+  return scene_arrays(scene, surface, evaluate_maps(scene.maps, surface, scene_where(scene.source)));
 }
 
 SceneArrays scene_arrays(const Scene& scene, const PreparedSurface& surface, const EvaluatedMaps& maps) {

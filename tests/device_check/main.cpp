@@ -16,7 +16,7 @@
 #include "opencl/face_records.hpp"
 #include "opencl/host_cholesky_solve.hpp"
 #include "opencl/hybrid_matrix.hpp"
-#include "opencl/memory_bandwidth.hpp"
+#include "opencl/runtime/memory_bandwidth.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "opencl/simulation.hpp"

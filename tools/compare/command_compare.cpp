@@ -1,0 +1,515 @@
+// `physarum compare SCENE.json [--arm K=V[,K=V...] --arm K=V[,...]] [--max-seeds N] [--jobs N]
+//                              [--device SPEC] [--fault NAME] [--out DIR]
+//                              [--reference-stats FILE] [--reference-seeds N] [--store-reference FILE --seeds N]`:
+// the differential harness. Runs independent seeds of two arms (by default the OpenCL backend and
+// the reference on one scene; with --arm, one scene under two settings or discretisations,
+// tools/compare/comparison_arms.hpp), time-averages dimensionless pattern metrics per seed after a burn-in
+// (common/harness/comparison_metrics.hpp) and decides, metric by metric, whether the arms agree within the
+// scene's declared margins.
+//
+// Seeds run in batches of kBatch per arm, on every core and device at once (tools/compare/seed_runner.hpp);
+// after each batch a group-sequential test (common/harness/sequential_equivalence.hpp: O'Brien-Fleming alpha
+// spending over the looks, Sidak over the metrics) says, for each metric still open, equivalent (its
+// confidence interval lies inside the margin), different (it lies entirely outside) or undecided.
+// The run stops as soon as one metric is different or all are equivalent, and at --max-seeds it
+// says inconclusive, naming the metrics that lack power and the seeds per arm that would settle
+// them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
+// statistics, 2 on usage errors.
+//
+// Apart from that verdict, each arm whose continuous mean is Eq. 5's U is checked against the
+// steady mean of the time-discrete model it runs (tools/compare/theory_check.hpp): its own section of
+// verdict.json ("theory") and a line on stderr, never part of the verdict or the exit code.
+//
+// Reaction-diffusion scenes (model gray-scott, turing, ...): the same test on their own metric set
+// (common/harness/reaction_diffusion_metrics.hpp: each morphogen's mean and variance / mean^2, coverage of
+// the preview morphogen above fractions of its range, band shares of its spectrum), each seed a
+// system built with that seed, run for the scene's steps: by default the first half is the burn-in
+// and the second half is averaged (compare_burn_in / compare_duration override). Their planted
+// faults are rd-swap-diffusion and rd-no-feed; stored reference statistics are refused.
+//
+// Stored reference statistics: `--store-reference FILE --seeds 100` runs only the reference and
+// writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
+// runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
+// (a two-sided t test per metric at the Sidak level, see drift_p_value; drift is an error, exit 1).
+#include "common/base/atomic_write.hpp"
+#include "common/harness/comparison_metrics.hpp"
+#include "common/harness/equivalence_test.hpp"
+#include "common/base/errors.hpp"
+#include "common/scene/scene.hpp"
+#include "common/scene/scene_json.hpp"
+#include "common/harness/sequential_equivalence.hpp"
+#include "opencl/planted_faults.hpp"
+#include "tools/commands.hpp"
+#include "tools/compare/comparison_arms.hpp"
+#include "tools/compare/comparison_plot.hpp"
+#include "tools/compare/seed_runner.hpp"
+#include "tools/compare/theory_check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+#include <unistd.h>
+
+namespace physarum::cli {
+namespace {
+
+struct CompareOptions {
+  std::string scene;
+  std::string device;
+  std::vector<std::string> arms;
+  std::optional<int> max_seeds;
+  int jobs = 0;  // 0: the cores
+  std::string fault;
+  std::string out;
+  std::string reference_stats;
+  int reference_seeds = 3;
+  std::string store_reference;
+};
+
+constexpr int kStoredSeeds = 100;  // --store-reference without --seeds
+
+constexpr double kFamilyAlpha = 0.05;  // each kind of false verdict (equivalent, different) at most this often
+// Seeds per arm between two looks: enough that the first look has a usable spread, few enough that
+// an easy verdict comes after a handful of batches.
+constexpr int kBatch = 8;
+
+using Matrix = std::vector<std::vector<double>>;  // [seed][metric]
+
+std::vector<double> column(const Matrix& m, size_t j) {
+  std::vector<double> c;
+  c.reserve(m.size());
+  for (const auto& row : m) c.push_back(row[j]);
+  return c;
+}
+
+// ---- stored reference statistics ----
+
+// The parameters a stored file must match: everything but the seed, and the mesh by file name
+// (the folder differs between checkouts).
+nlohmann::ordered_json comparable_parameters(const Scene& scene) {
+  nlohmann::ordered_json p = scene_parameters_json(scene);
+  p.erase("seed");
+  p["mesh"] = std::filesystem::path(scene.mesh).filename().string();
+  const ComparisonSettings& c = scene.comparison;
+  p["compare"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval},
+                  {"bands", c.spectrum_bands}, {"eigenpairs", c.eigenpairs}};
+  return p;
+}
+
+std::vector<std::string> metric_names(const std::vector<MetricInfo>& metrics) {
+  std::vector<std::string> names;
+  for (const MetricInfo& m : metrics) names.push_back(m.name);
+  return names;
+}
+
+void store_reference(const std::string& path, const Scene& scene, const std::vector<MetricInfo>& metrics,
+                     const Matrix& values) {
+  nlohmann::ordered_json j;
+  j["generated_by"] = "physarum compare --store-reference";
+  j["parameters"] = comparable_parameters(scene);
+  j["metrics"] = metric_names(metrics);
+  j["values"] = values;
+  write_text_file_atomically(path, j.dump(1) + "\n");
+}
+
+Matrix load_reference(const std::string& path, const Scene& scene, const std::vector<MetricInfo>& metrics) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the stored reference statistics");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": malformed stored reference statistics: " + e.what());
+  }
+  const std::string regenerate = " (regenerate it: physarum compare " + scene.source + " --store-reference " + path +
+                                 " --seeds 100)";
+  if (!j.contains("parameters") || j["parameters"] != nlohmann::json(comparable_parameters(scene)))
+    throw InputError(path + ": stored for other scene parameters than " + scene.source + regenerate);
+  if (!j.contains("metrics") || j["metrics"] != nlohmann::json(metric_names(metrics)))
+    throw InputError(path + ": stored with other metrics than this build measures" + regenerate);
+  Matrix values = j.at("values").get<Matrix>();
+  for (const auto& row : values)
+    if (row.size() != metrics.size()) throw InputError(path + ": a row has the wrong length" + regenerate);
+  if (values.size() < 2) throw InputError(path + ": fewer than 2 stored seeds" + regenerate);
+  return values;
+}
+
+// Drift: are a few fresh reference seeds drawn from the distribution the stored seeds sample? A
+// two-sided t test of the fresh mean against the stored mean with the STORED spread (100 seeds
+// estimate it well; the spread of 2 or 3 fresh seeds does not, and a Welch test on it calls drift
+// whenever the fresh seeds happen to lie close together). df = stored seeds - 1.
+double drift_p_value(const std::vector<double>& fresh, const std::vector<double>& stored) {
+  const SampleSummary f = summarize_samples(fresh), s = summarize_samples(stored);
+  const double se = s.sd * std::sqrt(1.0 / f.n + 1.0 / s.n);
+  if (!(se > 0.0)) return f.mean == s.mean ? 1.0 : 0.0;
+  return 2.0 * (1.0 - student_t_cdf(std::abs(f.mean - s.mean) / se, s.n - 1));
+}
+
+// ---- running and judging ----
+
+// Progress on stderr, only when it is a terminal (quiet in logs and tests).
+bool show_progress() { return ::isatty(STDERR_FILENO) == 1; }
+
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 90) std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  return text;
+}
+
+// Runs the tasks and appends each arm's results to its matrix.
+void run_batch(const std::vector<Arm>& arms, const std::vector<SeedTask>& tasks, int jobs, std::vector<Matrix*> into,
+               const std::string& what) {
+  const auto results = run_seed_tasks(arms, tasks, jobs, [&](int done) {
+    if (show_progress())
+      std::cerr << "\rphysarum compare: " << what << ": seed " << done << "/" << tasks.size() << "   " << std::flush;
+  });
+  for (size_t t = 0; t < tasks.size(); ++t) into[static_cast<size_t>(tasks[t].arm)]->push_back(results[t]);
+}
+
+std::vector<SeedTask> tasks_for(int arm, int first, int end) {
+  std::vector<SeedTask> tasks;
+  for (int i = first; i < end; ++i) tasks.push_back({arm, i});
+  return tasks;
+}
+
+// The arms' per-metric summaries and the margins (absolute, or relative to the second arm's mean).
+struct Look {
+  std::vector<SampleSummary> a, b;
+  std::vector<double> margins;
+};
+
+Look summarise(const std::vector<MetricInfo>& info, const Matrix& a, const Matrix& b) {
+  Look look;
+  for (size_t j = 0; j < info.size(); ++j) {
+    look.a.push_back(summarize_samples(column(a, j)));
+    look.b.push_back(summarize_samples(column(b, j)));
+    const double scale = info[j].kind == MarginKind::Absolute ? 1.0 : std::abs(look.b.back().mean);
+    look.margins.push_back(info[j].margin * scale);
+  }
+  return look;
+}
+
+std::string progress_summary(const SequentialEquivalence& test, const std::vector<std::string>& names) {
+  int equivalent = 0, different = 0;
+  std::string open;
+  for (size_t j = 0; j < test.metrics().size(); ++j) {
+    const Verdict v = test.metrics()[j].verdict;
+    if (v == Verdict::Equivalent) ++equivalent;
+    else if (v == Verdict::Different) ++different;
+    else open += (open.empty() ? "" : ", ") + names[j];
+  }
+  return std::to_string(equivalent) + " equivalent, " + std::to_string(different) + " different" +
+         (open.empty() ? "" : ", open: " + open);
+}
+
+nlohmann::ordered_json metric_row(const std::string& name, const MetricInfo* info, const MetricLook& m,
+                                  const std::string& label_a, const std::string& label_b) {
+  nlohmann::ordered_json row;
+  row["name"] = name;
+  row["verdict"] = to_string(m.verdict);
+  row["pass"] = m.verdict == Verdict::Equivalent;
+  row[label_a + "_mean"] = m.a.mean;
+  row[label_b + "_mean"] = m.b.mean;
+  row[label_a + "_sd"] = m.a.sd;
+  row[label_b + "_sd"] = m.b.sd;
+  row["margin"] = m.margin;
+  row["margin_kind"] = !info || info->kind == MarginKind::Absolute ? "absolute" : "relative";
+  row["difference"] = m.difference;
+  row["confidence_interval"] = {m.ci_low, m.ci_high};
+  row["level"] = m.level;
+  row["decided_at_look"] = m.decided_at_look;
+  row["p_value"] = m.p_equivalent;
+  row["p_different"] = m.p_different;
+  row["achieved_power"] = m.achieved_power;
+  if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
+    row["seeds_per_arm_to_settle"] = m.seeds_to_settle;
+  return row;
+}
+
+int exit_code(Verdict v) {
+  switch (v) {
+    case Verdict::Equivalent: return 0;
+    case Verdict::Different: return 3;
+    default: return 4;
+  }
+}
+
+// What this harness cannot do, refused before anything runs.
+void refuse_what_cannot_be_compared(const CompareOptions& o) {
+  if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds (--seeds) must be >= 2");
+  if (o.reference_seeds < 2) throw UsageError("--reference-seeds must be >= 2");
+  if (o.jobs < 0) throw UsageError("--jobs must be >= 1");
+  if (!o.store_reference.empty() && (!o.reference_stats.empty() || !o.fault.empty() || !o.arms.empty()))
+    throw UsageError("--store-reference runs only the reference: it takes neither --reference-stats, --fault nor --arm");
+  if (!o.reference_stats.empty() && !o.arms.empty())
+    throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
+  const Scene scene = load_scene(o.scene);
+  const bool rd = scene.reaction_diffusion.has_value();
+  if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
+    throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
+                     "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
+  // A planted fault of the other model would change nothing, and the harness would rightly call
+  // the arms equivalent: a power check that proves nothing.
+  const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
+  if (!o.fault.empty() && rd != rd_fault)
+    throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
+                     " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
+                     " (it would change nothing)");
+  // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
+  // a model without F (turing, ...) runs unchanged.
+  if (rd && o.fault == "rd-no-feed") {
+    bool has_feed = false;
+    for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
+    if (!has_feed)
+      throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
+                       ") has no feed coefficient F (it would change nothing)");
+  }
+}
+
+// The seeds of both arms (the second stored, or run here batch by batch beside the first) and the
+// sequential test that judged them.
+struct SequentialRun {
+  Matrix a_values, b_values, fresh_reference;
+  std::vector<std::string> names;
+  int max_seeds = 0;
+  SequentialEquivalence test{1, 0.05, 2};
+  Verdict verdict = Verdict::Continue;
+};
+
+SequentialRun run_sequential_test(const CompareOptions& o, const std::vector<Arm>& arms, int jobs) {
+  const Arm &A = arms[0], &B = arms[1];
+  SequentialRun r;
+  r.names = metric_names(A.metrics);
+  r.max_seeds = o.max_seeds.value_or(A.scene.comparison.max_seeds);
+  const bool stored = !o.reference_stats.empty();
+  if (stored) {
+    r.b_values = load_reference(o.reference_stats, B.scene, B.metrics);
+    // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
+    if (r.max_seeds > static_cast<int>(r.b_values.size())) {
+      r.max_seeds = static_cast<int>(r.b_values.size());
+      std::cerr << "physarum compare: at most " << r.max_seeds << " seeds per arm, as many as " << o.reference_stats
+                << " holds\n";
+    }
+  }
+  r.test = SequentialEquivalence(static_cast<int>(r.names.size()), kFamilyAlpha, r.max_seeds);
+  const auto start = std::chrono::steady_clock::now();
+  while (r.verdict == Verdict::Continue) {
+    const int n = static_cast<int>(r.a_values.size());
+    const int end = std::min(n + kBatch, r.max_seeds);
+    std::vector<SeedTask> tasks = tasks_for(0, n, end);
+    if (!stored) {
+      const std::vector<SeedTask> more = tasks_for(1, n, end);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    } else if (n == 0) {
+      // Fresh reference seeds the stored file does not hold (it used indices 0 .. stored - 1).
+      const int first = static_cast<int>(r.b_values.size());
+      const std::vector<SeedTask> more = tasks_for(1, first, first + o.reference_seeds);
+      tasks.insert(tasks.end(), more.begin(), more.end());
+    }
+    run_batch(arms, tasks, jobs, {&r.a_values, stored ? &r.fresh_reference : &r.b_values},
+              "look " + std::to_string(r.test.looks() + 1));
+    const Look look = summarise(A.metrics, r.a_values, r.b_values);
+    r.verdict = r.test.look(look.a, look.b, look.margins);
+    if (show_progress()) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const int done = static_cast<int>(r.a_values.size());
+      std::cerr << "\rphysarum compare: look " << r.test.looks() << ", " << done << "/" << r.max_seeds
+                << " seeds per arm: " << to_string(r.verdict) << " (" << progress_summary(r.test, r.names) << ")";
+      if (r.verdict == Verdict::Continue)
+        std::cerr << ", at most " << duration_text(elapsed / done * (r.max_seeds - done)) << " more";
+      std::cerr << "\n";
+    }
+  }
+  return r;
+}
+
+// Drift of stored statistics: fresh reference seeds against the stored ones, one row per metric.
+nlohmann::ordered_json drift_rows(const std::vector<MetricInfo>& info, const SequentialRun& r, bool& drift) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  const double alpha = sidak_alpha(kFamilyAlpha, static_cast<int>(info.size()));
+  for (size_t j = 0; j < info.size(); ++j) {
+    const double p = drift_p_value(column(r.fresh_reference, j), column(r.b_values, j));
+    drift = drift || p < alpha;
+    rows.push_back({{"name", info[j].name}, {"p_value", p}, {"drift", p < alpha}});
+  }
+  return rows;
+}
+
+// What each arm ran: backend, device, surface, and for reaction-diffusion arms the system.
+nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const Arm& arm : arms) {
+    nlohmann::ordered_json a = {{"label", arm.label},
+                                {"backend", to_string(arm.backend)},
+                                {"device", arm.compute ? arm.compute->device.describe() : "host"},
+                                {"faces", arm.surface->domain.face_count},
+                                {"agents", arm.scene.agents},
+                                {"time_step", arm.scene.time_step}};
+    if (arm.reaction_diffusion()) {
+      // The run length is the scene's, not the agent model's compare defaults, so the report says it.
+      const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion;
+      a.erase("agents");
+      a["model"] = rd.model;
+      a["integrator"] = rd.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+      a["preview_morphogen"] = rd.preview_morphogen;
+    }
+    list.push_back(a);
+  }
+  return list;
+}
+
+nlohmann::ordered_json verdict_report(const CompareOptions& o, const std::vector<Arm>& arms, const SequentialRun& r,
+                                      const std::vector<TheoryRow>& theory, int jobs, double seconds, bool& drift) {
+  const Arm &A = arms[0], &B = arms[1];
+  const bool stored = !o.reference_stats.empty();
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array(), unsettled = nlohmann::ordered_json::array();
+  for (size_t j = 0; j < r.names.size(); ++j) {
+    const MetricLook& m = r.test.metrics()[j];
+    rows.push_back(metric_row(r.names[j], &A.metrics[j], m, A.label, B.label));
+    if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
+      unsettled.push_back({{"name", r.names[j]}, {"seeds_per_arm_to_settle", m.seeds_to_settle},
+                           {"achieved_power", m.achieved_power}});
+  }
+  const nlohmann::ordered_json drifted = stored ? drift_rows(A.metrics, r, drift) : nlohmann::ordered_json();
+
+  nlohmann::ordered_json report;
+  report["verdict"] = to_string(r.verdict);
+  report["equivalent"] = r.verdict == Verdict::Equivalent && !drift;
+  report["scene"] = o.scene;
+  if (A.reaction_diffusion()) {
+    const ComparisonSettings& c = A.scene.comparison;
+    report["run_length"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval}};
+  }
+  report["arms"] = arm_list(arms);
+  report["seeds"] = {{A.label, r.a_values.size()}, {B.label, r.b_values.size()}};
+  report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);
+  report["sequential"] = {{"family_alpha", kFamilyAlpha},
+                          {"alpha_spending", "O'Brien-Fleming (Lan-DeMets), union bound over the looks"},
+                          {"batch", kBatch},
+                          {"max_seeds", r.max_seeds},
+                          {"looks", r.test.looks()},
+                          {"alpha_spent", r.test.alpha_spent()}};
+  // How this run went (the rest of the report is the same whatever the threads and the machine's load).
+  report["run"] = {{"jobs", jobs}, {"seconds", seconds}};
+  report["left_out"] = A.left_out;
+  if (!unsettled.empty()) report["unsettled"] = unsettled;
+  report["reference_source"] = stored ? o.reference_stats : "run here";
+  if (stored) report["drift"] = {{"fresh_reference_seeds", r.fresh_reference.size()}, {"drift", drift}, {"metrics", drifted}};
+  report["metrics"] = rows;
+  report["theory"] = theory_json(theory);
+  return report;
+}
+
+// DIR/verdict.json, DIR/seed_metrics.csv and, when there are spectral bands to draw, DIR/spectra.png.
+void write_compare_folder(const std::string& folder, const std::string& verdict_text, const std::vector<Arm>& arms,
+                          const SequentialRun& r) {
+  const Arm &A = arms[0], &B = arms[1];
+  create_output_folder(folder);
+  const std::filesystem::path out(folder);
+  write_text_file_atomically((out / "verdict.json").string(), verdict_text);
+  std::ostringstream csv;
+  csv << "arm,seed_index";
+  for (const MetricInfo& m : A.metrics) csv << "," << m.name;
+  csv << "\n";
+  csv.precision(17);
+  for (const auto& [label, matrix] : {std::pair<std::string, const Matrix*>{B.label, &r.b_values}, {A.label, &r.a_values}})
+    for (size_t i = 0; i < matrix->size(); ++i) {
+      csv << label << "," << i;
+      for (double v : (*matrix)[i]) csv << "," << v;
+      csv << "\n";
+    }
+  write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
+  // A verdict never turns into bad input: a scene without drawable bands gets no picture, and says so.
+  const std::filesystem::path plot = out / "spectra.png";
+  if (!write_comparison_plot(plot.string(), metric_names(A.metrics), r.b_values, r.a_values)) {
+    std::filesystem::remove(plot);
+    std::cerr << "physarum compare: no spectral band power to draw on this scene; " << plot.string() << " not written\n";
+  }
+}
+
+int run_compare(const CompareOptions& o) {
+  refuse_what_cannot_be_compared(o);
+  const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+
+  ArmsRequest request;
+  request.scene_path = o.scene;
+  for (const std::string& a : o.arms) request.arms.push_back(parse_arm(a));
+  request.device = o.device;
+  request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
+  request.reference_only = !o.store_reference.empty();
+  const std::vector<Arm> arms = make_arms(request);
+
+  if (!o.store_reference.empty()) {
+    Matrix values;
+    const int seeds = o.max_seeds.value_or(kStoredSeeds);
+    run_batch(arms, tasks_for(0, 0, seeds), jobs, {&values}, "reference");
+    if (show_progress()) std::cerr << "\n";
+    store_reference(o.store_reference, arms[0].scene, arms[0].metrics, values);
+    std::cout << "physarum compare: stored " << seeds << " reference seeds of " << o.scene << " in "
+              << o.store_reference << "\n";
+    return 0;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const SequentialRun r = run_sequential_test(o, arms, jobs);
+  const std::vector<TheoryRow> theory = check_against_theory({&arms[0], &arms[1]}, {&r.a_values, &r.b_values}, kFamilyAlpha);
+  for (const TheoryRow& row : theory) std::cerr << theory_line(row) << "\n";
+  bool drift = false;
+  const nlohmann::ordered_json report =
+      verdict_report(o, arms, r, theory, jobs, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), drift);
+  const std::string text = report.dump(2) + "\n";
+  std::cout << text;
+  if (!o.out.empty()) write_compare_folder(o.out, text, arms, r);
+  if (drift)
+    throw InputError(o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "
+                     "above); the reference changed: regenerate the file with --store-reference");
+  return exit_code(r.verdict);
+}
+
+}  // namespace
+
+Command add_compare_command(CLI::App& parent) {
+  auto options = std::make_shared<CompareOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "compare",
+      "Differential harness: do two arms (the backends, or two --arm settings) simulate the same thing?\n"
+      "Differential harness: decide whether two arms (the OpenCL backend and the reference, or one scene under two "
+      "--arm settings) simulate the same thing (prints a JSON verdict; exit 0 equivalent, 3 different, "
+      "4 inconclusive, 1 bad input, 2 usage error)");
+  app->add_option("scene", options->scene, "Scene file (JSON); compare_* keys set the run length and margins")
+      ->required();
+  app->add_option("--arm", options->arms,
+                  "An arm as scene overrides, key=value[,key=value...] (plus backend=reference|opencl, "
+                  "device=SPEC); give it twice. Default: OpenCL against the reference");
+  app->add_option("--max-seeds,--seeds", options->max_seeds,
+                  "Seeds per arm at most (default: compare_seeds of the scene, else 64); the sequential test stops "
+                  "earlier when it can. With --store-reference: the seeds stored (default 100)");
+  app->add_option("--jobs", options->jobs, "Worker threads for reference seeds (default: the cores)");
+  app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
+  std::string faults;
+  for (const opencl::PlantedFault& f : opencl::planted_faults()) faults += std::string("\n  ") + f.name + ": " + f.what;
+  app->add_option("--fault", options->fault, "Plant a deliberate bug in the OpenCL kernels:" + faults);
+  app->add_option("--out", options->out, "Folder for verdict.json, seed_metrics.csv and spectra.png");
+  app->add_option("--reference-stats", options->reference_stats,
+                  "Stored per-seed reference metrics to use instead of running the reference arm");
+  app->add_option("--reference-seeds", options->reference_seeds,
+                  "Fresh reference seeds run against --reference-stats to detect drift")
+      ->capture_default_str();
+  app->add_option("--store-reference", options->store_reference,
+                  "Run only the reference (--seeds of them) and store its per-seed metrics in this file");
+  return Command{app, [options] { return run_compare(*options); }};
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,161 @@
+#include "tools/run/run_loop.hpp"
+
+#include "common/base/atomic_write.hpp"
+#include "common/color/color_map_json.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/surface/field_transfer.hpp"
+#include "tools/run/run_checkpoints.hpp"
+#include "tools/run/surface_exports.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+namespace physarum::cli {
+namespace {
+
+// About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
+constexpr long long kStatsRows = 100;
+
+// A one-line progress bar with ETA on stderr, drawn only when stderr is a terminal.
+class ProgressBar {
+ public:
+  explicit ProgressBar(long long total) : total_(total), enabled_(::isatty(STDERR_FILENO) == 1) {}
+  void update(long long done) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(200)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
+    const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    constexpr int kWidth = 40;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::fprintf(stderr, "\r[%s%s] %5.1f%%  step %lld/%lld  ETA %.0f s ", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction, done, total_, eta);
+    if (done >= total_) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  long long total_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+// The timed loop: returns the simulation seconds (statistics rows, frames and checkpoints left out;
+// a resumed run adds the seconds before its checkpoint) and leaves the statistics text in `stats`.
+double simulate(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model, RunCheckpoints& checkpoints,
+                std::string& stats) {
+  if (const std::string* resumed = checkpoints.resumed_stats()) stats = *resumed;
+  else stats = model.stats_header + "\n" + model.stats_row() + "\n";
+  const long long steps = setup.steps;
+  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
+  ProgressBar progress(steps);
+  checkpoints.start();
+  double side_seconds = 0.0;  // statistics rows and frames: not simulation
+  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
+    simulation.step();
+    const bool row = s % stats_every == 0 || s == steps;
+    if (row || setup.time_lapse.due(s)) {
+      simulation.finish();  // the steps enqueued so far count as simulation, not as the reading below
+      const auto t = std::chrono::steady_clock::now();
+      if (row) stats += model.stats_row() + "\n";
+      if (setup.time_lapse.due(s)) setup.time_lapse.add(model.frame());
+      side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    }
+    checkpoints.after_step(s, simulation, stats, side_seconds);
+    progress.update(s);
+  }
+  simulation.finish();
+  return checkpoints.simulation_seconds(side_seconds);
+}
+
+// The fields on the input mesh and at full resolution, preview.png, texture and result.glb; appends
+// the names written, in order, to `written`.
+SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSetup& setup, const ModelRun& model,
+                                   const ModelResult& result, std::vector<std::string>& written) {
+  const PreparedSurface& surface = setup.surface;
+  std::vector<InputVertexData<double>> on_input, on_full;
+  std::vector<PlyField> input_fields, full_fields;
+  on_input.reserve(result.layers.size());
+  on_full.reserve(result.layers.size());
+  for (const auto& [name, values] : result.layers) {
+    on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
+    on_full.push_back(setup.full.vertex_values(values));
+    input_fields.push_back(PlyField{name, on_input.back()});
+    full_fields.push_back(PlyField{name, on_full.back()});
+  }
+  write_fields_ply((out / model.fields_file).string(), surface.input, input_fields, result.coloring,
+                   model.fields_description + " per input vertex");
+  write_fields_ply((out / "fields_full.ply").string(), setup.full.mesh, full_fields, result.coloring,
+                   model.fields_description + " per intrinsic vertex (full resolution)");
+  PreviewOptions preview;
+  preview.coloring = result.coloring;
+  if (result.preview) write_rgb_png((out / "preview.png").string(), *result.preview);
+  else write_preview_png((out / "preview.png").string(), setup.full.mesh, on_full.front(), preview);
+  written.insert(written.end(), {model.fields_file, "fields_full.ply", "preview.png"});
+  const SurfaceExportsWritten exports =
+      write_surface_exports(out, surface.input, surface.domain, setup.texels, result.layers.front().second,
+                            on_input.front(), result.coloring, setup.options.texture);
+  written.insert(written.end(), exports.files.begin(), exports.files.end());
+  return exports;
+}
+
+}  // namespace
+
+int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model) {
+  const RunOptions& o = setup.options;
+  RunCheckpoints checkpoints(simulation, o, setup.scene.mesh, setup.scene.time_step, setup.steps, setup.resume);
+  std::string stats;
+  const double seconds = simulate(simulation, setup, model, checkpoints, stats);
+  if (model.check_end) model.check_end();
+  const ModelResult result = model.result();
+
+  create_output_folder(o.out);
+  const std::filesystem::path out(o.out);
+  std::vector<std::string> written;
+  const SurfaceExportsWritten exports = write_fields(out, setup, model, result, written);
+  write_text_file_atomically((out / "stats.csv").string(), stats);
+  written.insert(written.end(), {"stats.csv", "run.json"});
+  setup.time_lapse.write(o.out);
+  if (setup.time_lapse.enabled()) written.insert(written.end(), {"frames/", "frames.gif"});
+
+  nlohmann::ordered_json j;
+  j["backend"] = simulation.backend_name();
+  j["backend_requested"] = o.backend;
+  j["device"] = simulation.device_name();
+  j["steps"] = setup.steps;
+  j["sim_time"] = simulation.time();
+  j["seconds"] = seconds;
+  j["fields_file"] = model.fields_file;
+  model.run_json(j, seconds);
+  j["intrinsic_vertices"] = setup.surface.domain.vertex_count;
+  j["intrinsic_faces"] = setup.surface.domain.face_count;
+  j["area"] = setup.surface.domain.total_area;
+  // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
+  j["result_glb_vertices"] = exports.glb.vertices;
+  j["result_glb_seam_splits"] = exports.glb.seam_splits;
+  j["scene_file"] = o.scene;
+  // What `physarum render` needs to rebuild the surface and bake the texture again.
+  j["surface"] = surface_spec_json(surface_spec(setup.scene));
+  if (setup.texels) j["texture"] = o.texture.to_json();
+  // The colours as used: `physarum render` re-colours with them.
+  j["colormap"] = color_map_settings_json(setup.scene.colormap);
+  checkpoints.record(j);
+  write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
+  checkpoints.remove_file();
+
+  std::string files;
+  for (const std::string& name : written) files += (files.empty() ? "" : ", ") + name;
+  std::cout << "physarum run: " << model.summary(seconds) << "; wrote " << out.string() << "/{" << files << "}"
+            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
+  return 0;
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,71 @@
+#pragma once
+// The one run loop of `physarum run`, for every model: checkpoints and where the run starts, the
+// timed loop (statistics rows, time-lapse frames, checkpoints, the progress bar with its ETA), the
+// end-of-run checks, and the outputs every model writes the same way (the fields on the input mesh
+// and at full resolution, preview.png, texture and result.glb, stats.csv, the time-lapse, run.json,
+// the closing line). What differs between models is described by a ModelRun: its layers and their
+// names, the colouring, its statistics columns, its run.json keys and its end-of-run checks.
+#include "common/color/color_mapping.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/time_lapse.hpp"
+#include "common/scene/scene.hpp"
+#include "common/simulation/simulation_backend.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/surface/prepared_surface.hpp"
+#include "tools/run/resume_point.hpp"
+#include "tools/run/run_options.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace physarum::cli {
+
+// A model's layers at the end of a run, as the output files hold them.
+struct ModelResult {
+  // (property name, values per intrinsic vertex); the first is the one the colours, preview.png,
+  // texture.png and result.glb show.
+  std::vector<std::pair<std::string, IntrinsicVertexData<double>>> layers;
+  ColorMapping coloring;
+  // The preview when the model draws its own (competing species: one colour per species); else
+  // preview.png shows the first layer through `coloring`.
+  std::optional<RgbImage> preview;
+};
+
+// What one model's run writes, for the run loop.
+struct ModelRun {
+  std::string fields_file;         // the result on the input mesh: "pheromone.ply", "morphogens.ply"
+  std::string fields_description;  // the PLY files' comment, e.g. "pheromone"
+  std::string stats_header;        // stats.csv's first line
+  std::function<std::string()> stats_row;  // a row for the state now
+  std::function<RgbImage()> frame;         // a time-lapse frame of the state now
+  std::function<void()> check_end;         // after the last step; throws InputError (e.g. divergence)
+  std::function<ModelResult()> result;     // the layers to write, after the checks
+  // The model's own run.json keys (the loop writes backend, device, steps, sim_time, seconds, the
+  // surface, the texture, the colour map and the checkpoints around them).
+  std::function<void(nlohmann::ordered_json& run_json, double seconds)> run_json;
+  // The model's part of the closing line, e.g. "300 steps (3 s simulated) in 1.2 s, ...".
+  std::function<std::string(double seconds)> summary;
+};
+
+// Everything the loop runs on, prepared by the model's front end before any output exists.
+struct RunSetup {
+  const RunOptions& options;
+  const Scene& scene;  // the mesh and time step identify checkpoints
+  long long steps = 0;
+  const std::optional<ResumePoint>& resume;
+  const PreparedSurface& surface;
+  const FullResolutionMesh& full;
+  const std::optional<TexelLocations>& texels;
+  TimeLapse& time_lapse;  // built (and its --frames checked) before the surface
+};
+
+// Runs `simulation` for setup.steps steps as described and writes the outputs; returns the exit code.
+int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model);
+
+}  // namespace physarum::cli

@@ -1,0 +1,175 @@
+#include "tools/run/run_reaction_diffusion.hpp"
+
+#include "common/output/maps_ply.hpp"
+#include "common/base/atomic_write.hpp"
+#include "common/setup/cached_map_evaluation.hpp"
+#include "common/base/errors.hpp"
+#include "common/surface/field_transfer.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+#include "common/maps/map_cache.hpp"
+#include "common/maps/map_evaluation.hpp"
+#include "common/setup/scene_maps.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/output/preview_image.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
+#include "common/setup/scene_surface.hpp"
+#include "common/output/texture_bake.hpp"
+#include "common/output/time_lapse.hpp"
+#include "tools/backend_factory.hpp"
+#include "tools/run/run_loop.hpp"
+#include "tools/run/surface_exports.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace physarum::cli {
+namespace {
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+// The run diverged when a morphogen is no longer finite: an error, not a result.
+void check_finite(const SimulationBackend& simulation, const std::vector<std::string>& morphogens, const std::string& source) {
+  for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
+    for (const double x : simulation.field_values(m))
+      if (!std::isfinite(x))
+        throw InputError(source + ": morphogen '" + morphogens[static_cast<size_t>(m)] +
+                         "' is no longer finite: the run diverged (a smaller time_step, or \"integrator\": \"imex\")");
+}
+
+}  // namespace
+
+std::string morphogen_stats_header(const std::vector<std::string>& morphogens) {
+  std::string header = "time";
+  for (const std::string& m : morphogens) header += "," + m + "_mean," + m + "_variance";
+  return header;
+}
+
+std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexData<double>>& layers,
+                                const IntrinsicVertexData<double>& mass) {
+  double area = 0.0;
+  for (const double m : mass) area += m;
+  std::string row = number(time);
+  for (const IntrinsicVertexData<double>& u : layers) {
+    double mean = 0.0;
+    for (size_t i = 0; i < u.size(); ++i) mean += mass[i] * u[i];
+    mean /= area;
+    double variance = 0.0;
+    for (size_t i = 0; i < u.size(); ++i) variance += mass[i] * (u[i] - mean) * (u[i] - mean);
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on the chained form.
+    row += ',';
+    row += number(mean);
+    row += ',';
+    row += number(variance / area);
+  }
+  return row;
+}
+
+int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
+  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
+  TimeLapse time_lapse(o.frames, steps);
+
+  // ---- everything that can reject the input, before any output exists ----
+  const PreparedSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
+  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  const SurfaceDomain& domain = surface.domain;
+  // Through the map cache, as the agent model's maps: a geodesic distance or a direction field is
+  // the slow part of a flower scene's start, and a sweep runs the same maps many times.
+  MapEvaluationReport maps_report;
+  const EvaluatedMaps maps = cached_evaluate_maps(map_sources_of(scene), surface, MapCache::from_environment(), &maps_report);
+  if (!scene.maps.empty()) {
+    for (const std::string& note : maps_report.notes) std::cerr << "physarum run: " << note << "\n";
+    std::cerr << "physarum run: " << maps_report.summary() << "\n";
+  }
+  ReactionDiffusionSystem system = build_reaction_diffusion_system(scene, surface, maps);
+  const int substeps = system.substeps;
+  const std::vector<std::string> morphogens = system.morphogens;
+  const int preview_layer = spec.morphogen_index(spec.preview_morphogen);
+  const InputMesh& input = surface.input;
+  const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
+  const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
+  const ChosenBackend chosen = choose_backend(o.backend, o.device);
+  if (o.backend == "auto") std::cerr << "physarum run: " << to_string(chosen.backend) << " backend (auto: " << chosen.why << ")\n";
+  if (system.integrator == ReactionIntegrator::Explicit && substeps > 1)
+    std::cerr << "physarum run: " << substeps << " explicit sub-steps per step (the diffusion stability limit)\n";
+  const std::unique_ptr<SimulationBackend> backend =
+      make_reaction_diffusion_backend(chosen.backend, chosen.compute ? &*chosen.compute : nullptr, domain, std::move(system));
+  SimulationBackend& simulation = *backend;
+  // Written now, not with the results: a user checking the maps of a long run sees them at once.
+  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, input, maps_on_input(scene.maps, surface, maps, o.scene));
+
+  auto layers = [&] {
+    std::vector<IntrinsicVertexData<double>> all;
+    for (int m = 0; m < simulation.dynamic_layer_count(); ++m) all.push_back(simulation.field_values(m));
+    return all;
+  };
+  // Colours over 0 .. the preview morphogen's largest value (levels in multiples of half of it), so
+  // the picture uses the whole colour map whatever the model's units.
+  auto color_unit = [](const IntrinsicVertexData<double>& values) {
+    const double top = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+    return top > 0.0 ? top / 2.0 : 1.0;
+  };
+
+  // ---- what a reaction-diffusion system writes (the run itself is the one run loop's) ----
+  ModelRun model;
+  model.fields_file = "morphogens.ply";
+  model.fields_description = "morphogens";
+  model.stats_header = morphogen_stats_header(morphogens);
+  model.stats_row = [&] { return morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass); };
+  model.frame = [&] {
+    const IntrinsicVertexData<double> values = simulation.field_values(preview_layer);
+    PreviewOptions preview;
+    preview.coloring = scene.colormap.mapping(color_unit(values));
+    return render_preview(full.mesh, full.vertex_values(values), preview);
+  };
+  model.check_end = [&] { check_finite(simulation, morphogens, scene.source); };
+  model.result = [&] {
+    // The preview morphogen first: the colours, the preview and the exports show the first layer.
+    ModelResult r;
+    r.layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], simulation.field_values(preview_layer));
+    for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
+      if (m != preview_layer) r.layers.emplace_back(morphogens[static_cast<size_t>(m)], simulation.field_values(m));
+    r.coloring = scene.colormap.mapping(color_unit(r.layers.front().second));
+    return r;
+  };
+  model.run_json = [&](nlohmann::ordered_json& j, double seconds) {
+    j["model"] = spec.model;
+    j["morphogens"] = morphogens;
+    j["preview_morphogen"] = spec.preview_morphogen;
+    j["time_step"] = scene.time_step;
+    j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
+    j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+    j["substeps"] = substeps;
+    j["seed"] = scene.seed;
+    const std::vector<IntrinsicVertexData<double>> final_layers = layers();
+    for (size_t m = 0; m < final_layers.size(); ++m) {
+      const auto& u = final_layers[m];
+      j["final"][morphogens[m]] = {{"min", *std::min_element(u.begin(), u.end())},
+                                   {"max", *std::max_element(u.begin(), u.end())}};
+    }
+    // What `physarum render` recolours by: the unit the colour map's levels count in (half the
+    // preview morphogen's largest value; an agent run's unit is U).
+    j["color_unit"] = color_unit(final_layers[static_cast<size_t>(preview_layer)]);
+    j["reaction_diffusion"] = reaction_diffusion_json(spec);
+    if (!scene.maps.empty()) j["maps"] = scene.maps_given;
+  };
+  model.summary = [&](double seconds) {
+    std::ostringstream line;
+    line << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, " << substeps << " sub-step"
+         << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s";
+    return line.str();
+  };
+  return run_and_write(simulation, RunSetup{o, scene, steps, resume, surface, full, texels, time_lapse}, model);
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,42 @@
+#pragma once
+// `physarum run` for a reaction-diffusion scene (common/scene/scene_reaction_diffusion.hpp): the same
+// command, flags, run loop (tools/run/run_loop.hpp) and output files as for the agent model, with the
+// morphogens as the fields:
+//   DIR/morphogens.ply    the input mesh with every morphogen as a float vertex property of its name
+//                         (the preview morphogen first: the vertex colours are its),
+//   DIR/fields_full.ply   the same at full resolution (every intrinsic vertex, exact values),
+//   DIR/preview.png       the preview morphogen ("preview_morphogen", default the second), coloured
+//                         over 0 .. its largest final value (levels in multiples of half of it),
+//   DIR/texture.png, DIR/result.glb   the preview morphogen baked / exported as for the agent model,
+//   DIR/stats.csv         time,<m>_mean,<m>_variance,... per morphogen (area-weighted over the surface),
+//   DIR/run.json          model, morphogens, steps, seconds, sub-steps, the system as run, the surface;
+// with --maps-out FILE the scene's maps on the input mesh (written before simulating, as for agents).
+// The maps come through the map cache (common/setup/cached_map_evaluation.hpp), as for the agent model.
+// With --checkpoint-every T, DIR/checkpoint.bin holds every morphogen (the backend's save_state)
+// every T simulated seconds; `physarum run --resume DIR` continues bit for bit and writes what the
+// uninterrupted run would have (tools/run/command_run.cpp says the rules; they are the agent model's).
+// As for the agent model, everything that can reject the input happens before DIR is touched, and
+// every file is written under a temporary name and renamed.
+#include "common/base/element_data.hpp"
+#include "common/scene/scene.hpp"
+#include "tools/run/resume_point.hpp"
+#include "tools/run/run_options.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace physarum::cli {
+
+// `scene` is loaded with the options' overrides and seed applied; `steps` is the run length already
+// resolved; `resume` is the checkpoint to continue from (the options are then the checkpoint's).
+int run_reaction_diffusion(const Scene& scene, const RunOptions& options, long long steps,
+                           const std::optional<ResumePoint>& resume);
+
+// stats.csv's header and one row: the area-weighted mean and variance of every morphogen.
+std::string morphogen_stats_header(const std::vector<std::string>& morphogens);
+std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexData<double>>& layers,
+                                const IntrinsicVertexData<double>& mass);
+
+}  // namespace physarum::cli

@@ -1,0 +1,103 @@
+#include "tools/run/surface_exports.hpp"
+
+#include "common/base/errors.hpp"
+#include "common/output/texture_image.hpp"
+
+#include <iostream>
+
+namespace physarum::cli {
+
+void TextureSettings::check() const {
+  if (size < 1 || size > TexelLocations::kMaxSize)
+    throw UsageError("--texture-size " + std::to_string(size) + " must be between 1 and " +
+                     std::to_string(TexelLocations::kMaxSize));
+  if (margin < 0) throw UsageError("--texture-margin " + std::to_string(margin) + " must be >= 0");
+  if (format != "png" && format != "png16" && format != "exr")
+    throw UsageError("--texture-format " + format + " must be png, png16 or exr");
+}
+
+nlohmann::ordered_json TextureSettings::to_json() const {
+  nlohmann::ordered_json j;
+  j["size"] = size;
+  j["margin"] = margin;
+  j["format"] = format;
+  return j;
+}
+
+TextureSettings TextureSettings::from_json(const nlohmann::json& j, const std::string& where) {
+  TextureSettings t;
+  try {
+    t.size = j.at("size").get<int>();
+    t.margin = j.at("margin").get<int>();
+    t.format = j.at("format").get<std::string>();
+    t.check();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where + ": needs size, margin and format: " + e.what());
+  } catch (const UsageError& e) {
+    throw InputError(where + ": " + e.what());
+  }
+  return t;
+}
+
+nlohmann::ordered_json surface_spec_json(const SurfaceSpec& spec) {
+  nlohmann::ordered_json j;
+  const bool shape = spec.mesh.rfind("shape:", 0) == 0;
+  j["mesh"] = shape ? spec.mesh : std::filesystem::absolute(spec.mesh).lexically_normal().string();
+  j["scale_to_area"] = spec.scale_to_area ? nlohmann::ordered_json(*spec.scale_to_area) : nlohmann::ordered_json();
+  j["max_circumradius"] =
+      spec.max_circumradius ? nlohmann::ordered_json(*spec.max_circumradius) : nlohmann::ordered_json();
+  j["min_angle"] = spec.min_angle_deg;
+  return j;
+}
+
+SurfaceSpec surface_spec_from_json(const nlohmann::json& j, const std::string& where) {
+  SurfaceSpec spec;
+  try {
+    spec.mesh = j.at("mesh").get<std::string>();
+    if (!j.at("scale_to_area").is_null()) spec.scale_to_area = j.at("scale_to_area").get<double>();
+    if (!j.at("max_circumradius").is_null()) spec.max_circumradius = j.at("max_circumradius").get<double>();
+    spec.min_angle_deg = j.at("min_angle").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where + ": needs mesh, scale_to_area, max_circumradius and min_angle: " + e.what());
+  }
+  return spec;
+}
+
+SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, const InputMesh& input,
+                                            const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
+                                            const IntrinsicVertexData<double>& field,
+                                            const InputVertexData<double>& on_input, const ColorMapping& coloring,
+                                            const TextureSettings& texture) {
+  SurfaceExportsWritten written;
+  std::optional<GltfTexture> glb_texture;
+  if (texels) {
+    const BakedTexture baked = bake_fields(*texels, domain, {BakeField{"pheromone", field}}, BakeOptions{.margin = texture.margin});
+    TextureColouring colouring;
+    colouring.coloring = coloring;
+    // The top of the colour map as in fields_full.ply, whose vertex values are `field`'s.
+    colouring.upper_end = coloring.upper(InputVertexData<double>(field.values()));
+    write_texture_png((out / "texture.png").string(), baked, 0, colouring, texture.format == "png16" ? 16 : 8);
+    written.files.push_back("texture.png");
+    glb_texture = GltfTexture{baked.width, baked.height, texture_rgb8(baked, 0, colouring)};
+    if (texture.format == "exr") {
+      write_texture_exr((out / "texture.exr").string(), baked);
+      written.files.push_back("texture.exr");
+    }
+  }
+  // result.glb carries pheromone.ply's colours (the same map over the same range) and the texture.
+  InputVertexData<Rgb8> colors(on_input.size());
+  const double upper_end = coloring.upper(on_input);
+  for (size_t v = 0; v < on_input.size(); ++v) colors[v] = coloring.color(on_input[v], upper_end);
+  written.glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
+  written.files.push_back("result.glb");
+  return written;
+}
+
+std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,
+                                             const TextureSettings& texture, const std::string& command) {
+  if (!input.uvs.empty()) return locate_texels(input, domain, texture.size, texture.size);
+  std::cerr << command << ": note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
+  return std::nullopt;
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,228 @@
+// `physarum sweep SCENE.json --vary KEY=V1,V2,... [--vary ...] | --csv ROWS.csv [--seeds N] [--out DIR]
+//  [run options] [--run [--jobs J]] [--emit slurm|parallel]`, `physarum sweep DIR --run | --emit ... |
+//  --job I`, and `physarum sweep --collect DIR`: parameter studies as ensembles of independent runs.
+//
+// Planning writes DIR/sweep.json and DIR/jobs.jsonl (tools/sweep/sweep_plan.hpp); --run executes the jobs
+// here on a pool of processes (tools/sweep/sweep_pool.hpp), skipping finished ones, so running it again
+// resumes; --emit writes the same list for a cluster: DIR/sweep.slurm, a Slurm array job whose task i
+// runs job i (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`), or DIR/jobs.txt, one `physarum run`
+// command per line for GNU parallel. The runs share nothing but their output folders. --collect
+// writes DIR/sweep.csv and DIR/contact_sheet.png (tools/sweep/sweep_collect.hpp).
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
+#include "opencl/runtime/device_selection.hpp"
+#include "tools/commands.hpp"
+#include "tools/sweep/sweep_collect.hpp"
+#include "tools/sweep/sweep_plan.hpp"
+#include "tools/sweep/sweep_pool.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <thread>
+#include <unistd.h>
+
+namespace physarum::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepOptions {
+  std::string target;  // SCENE.json (plan a sweep) or DIR (an existing sweep)
+  std::vector<std::string> vary;
+  std::string csv;
+  int seeds = 1;
+  std::string out = "sweep";
+  bool run = false;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::string> emit;
+  std::string collect;
+  std::optional<int> job;
+  int thumbnail = 160;
+  // Passed to every `physarum run`.
+  std::optional<long long> steps;
+  std::optional<double> sim_time;
+  std::string backend;
+  std::string device;
+  std::optional<double> checkpoint_every;
+  std::optional<int> texture_size;
+  std::string texture_format;
+};
+
+std::vector<std::string> run_options(const SweepOptions& o) {
+  std::vector<std::string> args;
+  if (o.steps) args.insert(args.end(), {"--steps", std::to_string(*o.steps)});
+  if (o.sim_time) args.insert(args.end(), {"--sim-time", nlohmann::json(*o.sim_time).dump()});
+  if (!o.backend.empty()) args.insert(args.end(), {"--backend", o.backend});
+  if (!o.device.empty()) args.insert(args.end(), {"--device", o.device});
+  if (o.checkpoint_every) args.insert(args.end(), {"--checkpoint-every", nlohmann::json(*o.checkpoint_every).dump()});
+  if (o.texture_size) args.insert(args.end(), {"--texture-size", std::to_string(*o.texture_size)});
+  if (!o.texture_format.empty()) args.insert(args.end(), {"--texture-format", o.texture_format});
+  return args;
+}
+
+// A Slurm array job: task i runs job i; resubmitting skips the finished runs.
+void write_slurm_script(const SweepPlan& plan, const std::vector<SweepJob>& jobs) {
+  const fs::path dir(plan.folder);
+  std::string s;
+  s += "#!/bin/bash\n";
+  s += "# physarum sweep: " + std::to_string(jobs.size()) + " runs of " + plan.scene + "\n";
+  s += "# as a Slurm array job. Task i runs line i (0-based) of " + (dir / "jobs.jsonl").string() + ";\n";
+  s += "# a finished run (run.json present) is skipped, so submitting again resumes. Submit with\n";
+  s += "#   sbatch " + (dir / "sweep.slurm").string() + "\n";
+  s += "# and gather the results with: physarum sweep --collect " + plan.folder + "\n";
+  s += "#SBATCH --job-name=physarum-sweep\n";
+  s += "#SBATCH --array=0-" + std::to_string(jobs.size() - 1) + "\n";
+  s += "#SBATCH --ntasks=1\n";
+  s += "#SBATCH --cpus-per-task=1\n";
+  s += "#SBATCH --output=" + (dir / "logs" / "slurm-%A_%a.out").string() + "\n";
+  s += "set -euo pipefail\n";
+  s += "exec " + shell_command({this_executable(), "sweep", plan.folder, "--job"}) +
+       " \"${SLURM_ARRAY_TASK_ID:?is not set: submit with sbatch, or set it by hand to run one task}\"\n";
+  write_text_file_atomically((dir / "sweep.slurm").string(), s);
+  fs::permissions(dir / "sweep.slurm", fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+}
+
+// One `physarum run` per line, for `parallel --joblog DIR/parallel.log --resume < DIR/jobs.txt`.
+void write_parallel_file(const SweepPlan& plan, const std::vector<SweepJob>& jobs) {
+  std::string text;
+  const std::string exe = this_executable();
+  for (const SweepJob& job : jobs) {
+    std::vector<std::string> words{exe};
+    words.insert(words.end(), job.args.begin(), job.args.end());
+    text += shell_command(words) + "\n";
+  }
+  write_text_file_atomically((fs::path(plan.folder) / "jobs.txt").string(), text);
+}
+
+// OpenCL devices to spread jobs over: every device when there are several, none otherwise (one
+// device, or none: the runs choose their own).
+std::vector<int> devices_to_spread() {
+  try {
+    const auto devices = opencl::list_devices();
+    if (devices.size() < 2) return {};
+    std::vector<int> indices;
+    for (const auto& d : devices) indices.push_back(d.index);
+    return indices;
+  } catch (const DeviceError&) {
+    return {};
+  }
+}
+
+int run_job(const std::string& folder, int index) {
+  const std::vector<SweepJob> jobs = read_sweep_jobs(folder);
+  if (index < 0 || index >= static_cast<int>(jobs.size()))
+    throw UsageError("--job " + std::to_string(index) + ": " + folder + " has jobs 0.." + std::to_string(jobs.size() - 1));
+  const SweepJob& job = jobs[static_cast<std::size_t>(index)];
+  if (job.finished()) {
+    std::cout << "physarum sweep: job " << index << " finished before (" << job.out << "/run.json): skipped\n";
+    return 0;
+  }
+  // The job becomes the run itself: its exit code and signals are the scheduler's to see.
+  std::vector<std::string> words{this_executable()};
+  words.insert(words.end(), job.args.begin(), job.args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::cout.flush();
+  ::execv(words[0].c_str(), argv.data());
+  throw InputError("physarum sweep: cannot run " + words[0] + " for job " + std::to_string(index));
+}
+
+int run_sweep(const SweepOptions& o) {
+  if (!o.collect.empty()) {
+    if (!o.target.empty() || o.run || !o.emit.empty() || o.job) throw UsageError("--collect DIR takes no other target or action");
+    const SweepCollection c = collect_sweep(o.collect, o.thumbnail);
+    std::cout << "physarum sweep: collected " << c.rows << " runs (" << c.missing << " missing) into " << o.collect
+              << "/sweep.csv and " << o.collect << "/contact_sheet.png (" << c.layout.rows << " x " << c.layout.columns
+              << " cells of " << c.layout.seeds << " seeds, " << c.layout.width() << " x " << c.layout.height() << " px)\n";
+    return 0;
+  }
+  if (o.target.empty()) throw UsageError("give a scene file to plan a sweep, a sweep folder, or --collect DIR");
+  const bool planning = !o.vary.empty() || !o.csv.empty();
+  if (o.job) {
+    if (planning || o.run || !o.emit.empty()) throw UsageError("--job I runs one job of an existing sweep folder and nothing else");
+    return run_job(o.target, *o.job);
+  }
+
+  SweepPlan plan;
+  if (fs::is_directory(o.target)) {
+    if (planning || !run_options(o).empty())
+      throw UsageError(o.target + " is a sweep folder: its variants and run options are fixed in its sweep.json "
+                                  "(plan a new sweep from a scene file)");
+    plan = read_sweep_plan(o.target);
+  } else {
+    plan = make_sweep_plan(o.target, o.vary, o.csv, o.seeds, run_options(o), o.out);
+    check_sweep_variants(plan);
+    write_sweep_plan(plan);
+  }
+  const std::vector<SweepJob> jobs = read_sweep_jobs(plan.folder);
+  if (jobs.empty()) throw InputError(plan.folder + ": the sweep has no jobs");
+  std::cout << "physarum sweep: " << jobs.size() << " runs (" << plan.variant_count() << " variants x " << plan.seeds.size()
+            << " seeds) in " << plan.folder << "/jobs.jsonl\n";
+  for (const std::string& e : o.emit) {
+    if (e == "slurm") {
+      write_slurm_script(plan, jobs);
+      std::cout << "physarum sweep: wrote " << plan.folder << "/sweep.slurm (sbatch it)\n";
+    } else {
+      write_parallel_file(plan, jobs);
+      std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (parallel --joblog " << plan.folder
+                << "/parallel.log --resume < " << plan.folder << "/jobs.txt)\n";
+    }
+  }
+  if (!o.run) return 0;
+  const SweepPoolReport r = run_sweep_jobs(plan.folder, jobs, o.jobs, devices_to_spread());
+  std::cout << "physarum sweep: ran " << r.ran << ", skipped " << r.skipped << " finished, " << r.failed.size()
+            << " failed, in " << r.seconds << " s with " << o.jobs << " workers\n";
+  if (!r.failed.empty()) {
+    std::cerr << "physarum sweep: failed jobs:";
+    for (const int i : r.failed) std::cerr << " " << i;
+    std::cerr << " (logs in " << plan.folder << "/logs/; run the sweep again to retry them)\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_sweep_command(CLI::App& parent) {
+  auto options = std::make_shared<SweepOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "sweep",
+      "Parameter sweeps: plan them, run them here or on a cluster, collect the results\n"
+      "Parameter sweeps: expand a scene's variants (--vary grids or --csv rows) x seeds into DIR/jobs.jsonl, run "
+      "them here on a pool of processes (--run, resumable), or write them for a cluster (--emit slurm: DIR/sweep.slurm; "
+      "--emit parallel: DIR/jobs.txt); --collect DIR gathers DIR/sweep.csv and DIR/contact_sheet.png. Example: "
+      "physarum sweep tools/scenes/default.json --vary turn_rate=90,180,360 --vary sensor_angle=22.5,45 --seeds 2 "
+      "--steps 300 --out sweep --run && physarum sweep --collect sweep");
+  app->footer("Exit codes: 0 success, 1 bad input or a failed job (the others still run), 2 usage error.");
+  app->add_option("target", options->target,
+                  "A scene file (plans a sweep into --out) or an existing sweep folder (--run, --emit, --job)");
+  app->add_option("--vary", options->vary,
+                  "KEY=V1,V2,... (repeatable): every combination of the values is a variant. KEY as run --set takes "
+                  "it, nested with dots (maps.ramp.range=[0,1],[0.5,1.5]); values are JSON where they parse");
+  app->add_option("--csv", options->csv,
+                  "A CSV of variants instead of a grid: the first line names the keys, each row is one variant");
+  app->add_option("--seeds", options->seeds, "Runs per variant, seeded the scene's seed, +1, +2, ...")->capture_default_str();
+  app->add_option("--out", options->out, "The sweep folder (one run_NNNN folder per job inside)")->capture_default_str();
+  app->add_flag("--run", options->run, "Run the jobs here, skipping finished ones (run.json present)");
+  app->add_option("--jobs", options->jobs, "Processes in parallel for --run (default: the cores)")->capture_default_str();
+  app->add_option("--emit", options->emit, "Write the jobs for a cluster: slurm (DIR/sweep.slurm), parallel (DIR/jobs.txt)")
+      ->check(CLI::IsMember({"slurm", "parallel"}));
+  app->add_option("--collect", options->collect, "Gather DIR's runs into DIR/sweep.csv and DIR/contact_sheet.png");
+  app->add_option("--job", options->job, "Run job I of the sweep folder (what each Slurm array task does)");
+  app->add_option("--thumbnail", options->thumbnail, "Side of a contact-sheet thumbnail, in pixels")->capture_default_str();
+  app->add_option("--steps", options->steps, "For every run: number of time steps");
+  app->add_option("--sim-time", options->sim_time, "For every run: simulated seconds");
+  app->add_option("--backend", options->backend, "For every run: auto, reference or opencl")
+      ->check(CLI::IsMember({"auto", "reference", "opencl"}));
+  app->add_option("--device", options->device, "For every run: the OpenCL device (default: spread over the devices)");
+  app->add_option("--checkpoint-every", options->checkpoint_every, "For every run: checkpoint every T simulated seconds");
+  app->add_option("--texture-size", options->texture_size, "For every run: the baked texture's side in texels");
+  app->add_option("--texture-format", options->texture_format, "For every run: png, png16 or exr")
+      ->check(CLI::IsMember({"png", "png16", "exr"}));
+  return Command{app, [options] { return run_sweep(*options); }};
+}
+
+}  // namespace physarum::cli
