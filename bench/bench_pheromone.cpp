@@ -38,7 +38,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   const bool device_cg = state.range(0) == kOpenCLWithDeviceCG;
   const bool mapped = state.range(0) == kOpenCLMapped;
   const auto backend = device_cg || mapped ? kOpenCL : static_cast<Backend>(state.range(0));
-  const auto integrator = state.range(1) == 0 ? Integrator::ForwardEuler : Integrator::BackwardEuler;
+  const auto integrator = state.range(1) == 0 ? Integrator::Forward : Integrator::Backward;
   const bool square = state.range(3) == kSquare;
   const int steps_per_sync = static_cast<int>(state.range(4));
   const SurfaceDomain* domain =
@@ -74,7 +74,7 @@ void BM_PheromoneStep(benchmark::State& state) {
   state.counters["vertices"] = domain->vertex_count;
   state.counters["ms_per_step"] = benchmark::Counter(1e-3 * steps_per_sync, benchmark::Counter::kIsIterationInvariantRate |
                                                                                benchmark::Counter::kInvert);
-  if (integrator == Integrator::ForwardEuler) state.counters["sub_steps"] = sub_steps;
+  if (integrator == Integrator::Forward) state.counters["sub_steps"] = sub_steps;
   if (bytes_per_sub_step > 0.0)
     state.counters["bytes_per_s"] = benchmark::Counter(
         bytes_per_sub_step * sub_steps * steps_per_sync * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

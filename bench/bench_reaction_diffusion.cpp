@@ -41,7 +41,7 @@ double triad_bandwidth() {
 
 void BM_RdExplicitStep(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
-  ReactionDiffusionSystem s = rough_gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5));
+  ReactionDiffusionSystem s = rough_gray_scott(domain, Integrator::Forward, 0.5 * stable_step(domain, 2e-5));
   if (state.range(1) != 0) {
     // Weights that are not multiples of u's, as anisotropic diffusion makes them: each coupling of
     // v scaled by a factor in [0.4, 1] symmetric in its two vertices, the diagonal reset so rows
@@ -92,7 +92,7 @@ BENCHMARK(BM_RdExplicitStep)
 // kinetics through the formula evaluator): the denominator of the OpenCL >= 5x target.
 void BM_RdExplicitStepReference(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
-  ReferenceReactionDiffusion rd(rough_gray_scott(domain, ReactionIntegrator::Explicit, 0.5 * stable_step(domain, 2e-5)));
+  ReferenceReactionDiffusion rd(rough_gray_scott(domain, Integrator::Forward, 0.5 * stable_step(domain, 2e-5)));
   rd.step();
   for (auto _ : state) rd.step();
   state.SetLabel("reference");
@@ -102,7 +102,7 @@ BENCHMARK(BM_RdExplicitStepReference)->Arg(100)->Arg(316)->Arg(1000)->Unit(bench
 
 void BM_RdImexStep(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(1)));
-  const ReactionDiffusionSystem s = rough_gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const ReactionDiffusionSystem s = rough_gray_scott(domain, Integrator::Imex, 10 * stable_step(domain, 2e-5));
   opencl::OpenCLReactionDiffusionOptions options;
   options.imex_solver =
       state.range(0) == 0 ? opencl::ImexSolver::DeviceConjugateGradients : opencl::ImexSolver::HostFactorization;
@@ -131,7 +131,7 @@ BENCHMARK(BM_RdImexStep)
 
 void BM_RdImexHostOnly(benchmark::State& state) {
   const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
-  const ReactionDiffusionSystem s = rough_gray_scott(domain, ReactionIntegrator::Imex, 10 * stable_step(domain, 2e-5));
+  const ReactionDiffusionSystem s = rough_gray_scott(domain, Integrator::Imex, 10 * stable_step(domain, 2e-5));
   const int n = domain.vertex_count;
   const double h = s.time_step;
   std::vector<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> factors(2);

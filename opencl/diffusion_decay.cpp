@@ -71,7 +71,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   // ---- forward Euler step limit: the reference's bound (common/model/diffusion_decay.hpp), in double,
   // so both backends take the same number of sub-steps ----
   stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params[Param::decay_rate]);
-  if (integrator == Integrator::ForwardEuler) {
+  if (integrator == Integrator::Forward) {
     sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
     sub_step_ = time_step / sub_steps_;
   }
@@ -99,7 +99,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
 
   // ---- buffers ----
   constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  if (integrator == Integrator::ForwardEuler) {
+  if (integrator == Integrator::Forward) {
     // The sub-step matrix (common/model/pheromone_operators.hpp), in double, then in hybrid form with one
     // ELL row per work-item of the padded launch.
     const CsrMatrix F = forward_substep_matrix(L, diffuse_over_mass, params[Param::decay_rate], sub_step_);
@@ -130,7 +130,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   scratch_ = allocate_written<cl_float>(compute, "concentration scratch", un);
   fill(0.0);
 
-  if (integrator == Integrator::BackwardEuler) {
+  if (integrator == Integrator::Backward) {
     // Eq. 7 as S u' = B u, S symmetric positive definite (common/model/pheromone_operators.hpp): B u on
     // this program's csr_multiply, S by conjugate gradients.
     const BackwardEulerSystem system =
@@ -248,7 +248,7 @@ void OpenCLDiffusionDecay::add_source(double h, bool clamp_at_zero) {
 
 void OpenCLDiffusionDecay::step() {
   try {
-    if (integrator_ == Integrator::ForwardEuler) {
+    if (integrator_ == Integrator::Forward) {
       forward_step();
       return;
     }

@@ -92,7 +92,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   has_fixed_ = std::any_of(fixed_host_.begin(), fixed_host_.end(), [](std::uint8_t f) { return f != 0; });
   if (fixed_host_.empty()) fixed_host_.assign(un, 0);
   // The planted fault rd-swap-diffusion in the IMEX systems (the explicit kernel swaps on its own).
-  if (has_option(options.build_options, "PHYSARUM_FAULT_RD_SWAP_DIFFUSION") && integrator_ == ReactionIntegrator::Imex)
+  if (has_option(options.build_options, "PHYSARUM_FAULT_RD_SWAP_DIFFUSION") && integrator_ == Integrator::Imex)
     std::swap(stiffness_[0], stiffness_[1]);
 
   // ---- the kinetics as OpenCL C ----
@@ -125,7 +125,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   // reads one set of weights for all of them and scales each morphogen's sum by c_m, a third fewer
   // bytes per vertex for two morphogens (bench_reaction_diffusion).
   std::vector<double> weight_scale(M, 1.0);
-  bool shared_weights = integrator_ == ReactionIntegrator::Explicit;
+  bool shared_weights = integrator_ == Integrator::Forward;
   const std::vector<double>& K0 = system.stiffness[0].value;
   const auto reference = std::find_if(K0.begin(), K0.end(), [](double v) { return v != 0.0; });
   if (reference == K0.end()) shared_weights = false;
@@ -143,9 +143,9 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   // off-diagonal entries go to the device (RD_ZERO_ROW_SUMS in reaction_diffusion.cl); the ELL width
   // is the narrowest that holds 97 % of the rows whole (opencl/hybrid_matrix.hpp).
   std::vector<CsrMatrix> substep_matrices;
-  bool zero_row_sums = integrator_ == ReactionIntegrator::Explicit;
+  bool zero_row_sums = integrator_ == Integrator::Forward;
   int ell_width = PHYSARUM_ELL_WIDTH;
-  if (integrator_ == ReactionIntegrator::Explicit) {
+  if (integrator_ == Integrator::Forward) {
     for (size_t m = 0; m < M; ++m) {
       zero_row_sums = zero_row_sums && rows_sum_to_zero(system.stiffness[m]);
       CsrMatrix W = system.stiffness[m];
@@ -206,7 +206,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   for (size_t i = 0; i < un; ++i) mass[i] = static_cast<float>(system.mass[i]);
   mass_ = upload_buffer(compute, "vertex mass", mass, kRead, false);
   // Two halves of the state for the explicit integrator's double buffer, one for IMEX.
-  const size_t halves = integrator_ == ReactionIntegrator::Explicit ? 2 : 1;
+  const size_t halves = integrator_ == Integrator::Forward ? 2 : 1;
   for (size_t half = 0; half < halves; ++half) {
     DeviceBuffer& u = state_[half];
     u = allocate_written<cl_float>(compute, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
@@ -221,7 +221,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
     }
   }
 
-  if (integrator_ == ReactionIntegrator::Explicit) {
+  if (integrator_ == Integrator::Forward) {
     // W_m in hybrid form with one ELL row per padded row.
     std::vector<HybridMatrix> hybrid;
     for (size_t m = 0; m < M; ++m) hybrid.push_back(to_hybrid(substep_matrices[m], static_cast<int>(stride_), ell_width));
@@ -308,7 +308,7 @@ std::string OpenCLReactionDiffusion::device_name() const { return compute_.devic
 
 void OpenCLReactionDiffusion::step() {
   try {
-    if (integrator_ == ReactionIntegrator::Explicit) explicit_step();
+    if (integrator_ == Integrator::Forward) explicit_step();
     else imex_step();
   } catch (const cl::Error& e) {
     throw device_error("reaction-diffusion step on " + compute_.device.device_name, e.err());
@@ -394,7 +394,7 @@ void OpenCLReactionDiffusion::host_imex_solve() {
 // The held vertices' columns moved to the right-hand side: c_m,i = -h sum_{j held} (K_m)_ij u_m,j,
 // for the rows that are not held. Recomputed whenever the held values may change (set/fill).
 void OpenCLReactionDiffusion::update_dirichlet_coupling() {
-  if (!has_fixed_ || integrator_ != ReactionIntegrator::Imex) return;
+  if (!has_fixed_ || integrator_ != Integrator::Imex) return;
   const size_t un = static_cast<size_t>(vertex_count_);
   std::vector<float> coupling(static_cast<size_t>(morphogen_count_) * stride_, 0.0f);
   for (int m = 0; m < morphogen_count_; ++m) {

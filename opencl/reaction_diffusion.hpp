@@ -123,7 +123,7 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
 
   ComputeContext compute_;
   OpenCLReactionDiffusionOptions options_;
-  ReactionIntegrator integrator_;
+  Integrator integrator_;
   int vertex_count_ = 0;
   int morphogen_count_ = 0;
   double time_step_ = 0.0;

@@ -42,7 +42,7 @@ ReferenceDiffusionDecay::ReferenceDiffusionDecay(const SurfaceDomain& domain, co
   const CsrMatrix& L = domain.laplacian;
   stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass_, decay_rate_);
 
-  if (integrator == Integrator::ForwardEuler) {
+  if (integrator == Integrator::Forward) {
     sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
     sub_step_ = time_step / sub_steps_;
     return;
@@ -115,7 +115,7 @@ void ReferenceDiffusionDecay::set_write_rate(const IntrinsicVertexData<double>& 
 
 void ReferenceDiffusionDecay::step(IntrinsicVertexData<double>& u) {
   check_size(u, "the field");
-  if (integrator_ == Integrator::BackwardEuler) {
+  if (integrator_ == Integrator::Backward) {
     backward_step(u);
   } else {
     for (int s = 0; s < sub_steps_; ++s) forward_sub_step(u, sub_step_);

@@ -35,7 +35,7 @@ ReferenceReactionDiffusion::ReferenceReactionDiffusion(ReactionDiffusionSystem s
   }
   reaction_.assign(count, std::vector<double>(n, 0.0));
   diffused_.assign(n, 0.0);
-  if (s.integrator == ReactionIntegrator::Imex) factor_implicit_systems();
+  if (s.integrator == Integrator::Imex) factor_implicit_systems();
 }
 
 void ReferenceReactionDiffusion::factor_implicit_systems() {
@@ -122,7 +122,7 @@ void ReferenceReactionDiffusion::apply_floor(size_t m) {
 }
 
 void ReferenceReactionDiffusion::step() {
-  if (system_.integrator == ReactionIntegrator::Imex) {
+  if (system_.integrator == Integrator::Imex) {
     imex_step(system_.time_step);
   } else {
     const double h = system_.time_step / system_.substeps;

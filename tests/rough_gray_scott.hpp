@@ -33,7 +33,7 @@ inline double stable_step(const SurfaceDomain& domain, double D) {
   return 2.0 / (D * worst);
 }
 
-inline ReactionDiffusionSystem rough_gray_scott(const SurfaceDomain& domain, ReactionIntegrator integrator, double dt) {
+inline ReactionDiffusionSystem rough_gray_scott(const SurfaceDomain& domain, Integrator integrator, double dt) {
   const size_t n = static_cast<size_t>(domain.vertex_count);
   ReactionDiffusionSystem s;
   s.morphogens = {"u", "v"};

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 namespace physarum {
 namespace {
@@ -77,6 +79,23 @@ TEST(CliMesh, HelpListsTheSubcommands) {
   // CLI11 lists each subcommand on its own line, indented, followed by its description.
   for (const char* sub : {"mesh", "run", "devices"})
     EXPECT_NE(r.out.find("\n  " + std::string(sub) + " "), std::string::npos) << "subcommand " << sub << " in:\n" << r.out;
+}
+
+// `physarum --help` lists each command in one line (its description's first line); the details stay
+// in each command's own --help.
+TEST(CliMesh, HelpListsEachCommandInOneLine) {
+  const auto r = run_physarum("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  std::istringstream lines(r.out);
+  std::string line;
+  int commands = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_LE(line.size(), 160u) << "a line of --help is a paragraph:\n" << line;
+    if (line.rfind("  ", 0) == 0 && line.find("  -") != 0) ++commands;
+  }
+  EXPECT_GE(commands, 11) << r.out;
+  EXPECT_EQ(r.out.find("DIR/fields_full.ply"), std::string::npos) << "run's details belong in run --help:\n" << r.out;
+  EXPECT_NE(run_physarum("run --help").out.find("DIR/fields_full.ply"), std::string::npos);
 }
 
 // `physarum run --help` must be usable without any file outside this repository: it names the five

@@ -91,8 +91,10 @@ TEST(RenderReactionDiffusion, RecoloursThePreviewMorphogenAndKeepsEveryMorphogen
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream run_json(dir.path / "run" / "run.json");
   const double unit = nlohmann::json::parse(run_json)["color_unit"].get<double>();
-  const PlyFields before = read_ply_fields((dir.path / "run" / "pheromone.ply").string());
-  const PlyFields after = read_ply_fields((out / "pheromone.ply").string());
+  // A reaction-diffusion run's result on the input mesh is named for what it holds.
+  EXPECT_FALSE(fs::exists(dir.path / "run" / "pheromone.ply"));
+  const PlyFields before = read_ply_fields((dir.path / "run" / "morphogens.ply").string());
+  const PlyFields after = read_ply_fields((out / "morphogens.ply").string());
   ASSERT_EQ(after.property("u"), before.property("u"));
   ASSERT_EQ(after.property("v"), before.property("v"));
   const auto& v = after.property("v");

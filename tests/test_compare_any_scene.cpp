@@ -106,9 +106,10 @@ TEST(CompareAnyScene, SpectralBandsAboveThePatternAreLeftOutWithAReason) {
 TEST(CompareAnyScene, ArmsAboveUByTheTimeDiscretisationAreJudgedAgainstEachOther) {
   TempDir dir;
   const std::filesystem::path scene = dir.path / "long_steps.json";
-  std::ofstream(scene) << R"({"mesh": "shape:sphere", "scale_to_area": 4.0, "max_circumradius": 0.05,
-    "agents": 4000, "time_step": 0.04, "sensor_distance": 0.1, "turn_frequency": 10, "decay_rate": 2.5,
-    "diffuse_rate": 0.05, "mean_lifetime": 0.2, "activation_time": 0.08, "seed": 3})";
+  std::ofstream(scene) << R"({"mesh": "shape:sphere", "scale_to_area": 4.0, "max_circumradius": 0.05, "agents": 4000,
+    "time_step": 0.04, "sensor_distance": 0.1, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
+    "turn_frequency": 10.0, "deposit_rate": 1.0, "decay_rate": 2.5, "diffuse_rate": 0.05, "mean_lifetime": 0.2,
+    "activation_time": 0.08, "integrator": "forward", "seed": 3})";
   const CommandResult run = run_physarum("compare " + quoted(scene));
   nlohmann::json v;
   ASSERT_NO_THROW(v = nlohmann::json::parse(run.out)) << run.err;

@@ -3,6 +3,7 @@
 // time step and be measured against its own U. Measuring with the first arm's dt and U made
 // `--arm time_step=X --arm time_step=X/2` run the second arm for half the simulated time, so its
 // pattern looked about half as strong at every dt (a harness artefact, not a model one).
+#include "common/setup/agent_inputs.hpp"
 #include "common/harness/comparison_metrics.hpp"
 
 #include "common/scene/scene.hpp"
@@ -31,7 +32,7 @@ TEST(ComparisonMetrics, AMeasuredSeedRunsItsOwnScenesTimeStepAndU) {
   const PreparedSurface surface = prepare_scene_surface(built_from);
   const ComparisonMetrics metrics(surface, built_from);
 
-  ReferenceSimulation sim(surface.domain, measured);
+  ReferenceSimulation sim(surface.domain, constant_parameters(measured, surface.domain), simulation_settings(measured));
   const std::vector<double> m = metrics.measure_seed(sim, measured);
   // burn_in + duration = 0.2 s of the measured scene, in its 0.005 s steps (not 0.01 s ones).
   EXPECT_EQ(sim.steps_taken(), 40);

@@ -109,7 +109,7 @@ void expect_zero_write_rate_changes_nothing(Backend b, Integrator integrator) {
 
 TEST(Controls, ZeroWriteRateIsBitIdenticalToNone) {
   for (Backend b : {Backend::Reference, Backend::OpenCL})
-    for (Integrator i : {Integrator::ForwardEuler, Integrator::BackwardEuler}) expect_zero_write_rate_changes_nothing(b, i);
+    for (Integrator i : {Integrator::Forward, Integrator::Backward}) expect_zero_write_rate_changes_nothing(b, i);
 }
 
 // ---- write-stimuli: the source term ----
@@ -135,7 +135,7 @@ void expect_write_steady_state(Backend b, Integrator integrator) {
 
 TEST(Controls, WriteStimulusReachesRateOverDecay) {
   for (Backend b : {Backend::Reference, Backend::OpenCL})
-    for (Integrator i : {Integrator::ForwardEuler, Integrator::BackwardEuler}) expect_write_steady_state(b, i);
+    for (Integrator i : {Integrator::Forward, Integrator::Backward}) expect_write_steady_state(b, i);
 }
 
 // ---- the U metric under maps and controls ----
@@ -146,7 +146,7 @@ TEST(Controls, WriteStimulusReachesRateOverDecay) {
 // the sphere and a read-stimulus and a bias act too. Time-averaged over 2 s after 3 s (7.5 decay
 // times) of relaxation.
 void expect_u_metric(Backend b) {
-  Scene scene = testing::model_scene(3000, 0.01, 1.0, Integrator::ForwardEuler);
+  Scene scene = testing::model_scene(3000, 0.01, 1.0, Integrator::Forward);
   scene.parameters[Param::activation_time] = 0.02;
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
@@ -235,7 +235,7 @@ IntrinsicVertexData<double> cap_and_ramp_weights(const TestSurface& s) {
 void expect_spawn_density(Backend b, const std::string& fault = "") {
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
-  Scene scene = testing::model_scene(20000, 0.01, 0.02, Integrator::ForwardEuler);
+  Scene scene = testing::model_scene(20000, 0.01, 0.02, Integrator::Forward);
   SimulationControls controls;
   controls.spawn_weight = cap_and_ramp_weights(s);
   auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene), fault);
@@ -303,7 +303,7 @@ TEST(Controls, PlantedFaultSpawnWeightsIgnoredIsCaught) {
 
 TEST(Controls, AllZeroSpawnWeightsAreRefused) {
   const SurfaceDomain& d = sphere().domain;
-  const Scene scene = testing::model_scene(10, 0.01, 0.2, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(10, 0.01, 0.2, Integrator::Forward);
   SimulationControls controls;
   controls.spawn_weight.assign(static_cast<size_t>(d.vertex_count), 0.0);
   const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
@@ -320,7 +320,7 @@ TEST(Controls, AllZeroSpawnWeightsAreRefused) {
 void expect_sink_empty(Backend b) {
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
-  Scene scene = testing::model_scene(3000, 0.01, std::nullopt, Integrator::ForwardEuler);
+  Scene scene = testing::model_scene(3000, 0.01, std::nullopt, Integrator::Forward);
   VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
   std::vector<char> sink(static_cast<size_t>(d.vertex_count), 0);
   for (int i = 0; i < d.vertex_count; ++i)
@@ -398,7 +398,7 @@ double heading_alignment(const SimulationBackend& sim, const DirectionalBias& bi
 double alignment_after(Backend b, int symmetry, double strength, const std::string& fault = "") {
   const TestSurface& s = square();
   const SurfaceDomain& d = s.domain;
-  const Scene scene = testing::model_scene(2000, 0.01, std::nullopt, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(2000, 0.01, std::nullopt, Integrator::Forward);
   SimulationControls controls;
   DirectionalBias bias;
   bias.symmetry = symmetry;
@@ -426,7 +426,7 @@ TEST(Controls, PlantedFaultBiasFarthestCopyIsCaught) {
 TEST(Controls, SpawnHeadingAlongBias) {
   const TestSurface& s = square();
   const SurfaceDomain& d = s.domain;
-  const Scene scene = testing::model_scene(500, 0.01, 0.2, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(500, 0.01, 0.2, Integrator::Forward);
   SimulationControls controls;
   DirectionalBias bias;
   bias.symmetry = 3;
@@ -451,7 +451,7 @@ TEST(Controls, SpawnHeadingAlongBias) {
 double disk_ratio(Backend b, double weight_in_u, const std::string& fault = "") {
   const TestSurface& s = square();
   const SurfaceDomain& d = s.domain;
-  const Scene scene = testing::model_scene(3000, 0.01, 1.0, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(3000, 0.01, 1.0, Integrator::Forward);
   const double U = uniform_steady_state(scene, d.total_area);
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : s.position) centre += p / static_cast<double>(s.position.size());
@@ -497,7 +497,7 @@ TEST(Controls, PlantedFaultStimulusSignIsCaught) { EXPECT_LT(disk_ratio(Backend:
 TEST(Controls, InitialAgesFollowTheLocalLifetime) {
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
-  const Scene scene = testing::model_scene(20000, 0.01, 1.0, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(20000, 0.01, 1.0, Integrator::Forward);
   VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
   std::vector<int> cap(static_cast<size_t>(d.vertex_count));
   for (int i = 0; i < d.vertex_count; ++i) {
@@ -530,7 +530,7 @@ TEST(Controls, InitialAgesFollowTheLocalLifetime) {
 // there is no respawn at all.
 TEST(Controls, TerminateRespawnsAtTheBoundary) {
   const SurfaceDomain& d = square().domain;
-  const Scene scene = testing::model_scene(2000, 0.01, std::nullopt, Integrator::ForwardEuler);
+  const Scene scene = testing::model_scene(2000, 0.01, std::nullopt, Integrator::Forward);
   const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
   SimulationControls terminate;
   terminate.boundary = BoundaryBehaviour::Terminate;
@@ -554,7 +554,7 @@ TEST(Controls, TerminateRespawnsAtTheBoundary) {
 // map-at-centroid reads v at the centroid instead and is caught.
 double worst_move_error(Backend b, const std::string& fault = "") {
   const SurfaceDomain& d = sphere().domain;
-  Scene scene = testing::model_scene(64, 0.001, std::nullopt, Integrator::ForwardEuler);
+  Scene scene = testing::model_scene(64, 0.001, std::nullopt, Integrator::Forward);
   VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
   for (int i = 0; i < d.vertex_count; ++i) params[Param::move_rate][i] = 0.5 + (i % 7) * 0.5;
   params[Param::turn_frequency].assign(static_cast<size_t>(d.vertex_count), 1e-3);  // no turn decision in one step

@@ -14,15 +14,15 @@ namespace {
 TEST(DiscreteSteadyState, DecayFactorMatchesClosedForms) {
   const double k_dt = 0.1;
   // One sub-step, and backward Euler: the fixed point is exactly D / (k dt).
-  EXPECT_EQ(decay_discretisation_ratio(Integrator::ForwardEuler, 1.0, k_dt, 1), 1.0);
-  EXPECT_EQ(decay_discretisation_ratio(Integrator::BackwardEuler, 1.0, k_dt, 40), 1.0);
+  EXPECT_EQ(decay_discretisation_ratio(Integrator::Forward, 1.0, k_dt, 1), 1.0);
+  EXPECT_EQ(decay_discretisation_ratio(Integrator::Backward, 1.0, k_dt, 40), 1.0);
   // Two sub-steps: g = (1 - k dt / 2)^2 = 1 - k dt + (k dt)^2 / 4, so the ratio is 1 / (1 - k dt / 4).
-  EXPECT_NEAR(decay_discretisation_ratio(Integrator::ForwardEuler, 1.0, k_dt, 2), 1.0 / (1.0 - k_dt / 4.0), 1e-13);
+  EXPECT_NEAR(decay_discretisation_ratio(Integrator::Forward, 1.0, k_dt, 2), 1.0 / (1.0 - k_dt / 4.0), 1e-13);
   // Infinitely many: g -> exp(-k dt), the ratio k dt / (1 - exp(-k dt)).
-  EXPECT_NEAR(decay_discretisation_ratio(Integrator::ForwardEuler, 1.0, k_dt, 1 << 20), k_dt / -std::expm1(-k_dt), 1e-7);
+  EXPECT_NEAR(decay_discretisation_ratio(Integrator::Forward, 1.0, k_dt, 1 << 20), k_dt / -std::expm1(-k_dt), 1e-7);
   // The rate and the step enter only through their product.
-  EXPECT_DOUBLE_EQ(decay_discretisation_ratio(Integrator::ForwardEuler, 2.5, 0.04, 7),
-                   decay_discretisation_ratio(Integrator::ForwardEuler, 1.0, 0.1, 7));
+  EXPECT_DOUBLE_EQ(decay_discretisation_ratio(Integrator::Forward, 2.5, 0.04, 7),
+                   decay_discretisation_ratio(Integrator::Forward, 1.0, 0.1, 7));
 }
 
 TEST(DiscreteSteadyState, ActivationFactorMatchesClosedForms) {

@@ -111,7 +111,7 @@ struct StepPair {
 StepPair one_step(const VertexParameters& params, Integrator integrator, double dt_in_stable_steps, int steps = 1,
                   const SurfaceDomain& d = sphere_domain(), const OpenCLDiffusionDecayOptions& options = {}) {
   // The time step is chosen relative to the stability bound so the sub-step count is known.
-  testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField probe(d, params, Integrator::Forward, 1.0);
   const double dt = dt_in_stable_steps * probe.stable_time_step();
   testing::ReferenceField reference(d, params, integrator, dt);
   OpenCLDiffusionDecay device(compute(), d, params, integrator, dt, options);
@@ -135,7 +135,7 @@ TEST(OpenCLDiffusionDecay, SphereDomainIsLargeEnoughAndNotAGroupMultiple) {
 TEST(OpenCLDiffusionDecay, ForwardStepEqualsReference) {
   const int n = sphere_domain().vertex_count;
   for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 3)}) {
-    const StepPair r = one_step(params, Integrator::ForwardEuler, 0.7);
+    const StepPair r = one_step(params, Integrator::Forward, 0.7);
     ASSERT_EQ(r.reference_sub_steps, 1);
     ASSERT_EQ(r.device_sub_steps, 1);
     const auto [diff, at] = max_difference(r.device, r.reference);
@@ -150,7 +150,7 @@ TEST(OpenCLDiffusionDecay, ForwardStepWithSubStepsEqualsReference) {
   const int n = sphere_domain().vertex_count;
   for (const VertexParameters& params : {uniform_rates(n, 0.01, 0.5), varying_rates(n, 0.01, 0.5, 5)}) {
     // 4.5 stable steps: 5 sub-steps, an odd count, so the ping-pong ends in the scratch buffer.
-    const StepPair r = one_step(params, Integrator::ForwardEuler, 4.5);
+    const StepPair r = one_step(params, Integrator::Forward, 4.5);
     EXPECT_EQ(r.reference_sub_steps, 5);
     EXPECT_EQ(r.device_sub_steps, r.reference_sub_steps);
     const auto [diff, at] = max_difference(r.device, r.reference);
@@ -158,7 +158,7 @@ TEST(OpenCLDiffusionDecay, ForwardStepWithSubStepsEqualsReference) {
     EXPECT_TRUE(r.damaged.empty()) << "canaries overwritten in: " << joined(r.damaged);
   }
   // An even count ends in u without the copy.
-  const StepPair even = one_step(uniform_rates(n, 0.01, 0.5), Integrator::ForwardEuler, 3.5, 3);
+  const StepPair even = one_step(uniform_rates(n, 0.01, 0.5), Integrator::Forward, 3.5, 3);
   EXPECT_EQ(even.device_sub_steps, 4);
   EXPECT_LE(max_difference(even.device, even.reference).first, 1e-5 * max_abs(even.reference));
 }
@@ -173,7 +173,7 @@ TEST(OpenCLDiffusionDecay, ForwardStepWithPaddedAndOverflowingRowsEqualsReferenc
     for (int i = 0; i < d->vertex_count; ++i)
       short_rows += d->laplacian.row_start[i + 1] - d->laplacian.row_start[i] < PHYSARUM_ELL_WIDTH;
     ASSERT_GT(short_rows, 0) << "the surface should have padded rows";
-    const StepPair r = one_step(varying_rates(d->vertex_count, 0.01, 0.5, 7), Integrator::ForwardEuler, 2.5, 1, *d);
+    const StepPair r = one_step(varying_rates(d->vertex_count, 0.01, 0.5, 7), Integrator::Forward, 2.5, 1, *d);
     EXPECT_EQ(r.device_sub_steps, 3);
     const auto [diff, at] = max_difference(r.device, r.reference);
     EXPECT_LE(diff, 1e-5 * max_abs(r.reference)) << d->vertex_count << " vertices: at vertex " << at;
@@ -198,7 +198,7 @@ TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
   host.implicit_solver = ImplicitSolver::HostCholesky;
   for (const Case& c : cases) {
     // 50 stable steps: far beyond forward Euler's limit, so the implicit solve does real work.
-    const StepPair r = one_step(c.params, Integrator::BackwardEuler, 50.0, 1, sphere_domain(), cg);
+    const StepPair r = one_step(c.params, Integrator::Backward, 50.0, 1, sphere_domain(), cg);
     const auto [diff, at] = max_difference(r.device, r.reference);
     EXPECT_LE(diff, 1e-4 * max_abs(r.reference)) << c.name << ": at vertex " << at;
     EXPECT_TRUE(r.solve.converged) << c.name << ": " << r.solve.iterations << " iterations, residual "
@@ -207,7 +207,7 @@ TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
     EXPECT_LE(r.solve.relative_residual, 1e-6) << c.name;
     EXPECT_TRUE(r.damaged.empty()) << c.name << ": canaries overwritten in: " << joined(r.damaged);
     // The host's float Cholesky factor (what a CPU device uses): as close as the CG's tolerance.
-    const StepPair h = one_step(c.params, Integrator::BackwardEuler, 50.0, 1, sphere_domain(), host);
+    const StepPair h = one_step(c.params, Integrator::Backward, 50.0, 1, sphere_domain(), host);
     const auto [host_diff, host_at] = max_difference(h.device, h.reference);
     EXPECT_LE(host_diff, 1e-5 * max_abs(h.reference)) << c.name << ": host solve, at vertex " << host_at;
     EXPECT_EQ(h.solve.iterations, 0) << c.name;
@@ -220,7 +220,7 @@ TEST(OpenCLDiffusionDecay, BackwardSolveEqualsReference) {
 TEST(OpenCLDiffusionDecay, AutomaticSolverIsTheHostFactorOnACpuDevice) {
   const SurfaceDomain& d = sphere_domain();
   const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.5);
-  OpenCLDiffusionDecay automatic(compute(), d, params, Integrator::BackwardEuler, 1.0);
+  OpenCLDiffusionDecay automatic(compute(), d, params, Integrator::Backward, 1.0);
   EXPECT_EQ(automatic.solves_on_host(), compute().device.type == "CPU" ||
                                             d.vertex_count <= tuning_for(compute().device).host_implicit_solve_max_vertices);
   if (compute().device.type == "CPU") {
@@ -228,7 +228,7 @@ TEST(OpenCLDiffusionDecay, AutomaticSolverIsTheHostFactorOnACpuDevice) {
   }
   OpenCLDiffusionDecayOptions cg;
   cg.implicit_solver = ImplicitSolver::DeviceConjugateGradients;
-  EXPECT_FALSE(OpenCLDiffusionDecay(compute(), d, params, Integrator::BackwardEuler, 1.0, cg).solves_on_host());
+  EXPECT_FALSE(OpenCLDiffusionDecay(compute(), d, params, Integrator::Backward, 1.0, cg).solves_on_host());
 }
 
 // The host factor in the device's queue (a native kernel, opencl/runtime/queued_host_task.hpp) and on the
@@ -240,7 +240,7 @@ TEST(OpenCLDiffusionDecay, HostSolveInTheQueueEqualsTheMappedSolveBitForBit) {
   const SurfaceDomain& d = sphere_domain();
   const int n = d.vertex_count;
   const VertexParameters params = varying_rates(n, 0.01, 0.5, 29);
-  testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField probe(d, params, Integrator::Forward, 1.0);
   const double dt = 50.0 * probe.stable_time_step();
   // Sources everywhere (up to 1 per step), and at every 40th vertex a sink strong enough that the
   // clamp at zero acts around it (about a quarter of the vertices end at zero).
@@ -251,8 +251,8 @@ TEST(OpenCLDiffusionDecay, HostSolveInTheQueueEqualsTheMappedSolveBitForBit) {
   OpenCLDiffusionDecayOptions queued, mapped;
   queued.implicit_solver = mapped.implicit_solver = ImplicitSolver::HostCholesky;
   mapped.host_solve_in_queue = false;
-  OpenCLDiffusionDecay a(compute(), d, params, Integrator::BackwardEuler, dt, queued);
-  OpenCLDiffusionDecay b(compute(), d, params, Integrator::BackwardEuler, dt, mapped);
+  OpenCLDiffusionDecay a(compute(), d, params, Integrator::Backward, dt, queued);
+  OpenCLDiffusionDecay b(compute(), d, params, Integrator::Backward, dt, mapped);
   EXPECT_EQ(a.solves_in_queue(), runs_queued_host_tasks(compute().device));
   EXPECT_FALSE(b.solves_in_queue());
   for (OpenCLDiffusionDecay* f : {&a, &b}) {
@@ -281,7 +281,7 @@ TEST(OpenCLDiffusionDecay, HostSolveInTheQueueEqualsTheMappedSolveBitForBit) {
 TEST(OpenCLDiffusionDecay, BackwardWithoutDiffusionIsTheExactDecayFactor) {
   const SurfaceDomain& d = sphere_domain();
   const VertexParameters params = uniform_rates(d.vertex_count, 0.0, 0.5);
-  OpenCLDiffusionDecay device(compute(), d, params, Integrator::BackwardEuler, 0.2);
+  OpenCLDiffusionDecay device(compute(), d, params, Integrator::Backward, 0.2);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 13, 0.1, 1.0);
   device.set_concentration(as_device(u0));
   device.step();
@@ -295,8 +295,8 @@ TEST(OpenCLDiffusionDecay, DiffusionAloneConservesTheTotalAmount) {
   // A uniform diffuse rate: 1^T L = 0 makes sum m u invariant (a varying R_dif does not conserve it:
   // 1^T R_dif L != 0). The sphere's vertex masses differ, so a scheme that forgot M^-1 would drift.
   const VertexParameters params = uniform_rates(d.vertex_count, 0.01, 0.0);
-  testing::ReferenceField probe(d, params, Integrator::ForwardEuler, 1.0);
-  for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
+  testing::ReferenceField probe(d, params, Integrator::Forward, 1.0);
+  for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     OpenCLDiffusionDecay device(compute(), d, params, integrator, 3.0 * probe.stable_time_step());
     const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 17, 0.0, 1.0);
     device.set_concentration(as_device(u0));
@@ -319,7 +319,7 @@ TEST(OpenCLDiffusionDecay, DiffusionAloneConservesTheTotalAmount) {
 TEST(OpenCLDiffusionDecay, DecayAloneScalesByOneMinusRateTimesStep) {
   const SurfaceDomain& d = sphere_domain();
   const double rate = 0.5, dt = 0.1;
-  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::ForwardEuler, dt);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.0, rate), Integrator::Forward, dt);
   ASSERT_EQ(device.sub_steps(), 1);
   const IntrinsicVertexData<double> u0 = random_values(d.vertex_count, 19, 0.1, 1.0);
   device.set_concentration(as_device(u0));
@@ -334,7 +334,7 @@ TEST(OpenCLDiffusionDecay, DecayAloneScalesByOneMinusRateTimesStep) {
 
 TEST(OpenCLDiffusionDecay, DepositsRaiseConcentrationByAmountOverMass) {
   const SurfaceDomain& d = sphere_domain();
-  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::Forward, 0.01);
   device.fill(0.25);
   const IntrinsicVertexData<double> amount = random_values(d.vertex_count, 23, 0.0, 1e-3);
   device.add_deposits(as_device(amount));
@@ -346,7 +346,7 @@ TEST(OpenCLDiffusionDecay, DepositsRaiseConcentrationByAmountOverMass) {
 
 TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
   const SurfaceDomain& d = sphere_domain();
-  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.01);
+  OpenCLDiffusionDecay device(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::Forward, 0.01);
   device.set_concentration(as_device(random_values(d.vertex_count, 29, 0.0, 1.0)));
   device.step();  // a field the device made, not just the one uploaded
   const IntrinsicVertexData<double> u = as_domain(device.concentration());
@@ -372,17 +372,17 @@ TEST(OpenCLFieldStatistics, EqualTheHostsOnTheReadBackField) {
 
 TEST(OpenCLDiffusionDecay, RejectsBadInputAndOversizedBuffers) {
   const SurfaceDomain& d = sphere_domain();
-  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count - 1, 0.01, 0.5), Integrator::ForwardEuler, 0.1),
+  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count - 1, 0.01, 0.5), Integrator::Forward, 0.1),
                InputError);
-  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.0),
+  EXPECT_THROW(OpenCLDiffusionDecay(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::Forward, 0.0),
                InputError);
-  OpenCLDiffusionDecay ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+  OpenCLDiffusionDecay ok(compute(), d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::Forward, 0.1);
   EXPECT_THROW(ok.set_concentration(DeviceVertexData<double>(3, 1.0)), InputError);
   // A device whose largest allocation is smaller than the sub-step matrix: a clear error, not a crash.
   ComputeContext small = compute();
   small.device.max_allocation_bytes = 1024;
   try {
-    OpenCLDiffusionDecay tiny(small, d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::ForwardEuler, 0.1);
+    OpenCLDiffusionDecay tiny(small, d, uniform_rates(d.vertex_count, 0.01, 0.5), Integrator::Forward, 0.1);
     FAIL() << "expected DeviceError";
   } catch (const DeviceError& e) {
     const std::string m = e.what();

@@ -68,15 +68,15 @@ void expect_one_step_agrees(const std::string& spec, const Scene& scene) {
 }
 
 TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceOnASphere) {
-  expect_one_step_agrees("shape:sphere", model_scene(20000, 0.5, Integrator::ForwardEuler));
+  expect_one_step_agrees("shape:sphere", model_scene(20000, 0.5, Integrator::Forward));
 }
 TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBoundaries) {
-  expect_one_step_agrees("shape:square", model_scene(20000, 0.5, Integrator::BackwardEuler));
+  expect_one_step_agrees("shape:square", model_scene(20000, 0.5, Integrator::Backward));
 }
 // Turn decisions faster than steps (2.5 per step): the first sensing of a step is done ahead of the
 // agent step (sense_deciders), the later ones inside it from the heading the earlier ones left.
 TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
-  Scene scene = model_scene(20000, 0.5, Integrator::ForwardEuler);
+  Scene scene = model_scene(20000, 0.5, Integrator::Forward);
   scene.parameters[Param::turn_frequency] = 250.0;
   expect_one_step_agrees("shape:sphere", scene);
 }
@@ -87,7 +87,7 @@ TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
 TEST(OpenCLSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   for (const char* fault : {"sensor-angle", "turn-every-step"}) {
-    const StepComparison c = compare_one_step(domain, model_scene(20000, 0.5, Integrator::ForwardEuler), 60, fault);
+    const StepComparison c = compare_one_step(domain, model_scene(20000, 0.5, Integrator::Forward), 60, fault);
     EXPECT_GT(c.mismatched, c.agents / 1000) << fault;
     std::cout << "planted fault " << fault << ": " << c.mismatched << " of " << c.agents << " agents disagree\n";
   }
@@ -97,7 +97,7 @@ TEST(OpenCLSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
 // alias-bucket edges, see agents.cl) and positions to float rounding.
 TEST(OpenCLSimulation, InitialStateIsTheReferences) {
   const SurfaceDomain domain = delaunay_domain("shape:torus");
-  const Scene scene = model_scene(5000, 0.5, Integrator::ForwardEuler);
+  const Scene scene = model_scene(5000, 0.5, Integrator::Forward);
   ReferenceSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
   OpenCLSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   const Agents a = reference.agents(), b = device.read_agents();
@@ -115,7 +115,7 @@ TEST(OpenCLSimulation, InitialStateIsTheReferences) {
 // N r_dep dt (every agent active) to the total; fixed-point rounding is ~1e-13 per deposit.
 TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
-  Scene scene = model_scene(10000, std::nullopt, Integrator::ForwardEuler);
+  Scene scene = model_scene(10000, std::nullopt, Integrator::Forward);
   scene.parameters[Param::decay_rate] = 0.0;
   scene.parameters[Param::diffuse_rate] = 0.0;
   scene.parameters[Param::activation_time] = 0.0;
@@ -135,7 +135,7 @@ TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
 // state are the very same bits as without sorting.
 TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
   const SurfaceDomain domain = delaunay_domain("shape:torus");
-  const Scene scene = model_scene(4000, 0.3, Integrator::ForwardEuler);
+  const Scene scene = model_scene(4000, 0.3, Integrator::Forward);
   OpenCLSimulationOptions sorted, unsorted;
   sorted.sort_interval = 3;
   unsorted.sort_interval = 0;
@@ -156,7 +156,7 @@ TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
 // walk) with an agent count that leaves the last work-item part-filled.
 TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
   const SurfaceDomain domain = delaunay_domain("shape:disk");
-  const Scene scene = model_scene(4001, 0.3, Integrator::ForwardEuler);
+  const Scene scene = model_scene(4001, 0.3, Integrator::Forward);
   OpenCLSimulationOptions alone;
   alone.agents_per_work_item = 1;
   OpenCLSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), alone);
@@ -204,12 +204,12 @@ void expect_mean_is_U(const std::string& spec, Integrator integrator) {
       << spec << " without turnover";
 }
 
-TEST(OpenCLSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::ForwardEuler); }
-TEST(OpenCLSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::BackwardEuler); }
+TEST(OpenCLSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Forward); }
+TEST(OpenCLSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::Backward); }
 
 TEST(OpenCLSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
-  OpenCLSimulation sim(compute(), domain, constant_parameters(model_scene(3000, 0.5, Integrator::ForwardEuler), domain), simulation_settings(model_scene(3000, 0.5, Integrator::ForwardEuler)));
+  OpenCLSimulation sim(compute(), domain, constant_parameters(model_scene(3000, 0.5, Integrator::Forward), domain), simulation_settings(model_scene(3000, 0.5, Integrator::Forward)));
   sim.run(200);
   const Agents a = sim.read_agents();
   for (int i = 0; i < a.count(); ++i) {
@@ -228,10 +228,10 @@ TEST(OpenCLSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
 
 TEST(OpenCLSimulation, RejectsBadSettingsAndOversizedAgentCounts) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
-  Scene scene = model_scene(100, 0.5, Integrator::ForwardEuler);
+  Scene scene = model_scene(100, 0.5, Integrator::Forward);
   scene.time_step = 0.0;
   EXPECT_THROW(OpenCLSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene)), InputError);
-  scene = model_scene(2'000'000'000, 0.5, Integrator::ForwardEuler);
+  scene = model_scene(2'000'000'000, 0.5, Integrator::Forward);
   try {
     OpenCLSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
     FAIL() << "2e9 agents fit on " << compute().device.device_name;

@@ -45,7 +45,7 @@ TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
   // A square grid (boundary = Neumann) has vertex masses that differ (corners, edges, interior),
   // so a scheme that forgot M^-1 would not conserve the mass-weighted total.
   const SurfaceDomain domain = make_domain(make_square_grid(16));
-  for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
+  for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 0.0), integrator, 0.01);
     field.set_concentration(random_field(domain.vertex_count, 7));
     const double before = mass_total(domain, field.concentration());
@@ -63,12 +63,12 @@ TEST(Pheromone, DecayAloneScalesEveryVertexExactly) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.7, dt = 0.05;
   const IntrinsicVertexData<double> start = random_field(domain.vertex_count, 3);
-  for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
+  for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
     EXPECT_EQ(field.sub_steps(), 1);
     field.set_concentration(start);
     field.step();
-    const double factor = integrator == Integrator::ForwardEuler ? 1.0 - r * dt : 1.0 / (1.0 + r * dt);
+    const double factor = integrator == Integrator::Forward ? 1.0 - r * dt : 1.0 / (1.0 + r * dt);
     for (int i = 0; i < domain.vertex_count; ++i)
       ASSERT_NEAR(field.concentration()[i], factor * start[i], 1e-12 * start[i]) << "vertex " << i;
   }
@@ -77,7 +77,7 @@ TEST(Pheromone, DecayAloneScalesEveryVertexExactly) {
 TEST(Pheromone, DecayAloneApproachesExponential) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
   const double r = 1.3, dt = 1e-4, t_end = 1.0;
-  for (Integrator integrator : {Integrator::ForwardEuler, Integrator::BackwardEuler}) {
+  for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
     field.fill(2.0);
     const int steps = static_cast<int>(std::lround(t_end / dt));
@@ -92,12 +92,12 @@ TEST(Pheromone, DecayAloneApproachesExponential) {
 TEST(Pheromone, ConstantFieldFollowsScalarRecursion) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.4, dt = 0.1, c0 = 3.0;
-  for (Integrator integrator : {Integrator::BackwardEuler, Integrator::ForwardEuler}) {
+  for (Integrator integrator : {Integrator::Backward, Integrator::Forward}) {
     testing::ReferenceField field(domain, rates(domain.vertex_count, 0.05, r), integrator, dt);
     field.fill(c0);
     const int steps = 25;
     for (int s = 0; s < steps; ++s) field.step();
-    const double expected = integrator == Integrator::BackwardEuler ? c0 / std::pow(1.0 + r * dt, steps)
+    const double expected = integrator == Integrator::Backward ? c0 / std::pow(1.0 + r * dt, steps)
                                                                     : c0 * std::pow(1.0 - r * dt / field.sub_steps(), steps * field.sub_steps());
     for (double u : field.concentration()) ASSERT_NEAR(u, expected, 1e-10 * expected);
   }
@@ -119,14 +119,14 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
     return s;
   };
   const double expected = std::exp(-(2.0 * r_dif + r_dec) * t_end);
-  for (auto [integrator, dt] : {std::pair{Integrator::ForwardEuler, 1e-3}, std::pair{Integrator::BackwardEuler, 1e-3}}) {
+  for (auto [integrator, dt] : {std::pair{Integrator::Forward, 1e-3}, std::pair{Integrator::Backward, 1e-3}}) {
     testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), integrator, dt);
     field.set_concentration(z);
     const int steps = static_cast<int>(std::lround(t_end / dt));
     for (int s = 0; s < steps; ++s) field.step();
     const IntrinsicVertexData<double>& u = field.concentration();
     const double amplitude = m_dot(u, z) / m_dot(z, z);
-    EXPECT_NEAR(amplitude / expected, 1.0, 3e-3) << (integrator == Integrator::ForwardEuler ? "forward" : "backward");
+    EXPECT_NEAR(amplitude / expected, 1.0, 3e-3) << (integrator == Integrator::Forward ? "forward" : "backward");
     // The shape is preserved: what is left after removing the z component is tiny.
     IntrinsicVertexData<double> rest(u.size());
     for (size_t i = 0; i < u.size(); ++i) rest[i] = u[i] - amplitude * z[i];
@@ -139,7 +139,7 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
 TEST(Pheromone, StableTimeStepRespectsTrueSpectralRadius) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.02, r_dec = 0.5;
-  testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), Integrator::ForwardEuler, 1.0);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), Integrator::Forward, 1.0);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = domain.laplacian.to_eigen();
   Eigen::VectorXd inv_m(domain.vertex_count);
   for (int i = 0; i < domain.vertex_count; ++i) inv_m[i] = 1.0 / domain.vertex_mass[i];
@@ -161,9 +161,9 @@ TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.05, r_dec = 0.2;
   const VertexParameters p = rates(domain.vertex_count, r_dif, r_dec);
-  const double limit = testing::ReferenceField(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
+  const double limit = testing::ReferenceField(domain, p, Integrator::Forward, 1.0).stable_time_step();
   const double dt = 10.0 * limit;
-  testing::ReferenceField field(domain, p, Integrator::ForwardEuler, dt);
+  testing::ReferenceField field(domain, p, Integrator::Forward, dt);
   EXPECT_GE(field.sub_steps(), 10);
   EXPECT_LE(field.sub_steps(), 11);
 
@@ -189,9 +189,9 @@ TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
 TEST(Pheromone, NoSubStepsBelowLimit) {
   const SurfaceDomain domain = make_domain(make_square_grid(8));
   const VertexParameters p = rates(domain.vertex_count, 0.01, 0.3);
-  const double limit = testing::ReferenceField(domain, p, Integrator::ForwardEuler, 1.0).stable_time_step();
+  const double limit = testing::ReferenceField(domain, p, Integrator::Forward, 1.0).stable_time_step();
   const double dt = 0.95 * limit;
-  testing::ReferenceField field(domain, p, Integrator::ForwardEuler, dt);
+  testing::ReferenceField field(domain, p, Integrator::Forward, dt);
   EXPECT_EQ(field.sub_steps(), 1);
   const IntrinsicVertexData<double> u0 = random_field(domain.vertex_count, 11);
   field.set_concentration(u0);
@@ -227,13 +227,13 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
   }
   const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(u0.data(), n);
 
-  testing::ReferenceField backward(domain, p, Integrator::BackwardEuler, dt);
+  testing::ReferenceField backward(domain, p, Integrator::Backward, dt);
   backward.set_concentration(u0);
   backward.step();
   const Eigen::VectorXd expected_backward = (M + dt * (Rdif * L + Rdec * M)).partialPivLu().solve(M * u);
   for (int i = 0; i < n; ++i) ASSERT_NEAR(backward.concentration()[i], expected_backward[i], 1e-12);
 
-  testing::ReferenceField forward(domain, p, Integrator::ForwardEuler, 0.01);
+  testing::ReferenceField forward(domain, p, Integrator::Forward, 0.01);
   ASSERT_EQ(forward.sub_steps(), 1);
   forward.set_concentration(u0);
   forward.step();
@@ -244,7 +244,7 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
 // A deposit is an amount: it raises the mass-weighted total by exactly that amount.
 TEST(Pheromone, DepositsAddAmountOverVertexMass) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 1.0), Integrator::ForwardEuler, 0.01);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 1.0), Integrator::Forward, 0.01);
   field.add_deposit(17, 0.25);
   EXPECT_DOUBLE_EQ(field.concentration()[17], 0.25 / domain.vertex_mass[17]);
   EXPECT_NEAR(field.total_amount(), 0.25, 1e-15);
@@ -262,7 +262,7 @@ TEST(Pheromone, DepositsAddAmountOverVertexMass) {
 TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double agents = 200, deposit_rate = 0.5, r_dec = 2.0, dt = 0.05;
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.001, r_dec), Integrator::BackwardEuler, dt);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.001, r_dec), Integrator::Backward, dt);
   IntrinsicVertexData<double> amounts(static_cast<size_t>(domain.vertex_count));
   double area = 0;
   for (double m : domain.vertex_mass) area += m;
@@ -277,11 +277,11 @@ TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
 
 TEST(Pheromone, RejectsMismatchedSizesAndBadTimeStep) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
-  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::ForwardEuler, 0.1),
+  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::Forward, 0.1),
                InputError);
-  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.0),
+  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.0),
                InputError);
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::ForwardEuler, 0.1);
+  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.1);
   EXPECT_THROW(field.set_concentration(IntrinsicVertexData<double>(2, 0.0)), InputError);
 }
 

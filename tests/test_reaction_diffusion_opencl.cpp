@@ -61,7 +61,7 @@ CsrMatrix scaled(const CsrMatrix& L, double factor) {
 
 // Gray-Scott on `domain`: D_u = 2 D_v, F varying per vertex (a map: the per-vertex buffer path), k
 // uniform (the compile-time literal path), random u in [0.3, 1], v in [0, 0.5].
-ReactionDiffusionSystem gray_scott(const SurfaceDomain& domain, double D_v, ReactionIntegrator integrator, double dt,
+ReactionDiffusionSystem gray_scott(const SurfaceDomain& domain, double D_v, Integrator integrator, double dt,
                                    int substeps) {
   const int n = domain.vertex_count;
   ReactionDiffusionSystem s;
@@ -211,7 +211,7 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopElementWise) {
   const SurfaceDomain& domain = domain_of(GetParam());
   const double D_v = 1e-3;
   const double h = 0.8 * stable_step(domain, 2.0 * D_v);
-  expect_explicit_step_matches(domain, gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3));
+  expect_explicit_step_matches(domain, gray_scott(domain, D_v, Integrator::Forward, 3 * h, 3));
 }
 
 // Stiffness matrices that are not multiples of one another (as anisotropic diffusion makes them):
@@ -220,7 +220,7 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithUnrelatedStiffnesses) {
   const SurfaceDomain& domain = domain_of(GetParam());
   const double D_v = 1e-3;
   const double h = 0.8 * stable_step(domain, 2.0 * D_v);
-  ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
+  ReactionDiffusionSystem s = gray_scott(domain, D_v, Integrator::Forward, 3 * h, 3);
   for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 0.6 + 0.4 * std::sin(double(e));
   expect_explicit_step_matches(domain, s);
 }
@@ -237,7 +237,7 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeAndFourMorphogens) {
   const double h = 0.8 * stable_step(domain, 2.0 * D_v);
   for (const int count : {3, 4})
     for (const bool own_weights : {false, true}) {
-      ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
+      ReactionDiffusionSystem s = gray_scott(domain, D_v, Integrator::Forward, 3 * h, 3);
       s.morphogens.push_back("w");
       s.reaction.push_back("0.5*u - w");
       s.stiffness.push_back(scaled(domain.laplacian, 1.5 * D_v));
@@ -274,7 +274,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, ExplicitStep,
 
 TEST(ExplicitStep, TheFormulaIsCompiledWithUniformCoefficientsAsLiterals) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
-  OpenCLReactionDiffusion rd(compute(), domain, gray_scott(domain, 1e-3, ReactionIntegrator::Explicit, 1e-3, 1));
+  OpenCLReactionDiffusion rd(compute(), domain, gray_scott(domain, 1e-3, Integrator::Forward, 1e-3, 1));
   ASSERT_EQ(rd.translated_reactions().size(), 2u);
   EXPECT_NE(rd.translated_reactions()[1].find("0.06f"), std::string::npos) << rd.translated_reactions()[1];  // k
   EXPECT_NE(rd.translated_reactions()[1].find("rd_c0"), std::string::npos) << rd.translated_reactions()[1];  // F
@@ -291,7 +291,7 @@ TEST(ExplicitStep, EveryReaderAndWriterFollowsTheCurrentHalfOfTheDoubleBuffer) {
   const int n = domain.vertex_count;
   const double D_v = 1e-3;
   const double h = 0.8 * stable_step(domain, 2.0 * D_v);
-  const ReactionDiffusionSystem s = gray_scott(domain, D_v, ReactionIntegrator::Explicit, 3 * h, 3);
+  const ReactionDiffusionSystem s = gray_scott(domain, D_v, Integrator::Forward, 3 * h, 3);
   OpenCLReactionDiffusion rd(compute(), domain, s);
   rd.step();
   const auto reference = explicit_reference(s);
@@ -334,7 +334,7 @@ TEST_P(ImexStep, MatchesAnEigenFactorizationOnTheHost) {
   // A step 20x the explicit stability bound: only an implicit diffusion solve survives it.
   const double D_v = 1e-3;
   const ReactionDiffusionSystem s =
-      gray_scott(domain, D_v, ReactionIntegrator::Imex, 20 * stable_step(domain, 2 * D_v), 1);
+      gray_scott(domain, D_v, Integrator::Imex, 20 * stable_step(domain, 2 * D_v), 1);
   OpenCLReactionDiffusionOptions options;
   options.imex_solver = GetParam();
   const auto device = one_step(domain, s, options);
@@ -354,11 +354,11 @@ INSTANTIATE_TEST_SUITE_P(Solvers, ImexStep,
 TEST(ReactionDiffusionDirichlet, HeldVerticesKeepTheirValuesAndTheRestFollows) {
   const SurfaceDomain& domain = domain_of("shape:square");
   const int n = domain.vertex_count;
-  for (const ReactionIntegrator integrator : {ReactionIntegrator::Explicit, ReactionIntegrator::Imex}) {
+  for (const Integrator integrator : {Integrator::Forward, Integrator::Imex}) {
     for (const ImexSolver solver : {ImexSolver::DeviceConjugateGradients, ImexSolver::HostFactorization}) {
-      if (integrator == ReactionIntegrator::Explicit && solver == ImexSolver::HostFactorization) continue;
+      if (integrator == Integrator::Forward && solver == ImexSolver::HostFactorization) continue;
       const double h = 0.8 * stable_step(domain, 2e-3);
-      ReactionDiffusionSystem s = integrator == ReactionIntegrator::Explicit
+      ReactionDiffusionSystem s = integrator == Integrator::Forward
                                       ? gray_scott(domain, 1e-3, integrator, 2 * h, 2)
                                       : gray_scott(domain, 1e-3, integrator, 10 * h, 1);
       s.fixed.assign(static_cast<size_t>(n), 0);
@@ -367,7 +367,7 @@ TEST(ReactionDiffusionDirichlet, HeldVerticesKeepTheirValuesAndTheRestFollows) {
       options.imex_solver = solver;
       OpenCLReactionDiffusion rd(compute(), domain, s, options);
       rd.step();
-      const auto reference = integrator == ReactionIntegrator::Explicit ? explicit_reference(s) : imex_reference(s);
+      const auto reference = integrator == Integrator::Forward ? explicit_reference(s) : imex_reference(s);
       for (int m = 0; m < 2; ++m) {
         const IntrinsicVertexData<double> u = rd.field_values(m);
         EXPECT_LT(max_difference(u, reference[m]), kImexTolerance) << "morphogen " << m;
@@ -385,10 +385,10 @@ TEST(ReactionDiffusionDirichlet, HeldVerticesKeepTheirValuesAndTheRestFollows) {
 // Planted faults: each must change the result well beyond the tolerance of the comparison above.
 TEST(ReactionDiffusionFaults, SwapDiffusionAndNoFeedChangeTheStep) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
-  for (const ReactionIntegrator integrator : {ReactionIntegrator::Explicit, ReactionIntegrator::Imex}) {
+  for (const Integrator integrator : {Integrator::Forward, Integrator::Imex}) {
     const double h = 0.8 * stable_step(domain, 2e-3);
-    const ReactionDiffusionSystem s = gray_scott(domain, 1e-3, integrator, integrator == ReactionIntegrator::Explicit ? 2 * h : 10 * h,
-                                                 integrator == ReactionIntegrator::Explicit ? 2 : 1);
+    const ReactionDiffusionSystem s = gray_scott(domain, 1e-3, integrator, integrator == Integrator::Forward ? 2 * h : 10 * h,
+                                                 integrator == Integrator::Forward ? 2 : 1);
     const auto clean = one_step(domain, s);
     for (const char* fault : {"-DPHYSARUM_FAULT_RD_SWAP_DIFFUSION", "-DPHYSARUM_FAULT_RD_NO_FEED"}) {
       OpenCLReactionDiffusionOptions options;
@@ -403,7 +403,7 @@ TEST(ReactionDiffusionFaults, SwapDiffusionAndNoFeedChangeTheStep) {
 
 TEST(ReactionDiffusionInputs, BadFormulasAndSizesAreRefusedWithWhere) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
-  ReactionDiffusionSystem s = gray_scott(domain, 1e-3, ReactionIntegrator::Explicit, 1e-3, 1);
+  ReactionDiffusionSystem s = gray_scott(domain, 1e-3, Integrator::Forward, 1e-3, 1);
   s.reaction[1] = "u*v^2 - (F+kk)*v";
   try {
     OpenCLReactionDiffusion rd(compute(), domain, s);
@@ -413,10 +413,10 @@ TEST(ReactionDiffusionInputs, BadFormulasAndSizesAreRefusedWithWhere) {
     EXPECT_NE(std::string(e.what()).find("position 12"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("morphogen 'v'"), std::string::npos) << e.what();
   }
-  s = gray_scott(domain, 1e-3, ReactionIntegrator::Explicit, 1e-3, 1);
+  s = gray_scott(domain, 1e-3, Integrator::Forward, 1e-3, 1);
   s.initial[1].values().pop_back();
   EXPECT_THROW(OpenCLReactionDiffusion(compute(), domain, s), InputError);
-  s = gray_scott(domain, 1e-3, ReactionIntegrator::Explicit, 1e-3, 1);
+  s = gray_scott(domain, 1e-3, Integrator::Forward, 1e-3, 1);
   s.stiffness[1].column[0] = s.stiffness[1].column[1];
   EXPECT_THROW(OpenCLReactionDiffusion(compute(), domain, s), InputError);
 }
@@ -424,7 +424,7 @@ TEST(ReactionDiffusionInputs, BadFormulasAndSizesAreRefusedWithWhere) {
 // A uniform steady state stays put: (u, v) = (1, 0) for Gray-Scott (R = 0 there and K 1 = 0).
 TEST(ReactionDiffusionSteadyState, GrayScottStaysAtOneZero) {
   const SurfaceDomain& domain = domain_of("shape:sphere");
-  ReactionDiffusionSystem s = gray_scott(domain, 1e-3, ReactionIntegrator::Explicit,
+  ReactionDiffusionSystem s = gray_scott(domain, 1e-3, Integrator::Forward,
                                          2 * 0.8 * stable_step(domain, 2e-3), 2);
   s.initial = {IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 1.0),
                IntrinsicVertexData<double>(static_cast<size_t>(domain.vertex_count), 0.0)};

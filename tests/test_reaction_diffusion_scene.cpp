@@ -53,7 +53,7 @@ TEST(ReactionDiffusionScene, NamedModelNeedsNoAgentKeysAndTakesThePapersDefaults
   EXPECT_EQ(std::get<double>(rd.morphogens[0].initial), 1.0);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].initial), 0.0);
   EXPECT_EQ(rd.preview_morphogen, "v");  // the second by default
-  EXPECT_EQ(rd.integrator, ReactionIntegrator::Explicit);
+  EXPECT_EQ(rd.integrator, Integrator::Forward);
 }
 
 TEST(ReactionDiffusionScene, NamedModelFormulasHaveTheirUniformSteadyStates) {
@@ -87,7 +87,7 @@ TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
   EXPECT_EQ(coefficient(rd, "k"), 0.06);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].diffusion), 3e-5);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].initial), 0.5);
-  EXPECT_EQ(rd.integrator, ReactionIntegrator::Imex);
+  EXPECT_EQ(rd.integrator, Integrator::Imex);
   EXPECT_EQ(rd.preview_morphogen, "u");
 }
 

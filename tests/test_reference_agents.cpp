@@ -427,7 +427,7 @@ TEST(ReferenceAgents, ReflectionKeepsEveryAgentInsideItsFace) {
   Scene scene = plain_scene();
   scene.agents = 500;
   scene.parameters[Param::move_rate] = 2.0;  // 0.02 per step: a boundary every ~25 steps
-  SimulationSettings settings{scene.agents, scene.time_step, 2, Integrator::ForwardEuler};
+  SimulationSettings settings{scene.agents, scene.time_step, 2, Integrator::Forward};
   ReferenceSimulation sim(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), settings);
   double worst = 0.0;
   for (int s = 0; s < 200; ++s) {
@@ -476,7 +476,7 @@ TEST(ReferenceAgents, ZeroTurnRateWalksGeodesics) {
     scene.parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
     scene.agents = 50;
     scene.parameters[Param::move_rate] = 0.5;
-    SimulationSettings settings{scene.agents, scene.time_step, 6, Integrator::ForwardEuler};
+    SimulationSettings settings{scene.agents, scene.time_step, 6, Integrator::Forward};
     VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
     ReferenceSimulation sim(domain, params, settings);
     const Eigen::Vector3d x0 = point_in_3d(mesh, domain, sim.agents().face[0], sim.agents().position[0]);

@@ -161,7 +161,7 @@ void expect_steps_allocate_nothing(Integrator integrator) {
 // Competing species too: the sensed sums and every species' deposits live in buffers sized once.
 TEST(ReferenceAllocations, TwoSpeciesStepAllocatesNothing) {
   const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
-  const Scene scene = uniform_scene(Integrator::ForwardEuler);
+  const Scene scene = uniform_scene(Integrator::Forward);
   const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
   SpeciesSet species;
   species.species = {Species{300, params}, Species{200, params}};
@@ -176,8 +176,8 @@ TEST(ReferenceAllocations, TwoSpeciesStepAllocatesNothing) {
   EXPECT_EQ(counter.malloc_calls(), 0) << "malloc/calloc/realloc calls in 50 steps";
 }
 
-TEST(ReferenceAllocations, ForwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::ForwardEuler); }
-TEST(ReferenceAllocations, BackwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::BackwardEuler); }
+TEST(ReferenceAllocations, ForwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::Forward); }
+TEST(ReferenceAllocations, BackwardEulerStepAllocatesNothing) { expect_steps_allocate_nothing(Integrator::Backward); }
 
 }  // namespace
 }  // namespace physarum

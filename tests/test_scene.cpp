@@ -67,7 +67,7 @@ TEST(Scene, LoadsTheDesignExampleWithUnitsConverted) {
   EXPECT_DOUBLE_EQ(s.parameters[Param::diffuse_rate], 0.0002);
   EXPECT_DOUBLE_EQ(s.parameters[Param::mean_lifetime], 1.0);
   EXPECT_DOUBLE_EQ(s.parameters[Param::activation_time], 0.2);
-  EXPECT_EQ(s.integrator, Integrator::ForwardEuler);
+  EXPECT_EQ(s.integrator, Integrator::Forward);
   EXPECT_EQ(s.seed, 1u);
   EXPECT_FALSE(s.steps.has_value());
   EXPECT_FALSE(s.sim_time.has_value());
@@ -86,7 +86,7 @@ TEST(Scene, OptionalKeysAndNullLifetime) {
   TempDir dir;
   const Scene s = load_scene(write(dir, j.dump()));
   EXPECT_TRUE(std::isinf(s.parameters[Param::mean_lifetime]));  // null: no turnover
-  EXPECT_EQ(s.integrator, Integrator::BackwardEuler);
+  EXPECT_EQ(s.integrator, Integrator::Backward);
   EXPECT_DOUBLE_EQ(s.min_angle_deg, 25.0);
   EXPECT_EQ(*s.steps, 300);
   EXPECT_EQ(s.seed, 4294967295u);

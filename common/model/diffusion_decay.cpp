@@ -7,7 +7,7 @@
 namespace physarum {
 
 DepositOrder deposit_order(Integrator integrator) {
-  return integrator == Integrator::ForwardEuler ? DepositOrder::AfterTransport : DepositOrder::BeforeTransport;
+  return integrator == Integrator::Forward ? DepositOrder::AfterTransport : DepositOrder::BeforeTransport;
 }
 
 double forward_euler_stable_step(const CsrMatrix& L, const IntrinsicVertexData<double>& diffuse_over_mass,

@@ -5,13 +5,10 @@
 // opencl/diffusion_decay); what they must agree on lives here: the explicit scheme's stability limit (so
 // both take the same sub-steps) and where a step's deposits enter.
 #include "common/numerics/csr_matrix.hpp"
+#include "common/numerics/time_integrator.hpp"
 #include "common/base/element_data.hpp"
 
 namespace physarum {
-
-// The time integrator of the pheromone PDE (Eq. 6 / 7): forward Euler in sub-steps no longer than
-// the stability limit below, or one backward-Euler solve per step.
-enum class Integrator { ForwardEuler, BackwardEuler };
 
 // How the step's deposits (the source term s) enter, consistently with each scheme. Forward Euler
 // evaluates the source explicitly, u' = (I - dt R) u + dt s: transport first, then add the

@@ -6,7 +6,7 @@ namespace physarum {
 
 double decay_discretisation_ratio(Integrator integrator, double decay_rate, double time_step, int sub_steps) {
   const double k_dt = decay_rate * time_step;
-  if (integrator == Integrator::BackwardEuler || sub_steps <= 1 || !(k_dt > 0.0)) return 1.0;
+  if (integrator == Integrator::Backward || sub_steps <= 1 || !(k_dt > 0.0)) return 1.0;
   const double g = std::pow(1.0 - k_dt / sub_steps, sub_steps);
   return k_dt / (1.0 - g);
 }

@@ -215,6 +215,190 @@ SmallPolygon clip_footprint(const std::array<Eigen::Vector3d, 3>& B) {
   return polygon;
 }
 
+// locate_texels' work, in bands of rows (top first), each band processed whole by one thread: the
+// three passes over the input faces that reach into a band, and what they share.
+class TexelBands {
+ public:
+  TexelBands(const InputMesh& mesh, const std::vector<ChordTriangle>& chords, const InputFaceOverlaps& overlaps,
+             TexelLocations& out)
+      : mesh_(mesh), chords_(chords), overlaps_(overlaps), out_(out), width_(out.width), height_(out.height),
+        band_count_(std::min(height_, 8 * parallel_worker_count())) {
+    const size_t texels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+    out_.texels.assign(texels, TexelLocation{});
+    owner_.assign(texels, -1);
+    best_.assign(texels, std::numeric_limits<float>::infinity());
+    uv_.resize(static_cast<size_t>(mesh.triangle_count()));
+    for (int f = 0; f < mesh.triangle_count(); ++f) uv_[static_cast<size_t>(f)] = uv_triangle(mesh, f, width_, height_);
+    collect_band_faces();
+    covered_.assign(static_cast<size_t>(band_count_), 0);
+    searched_.assign(static_cast<size_t>(band_count_), 0);
+  }
+
+  int band_count() const { return band_count_; }
+
+  void locate(int band) {
+    const std::vector<int>& faces = band_faces_[static_cast<size_t>(band)];
+    for (const int f : faces) assign_owners(band, f);
+    for (const int f : faces) {
+      paint_footprints(band, f);
+      search_nearest(band, f);
+    }
+    for (int row = 0; row < height_; ++row)
+      if (band_of_row(row) == band)
+        for (int x = 0; x < width_; ++x) covered_[static_cast<size_t>(band)] += owner_[static_cast<size_t>(row) * width_ + x] >= 0;
+  }
+
+  void add_counts() {
+    for (int b = 0; b < band_count_; ++b) {
+      out_.covered_texels += covered_[static_cast<size_t>(b)];
+      out_.nearest_search_texels += searched_[static_cast<size_t>(b)];
+    }
+  }
+
+ private:
+  int band_of_row(int row) const { return static_cast<int>(static_cast<long long>(row) * band_count_ / height_); }
+  int row_of(int j) const { return height_ - 1 - wrap(j, height_); }
+  size_t texel_index(int i, int j) const {
+    return static_cast<size_t>(row_of(j)) * static_cast<size_t>(width_) + static_cast<size_t>(wrap(i, width_));
+  }
+
+  // The faces that reach into each band.
+  void collect_band_faces() {
+    band_faces_.resize(static_cast<size_t>(band_count_));
+    for (int f = 0; f < mesh_.triangle_count(); ++f) {
+      const UvTriangle& t = uv_[static_cast<size_t>(f)];
+      if (t.empty()) continue;
+      int last_band = -1;
+      std::vector<char> seen;  // only for faces spanning the image height, which may revisit bands
+      for (int j = t.j0; j <= t.j1; ++j) {
+        const int band = band_of_row(row_of(j));
+        if (band == last_band) continue;
+        if (t.j1 - t.j0 + 1 > height_ / band_count_) {
+          if (seen.empty()) seen.assign(static_cast<size_t>(band_count_), 0);
+          if (seen[static_cast<size_t>(band)]) continue;
+          seen[static_cast<size_t>(band)] = 1;
+        }
+        band_faces_[static_cast<size_t>(band)].push_back(f);
+        last_band = band;
+      }
+    }
+  }
+
+  // 1. Which input face holds each texel centre (the later face on shared edges).
+  void assign_owners(int band, int f) {
+    const UvTriangle& t = uv_[static_cast<size_t>(f)];
+    for (int j = t.j0; j <= t.j1; ++j) {
+      if (band_of_row(row_of(j)) != band) continue;
+      for (int i = t.i0; i <= t.i1; ++i)
+        if (t.barycentric(i, j).minCoeff() >= -kUvInsideSlack) owner_[texel_index(i, j)] = f;
+    }
+  }
+
+  // 2. Each candidate intrinsic face paints the texels of its footprint on input face f; the
+  // nearest containing chord triangle wins.
+  void paint_footprints(int band, int f) {
+    const UvTriangle& t = uv_[static_cast<size_t>(f)];
+    const std::array<Eigen::Vector3d, 3> P = corners_of(f);
+    const std::span<const int> candidates = overlaps_.of(f);
+    for (size_t n = 0; n < candidates.size(); ++n) {
+      // The candidates' chords are scattered over memory (intrinsic faces are numbered in
+      // insertion order): fetching a few ahead hides most of the wait for them.
+      if (n + kPrefetchAhead < candidates.size())
+        __builtin_prefetch(&chords_[static_cast<size_t>(candidates[n + kPrefetchAhead])]);
+      const int T = candidates[n];
+      const auto& corner = chords_[static_cast<size_t>(T)].corner;
+      const Chord chord(corner[0], corner[1], corner[2]);
+      if (chord.degenerate) continue;
+      std::array<Eigen::Vector3d, 3> B;
+      Eigen::Vector3d D;
+      for (int k = 0; k < 3; ++k) {
+        B[k] = chord.barycentric(P[k]);
+        D[k] = chord.signed_distance(P[k]);
+      }
+      const SmallPolygon footprint = clip_footprint(B);
+      if (footprint.size == 0) continue;
+      Eigen::Vector2d low = Eigen::Vector2d::Constant(HUGE_VAL), high = -low;
+      for (int c = 0; c < footprint.size; ++c) {
+        const Eigen::Vector2d& l = footprint.corner[static_cast<size_t>(c)];
+        const Eigen::Vector2d q = t.q0 + l.x() * t.e1 + l.y() * t.e2;
+        low = low.cwiseMin(q);
+        high = high.cwiseMax(q);
+      }
+      const int i0 = std::max(t.i0, static_cast<int>(std::ceil(low.x() - 0.5)) - 1);
+      const int i1 = std::min(t.i1, static_cast<int>(std::floor(high.x() - 0.5)) + 1);
+      const int j0 = std::max(t.j0, static_cast<int>(std::ceil(low.y() - 0.5)) - 1);
+      const int j1 = std::min(t.j1, static_cast<int>(std::floor(high.y() - 0.5)) + 1);
+      for (int j = j0; j <= j1; ++j) {
+        if (band_of_row(row_of(j)) != band) continue;
+        for (int i = i0; i <= i1; ++i) {
+          const size_t index = texel_index(i, j);
+          if (owner_[index] != f) continue;
+          const Eigen::Vector3d l = t.barycentric(i, j);
+          const Eigen::Vector3d beta = l[0] * B[0] + l[1] * B[1] + l[2] * B[2];
+          const double outside = -beta.minCoeff();
+          if (outside > kChordSlack) continue;
+          const double score = std::abs(l.dot(D)) + chord.longest_edge * std::max(0.0, outside);
+          if (score >= best_[index]) continue;
+          best_[index] = static_cast<float>(score);
+          out_.texels[index] = TexelLocation{T, clamped(beta)};
+        }
+      }
+    }
+  }
+
+  // 3. Texels of input face f left without an acceptable candidate: the nearest chord triangle.
+  void search_nearest(int band, int f) {
+    const UvTriangle& t = uv_[static_cast<size_t>(f)];
+    const std::array<Eigen::Vector3d, 3> P = corners_of(f);
+    auto surface_point = [&](const Eigen::Vector3d& l) {
+      const Eigen::Vector3d c = l.cwiseMax(0.0) / l.cwiseMax(0.0).sum();
+      return Eigen::Vector3d(c[0] * P[0] + c[1] * P[1] + c[2] * P[2]);
+    };
+    for (int j = t.j0; j <= t.j1; ++j) {
+      if (band_of_row(row_of(j)) != band) continue;
+      for (int i = t.i0; i <= t.i1; ++i) {
+        const size_t index = texel_index(i, j);
+        if (owner_[index] != f) continue;
+        TexelLocation& location = out_.texels[index];
+        if (location.face >= 0) {
+          const auto& corner = chords_[static_cast<size_t>(location.face)].corner;
+          const double size = std::max({(corner[1] - corner[0]).norm(), (corner[2] - corner[1]).norm(),
+                                        (corner[0] - corner[2]).norm()});
+          if (best_[index] <= kAcceptableDistance * size) continue;
+        }
+        const Eigen::Vector3d x = surface_point(t.barycentric(i, j));
+        double nearest = HUGE_VAL;
+        for (const int T : overlaps_.of(f)) {
+          const auto& corner = chords_[static_cast<size_t>(T)].corner;
+          const Eigen::Vector3d &a = corner[0], &b = corner[1], &c = corner[2];
+          const auto [beta, distance2] = nearest_on_triangle(x, a, b, c, Chord(a, b, c));
+          if (distance2 < nearest) {
+            nearest = distance2;
+            location = TexelLocation{T, clamped(beta)};
+          }
+        }
+        ++searched_[static_cast<size_t>(band)];
+      }
+    }
+  }
+
+  std::array<Eigen::Vector3d, 3> corners_of(int f) const {
+    const auto& corners = mesh_.triangles[static_cast<size_t>(f)];
+    return {mesh_.positions[corners[0]], mesh_.positions[corners[1]], mesh_.positions[corners[2]]};
+  }
+
+  const InputMesh& mesh_;
+  const std::vector<ChordTriangle>& chords_;
+  const InputFaceOverlaps& overlaps_;
+  TexelLocations& out_;
+  const int width_, height_, band_count_;
+  std::vector<UvTriangle> uv_;
+  std::vector<int> owner_;   // the input face whose UV triangle holds the texel centre
+  std::vector<float> best_;  // the winning candidate's score per texel
+  std::vector<std::vector<int>> band_faces_;
+  std::vector<size_t> covered_, searched_;  // per band
+};
+
 }  // namespace
 
 TexelLocations locate_texels(const InputMesh& mesh, const SurfaceDomain& domain, int width, int height) {
@@ -224,154 +408,12 @@ TexelLocations locate_texels(const InputMesh& mesh, const SurfaceDomain& domain,
   check_uvs(mesh);
   const std::vector<ChordTriangle> chords = chord_triangles(mesh, domain);
   const InputFaceOverlaps overlaps(mesh, domain, chords);
-
   TexelLocations out;
   out.width = width;
   out.height = height;
-  const size_t texels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  out.texels.assign(texels, TexelLocation{});
-  std::vector<int> owner(texels, -1);  // the input face whose UV triangle holds the texel centre
-  std::vector<float> best(texels, std::numeric_limits<float>::infinity());
-
-  std::vector<UvTriangle> uv(static_cast<size_t>(mesh.triangle_count()));
-  for (int f = 0; f < mesh.triangle_count(); ++f) uv[static_cast<size_t>(f)] = uv_triangle(mesh, f, width, height);
-
-  // Bands of rows (top first), each processed whole by one thread; the faces that reach into each.
-  const int band_count = std::min(height, 8 * parallel_worker_count());
-  auto band_of_row = [&](int row) { return static_cast<int>(static_cast<long long>(row) * band_count / height); };
-  auto row_of = [&](int j) { return height - 1 - wrap(j, height); };
-  std::vector<std::vector<int>> band_faces(static_cast<size_t>(band_count));
-  for (int f = 0; f < mesh.triangle_count(); ++f) {
-    const UvTriangle& t = uv[static_cast<size_t>(f)];
-    if (t.empty()) continue;
-    int last_band = -1;
-    std::vector<char> seen;  // only for faces spanning the image height, which may revisit bands
-    for (int j = t.j0; j <= t.j1; ++j) {
-      const int band = band_of_row(row_of(j));
-      if (band == last_band) continue;
-      if (t.j1 - t.j0 + 1 > height / band_count) {
-        if (seen.empty()) seen.assign(static_cast<size_t>(band_count), 0);
-        if (seen[static_cast<size_t>(band)]) continue;
-        seen[static_cast<size_t>(band)] = 1;
-      }
-      band_faces[static_cast<size_t>(band)].push_back(f);
-      last_band = band;
-    }
-  }
-
-  std::vector<size_t> band_covered(static_cast<size_t>(band_count), 0), band_searched(static_cast<size_t>(band_count), 0);
-  parallel_chunks(band_count, [&](int band) {
-    auto in_band = [&](int row) { return band_of_row(row) == band; };
-    auto texel_index = [&](int i, int j) {
-      return static_cast<size_t>(row_of(j)) * static_cast<size_t>(width) + static_cast<size_t>(wrap(i, width));
-    };
-    const std::vector<int>& faces = band_faces[static_cast<size_t>(band)];
-
-    // 1. Which input face holds each texel centre (the later face on shared edges).
-    for (const int f : faces) {
-      const UvTriangle& t = uv[static_cast<size_t>(f)];
-      for (int j = t.j0; j <= t.j1; ++j) {
-        if (!in_band(row_of(j))) continue;
-        for (int i = t.i0; i <= t.i1; ++i)
-          if (t.barycentric(i, j).minCoeff() >= -kUvInsideSlack) owner[texel_index(i, j)] = f;
-      }
-    }
-
-    // 2. Each candidate intrinsic face paints the texels of its footprint on the face; the nearest
-    // containing chord triangle wins.
-    for (const int f : faces) {
-      const UvTriangle& t = uv[static_cast<size_t>(f)];
-      const auto& corners = mesh.triangles[static_cast<size_t>(f)];
-      const std::array<Eigen::Vector3d, 3> P{mesh.positions[corners[0]], mesh.positions[corners[1]],
-                                             mesh.positions[corners[2]]};
-      auto surface_point = [&](const Eigen::Vector3d& l) {
-        const Eigen::Vector3d c = l.cwiseMax(0.0) / l.cwiseMax(0.0).sum();
-        return Eigen::Vector3d(c[0] * P[0] + c[1] * P[1] + c[2] * P[2]);
-      };
-      const std::span<const int> candidates = overlaps.of(f);
-      for (size_t n = 0; n < candidates.size(); ++n) {
-        // The candidates' chords are scattered over memory (intrinsic faces are numbered in
-        // insertion order): fetching a few ahead hides most of the wait for them.
-        if (n + kPrefetchAhead < candidates.size())
-          __builtin_prefetch(&chords[static_cast<size_t>(candidates[n + kPrefetchAhead])]);
-        const int T = candidates[n];
-        const auto& corner = chords[static_cast<size_t>(T)].corner;
-        const Chord chord(corner[0], corner[1], corner[2]);
-        if (chord.degenerate) continue;
-        std::array<Eigen::Vector3d, 3> B;
-        Eigen::Vector3d D;
-        for (int k = 0; k < 3; ++k) {
-          B[k] = chord.barycentric(P[k]);
-          D[k] = chord.signed_distance(P[k]);
-        }
-        const SmallPolygon footprint = clip_footprint(B);
-        if (footprint.size == 0) continue;
-        Eigen::Vector2d low = Eigen::Vector2d::Constant(HUGE_VAL), high = -low;
-        for (int c = 0; c < footprint.size; ++c) {
-          const Eigen::Vector2d& l = footprint.corner[static_cast<size_t>(c)];
-          const Eigen::Vector2d q = t.q0 + l.x() * t.e1 + l.y() * t.e2;
-          low = low.cwiseMin(q);
-          high = high.cwiseMax(q);
-        }
-        const int i0 = std::max(t.i0, static_cast<int>(std::ceil(low.x() - 0.5)) - 1);
-        const int i1 = std::min(t.i1, static_cast<int>(std::floor(high.x() - 0.5)) + 1);
-        const int j0 = std::max(t.j0, static_cast<int>(std::ceil(low.y() - 0.5)) - 1);
-        const int j1 = std::min(t.j1, static_cast<int>(std::floor(high.y() - 0.5)) + 1);
-        for (int j = j0; j <= j1; ++j) {
-          if (!in_band(row_of(j))) continue;
-          for (int i = i0; i <= i1; ++i) {
-            const size_t index = texel_index(i, j);
-            if (owner[index] != f) continue;
-            const Eigen::Vector3d l = t.barycentric(i, j);
-            const Eigen::Vector3d beta = l[0] * B[0] + l[1] * B[1] + l[2] * B[2];
-            const double outside = -beta.minCoeff();
-            if (outside > kChordSlack) continue;
-            const double score = std::abs(l.dot(D)) + chord.longest_edge * std::max(0.0, outside);
-            if (score >= best[index]) continue;
-            best[index] = static_cast<float>(score);
-            out.texels[index] = TexelLocation{T, clamped(beta)};
-          }
-        }
-      }
-
-      // 3. Texels of this face left without an acceptable candidate: the nearest chord triangle.
-      for (int j = t.j0; j <= t.j1; ++j) {
-        if (!in_band(row_of(j))) continue;
-        for (int i = t.i0; i <= t.i1; ++i) {
-          const size_t index = texel_index(i, j);
-          if (owner[index] != f) continue;
-          TexelLocation& location = out.texels[index];
-          if (location.face >= 0) {
-            const auto& corner = chords[static_cast<size_t>(location.face)].corner;
-            const double size = std::max({(corner[1] - corner[0]).norm(), (corner[2] - corner[1]).norm(),
-                                          (corner[0] - corner[2]).norm()});
-            if (best[index] <= kAcceptableDistance * size) continue;
-          }
-          const Eigen::Vector3d x = surface_point(t.barycentric(i, j));
-          double nearest = HUGE_VAL;
-          for (const int T : overlaps.of(f)) {
-            const auto& corner = chords[static_cast<size_t>(T)].corner;
-            const Eigen::Vector3d &a = corner[0], &b = corner[1], &c = corner[2];
-            const auto [beta, distance2] = nearest_on_triangle(x, a, b, c, Chord(a, b, c));
-            if (distance2 < nearest) {
-              nearest = distance2;
-              location = TexelLocation{T, clamped(beta)};
-            }
-          }
-          ++band_searched[static_cast<size_t>(band)];
-        }
-      }
-    }
-    for (int row = 0; row < height; ++row) {
-      if (!in_band(row)) continue;
-      for (int x = 0; x < width; ++x)
-        band_covered[static_cast<size_t>(band)] += owner[static_cast<size_t>(row) * width + x] >= 0;
-    }
-  });
-  for (int b = 0; b < band_count; ++b) {
-    out.covered_texels += band_covered[static_cast<size_t>(b)];
-    out.nearest_search_texels += band_searched[static_cast<size_t>(b)];
-  }
+  TexelBands bands(mesh, chords, overlaps, out);
+  parallel_chunks(bands.band_count(), [&](int band) { bands.locate(band); });
+  bands.add_counts();
   return out;
 }
 

@@ -77,6 +77,8 @@ void check_reaction_diffusion_system(const ReactionDiffusionSystem& s, int n, co
   if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
     throw InputError(who + ": time step " + std::to_string(s.time_step) + " must be > 0");
   if (s.substeps < 1) throw InputError(who + ": substeps " + std::to_string(s.substeps) + " must be >= 1");
+  if (s.integrator == Integrator::Backward)
+    throw InputError(who + ": integrator 'backward' is the agent model's; a reaction-diffusion system is forward or imex");
   if (!s.minimum.empty() && s.minimum.size() != count)
     throw InputError(who + ": " + std::to_string(s.minimum.size()) + " floors for " + std::to_string(count) +
                      " morphogens (one per morphogen, or none)");

@@ -17,6 +17,7 @@
 // the morphogen and coefficient names. Vertices with `fixed` set keep their value (a Dirichlet
 // region); everywhere else the boundary is no-flux (the natural condition of the FE form).
 #include "common/numerics/csr_matrix.hpp"
+#include "common/numerics/time_integrator.hpp"
 #include "common/base/element_data.hpp"
 
 #include <cstdint>
@@ -25,10 +26,6 @@
 
 namespace physarum {
 
-enum class ReactionIntegrator {
-  Explicit,  // forward Euler for both terms, in sub-steps below the diffusion stability limit
-  Imex,      // diffusion implicit (backward Euler: (M + dt K_m) u' = M (u + dt R(u))), reaction explicit
-};
 
 struct ReactionDiffusionSystem {
   // ---- the kinetics ----
@@ -60,7 +57,7 @@ struct ReactionDiffusionSystem {
   std::vector<double> minimum;
 
   // ---- time ----
-  ReactionIntegrator integrator = ReactionIntegrator::Explicit;
+  Integrator integrator = Integrator::Forward;  // Forward or Imex (common/numerics/time_integrator.hpp)
   double time_step = 0.0;  // s per step() of a backend
   // Explicit only: the step is taken as `substeps` equal forward-Euler sub-steps, chosen so that
   // time_step / substeps is below the stability limit of the fastest-diffusing morphogen. 1 for IMEX.
@@ -70,8 +67,8 @@ struct ReactionDiffusionSystem {
 // The checks both backends make before they take a system for `vertex_count` vertices: 2 to 4
 // morphogens with usable, distinct names (letters, digits, '_'), one formula, stiffness (n x n, the
 // pattern of the first, finite), initial state and floor (finite or -infinity) per morphogen,
-// finite coefficient arrays and masses > 0 of one value per vertex, a time step > 0 and sub-steps
-// >= 1. Throws InputError starting with `who` ("reaction-diffusion", "opencl reaction-diffusion").
+// finite coefficient arrays and masses > 0 of one value per vertex, a time step > 0, sub-steps >= 1
+// and the forward or IMEX integrator. Throws InputError starting with `who` ("reaction-diffusion", "opencl reaction-diffusion").
 void check_reaction_diffusion_system(const ReactionDiffusionSystem& system, int vertex_count, const std::string& who);
 
 }  // namespace physarum

@@ -22,7 +22,7 @@ inline Scene default_scene_parameters(int agents) {
   s.parameters[Param::diffuse_rate] = 0.0002;
   s.parameters[Param::mean_lifetime] = 1.0;
   s.parameters[Param::activation_time] = 0.2;
-  s.integrator = Integrator::ForwardEuler;
+  s.integrator = Integrator::Forward;
   s.seed = 1;
   return s;
 }

@@ -501,15 +501,15 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   }
 
   if (auto integrator = read.string("integrator"); integrator && reaction_diffusion) {
-    if (*integrator == "forward") scene.reaction_diffusion->integrator = ReactionIntegrator::Explicit;
-    else if (*integrator == "imex") scene.reaction_diffusion->integrator = ReactionIntegrator::Imex;
+    if (*integrator == "forward") scene.reaction_diffusion->integrator = Integrator::Forward;
+    else if (*integrator == "imex") scene.reaction_diffusion->integrator = Integrator::Imex;
     else
       throw InputError(path + ": key 'integrator' = \"" + *integrator +
                        "\" is out of range (a reaction-diffusion model takes \"forward\" (explicit, automatic "
                        "sub-steps) or \"imex\" (implicit diffusion, explicit reaction))");
   } else if (integrator) {
-    if (*integrator == "forward") scene.integrator = Integrator::ForwardEuler;
-    else if (*integrator == "backward") scene.integrator = Integrator::BackwardEuler;
+    if (*integrator == "forward") scene.integrator = Integrator::Forward;
+    else if (*integrator == "backward") scene.integrator = Integrator::Backward;
     else
       throw InputError(path + ": key 'integrator' = \"" + *integrator +
                        "\" is out of range (must be \"forward\" or \"backward\")");

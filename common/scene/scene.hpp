@@ -66,7 +66,7 @@ struct Scene {
   nlohmann::json maps_given;  // "maps" as the file gave it (null when absent), for run.json
   SceneControls controls;
   SceneSpecies species;       // "species" and "sensing" (competing species); empty: one population
-  Integrator integrator = Integrator::ForwardEuler;  // for the pheromone PDE (Eq. 6 / 7)
+  Integrator integrator = Integrator::Forward;  // for the pheromone PDE (Eq. 6 / 7)
 
   // ---- time ----
   double time_step = 0.0;  // s

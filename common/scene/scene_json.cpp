@@ -25,7 +25,7 @@ nlohmann::ordered_json scene_parameters_json(const Scene& s) {
     j[std::string(p.key)] = p.null_means_infinite && std::isinf(value) ? nlohmann::ordered_json()
                                                                         : nlohmann::ordered_json(to_file_units(p, value));
   }
-  j["integrator"] = s.integrator == Integrator::ForwardEuler ? "forward" : "backward";
+  j["integrator"] = integrator_name(s.integrator);
   j["seed"] = s.seed;
   if (!s.maps.empty()) j["maps"] = s.maps_given;
   const SceneControls& c = s.controls;

@@ -335,7 +335,7 @@ nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec
                         {"values", values(spec.initial.spots->values)}};
   j["initial"] = initial;
   if (spec.dirichlet) j["dirichlet"] = {{"map", spec.dirichlet->map}, {"values", values(spec.dirichlet->values)}};
-  j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+  j["integrator"] = integrator_name(spec.integrator);
   j["preview_morphogen"] = spec.preview_morphogen;
   return j;
 }

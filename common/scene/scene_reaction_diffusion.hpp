@@ -84,7 +84,7 @@ struct ReactionDiffusionSpec {
   std::vector<std::pair<std::string, MapOperand>> coefficients;  // every coefficient name, in order
   ReactionInitialSpec initial;
   std::optional<DirichletSpec> dirichlet;
-  ReactionIntegrator integrator = ReactionIntegrator::Explicit;
+  Integrator integrator = Integrator::Forward;
   std::string preview_morphogen;  // a morphogen name
 
   int morphogen_index(const std::string& name) const;  // -1 when none

@@ -27,7 +27,7 @@ double uniform_steady_state(const Scene& scene, double area) {
 double expected_mean_over_U(const Scene& scene, const VertexParameters& parameters, const SurfaceDomain& domain) {
   const ParameterValues& p = scene.parameters;
   int sub_steps = 1;
-  if (scene.integrator == Integrator::ForwardEuler) {
+  if (scene.integrator == Integrator::Forward) {
     IntrinsicVertexData<double> diffuse_over_mass(static_cast<size_t>(domain.vertex_count));
     for (int v = 0; v < domain.vertex_count; ++v)
       diffuse_over_mass[v] = parameters[Param::diffuse_rate][v] / domain.vertex_mass[v];

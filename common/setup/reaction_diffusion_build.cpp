@@ -205,7 +205,7 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
   // ---- time ----
   system.integrator = spec.integrator;
   system.time_step = scene.time_step;
-  system.substeps = spec.integrator == ReactionIntegrator::Explicit
+  system.substeps = spec.integrator == Integrator::Forward
                         ? explicit_substeps(scene.time_step, explicit_stability_limit(system))
                         : 1;
   return system;

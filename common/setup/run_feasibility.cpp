@@ -83,7 +83,7 @@ WorkEstimate estimate_work(const Scene& scene, const SurfaceDomain& domain, doub
   w.steps = steps;
   const double face_area = domain.face_count > 0 ? domain.total_area / domain.face_count : 0.0;
   w.mean_edge = std::sqrt(4.0 / std::sqrt(3.0) * face_area);
-  if (scene.integrator == Integrator::ForwardEuler && domain.vertex_count > 0) {
+  if (scene.integrator == Integrator::Forward && domain.vertex_count > 0) {
     const size_t n = static_cast<size_t>(domain.vertex_count);
     IntrinsicVertexData<double> diffuse_over_mass(n), decay(n, scene.parameters[Param::decay_rate]);
     for (size_t i = 0; i < n; ++i) diffuse_over_mass[i] = scene.parameters[Param::diffuse_rate] / domain.vertex_mass[i];

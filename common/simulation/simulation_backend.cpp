@@ -19,6 +19,8 @@ void check_simulation_inputs(const SurfaceDomain& domain, const VertexParameters
   if (settings.agents < 0) throw InputError(who + ": agents " + std::to_string(settings.agents) + " must be >= 0");
   if (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step))
     throw InputError(who + ": time_step " + std::to_string(settings.time_step) + " must be > 0");
+  if (settings.integrator == Integrator::Imex)
+    throw InputError(who + ": integrator 'imex' is reaction-diffusion's; the pheromone is forward or backward");
   for (size_t i = 0; i < n; ++i)
     if (!(params[Param::turn_frequency][i] > 0.0))
       throw InputError(who + ": turn_frequency at vertex " + std::to_string(i) + " is " +

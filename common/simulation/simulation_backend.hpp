@@ -15,7 +15,7 @@ struct SimulationSettings {
   int agents = 0;
   double time_step = 0.0;
   std::uint32_t seed = 1;
-  Integrator integrator = Integrator::ForwardEuler;
+  Integrator integrator = Integrator::Forward;
 };
 
 struct SurfaceDomain;

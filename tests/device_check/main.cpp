@@ -90,10 +90,10 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
   rates[Param::diffuse_rate] = 0.01;
   rates[Param::decay_rate] = 0.5;
   const VertexParameters params = VertexParameters::constant(rates, n);
-  ReferenceDiffusionDecay reference(domain, params, Integrator::ForwardEuler, 1.0);
+  ReferenceDiffusionDecay reference(domain, params, Integrator::Forward, 1.0);
   const double dt = 2.5 * reference.stable_time_step();
-  ReferenceDiffusionDecay expected(domain, params, Integrator::ForwardEuler, dt);
-  OpenCLDiffusionDecay device(compute, domain, params, Integrator::ForwardEuler, dt);
+  ReferenceDiffusionDecay expected(domain, params, Integrator::Forward, dt);
+  OpenCLDiffusionDecay device(compute, domain, params, Integrator::Forward, dt);
   // The domain is already in the device's vertex order, so one list of values serves both.
   std::vector<double> u0(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) u0[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
@@ -157,7 +157,7 @@ void throughput_line(const ComputeContext& compute, SurfaceCache& surfaces, cons
 // sphere of 4 m^2 refined to `max_circumradius`.
 void throughput(const ComputeContext& compute, SurfaceCache& surfaces, double max_circumradius) {
   auto sphere = [&](int agents) {
-    return workload("sphere", max_circumradius, kBenchArea, agents, Integrator::ForwardEuler);
+    return workload("sphere", max_circumradius, kBenchArea, agents, Integrator::Forward);
   };
   for (int agents : {100000, 1000000, 10000000}) throughput_line(compute, surfaces, sphere(agents), 0);
   for (int grouping : {1, 4}) throughput_line(compute, surfaces, sphere(1000000), grouping);
@@ -191,12 +191,12 @@ double seconds_per_step(const ComputeContext& compute, OpenCLDiffusionDecay& fie
 // in batches of 32 (as a run issues them). The sizes where the host wins set
 // DeviceTuning::host_implicit_solve_max_vertices for this kind of device.
 void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
-  const Scene sc = scene(0, Integrator::BackwardEuler);
+  const Scene sc = scene(0, Integrator::Backward);
   // A 10 cm bound leaves the square's 32 x 32 cells as they are; the spheres' bounds refine them.
   const std::pair<const char*, double> surfaces_by_size[] = {{"square", 0.1},   {"sphere", 0.028}, {"sphere", 0.016},
                                                              {"sphere", 0.009}, {"sphere", 0.005}, {"sphere", 0.0028}};
   for (const auto& [shape, r] : surfaces_by_size) {
-    const Workload w = workload(shape, r, kBenchArea, 0, Integrator::BackwardEuler);
+    const Workload w = workload(shape, r, kBenchArea, 0, Integrator::Backward);
     const SurfaceDomain domain = in_device_vertex_order(surfaces.get(w.surface).domain);
     const int n = domain.vertex_count;
     const VertexParameters params = VertexParameters::constant(sc.parameters, n);
@@ -204,7 +204,7 @@ void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
     for (int i = 0; i < n; ++i) values[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
     const DeviceVertexData<double> u0(values);
     IntrinsicVertexData<double> want(values);
-    ReferenceDiffusionDecay reference(domain, params, Integrator::BackwardEuler, sc.time_step);
+    ReferenceDiffusionDecay reference(domain, params, Integrator::Backward, sc.time_step);
     for (int s = 0; s < 3; ++s) reference.step(want);
     double scale = 0.0;
     for (const double v : want.values()) scale = std::max(scale, std::abs(v));
@@ -214,7 +214,7 @@ void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
       const int k = solver == ImplicitSolver::HostCholesky ? 0 : 1;
       OpenCLDiffusionDecayOptions options;
       options.implicit_solver = solver;
-      OpenCLDiffusionDecay field(compute, domain, params, Integrator::BackwardEuler, sc.time_step, options);
+      OpenCLDiffusionDecay field(compute, domain, params, Integrator::Backward, sc.time_step, options);
       field.set_concentration(u0);
       for (int s = 0; s < 3; ++s) field.step();
       const DeviceVertexData<double> got = field.concentration();
@@ -240,7 +240,7 @@ void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
 void reaction_diffusion(const ComputeContext& compute, double triad_bytes_per_second) {
   for (const int cells : {100, 316, 1000}) {
     const SurfaceDomain& domain = testing::grid_domain(cells);
-    const ReactionDiffusionSystem s = testing::rough_gray_scott(domain, ReactionIntegrator::Explicit,
+    const ReactionDiffusionSystem s = testing::rough_gray_scott(domain, Integrator::Forward,
                                                                 0.5 * testing::stable_step(domain, 2e-5));
     OpenCLReactionDiffusion rd(compute, domain, s);
     rd.run(2);
@@ -270,22 +270,22 @@ int run(const std::string& device, const std::set<std::string>& sections) {
   SurfaceCache surfaces;
   auto domain = [&](const Workload& w) -> const SurfaceDomain& { return surfaces.get(w.surface).domain; };
   if (wanted("checks")) {
-    const Workload sphere = workload("sphere", 0.03, kBenchArea, 20000, Integrator::ForwardEuler);
-    const Workload square = workload("square", 0.03, std::nullopt, 20000, Integrator::BackwardEuler);
-    one_step(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
-    one_step(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
-    u_metric(compute, domain(sphere), "sphere, forward Euler", Integrator::ForwardEuler);
-    u_metric(compute, domain(square), "square, backward Euler", Integrator::BackwardEuler);
+    const Workload sphere = workload("sphere", 0.03, kBenchArea, 20000, Integrator::Forward);
+    const Workload square = workload("square", 0.03, std::nullopt, 20000, Integrator::Backward);
+    one_step(compute, domain(sphere), "sphere, forward Euler", Integrator::Forward);
+    one_step(compute, domain(square), "square, backward Euler", Integrator::Backward);
+    u_metric(compute, domain(sphere), "sphere, forward Euler", Integrator::Forward);
+    u_metric(compute, domain(square), "square, backward Euler", Integrator::Backward);
     pheromone_forward(compute, domain(sphere), "sphere", bandwidth);
   }
   if (wanted("throughput")) {
     throughput(compute, surfaces, 0.015);
     throughput(compute, surfaces, 0.004);
-    pheromone_forward(compute, domain(workload("sphere", 0.004, kBenchArea, 0, Integrator::ForwardEuler)),
+    pheromone_forward(compute, domain(workload("sphere", 0.004, kBenchArea, 0, Integrator::Forward)),
                       "fine sphere", bandwidth);
     // Past the GPU's L2 (50 MB on an H100): ~1.3M vertices, ~90 MB per sub-step.
     throughput(compute, surfaces, 0.0015);
-    pheromone_forward(compute, domain(workload("sphere", 0.0015, kBenchArea, 0, Integrator::ForwardEuler)),
+    pheromone_forward(compute, domain(workload("sphere", 0.0015, kBenchArea, 0, Integrator::Forward)),
                       "finest sphere", bandwidth);
   }
   if (wanted("implicit")) implicit_placement(compute, surfaces);

@@ -262,7 +262,7 @@ void run_fault_demo(const ComputeContext& compute) {
 // Gray-Scott with F varying per vertex (a coefficient buffer), every fifth vertex held (the
 // Dirichlet paths), two explicit sub-steps (the double buffer both ways; shared or per-morphogen
 // weights) or two IMEX steps with the device's conjugate gradients.
-void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& domain, ReactionIntegrator integrator,
+void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
                             const std::string& label, bool proportional_stiffness = true) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
@@ -289,8 +289,8 @@ void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& 
     for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 1.0 + 0.5 * ((e * 7) % 3);
   s.mass = domain.vertex_mass;
   s.integrator = integrator;
-  s.time_step = integrator == ReactionIntegrator::Explicit ? 0.2 : 1.0;
-  s.substeps = integrator == ReactionIntegrator::Explicit ? 2 : 1;
+  s.time_step = integrator == Integrator::Forward ? 0.2 : 1.0;
+  s.substeps = integrator == Integrator::Forward ? 2 : 1;
   OpenCLReactionDiffusionOptions options;
   options.imex_solver = ImexSolver::DeviceConjugateGradients;
   options.cg_max_iterations = 64;
@@ -317,30 +317,30 @@ int run(int argc, char** argv) {
   const int n = domain.vertex_count;
   VertexParameters mixed = rates(n, 0.02, 0.5);
   for (int i = 0; i < n; ++i) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
-  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::ForwardEuler, 3.0, "forward Euler, sub-steps");
+  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::Forward, 3.0, "forward Euler, sub-steps");
   // The icosphere's rows all fit the ELL width; the prism's two cap centres (16 neighbours) do not,
   // so its forward step runs the overflow kernel too.
   const SurfaceDomain prism = testing::delaunay_domain("shape:octagonal-prism");
   check(to_hybrid(prism.laplacian, prism.vertex_count).overflow_rows() > 0,
         "the prism has rows longer than the ELL width (" + std::to_string(PHYSARUM_ELL_WIDTH) + ")");
-  run_pheromone(compute, prism, rates(prism.vertex_count, 0.02, 0.5), Integrator::ForwardEuler, 3.0,
+  run_pheromone(compute, prism, rates(prism.vertex_count, 0.02, 0.5), Integrator::Forward, 3.0,
                 "forward Euler, rows past the ELL width");
-  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, uniform");
-  run_pheromone(compute, domain, mixed, Integrator::BackwardEuler, 0.3, "backward Euler, varying and zero diffusion");
-  run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::BackwardEuler, 0.3, "backward Euler, no diffusion");
-  run_reaction_diffusion(compute, domain, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, held vertices");
-  run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit, "reaction-diffusion, explicit, rows past the ELL width");
-  run_reaction_diffusion(compute, prism, ReactionIntegrator::Explicit,
+  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::Backward, 0.3, "backward Euler, uniform");
+  run_pheromone(compute, domain, mixed, Integrator::Backward, 0.3, "backward Euler, varying and zero diffusion");
+  run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::Backward, 0.3, "backward Euler, no diffusion");
+  run_reaction_diffusion(compute, domain, Integrator::Forward, "reaction-diffusion, explicit, held vertices");
+  run_reaction_diffusion(compute, prism, Integrator::Forward, "reaction-diffusion, explicit, rows past the ELL width");
+  run_reaction_diffusion(compute, prism, Integrator::Forward,
                          "reaction-diffusion, explicit, rows past the ELL width, own weights per morphogen", false);
-  run_reaction_diffusion(compute, domain, ReactionIntegrator::Imex, "reaction-diffusion, IMEX by device CG");
+  run_reaction_diffusion(compute, domain, Integrator::Imex, "reaction-diffusion, IMEX by device CG");
   const SurfaceDomain square = testing::make_domain(testing::make_square_grid(8));
   for (int grouping : {1, 4}) {
     const std::string lanes = ", " + std::to_string(grouping) + " agent(s) per work-item";
-    run_agents(compute, domain, Integrator::ForwardEuler, grouping, "agents on a sphere, forward Euler" + lanes);
-    run_agents(compute, square, Integrator::BackwardEuler, grouping, "agents on a square, backward Euler" + lanes);
-    run_agents_with_controls(compute, square, Integrator::ForwardEuler, grouping,
+    run_agents(compute, domain, Integrator::Forward, grouping, "agents on a sphere, forward Euler" + lanes);
+    run_agents(compute, square, Integrator::Backward, grouping, "agents on a square, backward Euler" + lanes);
+    run_agents_with_controls(compute, square, Integrator::Forward, grouping,
                              "controls on a square, forward Euler" + lanes);
-    run_agents_with_controls(compute, domain, Integrator::BackwardEuler, grouping,
+    run_agents_with_controls(compute, domain, Integrator::Backward, grouping,
                              "controls on a sphere, backward Euler" + lanes);
     run_competing_species(compute, square, grouping, "three species on a square" + lanes);
   }

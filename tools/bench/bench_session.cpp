@@ -138,7 +138,7 @@ PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, BackendChoi
   if (backend == BackendChoice::OpenCL) {
     // Numbered as a simulation numbers the device's field, so it reads memory the same way.
     opencl::OpenCLDiffusionDecay field(compute_, opencl::in_device_vertex_order(d), params, integrator, scene.time_step);
-    const bool forward = integrator == Integrator::ForwardEuler;
+    const bool forward = integrator == Integrator::Forward;
     field.fill(1.0);
     t.seconds = time([&] { field.step(); }, [&] { compute_.queue.finish(); }, forward);
     t.sub_steps = field.sub_steps();

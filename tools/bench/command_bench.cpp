@@ -78,7 +78,7 @@ nlohmann::ordered_json pheromone_entry(BenchSession& bench, const std::string& s
   nlohmann::ordered_json p = {{"surface", surface}, {"faces", d.face_count}, {"vertices", d.vertex_count}};
   for (const BackendChoice backend : kBackends) {
     const std::string b = to_string(backend);
-    const PheromoneTiming forward = bench.pheromone_step(d, backend, Integrator::ForwardEuler);
+    const PheromoneTiming forward = bench.pheromone_step(d, backend, Integrator::Forward);
     p[b + "_forward_seconds"] = forward.seconds;
     p["forward_sub_steps"] = forward.sub_steps;
     if (forward.bytes_per_step > 0.0) {
@@ -86,7 +86,7 @@ nlohmann::ordered_json pheromone_entry(BenchSession& bench, const std::string& s
       p["triad_bytes_per_second"] = forward.triad_bytes_per_second;
       p["opencl_forward_fraction_of_triad"] = forward.bytes_per_step / forward.seconds / forward.triad_bytes_per_second;
     }
-    p[b + "_backward_seconds"] = bench.pheromone_step(d, backend, Integrator::BackwardEuler).seconds;
+    p[b + "_backward_seconds"] = bench.pheromone_step(d, backend, Integrator::Backward).seconds;
   }
   std::printf("pheromone  %-18s %8d vertices  forward (%d sub-steps): opencl %.3f ms, %.3g GB/s = %.2f of the "
               "triad beside it (%.3g GB/s), reference %.3f ms; backward: opencl %.3f ms, reference %.3f ms\n",

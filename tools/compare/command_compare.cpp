@@ -362,7 +362,7 @@ nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
       const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion;
       a.erase("agents");
       a["model"] = rd.model;
-      a["integrator"] = rd.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+      a["integrator"] = integrator_name(rd.integrator);
       a["preview_morphogen"] = rd.preview_morphogen;
     }
     list.push_back(a);

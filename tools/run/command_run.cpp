@@ -277,7 +277,9 @@ Command add_run_command(CLI::App& parent) {
       "DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png (from the full-resolution "
       "mesh) and DIR/run.json (parameters, device, timings). Competing species ('species'): pheromone_0, pheromone_1, "
       "... in the PLYs, stats.csv columns mean_i,U_i, run.json 'species_layers', one colour per species in the "
-      "pictures. Example: physarum run tools/scenes/default.json --out out");
+      "pictures. Reaction-diffusion scenes: DIR/morphogens.ply (every morphogen a property of its name) instead of "
+      "pheromone.ply, stats.csv columns time,<m>_mean,<m>_variance,... Example: physarum run tools/scenes/default.json "
+      "--out out");
   app->footer(
       "Run length: --steps, else --sim-time, else the scene's 'steps', else its 'sim_time' (one of them is "
       "required). The scene is one JSON object with the model parameters in SI units, angles in degrees; "

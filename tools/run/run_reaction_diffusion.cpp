@@ -100,7 +100,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
   const ChosenBackend chosen = choose_backend(o.backend, o.device);
   if (o.backend == "auto") std::cerr << "physarum run: " << to_string(chosen.backend) << " backend (auto: " << chosen.why << ")\n";
-  if (system.integrator == ReactionIntegrator::Explicit && substeps > 1)
+  if (system.integrator == Integrator::Forward && substeps > 1)
     std::cerr << "physarum run: " << substeps << " explicit sub-steps per step (the diffusion stability limit)\n";
   const std::unique_ptr<SimulationBackend> backend =
       make_reaction_diffusion_backend(chosen.backend, chosen.compute ? &*chosen.compute : nullptr, domain, std::move(system));
@@ -148,7 +148,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
     j["preview_morphogen"] = spec.preview_morphogen;
     j["time_step"] = scene.time_step;
     j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
-    j["integrator"] = spec.integrator == ReactionIntegrator::Explicit ? "forward" : "imex";
+    j["integrator"] = integrator_name(spec.integrator);
     j["substeps"] = substeps;
     j["seed"] = scene.seed;
     const std::vector<IntrinsicVertexData<double>> final_layers = layers();
