@@ -209,12 +209,17 @@ INSTANTIATE_TEST_SUITE_P(
                       {"turn-every-step", "deposit-endpoint", "uniform-face"}},
         // The teapot (19 components, 25 boundary loops, faces of very unequal size), forward Euler,
         // steps of 0.1 m (longer than its faces), a decision every 4 steps: every fault's mechanism
-        // is present, and every fault is judged different (8-32 seeds, 2-3 minutes in all here).
+        // is present, and five are judged different (8-32 seeds, 2-3 minutes in all here).
+        // no-decay-substep is reported only: its small faces force many forward-Euler sub-steps, so
+        // skipping the decay in the first of them raises the mean by 0.9 % (16 seeds: OpenCL 1.0342 U
+        // against the reference's 1.0249 U), far inside the 3 % margin. Both arms sit 2.5 % above U
+        // because of those sub-steps (the time-discrete model's 1.0250 U); the harness once counted
+        // this fault as caught only because it held the faulted arm against U itself (3.4 % off)
+        // instead of against the time-discrete model (0.9 % off).
         FaultsOnScene{"teapot",
-                      {"sensor-angle", "no-decay-substep", "no-reflect", "turn-every-step", "deposit-endpoint",
-                       "uniform-face"},
+                      {"sensor-angle", "no-reflect", "turn-every-step", "deposit-endpoint", "uniform-face"},
                       {},
-                      {},
+                      {"no-decay-substep"},
                       "teapot.obj"},
         // horn.obj and saddle.obj (tools/scenes/*/make_*.py): graded meshes whose faces differ in
         // area more than a hundredfold, with boundaries; forward Euler, steps of 0.1 m, a decision
