@@ -10,8 +10,8 @@
 #include "common/scene/default_scene.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "common/simulation/simulation_state.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -38,9 +38,9 @@ void BM_Checkpoint(benchmark::State& state) {
   const Scene scene = default_scene_parameters(static_cast<int>(state.range(1)));
   std::unique_ptr<SimulationBackend> sim;
   if (backend == kOpenCL)
-    sim = std::make_unique<opencl::OpenCLSimulation>(compute(), default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
+    sim = std::make_unique<opencl::OpenCLAgentSimulation>(compute(), default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
   else
-    sim = std::make_unique<ReferenceSimulation>(default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
+    sim = std::make_unique<ReferenceAgentSimulation>(default_sphere(), constant_parameters(scene, default_sphere()), simulation_settings(scene));
   sim->run(10);
   sim->finish();
   CheckpointHeader header;

@@ -7,8 +7,8 @@
 #include "common/setup/agent_inputs.hpp"
 #include "common/model/simulation_controls.hpp"
 #include "common/setup/workload.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -64,10 +64,10 @@ void BM_ControlsStep(benchmark::State& state) {
   const ControlledScene c = controlled_scene(*domain, scene, bits);
   std::unique_ptr<SimulationBackend> sim;
   if (backend == kOpenCL)
-    sim = std::make_unique<opencl::OpenCLSimulation>(compute(), *domain, c.params, c.controls,
+    sim = std::make_unique<opencl::OpenCLAgentSimulation>(compute(), *domain, c.params, c.controls,
                                                      simulation_settings(scene));
   else
-    sim = std::make_unique<ReferenceSimulation>(*domain, c.params, c.controls, simulation_settings(scene));
+    sim = std::make_unique<ReferenceAgentSimulation>(*domain, c.params, c.controls, simulation_settings(scene));
   sim->run(5);
   sim->finish();
   for (auto _ : state) {

@@ -1,12 +1,12 @@
 /* One agent step of the extended slime-mold model (mirrors the agent half of
- * reference/simulation.cpp): every agent, independently,
+ * reference/agent_simulation.cpp): every agent, independently,
  *   1. steers (sensing_steering.cl) by what it sensed on the field of the previous step (sensed
  *      ahead of this kernel by sense_deciders, for the agents with a decision due), then turns
  *      toward the bias direction (bias.cl, PHYSARUM_BIAS),
  *   2. moves, reflecting at boundaries (or stopping there, PHYSARUM_BOUNDARY_TERMINATE),
  *      depositing along its path (movement.cl, deposition.cl),
  *   3. ages and turns over (turnover.cl): also at once in a sink face or at a terminating boundary.
- * The controls of Sec. 3.3 are build options (opencl/simulation.cpp): a scene without them
+ * The controls of Sec. 3.3 are build options (opencl/agent_simulation.cpp): a scene without them
  * compiles none of their code, and their buffers are then one-element placeholders never read.
  * Several agents per work-item (walkers of PHYSARUM_AGENTS_PER_WORK_ITEM lanes, below). Rates are
  * read where the step starts, the hazard where it ends, as in the reference. Counters (crossings,

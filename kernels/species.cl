@@ -1,5 +1,5 @@
-/* Competing species on the device (paper 001 Sec. 2.5; mirrors reference/simulation.cpp, the host
- * side is opencl/simulation.cpp): compiled only when the host defines PHYSARUM_SPECIES (K > 1), so
+/* Competing species on the device (paper 001 Sec. 2.5; mirrors reference/agent_simulation.cpp, the host
+ * side is opencl/agent_simulation.cpp): compiled only when the host defines PHYSARUM_SPECIES (K > 1), so
  * the single-species kernels are the base model's text.
  *
  * Agents are numbered species by species (common/model/species.hpp), so an agent's species follows from

@@ -42,7 +42,7 @@ VertexOrder locality_vertex_order(const SurfaceDomain& domain, const FaceOrder& 
 // columns); faces keep their domain order. What the device's pheromone field is built from.
 SurfaceDomain renumber_vertices(const SurfaceDomain& domain, const VertexOrder& order);
 
-// The domain numbered as OpenCLSimulation numbers it for its pheromone field (the locality vertex
+// The domain numbered as OpenCLAgentSimulation numbers it for its pheromone field (the locality vertex
 // order of the locality face order): what a benchmark of the device's pheromone step alone uses, so
 // it reads memory the way a simulation's does.
 SurfaceDomain in_device_vertex_order(const SurfaceDomain& domain);

@@ -3,7 +3,7 @@
 // order (opencl/face_records.hpp), with its statistics reduced on the device. What every layer of the
 // OpenCL simulation offers, dynamic (opencl/field_model.hpp: advanced each step) or static
 // (opencl/static_field.hpp: a fixed map). The counterpart of one entry of the reference simulation's
-// layer list (reference/simulation.hpp).
+// layer list (reference/agent_simulation.hpp).
 #include "common/base/element_data.hpp"
 #include "common/simulation/field_statistics.hpp"
 #include "opencl/runtime/compute_context.hpp"

@@ -2,7 +2,7 @@
 // A static field layer on the OpenCL device: a fixed map of one float per intrinsic vertex (in the
 // device's vertex order) that never advances and never receives deposits; its values change only
 // through set_concentration / fill. The counterpart of a static entry of the reference simulation's
-// layer list (reference/simulation.hpp). It keeps its own masses for its statistics, so it needs no
+// layer list (reference/agent_simulation.hpp). It keeps its own masses for its statistics, so it needs no
 // dynamic layer beside it.
 #include "common/base/element_data.hpp"
 #include "common/simulation/field_statistics.hpp"

@@ -4,8 +4,8 @@
 // double: positions and headings agree to ~1e-6 unless a sensor comparison is a near-tie or a trace
 // passes within float rounding of a vertex; callers bound the number of disagreeing agents.
 #include "common/setup/agent_inputs.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +15,8 @@
 namespace physarum::testing {
 
 using opencl::ComputeContext;
-using opencl::OpenCLSimulation;
-using opencl::OpenCLSimulationOptions;
+using opencl::OpenCLAgentSimulation;
+using opencl::OpenCLBackendOptions;
 struct StepComparison {
   int agents = 0;
   int mismatched = 0;
@@ -30,17 +30,17 @@ struct StepComparison {
 // of a running simulation), hands the device's float copy of that state to BOTH backends and takes
 // one step on each.
 inline StepComparison compare_one_step(const ComputeContext& compute, const SurfaceDomain& domain,
-                                       const Scene& scene, int warmup, const OpenCLSimulationOptions& options = {}) {
-  ReferenceSimulation developed(domain, constant_parameters(scene, domain), simulation_settings(scene));
+                                       const Scene& scene, int warmup, const OpenCLBackendOptions& options = {}) {
+  ReferenceAgentSimulation developed(domain, constant_parameters(scene, domain), simulation_settings(scene));
   developed.run(warmup);
 
-  OpenCLSimulation device(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
+  OpenCLAgentSimulation device(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
   device.write_agents(developed.agents());
   device.set_field(developed.field());
   const Agents start = device.read_agents();  // float-rounded: the common starting point
   const IntrinsicVertexData<double> field = device.field_values();
 
-  ReferenceSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  ReferenceAgentSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
   reference.agents() = start;
   reference.set_field(field);
 

@@ -3,7 +3,7 @@
 // (binary little-endian; vertex: float x, y, z, one float per field, uchar red, green, blue; face:
 // list uchar int vertex_indices), parsed byte by byte from the header's own declarations. It shares
 // no code with the writer or with common/ply_reader, so a round trip checks the files themselves.
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include "common/base/errors.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "common/simulation/simulation_state.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "model_scene.hpp"
 #include "test_support.hpp"
 
@@ -80,7 +80,7 @@ void expect_resume_is_bit_identical(const std::function<std::unique_ptr<Simulati
 TEST(Checkpoint, ReferenceResumesBitIdentically) {
   for (const Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     const Scene scene = small_scene(integrator);
-    expect_resume_is_bit_identical([&] { return std::make_unique<ReferenceSimulation>(sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
+    expect_resume_is_bit_identical([&] { return std::make_unique<ReferenceAgentSimulation>(sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
   }
 }
 
@@ -93,12 +93,12 @@ TEST(Checkpoint, OpenCLResumesBitIdentically) {
   }
   for (const Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
     const Scene scene = small_scene(integrator);
-    expect_resume_is_bit_identical([&] { return std::make_unique<opencl::OpenCLSimulation>(*compute, sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
+    expect_resume_is_bit_identical([&] { return std::make_unique<opencl::OpenCLAgentSimulation>(*compute, sphere(), constant_parameters(scene, sphere()), simulation_settings(scene)); });
   }
 }
 
 TEST(Checkpoint, RestoreRefusesAStateThatDoesNotFit) {
-  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
+  ReferenceAgentSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
   SimulationState state = sim.save_state();
   state.agents.resize(state.agents.count() - 1);
   EXPECT_THROW(sim.restore_state(state), InputError);
@@ -122,7 +122,7 @@ CheckpointHeader header_of(const SimulationBackend& sim) {
 }
 
 TEST(CheckpointFile, RoundTripsExactly) {
-  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
+  ReferenceAgentSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
   sim.run(7);
   testing::TempDir dir;
   const std::string path = (dir.path / "checkpoint.bin").string();
@@ -147,7 +147,7 @@ std::string message_of(const std::function<void()>& f) {
 }
 
 TEST(CheckpointFile, RefusesCorruptionTruncationAndOtherFiles) {
-  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
+  ReferenceAgentSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
   sim.run(3);
   const std::string good = checkpoint_bytes(header_of(sim), sim.save_state());
   testing::TempDir dir;
@@ -170,7 +170,7 @@ TEST(CheckpointFile, RefusesCorruptionTruncationAndOtherFiles) {
 }
 
 TEST(CheckpointFile, RefusesAnotherRunsCheckpointNamingWhatDiffers) {
-  ReferenceSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
+  ReferenceAgentSimulation sim(sphere(), constant_parameters(small_scene(Integrator::Forward), sphere()), simulation_settings(small_scene(Integrator::Forward)));
   const CheckpointHeader saved = header_of(sim);
   EXPECT_NO_THROW(check_checkpoint_matches(saved, saved, "c.bin"));
   CheckpointHeader other = saved;

@@ -1,7 +1,7 @@
 // `physarum render` as a user runs it on a finished run: the values come back unchanged, the colours
 // are the requested map over the run's 0..2U range, every requested view is drawn at the requested
 // size, and a folder that is not a run writes nothing.
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 #include "common/mesh/ply_reader.hpp"
 #include "test_support.hpp"
 
@@ -65,7 +65,7 @@ TEST_F(RenderCommand, RecoloursWithoutChangingValues) {
   // Colours: magma at value / 2U (clamped), the range `physarum run` uses.
   const auto& values = after.property("pheromone");
   for (size_t v = 0; v < values.size(); ++v) {
-    const Rgb8 expected = colormap_color(ColorMap::named("magma"), values[v] / (2.0 * U));
+    const Rgb8 expected = color_map_color(ColorMap::named("magma"), values[v] / (2.0 * U));
     ASSERT_EQ(after.property("red")[v], expected[0]) << "vertex " << v;
     ASSERT_EQ(after.property("green")[v], expected[1]) << "vertex " << v;
     ASSERT_EQ(after.property("blue")[v], expected[2]) << "vertex " << v;
@@ -100,7 +100,7 @@ TEST(RenderReactionDiffusion, RecoloursThePreviewMorphogenAndKeepsEveryMorphogen
   const auto& v = after.property("v");
   EXPECT_NEAR(*std::max_element(v.begin(), v.end()), 2.0 * unit, 1e-6 * unit);
   for (size_t i = 0; i < v.size(); ++i) {
-    const Rgb8 expected = colormap_color(ColorMap::named("magma"), v[i] / (2.0 * unit));
+    const Rgb8 expected = color_map_color(ColorMap::named("magma"), v[i] / (2.0 * unit));
     ASSERT_EQ(after.property("red")[i], expected[0]) << "vertex " << i;
   }
   EXPECT_EQ(image_shape(out / "preview.png"), (std::array<int, 3>{64, 48, 3}));
@@ -218,7 +218,7 @@ TEST_F(RenderTexture, RebakesTextureAndGlbInTheNewColours) {
   EXPECT_GT(max_level_difference(recoloured, run_texture), 50.0);
   std::vector<float> expected(recoloured.size());
   for (size_t t = 0; t < raw.size(); ++t) {
-    const Rgb8 c = colormap_color(ColorMap::named("magma"), raw[t] / (2.0 * U));
+    const Rgb8 c = color_map_color(ColorMap::named("magma"), raw[t] / (2.0 * U));
     for (size_t k = 0; k < 3; ++k) expected[3 * t + k] = static_cast<float>(c[k] / 255.0);
   }
   EXPECT_LE(max_level_difference(recoloured, expected), 1.0);

@@ -8,7 +8,7 @@
 
 #include "common/scene/scene.hpp"
 #include "common/setup/scene_surface.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ TEST(ComparisonMetrics, AMeasuredSeedRunsItsOwnScenesTimeStepAndU) {
   const PreparedSurface surface = prepare_scene_surface(built_from);
   const ComparisonMetrics metrics(surface, built_from);
 
-  ReferenceSimulation sim(surface.domain, constant_parameters(measured, surface.domain), simulation_settings(measured));
+  ReferenceAgentSimulation sim(surface.domain, constant_parameters(measured, surface.domain), simulation_settings(measured));
   const std::vector<double> m = metrics.measure_seed(sim, measured);
   // burn_in + duration = 0.2 s of the measured scene, in its 0.005 s steps (not 0.01 s ones).
   EXPECT_EQ(sim.steps_taken(), 40);

@@ -13,8 +13,8 @@
 #include "common/model/simulation_controls.hpp"
 #include "common/model/spawn_distribution.hpp"
 #include "opencl/planted_faults.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "model_scene.hpp"
 
 #include <Eigen/Dense>
@@ -74,15 +74,15 @@ const TestSurface& square() {
 std::unique_ptr<SimulationBackend> make(Backend b, const SurfaceDomain& domain, const VertexParameters& params,
                                         const SimulationControls& controls, const SimulationSettings& settings,
                                         const std::string& fault = "") {
-  if (b == Backend::Reference) return std::make_unique<ReferenceSimulation>(domain, params, controls, settings);
-  opencl::OpenCLSimulationOptions options;
+  if (b == Backend::Reference) return std::make_unique<ReferenceAgentSimulation>(domain, params, controls, settings);
+  opencl::OpenCLBackendOptions options;
   options.build_options = opencl::fault_build_option(fault);
-  return std::make_unique<opencl::OpenCLSimulation>(compute(), domain, params, controls, settings, options);
+  return std::make_unique<opencl::OpenCLAgentSimulation>(compute(), domain, params, controls, settings, options);
 }
 
 Agents agents_of(const SimulationBackend& sim) {
-  if (const auto* r = dynamic_cast<const ReferenceSimulation*>(&sim)) return r->agents();
-  return dynamic_cast<const opencl::OpenCLSimulation&>(sim).read_agents();
+  if (const auto* r = dynamic_cast<const ReferenceAgentSimulation*>(&sim)) return r->agents();
+  return dynamic_cast<const opencl::OpenCLAgentSimulation&>(sim).read_agents();
 }
 
 SimulationSettings settings_of(const Scene& scene) { return simulation_settings(scene); }
@@ -573,8 +573,8 @@ double worst_move_error(Backend b, const std::string& fault = "") {
                                                           0.1 * params[Param::move_rate][v[1]] +
                                                           0.1 * params[Param::move_rate][v[2]]);
   }
-  if (auto* r = dynamic_cast<ReferenceSimulation*>(sim.get())) r->agents() = a;
-  else dynamic_cast<opencl::OpenCLSimulation&>(*sim).write_agents(a);
+  if (auto* r = dynamic_cast<ReferenceAgentSimulation*>(sim.get())) r->agents() = a;
+  else dynamic_cast<opencl::OpenCLAgentSimulation&>(*sim).write_agents(a);
   sim->step();
   const Agents moved = agents_of(*sim);
   double worst = 0.0;

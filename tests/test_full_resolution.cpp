@@ -158,7 +158,7 @@ TEST(FullResolutionMesh, FieldsFullPlyHoldsEveryIntrinsicValueExactly) {
     ASSERT_EQ(read_second[v], static_cast<float>(second[v])) << v;
     for (int c = 0; c < 3; ++c) ASSERT_EQ(ply.vertex[v][c], static_cast<float>(full.mesh.positions[v][c]));
     // Colours follow the FIRST field, over 0 .. high.
-    ASSERT_EQ(ply.color[v], colormap_color(ColorMap::viridis(), pheromone[v] / 5.0)) << v;
+    ASSERT_EQ(ply.color[v], color_map_color(ColorMap::viridis(), pheromone[v] / 5.0)) << v;
   }
   for (int f = 0; f < ply.faces; ++f) ASSERT_EQ(ply.face[f], surface.domain.face_vertices[f]);
 }

@@ -2,7 +2,7 @@
 // the preview PNG (read back through OpenImageIO), the colour maps, and atomic writes that leave no
 // partial file behind.
 #include "common/base/atomic_write.hpp"
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 #include "common/base/errors.hpp"
 #include "common/output/ply_writer.hpp"
 #include "common/output/preview_image.hpp"
@@ -43,20 +43,20 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
 
 // Perceptual maps: relative luminance rises strictly from 0 to 1, and the ends are the maps' known
 // end colours (viridis dark purple #440154 -> yellow #FDE725, magma black -> pale yellow).
-TEST(Colormap, LuminanceRisesMonotonically) {
+TEST(ColorMap, LuminanceRisesMonotonically) {
   for (const ColorMap& map : {ColorMap::named("viridis"), ColorMap::named("magma"), ColorMap::named("inferno")}) {
     double previous = -1.0;
     for (int k = 0; k <= 100; ++k) {
-      const auto c = colormap_color_float(map, k / 100.0);
+      const auto c = color_map_color_float(map, k / 100.0);
       const double luminance = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
       ASSERT_GT(luminance, previous) << "t = " << k / 100.0;
       previous = luminance;
     }
   }
-  EXPECT_EQ(colormap_color(ColorMap::viridis(), 0.0), (Rgb8{0x44, 0x01, 0x54}));
-  EXPECT_EQ(colormap_color(ColorMap::viridis(), 1.0), (Rgb8{0xFD, 0xE7, 0x25}));
-  EXPECT_EQ(colormap_color(ColorMap::viridis(), 7.0), colormap_color(ColorMap::viridis(), 1.0));  // clamped
-  EXPECT_EQ(colormap_color(ColorMap::named("magma"), 0.0), (Rgb8{0x00, 0x00, 0x04}));
+  EXPECT_EQ(color_map_color(ColorMap::viridis(), 0.0), (Rgb8{0x44, 0x01, 0x54}));
+  EXPECT_EQ(color_map_color(ColorMap::viridis(), 1.0), (Rgb8{0xFD, 0xE7, 0x25}));
+  EXPECT_EQ(color_map_color(ColorMap::viridis(), 7.0), color_map_color(ColorMap::viridis(), 1.0));  // clamped
+  EXPECT_EQ(color_map_color(ColorMap::named("magma"), 0.0), (Rgb8{0x00, 0x00, 0x04}));
 }
 
 // ---- PLY -----------------------------------------------------------------------------------------
@@ -84,7 +84,7 @@ TEST(PlyWriter, RoundTripKeepsInputMeshAndValues) {
   for (int f = 0; f < mesh.triangle_count(); ++f) ASSERT_EQ(ply.face[f], mesh.triangles[f]);
   // Colours span the map: the largest value gets the top colour, the smallest one near the bottom.
   const auto top = std::max_element(values.begin(), values.end()) - values.begin();
-  EXPECT_EQ(ply.color[top], colormap_color(ColorMap::viridis(), 1.0));
+  EXPECT_EQ(ply.color[top], color_map_color(ColorMap::viridis(), 1.0));
   EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"pheromone.ply"}) << "temporary file left behind";
 }
 
@@ -224,7 +224,7 @@ TEST(PreviewImage, DepthTestHidesTheFarSide) {
   for (size_t v = 0; v < values.size(); ++v) values[v] = mesh.positions[v].dot(toward_camera) < -0.3 ? 1.0 : 0.0;
   ASSERT_GT(*std::max_element(values.begin(), values.end()), 0.0);
   const RgbImage image = render_preview(mesh, values, options);
-  const Rgb8 hot = colormap_color(ColorMap::viridis(), 1.0);
+  const Rgb8 hot = color_map_color(ColorMap::viridis(), 1.0);
   for (size_t p = 0; p < image.pixels.size(); p += 3) {
     const int g = image.pixels[p + 1], b = image.pixels[p + 2];
     if (image.pixels[p] == 255 && g == 255 && b == 255) continue;

@@ -8,7 +8,7 @@
 #include "common/setup/scene_maps.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/SparseCholesky>
@@ -49,7 +49,7 @@ HalfEnergies run_halves(int coarse_half) {
   const SurfaceDomain& d = surface.domain;
   const SceneArrays arrays = scene_arrays(scene, surface);
   static const opencl::ComputeContext compute = opencl::make_compute_context("");
-  opencl::OpenCLSimulation sim(compute, d, arrays.parameters, arrays.controls, simulation_settings(scene));
+  opencl::OpenCLAgentSimulation sim(compute, d, arrays.parameters, arrays.controls, simulation_settings(scene));
 
   // The halves, away from the map's transition (input x in [0, 1]; the map switches at 0.5).
   std::vector<int> half(static_cast<size_t>(d.vertex_count), -1);

@@ -36,7 +36,7 @@ json gray_scott(const std::string& integrator) {
 
 std::unique_ptr<SimulationBackend> backend(const testing::LoadedReactionDiffusion& rd, BackendChoice choice,
                                            const std::string& fault = "") {
-  opencl::OpenCLSimulationOptions options;
+  opencl::OpenCLBackendOptions options;
   if (!fault.empty()) options.build_options = opencl::fault_build_option(fault);
   return make_reaction_diffusion_backend(choice, choice == BackendChoice::OpenCL ? &compute() : nullptr,
                                          rd.surface.domain, rd.system, options);

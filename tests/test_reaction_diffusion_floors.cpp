@@ -34,7 +34,7 @@ json turing(const json& v_minimum, const std::string& integrator) {
 std::unique_ptr<SimulationBackend> backend(const testing::LoadedReactionDiffusion& rd, BackendChoice choice) {
   static const opencl::ComputeContext compute = opencl::make_compute_context("");
   return make_reaction_diffusion_backend(choice, choice == BackendChoice::OpenCL ? &compute : nullptr, rd.surface.domain,
-                                         rd.system, opencl::OpenCLSimulationOptions{});
+                                         rd.system, opencl::OpenCLBackendOptions{});
 }
 
 bool finite_and_bounded(const IntrinsicVertexData<double>& values, double bound) {

@@ -17,7 +17,7 @@
 #include "reference/deposition.hpp"
 #include "reference/movement.hpp"
 #include "reference/sensing_steering.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "reference/turnover.hpp"
 
 #include <Eigen/Dense>
@@ -428,7 +428,7 @@ TEST(ReferenceAgents, ReflectionKeepsEveryAgentInsideItsFace) {
   scene.agents = 500;
   scene.parameters[Param::move_rate] = 2.0;  // 0.02 per step: a boundary every ~25 steps
   SimulationSettings settings{scene.agents, scene.time_step, 2, Integrator::Forward};
-  ReferenceSimulation sim(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), settings);
+  ReferenceAgentSimulation sim(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), settings);
   double worst = 0.0;
   for (int s = 0; s < 200; ++s) {
     sim.step();
@@ -478,7 +478,7 @@ TEST(ReferenceAgents, ZeroTurnRateWalksGeodesics) {
     scene.parameters[Param::move_rate] = 0.5;
     SimulationSettings settings{scene.agents, scene.time_step, 6, Integrator::Forward};
     VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
-    ReferenceSimulation sim(domain, params, settings);
+    ReferenceAgentSimulation sim(domain, params, settings);
     const Eigen::Vector3d x0 = point_in_3d(mesh, domain, sim.agents().face[0], sim.agents().position[0]);
     const Eigen::Vector3d d0 = direction_in_3d(mesh, sim.agents().face[0], sim.agents().heading[0]);
     const Eigen::Vector3d normal = x0.cross(d0).normalized();

@@ -1,4 +1,4 @@
-// ReferenceSimulation::step() allocates nothing once warmed up (reference/simulation.hpp promises
+// ReferenceAgentSimulation::step() allocates nothing once warmed up (reference/agent_simulation.hpp promises
 // it: every buffer is sized in the constructor). Counted here for real: this file replaces the
 // global operator new of the test program with one that counts while a test has armed it, and on
 // glibc also interposes malloc/calloc/realloc, because Eigen (the backward-Euler solve) allocates
@@ -8,7 +8,7 @@
 #include "common/scene/default_scene.hpp"
 #include "common/scene/scene.hpp"
 #include "common/surface/surface_domain.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "delaunay_domain.hpp"
 
 #include <gtest/gtest.h>
@@ -146,7 +146,7 @@ Scene uniform_scene(Integrator integrator) {
 // steps: every agent moves, senses across faces and deposits, agents respawn, the pheromone steps.
 void expect_steps_allocate_nothing(Integrator integrator) {
   const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
-  ReferenceSimulation sim(domain, constant_parameters(uniform_scene(integrator), domain), simulation_settings(uniform_scene(integrator)));
+  ReferenceAgentSimulation sim(domain, constant_parameters(uniform_scene(integrator), domain), simulation_settings(uniform_scene(integrator)));
   sim.run(10);
   const long long respawns_before = sim.counters().respawns;
   AllocationCounter counter;
@@ -166,7 +166,7 @@ TEST(ReferenceAllocations, TwoSpeciesStepAllocatesNothing) {
   SpeciesSet species;
   species.species = {Species{300, params}, Species{200, params}};
   species.sensing = {1.0, -0.5, -0.5, 1.0};
-  ReferenceSimulation sim(domain, species, SimulationControls{}, simulation_settings(scene));
+  ReferenceAgentSimulation sim(domain, species, SimulationControls{}, simulation_settings(scene));
   sim.run(10);
   AllocationCounter counter;
   counter.arm();

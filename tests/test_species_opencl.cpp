@@ -1,4 +1,4 @@
-// Competing species on the OpenCL backend (opencl/simulation.hpp, kernels/species.cl) against the
+// Competing species on the OpenCL backend (opencl/agent_simulation.hpp, kernels/species.cl) against the
 // reference and against known answers: one species through the species constructor runs the base
 // model's kernels bit for bit; one step from identical two-species states agrees with the reference
 // agent by agent and layer by layer (float32 against double); each layer's steady mean is its own
@@ -10,8 +10,8 @@
 #include "common/setup/scene_maps.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "opencl/planted_faults.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "loaded_scene.hpp"
 #include "test_support.hpp"
 
@@ -27,8 +27,8 @@ namespace physarum {
 namespace {
 
 using nlohmann::json;
-using opencl::OpenCLSimulation;
-using opencl::OpenCLSimulationOptions;
+using opencl::OpenCLAgentSimulation;
+using opencl::OpenCLBackendOptions;
 using testing::TempDir;
 
 const opencl::ComputeContext& compute() {
@@ -46,8 +46,8 @@ json square_scene() {
 using Loaded = testing::LoadedScene;
 Loaded load(const json& j) { return testing::load_scene_json(j); }
 
-OpenCLSimulationOptions with_fault(const std::string& fault) {
-  OpenCLSimulationOptions options;
+OpenCLBackendOptions with_fault(const std::string& fault) {
+  OpenCLBackendOptions options;
   options.build_options = opencl::fault_build_option(fault);
   return options;
 }
@@ -69,8 +69,8 @@ TEST(SpeciesOpenCL, OneSpeciesThroughTheSpeciesConstructorIsTheBaseModelBitForBi
   const Loaded l = load(j);
   const SurfaceDomain& d = l.surface.domain;
   const SimulationSettings settings = simulation_settings(l.scene);
-  OpenCLSimulation base(compute(), d, l.arrays.parameters, l.arrays.controls, settings);
-  OpenCLSimulation one(compute(), d, SpeciesSet::single(2000, l.arrays.parameters), l.arrays.controls, settings);
+  OpenCLAgentSimulation base(compute(), d, l.arrays.parameters, l.arrays.controls, settings);
+  OpenCLAgentSimulation one(compute(), d, SpeciesSet::single(2000, l.arrays.parameters), l.arrays.controls, settings);
   EXPECT_EQ(one.dynamic_layer_count(), 1);
   base.run(30);
   one.run(30);
@@ -90,13 +90,13 @@ struct SpeciesStepComparison {
 SpeciesStepComparison compare_one_step(const Loaded& l, int warmup, const std::string& fault = "") {
   const SurfaceDomain& d = l.surface.domain;
   const SimulationSettings settings = simulation_settings(l.scene);
-  ReferenceSimulation developed(d, l.arrays.species, l.arrays.controls, settings);
+  ReferenceAgentSimulation developed(d, l.arrays.species, l.arrays.controls, settings);
   developed.run(warmup);
-  OpenCLSimulation device(compute(), d, l.arrays.species, l.arrays.controls, settings, with_fault(fault));
+  OpenCLAgentSimulation device(compute(), d, l.arrays.species, l.arrays.controls, settings, with_fault(fault));
   device.write_agents(developed.agents());
   const int layers = developed.dynamic_layer_count();
   for (int s = 0; s < layers; ++s) device.set_field(developed.field(s), s);
-  ReferenceSimulation reference(d, l.arrays.species, l.arrays.controls, settings);
+  ReferenceAgentSimulation reference(d, l.arrays.species, l.arrays.controls, settings);
   reference.agents() = device.read_agents();
   for (int s = 0; s < layers; ++s) reference.set_field(device.field_values(s), s);
 
@@ -148,7 +148,7 @@ TEST(SpeciesOpenCL, EachLayersSteadyMeanIsItsOwnSpeciesU) {
   const Loaded l = load(j);
   const SurfaceDomain& domain = l.surface.domain;
   const double area = std::accumulate(domain.vertex_mass.begin(), domain.vertex_mass.end(), 0.0);
-  OpenCLSimulation sim(compute(), domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
+  OpenCLAgentSimulation sim(compute(), domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
   ASSERT_EQ(sim.dynamic_layer_count(), 2);
   const double U0 = uniform_steady_state(400, 1.0, 2.0, area, 0.0, 1.0);
   const double U1 = uniform_steady_state(150, 3.0, 1.0, area, 0.0, 1.0);
@@ -179,7 +179,7 @@ std::pair<int, int> turned_by_species(const std::string& fault) {
   j["species"] = {{{"agents", 200}}, {{"agents", 200}}};
   j["sensing"] = {{0.0, 1.0}, {0.0, 0.0}};
   const Loaded l = load(j);
-  OpenCLSimulation sim(compute(), l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene),
+  OpenCLAgentSimulation sim(compute(), l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene),
                        with_fault(fault));
   sim.set_field(evaluate_maps(l.scene.maps, l.surface, "test").scalar_map("ramp_x"), 1);
   const Agents before = sim.read_agents();
@@ -210,7 +210,7 @@ TEST(SpeciesOpenCL, SpeciesWithSinksInDifferentPlacesAreRefused) {
   j["species"] = {{{"agents", 100}}, {{"agents", 100}, {"mean_lifetime", {{"map", "ramp_x"}, {"range", {0.0, 2.0}}}}}};
   const Loaded l = load(j);
   try {
-    OpenCLSimulation sim(compute(), l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
+    OpenCLAgentSimulation sim(compute(), l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("species 1"), std::string::npos) << e.what();

@@ -1,4 +1,4 @@
-// Competing species in the reference simulation (common/model/species.hpp, reference/simulation.hpp): one
+// Competing species in the reference simulation (common/model/species.hpp, reference/agent_simulation.hpp): one
 // species reading its own layer is the base model bit for bit; each layer's steady mean is its own
 // species' U (Eq. 5 with that species' count and rates: deposits go only into its own layer); a
 // negative cross term makes the species avoid each other (the layers' correlation drops); and row i
@@ -10,7 +10,7 @@
 #include "common/scene/scene.hpp"
 #include "common/setup/scene_maps.hpp"
 #include "common/setup/scene_surface.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "loaded_scene.hpp"
 #include "test_support.hpp"
 
@@ -43,8 +43,8 @@ TEST(SpeciesReference, OneSpeciesReadingItsOwnLayerIsTheBaseModelBitForBit) {
   with["sensing"] = {{1.0}};
   const Loaded base = load(square_scene(300));
   const Loaded one = load(with);
-  ReferenceSimulation a(base.surface.domain, base.arrays.parameters, base.arrays.controls, simulation_settings(base.scene));
-  ReferenceSimulation b(one.surface.domain, one.arrays.species, one.arrays.controls, simulation_settings(one.scene));
+  ReferenceAgentSimulation a(base.surface.domain, base.arrays.parameters, base.arrays.controls, simulation_settings(base.scene));
+  ReferenceAgentSimulation b(one.surface.domain, one.arrays.species, one.arrays.controls, simulation_settings(one.scene));
   EXPECT_EQ(b.dynamic_layer_count(), 1);
   for (int s = 0; s < 40; ++s) a.step(), b.step();
   EXPECT_EQ(a.field(0), b.field(0));  // exact: the same operations in the same order
@@ -75,7 +75,7 @@ TEST(SpeciesReference, EachLayersSteadyMeanIsItsOwnSpeciesU) {
   const Loaded l = load(j);
   const SurfaceDomain& domain = l.surface.domain;
   const double area = std::accumulate(domain.vertex_mass.begin(), domain.vertex_mass.end(), 0.0);
-  ReferenceSimulation sim(domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
+  ReferenceAgentSimulation sim(domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
   ASSERT_EQ(sim.dynamic_layer_count(), 2);
   const double U0 = uniform_steady_state(400, 1.0, 2.0, area, 0.0, 1.0);
   const double U1 = uniform_steady_state(150, 3.0, 1.0, area, 0.0, 1.0);
@@ -100,7 +100,7 @@ double layer_correlation(double cross) {
   j["sensing"] = {{1.0, cross}, {cross, 1.0}};
   j["mean_lifetime"] = nullptr;
   const Loaded l = load(j);
-  ReferenceSimulation sim(l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
+  ReferenceAgentSimulation sim(l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
   double sum = 0.0;
   int samples = 0;
   for (int s = 0; s < 250; ++s) {
@@ -135,7 +135,7 @@ TEST(SpeciesReference, RowIOfTheMatrixIsWhatSpeciesIReads) {
   j["species"] = {{{"agents", 200}}, {{"agents", 200}}};
   j["sensing"] = {{0.0, 1.0}, {0.0, 0.0}};
   const Loaded l = load(j);
-  ReferenceSimulation sim(l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
+  ReferenceAgentSimulation sim(l.surface.domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
   const EvaluatedMaps maps = evaluate_maps(l.scene.maps, l.surface, "test");
   sim.set_field(maps.scalar_map("ramp_x"), 1);
   const Agents before = sim.agents();

@@ -9,8 +9,8 @@
 #include "common/base/errors.hpp"
 #include "common/simulation/field_statistics.hpp"
 #include "common/simulation/simulation_backend.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "delaunay_domain.hpp"
 #include "model_scene.hpp"
 
@@ -45,8 +45,8 @@ Scene scene(Integrator integrator = Integrator::Forward) {
 
 std::unique_ptr<SimulationBackend> make_simulation(Backend backend, const Scene& s) {
   if (backend == Backend::Reference)
-    return std::make_unique<ReferenceSimulation>(sphere(), constant_parameters(s, sphere()), simulation_settings(s));
-  return std::make_unique<opencl::OpenCLSimulation>(compute(), sphere(), constant_parameters(s, sphere()), simulation_settings(s));
+    return std::make_unique<ReferenceAgentSimulation>(sphere(), constant_parameters(s, sphere()), simulation_settings(s));
+  return std::make_unique<opencl::OpenCLAgentSimulation>(compute(), sphere(), constant_parameters(s, sphere()), simulation_settings(s));
 }
 
 // A non-uniform field: a linear function of the vertex index plus a wiggle, all values distinct.
@@ -64,7 +64,7 @@ IntrinsicVertexData<double> as_stored(Backend backend, IntrinsicVertexData<doubl
 }
 
 void expect_canaries_intact(const SimulationBackend& sim) {
-  if (const auto* device = dynamic_cast<const opencl::OpenCLSimulation*>(&sim)) {
+  if (const auto* device = dynamic_cast<const opencl::OpenCLAgentSimulation*>(&sim)) {
     EXPECT_TRUE(device->damaged_canaries().empty());
   }
 }

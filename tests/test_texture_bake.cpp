@@ -368,8 +368,8 @@ TEST(TextureFiles, PngAndExrReadBackWithTheBakedValues) {
       }
       // The PLY's colour rule: viridis over 0 .. upper_end, rounded to the file's depth.
       const double t = std::clamp(texture.value(x, row) / 8.0, 0.0, 1.0);
-      const Rgb8 expected8 = colormap_color(ColorMap::viridis(), t);
-      const auto expected = colormap_color_float(ColorMap::viridis(), t);
+      const Rgb8 expected8 = color_map_color(ColorMap::viridis(), t);
+      const auto expected = color_map_color_float(ColorMap::viridis(), t);
       for (int c = 0; c < 3; ++c) {
         ASSERT_EQ(bytes[3 * p + c], expected8[c]) << x << ", " << row;
         ASSERT_EQ(words[3 * p + c], std::lround(expected[c] * 65535.0)) << x << ", " << row;

@@ -7,7 +7,7 @@
 #include "reference/agents.hpp"
 #include "reference/reaction_diffusion.hpp"
 #include "opencl/reaction_diffusion.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include "opencl/runtime/opencl_api.hpp"
 
@@ -29,7 +29,7 @@ constexpr double kReferenceAgentBytes =
     element_bytes<decltype(Agents::time_since_decision)>() + element_bytes<decltype(Agents::accumulated_turn)>();
 
 // The OpenCL agent buffers (opencl/agents.cpp): face, position, heading, five floats and an id per
-// agent; the simulation keeps a second, sorted copy (opencl/simulation.cpp) and one decider slot.
+// agent; the simulation keeps a second, sorted copy (opencl/agent_simulation.cpp) and one decider slot.
 constexpr double kOpenCLAgentBufferBytes = sizeof(cl_int) + 2 * sizeof(cl_float2) + 5 * sizeof(cl_float) + sizeof(cl_uint);
 constexpr double kOpenCLAgentBytes = 2 * kOpenCLAgentBufferBytes + sizeof(cl_uint);
 // The largest single agent buffer: positions or headings.
@@ -68,7 +68,7 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
-                                                const opencl::OpenCLSimulationOptions& options) {
+                                                const opencl::OpenCLBackendOptions& options) {
   if (is_reaction_diffusion(scene))
     throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
                      "(make_backend with a PreparedSurface, or make_reaction_diffusion_backend), not the agent arrays");
@@ -77,23 +77,23 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
     if (competing_species)
-      return std::make_unique<ReferenceSimulation>(domain, arrays.species, arrays.controls, simulation_settings(scene));
-    return std::make_unique<ReferenceSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
+      return std::make_unique<ReferenceAgentSimulation>(domain, arrays.species, arrays.controls, simulation_settings(scene));
+    return std::make_unique<ReferenceAgentSimulation>(domain, arrays.parameters, arrays.controls, simulation_settings(scene));
   }
   if (!compute) throw UsageError("the OpenCL backend needs a compute context");
   check_memory(scene.source, need, available_host_memory_bytes(), compute->device.device_name,
                static_cast<double>(compute->device.global_memory_bytes),
                static_cast<double>(compute->device.max_allocation_bytes));
   if (competing_species)
-    return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.species, arrays.controls,
+    return std::make_unique<opencl::OpenCLAgentSimulation>(*compute, domain, arrays.species, arrays.controls,
                                                       simulation_settings(scene), options);
-  return std::make_unique<opencl::OpenCLSimulation>(*compute, domain, arrays.parameters, arrays.controls,
+  return std::make_unique<opencl::OpenCLAgentSimulation>(*compute, domain, arrays.parameters, arrays.controls,
                                                     simulation_settings(scene), options);
 }
 
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const PreparedSurface& surface, const Scene& scene,
-                                                const opencl::OpenCLSimulationOptions& options) {
+                                                const opencl::OpenCLBackendOptions& options) {
   if (is_reaction_diffusion(scene)) {
     const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
     return make_reaction_diffusion_backend(backend, compute, surface.domain, build_reaction_diffusion_system(scene, surface, maps),
@@ -106,7 +106,7 @@ std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice
                                                                    const opencl::ComputeContext* compute,
                                                                    const SurfaceDomain& domain,
                                                                    ReactionDiffusionSystem system,
-                                                                   const opencl::OpenCLSimulationOptions& options) {
+                                                                   const opencl::OpenCLBackendOptions& options) {
   // Per vertex: the morphogens, their reaction terms and the stiffness rows (about 7 entries of 12
   // bytes per morphogen), checked like the agent model's surface; the device holds them in float.
   const double vertices = static_cast<double>(system.mass.size());
@@ -144,7 +144,7 @@ ChosenBackend choose_backend(const std::string& requested, const std::string& de
 
 std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,
                                                 const opencl::ComputeContext* compute,
-                                                const opencl::OpenCLSimulationOptions& options) {
+                                                const opencl::OpenCLBackendOptions& options) {
   return make_backend(workload.backend, compute, surfaces.get(workload.surface), workload.scene, options);
 }
 

@@ -14,7 +14,7 @@
 #include "common/surface/surface_domain.hpp"
 #include "common/setup/workload.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 
 #include <memory>
 #include <optional>
@@ -35,11 +35,11 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 // them). `compute` is required for OpenCL.
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const PreparedSurface& surface, const Scene& scene,
-                                                const opencl::OpenCLSimulationOptions& options = {});
+                                                const opencl::OpenCLBackendOptions& options = {});
 // The same with the arrays evaluated once beforehand (a harness builds one backend per seed).
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
-                                                const opencl::OpenCLSimulationOptions& options = {});
+                                                const opencl::OpenCLBackendOptions& options = {});
 
 // A reaction-diffusion system's backend (common/setup/reaction_diffusion_build.hpp builds the system from
 // a scene, on `domain`): the reference (reference/reaction_diffusion.hpp) or the OpenCL backend
@@ -50,7 +50,7 @@ std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice
                                                                    const opencl::ComputeContext* compute,
                                                                    const SurfaceDomain& domain,
                                                                    ReactionDiffusionSystem system,
-                                                                   const opencl::OpenCLSimulationOptions& options = {});
+                                                                   const opencl::OpenCLBackendOptions& options = {});
 
 // The backend a run uses. "auto" takes the OpenCL backend where a device exists and the reference
 // otherwise; it falls back only when nobody asked for a device (no `device`, no $PHYSARUM_DEVICE):
@@ -66,6 +66,6 @@ ChosenBackend choose_backend(const std::string& requested, const std::string& de
 // on its backend.
 std::unique_ptr<SimulationBackend> make_backend(const Workload& workload, SurfaceCache& surfaces,
                                                 const opencl::ComputeContext* compute,
-                                                const opencl::OpenCLSimulationOptions& options = {});
+                                                const opencl::OpenCLBackendOptions& options = {});
 
 }  // namespace physarum

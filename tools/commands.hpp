@@ -20,7 +20,7 @@ Command add_compare_command(CLI::App& parent);
 Command add_bench_command(CLI::App& parent);
 Command add_scene_keys_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
-Command add_colormap_command(CLI::App& parent);
+Command add_color_map_command(CLI::App& parent);
 Command add_map_command(CLI::App& parent);
 Command add_analyze_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);

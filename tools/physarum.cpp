@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   commands.push_back(physarum::cli::add_bench_command(app));
   commands.push_back(physarum::cli::add_scene_keys_command(app));
   commands.push_back(physarum::cli::add_render_command(app));
-  commands.push_back(physarum::cli::add_colormap_command(app));
+  commands.push_back(physarum::cli::add_color_map_command(app));
   commands.push_back(physarum::cli::add_map_command(app));
   commands.push_back(physarum::cli::add_analyze_command(app));
   commands.push_back(physarum::cli::add_sweep_command(app));

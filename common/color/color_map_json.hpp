@@ -8,7 +8,7 @@
 //    "remap": [[0, 0], [0.5, 1], [1, 0]],     optional piecewise-linear curve, x strictly increasing
 //    "levels": [0, 2]}                        optional input range, in multiples of the uniform steady
 //                                             state U (the colours of `physarum run` span 0 .. 2U)
-// Stops are sRGB, sorted by position in [0, 1]; at least two (common/color/colormap.hpp). The levels are
+// Stops are sRGB, sorted by position in [0, 1]; at least two (common/color/color_map.hpp). The levels are
 // in units of U so that one map file suits scenes of any size and agent count.
 //
 // A scene's "colormap" is a built-in name ("viridis"), a path to such a file (relative to the scene

@@ -8,7 +8,7 @@
 // The remap curve need not be monotone: [[0,0],[0.5,1],[1,0]] sends both the low and the high end of
 // the range to the map's start and the middle to its end, which is how a spot's smooth falloff
 // becomes a coloured ring around its peak (the blue-ringed octopus of Fig. 14).
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 #include "common/base/element_data.hpp"
 
 #include <optional>

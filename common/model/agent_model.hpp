@@ -2,7 +2,7 @@
 // Rules of the agent model that both backends implement and that are not parameters: the bounds
 // of a turn decision, and the hazard rate that turnover integrates (paper Sec. 3.2-3.3). The
 // kernels' copies (kernels/device_types.h) are checked against these at compile time
-// (opencl/simulation.cpp).
+// (opencl/agent_simulation.cpp).
 #include "common/base/element_data.hpp"
 
 namespace physarum {

@@ -32,7 +32,7 @@
 // seam): such a vertex is written once per distinct UV index. The first V vertices of the file are
 // the input's vertices in order (each with the UV of the first face that uses it); the copies
 // follow, so a reader maps file vertex i < V to input vertex i.
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 #include "common/base/element_data.hpp"
 #include "common/mesh/input_mesh.hpp"
 

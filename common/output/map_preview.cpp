@@ -1,6 +1,6 @@
 #include "common/output/map_preview.hpp"
 
-#include "common/output/colormap_strip.hpp"
+#include "common/output/color_map_strip.hpp"
 #include "common/base/errors.hpp"
 
 #include <OpenImageIO/imagebuf.h>
@@ -86,7 +86,7 @@ RgbImage render_scalar_map_preview(const InputMesh& mesh, const InputVertexData<
   const int strip_width = image.width - 2 * margin;
   const int strip_top = image.height - band + 8;
   if (strip_width >= 2) {
-    const RgbImage strip = colormap_strip(coloring.map, strip_width, 14);
+    const RgbImage strip = color_map_strip(coloring.map, strip_width, 14);
     for (int y = 0; y < strip.height; ++y)
       std::copy_n(strip.pixels.begin() + static_cast<long>(y) * strip.width * 3, strip.width * 3,
                   image.pixels.begin() + (static_cast<long>(strip_top + y) * image.width + margin) * 3);

@@ -112,7 +112,7 @@ RgbImage render_preview(const InputMesh& mesh, const InputVertexData<double>& va
   const double upper_end = options.coloring.upper(values);
   return render_shaded(mesh, options, [&](const std::array<int, 3>& t, double w0, double w1, double w2) {
     const double value = w0 * values[t[0]] + w1 * values[t[1]] + w2 * values[t[2]];
-    return colormap_color_float(options.coloring.map, options.coloring.normalise(value, upper_end));
+    return color_map_color_float(options.coloring.map, options.coloring.normalise(value, upper_end));
   });
 }
 

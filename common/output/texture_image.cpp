@@ -1,7 +1,7 @@
 #include "common/output/texture_image.hpp"
 
 #include "common/base/atomic_write.hpp"
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 #include "common/base/errors.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -44,7 +44,7 @@ std::vector<Word> coloured_pixels(const BakedTexture& texture, std::size_t chann
       continue;
     }
     const double value = texture.values[t * texture.channels.size() + channel];
-    const auto rgb = colormap_color_float(colouring.coloring.map, colouring.coloring.normalise(value, colouring.upper_end));
+    const auto rgb = color_map_color_float(colouring.coloring.map, colouring.coloring.normalise(value, colouring.upper_end));
     for (int c = 0; c < 3; ++c) pixels[3 * t + c] = static_cast<Word>(std::lround(std::clamp(rgb[c], 0.0, 1.0) * kFullScale));
   }
   return pixels;

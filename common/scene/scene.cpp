@@ -519,7 +519,7 @@ Scene load_scene(const std::string& path, const nlohmann::json& overrides) {
   scene.sim_time = read.number("sim_time");
 
   if (auto it = j.find("colormap"); it != j.end() && !it->is_null())
-    scene.colormap = resolve_color_map(*it, std::filesystem::path(path).parent_path().string(), path + ": key 'colormap'");
+    scene.color_map = resolve_color_map(*it, std::filesystem::path(path).parent_path().string(), path + ": key 'colormap'");
 
   if (!reaction_diffusion) scene.controls = read_controls(j, path);
 

@@ -77,7 +77,7 @@ struct Scene {
   ComparisonSettings comparison;
 
   // ---- pictures ----
-  ColorMapSettings colormap;  // how pheromone.ply and preview.png are coloured (default viridis, 0 .. 2U)
+  ColorMapSettings color_map;  // how pheromone.ply and preview.png are coloured (default viridis, 0 .. 2U)
 };
 
 // Parses and validates a scene file. A relative "mesh" path, and the files the maps read, are

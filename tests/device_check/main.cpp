@@ -19,12 +19,12 @@
 #include "opencl/runtime/memory_bandwidth.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/reaction_diffusion.hpp"
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
 #include "probe_checks.hpp"
 #include "reference/diffusion_decay.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "rough_gray_scott.hpp"
 #include "tools/backend_factory.hpp"
 
@@ -67,7 +67,7 @@ void one_step(const ComputeContext& compute, const SurfaceDomain& domain, const 
 
 void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const std::string& label, Integrator integrator) {
   const Scene sc = scene(5000, integrator);
-  OpenCLSimulation sim(compute, domain, constant_parameters(sc, domain), simulation_settings(sc));
+  OpenCLAgentSimulation sim(compute, domain, constant_parameters(sc, domain), simulation_settings(sc));
   const double U = uniform_steady_state(sc, domain.total_area);
   sim.fill_field(U);
   double sum = 0.0;
@@ -130,7 +130,7 @@ void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surfa
 // One throughput line; agents_per_work_item 0 is the device's automatic choice.
 void throughput_line(const ComputeContext& compute, SurfaceCache& surfaces, const Workload& w,
                      int agents_per_work_item) {
-  OpenCLSimulationOptions options;
+  OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
   const std::unique_ptr<SimulationBackend> sim = make_backend(w, surfaces, &compute, options);
   sim->run(5);

@@ -14,7 +14,7 @@
 #include "opencl/runtime/kernel_arguments.hpp"
 #include "opencl/runtime/kernel_sources.hpp"
 #include "opencl/diffusion_decay.hpp"
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 #include "opencl/runtime/program_cache.hpp"
 #include "opencl/reaction_diffusion.hpp"
 #include "pheromone_test_meshes.hpp"
@@ -88,11 +88,11 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   scene.parameters[Param::mean_lifetime] = 0.05;
   scene.parameters[Param::activation_time] = 0.01;
   scene.integrator = integrator;
-  OpenCLSimulationOptions options;
+  OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
   options.pheromone.cg_max_iterations = 64;
   options.pheromone.cg_check_interval = 8;
-  OpenCLSimulation sim(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
+  OpenCLAgentSimulation sim(compute, domain, constant_parameters(scene, domain), simulation_settings(scene), options);
   sim.run(3);
   const SimulationCounters c = sim.counters();
   const FieldStatistics stats = sim.field_statistics(1.0);
@@ -152,11 +152,11 @@ void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain
   settings.time_step = 0.02;
   settings.seed = 5;
   settings.integrator = integrator;
-  OpenCLSimulationOptions options;
+  OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
   options.pheromone.cg_max_iterations = 64;
   options.pheromone.cg_check_interval = 8;
-  OpenCLSimulation sim(compute, domain, params, controls, settings, options);
+  OpenCLAgentSimulation sim(compute, domain, params, controls, settings, options);
   sim.run(3);
   const SimulationCounters c = sim.counters();
   const FieldStatistics stats = sim.field_statistics(1.0);
@@ -210,9 +210,9 @@ void run_competing_species(const ComputeContext& compute, const SurfaceDomain& d
   settings.agents = 301;
   settings.time_step = 0.02;
   settings.seed = 9;
-  OpenCLSimulationOptions options;
+  OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
-  OpenCLSimulation sim(compute, domain, species, controls, settings, options);
+  OpenCLAgentSimulation sim(compute, domain, species, controls, settings, options);
   sim.run(3);
   check(sim.dynamic_layer_count() == 3, label + ": one layer per species");
   for (int layer = 0; layer < 3; ++layer) {

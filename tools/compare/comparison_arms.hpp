@@ -16,7 +16,7 @@
 #include "common/setup/scene_surface.hpp"
 #include "common/setup/workload.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -59,7 +59,7 @@ struct Arm {
   std::vector<MetricInfo> metrics;     // what measure returns, in order, with the margins
   std::vector<std::string> left_out;   // metrics of the documented set this scene cannot judge, and why
   std::optional<opencl::ComputeContext> compute;  // OpenCL arms
-  opencl::OpenCLSimulationOptions options;        // OpenCL arms: planted faults
+  opencl::OpenCLBackendOptions options;        // OpenCL arms: planted faults
   std::uint32_t seed_offset = 0;
   // The steady mean / U the arm's time-discrete model reaches (common/setup/agent_inputs.hpp:
   // expected_mean_over_U) where its continuous mean is U (steady_mean_is_U); unset otherwise.

@@ -1,4 +1,4 @@
-// `physarum render RUN_DIR [--colormap SPEC] [--views N] [--width W] [--height H] [--out DIR]`:
+// `physarum render RUN_DIR [--color_map SPEC] [--views N] [--width W] [--height H] [--out DIR]`:
 // re-colours a finished run without simulating again. The values are read back from the run's own
 // files (fields_full.ply, pheromone.ply), coloured through the chosen colour map and drawn from
 // several views; the recoloured PLY files, texture.png and result.glb are written beside the
@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 
 struct RenderOptions {
   std::string run_dir;
-  std::string colormap;  // "" = the run's own colour map
+  std::string color_map;  // "" = the run's own colour map
   int views = 3;
   int width = 800;
   int height = 600;
@@ -48,7 +48,7 @@ struct RenderOptions {
 struct RunRecord {
   double U = 0.0;  // the colours' unit: U of Eq. 5 (agent runs) or run.json's color_unit (reaction-diffusion)
   std::string field = "pheromone";  // the property the pictures show: a reaction-diffusion run's preview morphogen
-  ColorMapSettings colormap;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
+  ColorMapSettings color_map;  // the run's own colours (viridis 0 .. 2U for runs that did not record them)
   std::optional<SurfaceSpec> surface;      // how to rebuild the surface (runs before it was recorded: none)
   std::optional<TextureSettings> texture;  // how the run baked texture.png (none: the mesh has no UVs)
   std::string fields_file = "pheromone.ply";  // the result on the input mesh (morphogens.ply for reaction-diffusion)
@@ -70,16 +70,16 @@ RunRecord read_run_record(const fs::path& run_dir) {
     throw InputError(path.string() + ": no positive '" + unit + "' (the unit the colours are scaled to)");
   r.U = j[unit].get<double>();
   if (j.contains("preview_morphogen") && j["preview_morphogen"].is_string()) r.field = j["preview_morphogen"].get<std::string>();
-  if (j.contains("colormap")) r.colormap = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
+  if (j.contains("colormap")) r.color_map = color_map_settings_from_json(j["colormap"], path.string() + ": key 'colormap'");
   if (j.contains("surface")) r.surface = surface_spec_from_json(j["surface"], path.string() + ": key 'surface'");
   if (j.contains("texture")) r.texture = TextureSettings::from_json(j["texture"], path.string() + ": key 'texture'");
   if (j.contains("fields_file") && j["fields_file"].is_string()) r.fields_file = j["fields_file"].get<std::string>();
   return r;
 }
 
-// --colormap: a built-in name or a colour-map file. An unknown name is a usage error (exit 2); a
+// --color_map: a built-in name or a colour-map file. An unknown name is a usage error (exit 2); a
 // file that cannot be used is bad input (exit 1).
-ColorMapSettings colormap_option(const std::string& spec) {
+ColorMapSettings color_map_option(const std::string& spec) {
   const auto& names = ColorMap::names();
   if (std::find(names.begin(), names.end(), spec) != names.end()) {
     ColorMapSettings settings;
@@ -167,7 +167,7 @@ int run_render(const RenderOptions& o) {
   }
 
   // Levels are in multiples of U, as `physarum run` colours.
-  const FieldColoring coloring = (o.colormap.empty() ? run.colormap : colormap_option(o.colormap)).mapping(run.U);
+  const FieldColoring coloring = (o.color_map.empty() ? run.color_map : color_map_option(o.color_map)).mapping(run.U);
 
   // ---- write ----
   const fs::path out = o.out.empty() ? run_dir / "render" : fs::path(o.out);
@@ -232,7 +232,7 @@ Command add_render_command(CLI::App& parent) {
   app->add_option("run_dir", options->run_dir, "Output folder of `physarum run`")->required();
   std::string names;
   for (const std::string& n : ColorMap::names()) names += (names.empty() ? "" : ", ") + n;
-  app->add_option("--colormap", options->colormap,
+  app->add_option("--colormap", options->color_map,
                   "Colour map: a built-in name (" + names + ") or a MAP.json file (default: the run's own, from run.json)");
   app->add_option("--views", options->views,
                   "1: the preview's three-quarter view; 3: front, side and top; other N: a turntable of N frames")

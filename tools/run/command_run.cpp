@@ -167,7 +167,7 @@ int run_agents(const Scene& given_scene, const RunOptions& o, long long steps, c
   // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
   // columns talk about), so pictures of different runs of one scene (and the frames of one run) are
   // comparable; the value itself is in the PLY property.
-  const FieldColoring coloring = scene.colormap.mapping(U);
+  const FieldColoring coloring = scene.color_map.mapping(U);
   PreviewOptions preview;
   preview.coloring = coloring;
   // Competing species (common/setup/species_statistics.hpp): each species' U and layer statistics beside
@@ -177,7 +177,7 @@ int run_agents(const Scene& given_scene, const RunOptions& o, long long steps, c
   const std::vector<double> species_U =
       species_layers > 1 ? species_steady_states(scene, arrays.species, domain) : std::vector<double>{};
   std::vector<FieldColoring> species_colorings;
-  for (const double Us : species_U) species_colorings.push_back(scene.colormap.mapping(Us));
+  for (const double Us : species_U) species_colorings.push_back(scene.color_map.mapping(Us));
   auto species_statistics = [&] {
     std::vector<FieldStatistics> per_species;
     for (int layer = 0; layer < static_cast<int>(species_U.size()); ++layer)

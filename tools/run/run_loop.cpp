@@ -146,7 +146,7 @@ int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const Mo
   j["surface"] = surface_spec_json(surface_spec(setup.scene));
   if (setup.texels) j["texture"] = o.texture.to_json();
   // The colours as used: `physarum render` re-colours with them.
-  j["colormap"] = color_map_settings_json(setup.scene.colormap);
+  j["colormap"] = color_map_settings_json(setup.scene.color_map);
   checkpoints.record(j);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
   checkpoints.remove_file();

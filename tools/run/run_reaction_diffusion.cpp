@@ -126,7 +126,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
   model.frame = [&] {
     const IntrinsicVertexData<double> values = simulation.field_values(preview_layer);
     PreviewOptions preview;
-    preview.coloring = scene.colormap.mapping(color_unit(values));
+    preview.coloring = scene.color_map.mapping(color_unit(values));
     return render_preview(full.mesh, full.vertex_values(values), preview);
   };
   model.check_end = [&] { check_finite(simulation, morphogens, scene.source); };
@@ -136,7 +136,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
     r.layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], simulation.field_values(preview_layer));
     for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
       if (m != preview_layer) r.layers.emplace_back(morphogens[static_cast<size_t>(m)], simulation.field_values(m));
-    r.coloring = scene.colormap.mapping(color_unit(r.layers.front().second));
+    r.coloring = scene.color_map.mapping(color_unit(r.layers.front().second));
     return r;
   };
   model.run_json = [&](nlohmann::ordered_json& j, double seconds) {

@@ -46,22 +46,22 @@
 
 namespace physarum {
 
-class ReferenceSimulation final : public SimulationBackend {
+class ReferenceAgentSimulation final : public SimulationBackend {
  public:
   // The domain must outlive the simulation (it is read, never copied). Throws InputError when the
   // parameter arrays do not match the domain or a setting is out of range.
-  ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationSettings& settings);
+  ReferenceAgentSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationSettings& settings);
   // With the controls of Sec. 3.3 (copied). Throws InputError when a control does not match the
   // domain (sizes, non-finite values, negative spawn weights, all spawn weights zero, symmetry).
-  ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationControls& controls,
+  ReferenceAgentSimulation(const SurfaceDomain& domain, VertexParameters params, const SimulationControls& controls,
                       const SimulationSettings& settings);
   // Competing species (copied); settings.agents must be their total. Throws InputError when the set
   // does not match the domain (common/model/species.hpp: check_species) or the count differs.
-  ReferenceSimulation(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationControls& controls,
+  ReferenceAgentSimulation(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationControls& controls,
                       const SimulationSettings& settings);
   // Not copyable: the spawn rule points into this object's own controls.
-  ReferenceSimulation(const ReferenceSimulation&) = delete;
-  ReferenceSimulation& operator=(const ReferenceSimulation&) = delete;
+  ReferenceAgentSimulation(const ReferenceAgentSimulation&) = delete;
+  ReferenceAgentSimulation& operator=(const ReferenceAgentSimulation&) = delete;
 
   void step() override;
 

@@ -1,5 +1,5 @@
 #pragma once
-// The OpenCL simulation of the extended slime-mold model (mirrors reference/simulation.hpp): the
+// The OpenCL simulation of the extended slime-mold model (mirrors reference/agent_simulation.hpp): the
 // same step, in the same order, on any OpenCL device.
 //
 //   0.   every sort_interval steps, agents are counting-sorted by face (kernels/agent_order.cl), a
@@ -50,7 +50,7 @@
 
 namespace physarum::opencl {
 
-struct OpenCLSimulationOptions {
+struct OpenCLBackendOptions {
   OpenCLDiffusionDecayOptions pheromone;
   // Agents are re-sorted by face every this many steps (kernels/agent_order.cl), so that agents
   // adjacent in memory read the same face records; 0 never sorts. Sorting changes no result.
@@ -66,26 +66,26 @@ struct OpenCLSimulationOptions {
   std::string build_options;
 };
 
-class OpenCLSimulation final : public SimulationBackend {
+class OpenCLAgentSimulation final : public SimulationBackend {
  public:
   // Uploads the domain (face records, alias table), the parameters and builds the kernels; places
   // the agents on the device with the reference's initial-state rule. Throws InputError on bad
   // parameters and DeviceError when a buffer exceeds the device or a kernel fails to build.
-  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
-                   const SimulationSettings& settings, const OpenCLSimulationOptions& options = {});
-  // With the controls of Sec. 3.3; the same InputErrors as ReferenceSimulation for bad controls.
-  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+  OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
+                   const SimulationSettings& settings, const OpenCLBackendOptions& options = {});
+  // With the controls of Sec. 3.3; the same InputErrors as ReferenceAgentSimulation for bad controls.
+  OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
                    const SimulationControls& controls, const SimulationSettings& settings,
-                   const OpenCLSimulationOptions& options = {});
+                   const OpenCLBackendOptions& options = {});
   // Competing species (common/model/species.hpp; copied); settings.agents must be their total. The same
-  // InputErrors as ReferenceSimulation's species constructor, and one more: species whose sinks
+  // InputErrors as ReferenceAgentSimulation's species constructor, and one more: species whose sinks
   // differ (they would spawn in different places; the kernels keep one spawn table).
-  OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
+  OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
                    const SimulationControls& controls, const SimulationSettings& settings,
-                   const OpenCLSimulationOptions& options = {});
-  ~OpenCLSimulation() override;
-  OpenCLSimulation(const OpenCLSimulation&) = delete;
-  OpenCLSimulation& operator=(const OpenCLSimulation&) = delete;
+                   const OpenCLBackendOptions& options = {});
+  ~OpenCLAgentSimulation() override;
+  OpenCLAgentSimulation(const OpenCLAgentSimulation&) = delete;
+  OpenCLAgentSimulation& operator=(const OpenCLAgentSimulation&) = delete;
 
   // Enqueues one step (see the header comment).
   void step() override;

@@ -3,7 +3,7 @@
 // turns a normalised value t into a colour for pictures of scalar fields (PLY vertex colours, the
 // preview image, textures). Named maps are built in (`ColorMap::named`): matplotlib's perceptual
 // viridis, magma and inferno, a linear grey ramp, and a few natural palettes; other maps come from
-// colour-map files (common/color/color_map_json.hpp) or exemplar images (common/color/isomap_colormap.hpp).
+// colour-map files (common/color/color_map_json.hpp) or exemplar images (common/color/isomap_color_map.hpp).
 //
 // Interpolation happens in sRGB (the gamma-encoded values), not in linear light: that is how
 // matplotlib defines its maps from their tables, so viridis and magma stay exactly the published
@@ -59,7 +59,7 @@ class ColorMap {
 Rgb8 to_rgb8(const SrgbColor& color);
 
 // t in [0, 1] (clamped; NaN maps to 0) to an sRGB colour: map.sample8(t) and map.sample(t).
-Rgb8 colormap_color(const ColorMap& map, double t);
-std::array<double, 3> colormap_color_float(const ColorMap& map, double t);
+Rgb8 color_map_color(const ColorMap& map, double t);
+std::array<double, 3> color_map_color_float(const ColorMap& map, double t);
 
 }  // namespace physarum

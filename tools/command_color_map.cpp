@@ -1,14 +1,14 @@
-// `physarum colormap IMAGE --out MAP.json [--strip STRIP.png] [--stops N]`: extracts a colour map
+// `physarum color_map IMAGE --out MAP.json [--strip STRIP.png] [--stops N]`: extracts a colour map
 // from an exemplar picture (image-assisted colourisation, Sec. 3.4 of the paper; the method is in
-// common/color/isomap_colormap.hpp) and writes it as a colour-map file that a scene's "colormap" key or
-// `physarum render --colormap` can use, plus the map drawn as a strip to look at (low end left).
+// common/color/isomap_color_map.hpp) and writes it as a colour-map file that a scene's "colormap" key or
+// `physarum render --color_map` can use, plus the map drawn as a strip to look at (low end left).
 //
 // The image is read and the map built before anything is written, and both files are written under
 // temporary names and renamed, so an unreadable image leaves nothing behind.
 #include "common/color/color_map_json.hpp"
-#include "common/output/colormap_strip.hpp"
+#include "common/output/color_map_strip.hpp"
 #include "common/base/errors.hpp"
-#include "common/color/isomap_colormap.hpp"
+#include "common/color/isomap_color_map.hpp"
 #include "tools/commands.hpp"
 
 #include <filesystem>
@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ColormapOptions {
+struct ColorMapOptions {
   std::string image;
   std::string out;
   std::string strip;  // "" = beside MAP.json, with .png
@@ -30,24 +30,24 @@ struct ColormapOptions {
   int strip_height = 64;
 };
 
-int run_colormap(const ColormapOptions& o) {
+int run_color_map(const ColorMapOptions& o) {
   if (o.stops < 2 || o.stops > 65536) throw UsageError("--stops " + std::to_string(o.stops) + " must be in 2..65536");
   const fs::path out(o.out);
   if (out.extension() == ".png") throw UsageError("--out " + o.out + ": the colour map is JSON (use --strip for the PNG)");
   const std::string strip = o.strip.empty() ? fs::path(out).replace_extension(".png").string() : o.strip;
   if (fs::path(strip) == out) throw UsageError("--strip and --out name the same file " + o.out);
-  // `physarum colormap lichen.png --out lichen.json` would draw its strip over the exemplar itself.
+  // `physarum color_map lichen.png --out lichen.json` would draw its strip over the exemplar itself.
   std::error_code ec;
   if (fs::path(strip).lexically_normal() == fs::path(o.image).lexically_normal() || fs::equivalent(strip, o.image, ec))
     throw UsageError("the strip " + strip + " would overwrite the image " + o.image + " (give --strip)");
 
   IsomapOptions options;
   options.stops = o.stops;
-  const IsomapColorMap extracted = isomap_colormap_from_image(o.image, options);
+  const IsomapColorMap extracted = isomap_color_map_from_image(o.image, options);
   ColorMapSettings settings;
   settings.map = extracted.map;
   // Check the strip's size before writing anything.
-  const RgbImage picture = colormap_strip(settings.map, o.strip_width, o.strip_height);
+  const RgbImage picture = color_map_strip(settings.map, o.strip_width, o.strip_height);
 
   for (const fs::path& file : {out, fs::path(strip)})
     if (file.has_parent_path() && !fs::is_directory(file.parent_path()))
@@ -63,8 +63,8 @@ int run_colormap(const ColormapOptions& o) {
 
 }  // namespace
 
-Command add_colormap_command(CLI::App& parent) {
-  auto options = std::make_shared<ColormapOptions>();
+Command add_color_map_command(CLI::App& parent) {
+  auto options = std::make_shared<ColorMapOptions>();
   CLI::App* app = parent.add_subcommand(
       "colormap",
       "Extract a colour map from an exemplar image\n"
@@ -79,7 +79,7 @@ Command add_colormap_command(CLI::App& parent) {
   app->add_option("--stops", options->stops, "Stops of the map, sampled regularly from the fitted curve")->capture_default_str();
   app->add_option("--strip-width", options->strip_width, "Strip width in pixels")->capture_default_str();
   app->add_option("--strip-height", options->strip_height, "Strip height in pixels")->capture_default_str();
-  return Command{app, [options] { return run_colormap(*options); }};
+  return Command{app, [options] { return run_color_map(*options); }};
 }
 
 }  // namespace physarum::cli

@@ -1,8 +1,8 @@
-// Image-assisted colour maps (common/color/isomap_colormap.hpp) against the size of their graph: the
+// Image-assisted colour maps (common/color/isomap_color_map.hpp) against the size of their graph: the
 // all-pairs Dijkstra and the dense MDS matrix grow with the square of the distinct colours, which
 // `IsomapOptions::max_colors` bounds (default 1500). The exemplar is a thick tube of random colours
 // around a ramp (as a noisy photograph gives), so every run fills the node budget it is given.
-#include "common/color/isomap_colormap.hpp"
+#include "common/color/isomap_color_map.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -31,7 +31,7 @@ void BM_IsomapColorMap(benchmark::State& state) {
   IsomapOptions options;
   options.max_colors = static_cast<int>(state.range(0));
   int nodes = 0;
-  for (auto _ : state) nodes = isomap_colormap(pixels, "bench", "bench", options).graph_nodes;
+  for (auto _ : state) nodes = isomap_color_map(pixels, "bench", "bench", options).graph_nodes;
   state.counters["graph_nodes"] = nodes;
 }
 BENCHMARK(BM_IsomapColorMap)->Arg(250)->Arg(500)->Arg(1000)->Arg(1500)->Unit(benchmark::kMillisecond);

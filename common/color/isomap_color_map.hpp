@@ -25,7 +25,7 @@
 //      counts, so many pixels at one parameter value are averaged and gaps stay smooth; sampled at
 //      `stops` regular positions and clamped to [0, 1].
 // Everything is deterministic (fixed seed, sorted bins).
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 
 #include <cstdint>
 #include <string>
@@ -58,11 +58,11 @@ struct IsomapColorMap {
 ExemplarPixels read_exemplar_image(const std::string& path);
 
 // InputError (naming `source`) when the pixels hold fewer than two distinct colours.
-IsomapColorMap isomap_colormap(const ExemplarPixels& pixels, const std::string& name, const std::string& source,
+IsomapColorMap isomap_color_map(const ExemplarPixels& pixels, const std::string& name, const std::string& source,
                                const IsomapOptions& options = {});
 
-// read_exemplar_image + isomap_colormap; the map is named after the file's stem.
-IsomapColorMap isomap_colormap_from_image(const std::string& path, const IsomapOptions& options = {});
+// read_exemplar_image + isomap_color_map; the map is named after the file's stem.
+IsomapColorMap isomap_color_map_from_image(const std::string& path, const IsomapOptions& options = {});
 
 // CIELAB (D65 white) of an sRGB colour: the space the graph is built in; exposed for tests.
 std::array<double, 3> srgb_to_lab(const SrgbColor& color);

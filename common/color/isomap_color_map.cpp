@@ -1,4 +1,4 @@
-#include "common/color/isomap_colormap.hpp"
+#include "common/color/isomap_color_map.hpp"
 
 #include "common/base/errors.hpp"
 
@@ -237,7 +237,7 @@ ExemplarPixels read_exemplar_image(const std::string& path) {
   const int colour_channels = channels >= 3 ? 3 : 1;
   const int band = std::max(1, static_cast<int>(std::lround(0.02 * std::min(w, h))));
   // Large photographs keep the interior pixels of a regular grid only (at most about 250k), so the
-  // colour list stays a few MB; the random sample of isomap_colormap is drawn from those.
+  // colour list stays a few MB; the random sample of isomap_color_map is drawn from those.
   const int stride = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(w) * h / 250000.0))));
   ExemplarPixels pixels;
   for (int y = 0; y < h; ++y)
@@ -255,7 +255,7 @@ ExemplarPixels read_exemplar_image(const std::string& path) {
   return pixels;
 }
 
-IsomapColorMap isomap_colormap(const ExemplarPixels& pixels, const std::string& name, const std::string& source,
+IsomapColorMap isomap_color_map(const ExemplarPixels& pixels, const std::string& name, const std::string& source,
                                const IsomapOptions& options) {
   if (options.stops < 2) throw InputError(source + ": a colour map needs at least 2 stops, asked for " + std::to_string(options.stops));
   if (!pixels.on_border.empty() && pixels.on_border.size() != pixels.colors.size())
@@ -323,8 +323,8 @@ IsomapColorMap isomap_colormap(const ExemplarPixels& pixels, const std::string& 
   return {ColorMap(name, std::move(stops)), nodes[background].srgb, n};
 }
 
-IsomapColorMap isomap_colormap_from_image(const std::string& path, const IsomapOptions& options) {
-  return isomap_colormap(read_exemplar_image(path), std::filesystem::path(path).stem().string(), path, options);
+IsomapColorMap isomap_color_map_from_image(const std::string& path, const IsomapOptions& options) {
+  return isomap_color_map(read_exemplar_image(path), std::filesystem::path(path).stem().string(), path, options);
 }
 
 }  // namespace physarum

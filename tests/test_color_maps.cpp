@@ -1,13 +1,13 @@
 // Colour maps: the built-in maps against matplotlib's published colours, stops and their
 // validation, the reparameterisation (levels, gamma, remap) against hand-computed values, colour-map
 // files and the scene key, the image-assisted (ISOMAP) maps on exemplars whose answer is known, and
-// `physarum colormap` / `physarum run` as a user runs them.
+// `physarum color_map` / `physarum run` as a user runs them.
 #include "common/color/color_map_json.hpp"
 #include "common/color/color_mapping.hpp"
-#include "common/color/colormap.hpp"
-#include "common/output/colormap_strip.hpp"
+#include "common/color/color_map.hpp"
+#include "common/output/color_map_strip.hpp"
 #include "common/base/errors.hpp"
-#include "common/color/isomap_colormap.hpp"
+#include "common/color/isomap_color_map.hpp"
 #include "common/mesh/ply_reader.hpp"
 #include "common/output/preview_image.hpp"
 #include "common/scene/scene.hpp"
@@ -236,36 +236,36 @@ TEST(ColorMapJson, EachBadInputIsAnErrorNamingTheFileAndTheProblem) {
   expect_input_error([&] { read_color_map_file((dir.path / "absent.json").string()); }, {"absent.json", "cannot open"});
 }
 
-// A minimal valid scene with `colormap` set to the given JSON value.
-std::string scene_with_colormap(const std::string& value) {
+// A minimal valid scene with `color_map` set to the given JSON value.
+std::string scene_with_color_map(const std::string& value) {
   return R"({"mesh": "shape:square", "agents": 10, "time_step": 0.01, "sensor_distance": 0.05, "sensor_angle": 22.5,
   "move_rate": 0.5, "turn_rate": 180.0, "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0,
   "diffuse_rate": 0.0002, "mean_lifetime": 1.0, "activation_time": 0.2, "colormap": )" +
          value + "}";
 }
 
-TEST(SceneColormapKey, NamePathAndInlineObject) {
+TEST(SceneColorMapKey, NamePathAndInlineObject) {
   TempDir dir;
   fs::create_directories(dir.path / "maps");
   std::ofstream(dir.path / "maps" / "red.json") << R"({"stops": [[0, "#000000"], [1, "#ff0000"]], "gamma": 2})";
   auto load = [&](const std::string& value) {
     const fs::path path = dir.path / "scene.json";
-    std::ofstream(path) << scene_with_colormap(value);
+    std::ofstream(path) << scene_with_color_map(value);
     return load_scene(path.string());
   };
-  EXPECT_EQ(load(R"("inferno")").colormap.map.name(), "inferno");
+  EXPECT_EQ(load(R"("inferno")").color_map.map.name(), "inferno");
   const Scene from_file = load(R"("maps/red.json")");  // relative to the scene's folder
-  EXPECT_EQ(from_file.colormap.map.sample8(1.0), (Rgb8{255, 0, 0}));
-  EXPECT_EQ(from_file.colormap.gamma, 2.0);
-  EXPECT_EQ(load(R"({"name": "ocean", "levels": [0, 1]})").colormap.levels, (std::array<double, 2>{0.0, 1.0}));
+  EXPECT_EQ(from_file.color_map.map.sample8(1.0), (Rgb8{255, 0, 0}));
+  EXPECT_EQ(from_file.color_map.gamma, 2.0);
+  EXPECT_EQ(load(R"({"name": "ocean", "levels": [0, 1]})").color_map.levels, (std::array<double, 2>{0.0, 1.0}));
   // Absent: viridis over 0 .. 2U.
   TempDir plain;
-  std::string text = scene_with_colormap("0");
+  std::string text = scene_with_color_map("0");
   text = text.substr(0, text.find(", \"colormap\"")) + "}";
   std::ofstream(plain.path / "scene.json") << text;
   const Scene defaults = load_scene((plain.path / "scene.json").string());
-  EXPECT_EQ(defaults.colormap.map.name(), "viridis");
-  EXPECT_EQ(defaults.colormap.levels, (std::array<double, 2>{0.0, 2.0}));
+  EXPECT_EQ(defaults.color_map.map.name(), "viridis");
+  EXPECT_EQ(defaults.color_map.levels, (std::array<double, 2>{0.0, 2.0}));
 
   // The key's documentation (README table) lists every built-in map.
   ASSERT_NE(find_scene_key("colormap"), nullptr);
@@ -342,11 +342,11 @@ void expect_recovers_ramp(const ColorMap& map, bool reversed) {
 }
 
 TEST(IsomapColorMap, RecoversAShuffledRampInOrderFromTheBackgroundEnd) {
-  const IsomapColorMap low = isomap_colormap(ramp_exemplar(72, {0.0, 0.04}, 5), "ramp", "test");
+  const IsomapColorMap low = isomap_color_map(ramp_exemplar(72, {0.0, 0.04}, 5), "ramp", "test");
   EXPECT_EQ(low.map.stops().size(), 256u);
   expect_recovers_ramp(low.map, false);
   // The same ramp with the other end on the border comes out reversed.
-  const IsomapColorMap high = isomap_colormap(ramp_exemplar(72, {0.96, 1.0}, 6), "ramp", "test");
+  const IsomapColorMap high = isomap_color_map(ramp_exemplar(72, {0.96, 1.0}, 6), "ramp", "test");
   expect_recovers_ramp(high.map, true);
 }
 
@@ -365,7 +365,7 @@ TEST(IsomapColorMap, JoinsSeparatePiecesOfTheGraph) {
       const double u = any(random);
       p.colors[i] = ramp(u < 0.5 ? 0.4 * u / 0.5 : 0.6 + 0.4 * (u - 0.5) / 0.5);  // [0, 0.4] and [0.6, 1]
     }
-  const ColorMap map = isomap_colormap(p, "gap", "test").map;
+  const ColorMap map = isomap_color_map(p, "gap", "test").map;
   double previous = -1.0;
   for (int k = 0; k <= 255; ++k) {
     const SrgbColor c = map.sample(k / 255.0);
@@ -390,7 +390,7 @@ TEST(IsomapColorMap, TwoColoursGiveTheSegmentBetweenThem) {
       p.colors.push_back(is_rust ? rust : cream);
       p.on_border.push_back(on_border);
     }
-  const ColorMap map = isomap_colormap(p, "two", "test").map;
+  const ColorMap map = isomap_color_map(p, "two", "test").map;
   EXPECT_LT(rgb_distance(map.sample(0.0), cream), 1e-6);
   EXPECT_LT(rgb_distance(map.sample(1.0), rust), 1e-6);
   for (int k = 0; k <= 255; ++k) {
@@ -408,17 +408,17 @@ TEST(IsomapColorMap, TwoColoursGiveTheSegmentBetweenThem) {
 
 TEST(IsomapColorMap, IsDeterministicAndRejectsOneColour) {
   const ExemplarPixels p = ramp_exemplar(48, {0.0, 0.04}, 2);
-  const ColorMap a = isomap_colormap(p, "a", "test").map, b = isomap_colormap(p, "b", "test").map;
+  const ColorMap a = isomap_color_map(p, "a", "test").map, b = isomap_color_map(p, "b", "test").map;
   for (size_t i = 0; i < a.stops().size(); ++i) ASSERT_EQ(a.stops()[i].color, b.stops()[i].color);
   ExemplarPixels flat;
   flat.colors.assign(100, hex(0x336699));
-  expect_input_error([&] { isomap_colormap(flat, "flat", "flat.png"); }, {"flat.png", "only one colour"});
+  expect_input_error([&] { isomap_color_map(flat, "flat", "flat.png"); }, {"flat.png", "only one colour"});
 }
 
 TEST(IsomapColorMap, ShippedExemplarMapIsWhatTheExemplarGives) {
   const fs::path folder = fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "colormaps";
   const ColorMapSettings shipped = read_color_map_file((folder / "lichen_from_exemplar.json").string());
-  const IsomapColorMap again = isomap_colormap_from_image((folder / "exemplar_lichen.png").string());
+  const IsomapColorMap again = isomap_color_map_from_image((folder / "exemplar_lichen.png").string());
   ASSERT_EQ(shipped.map.stops().size(), again.map.stops().size());
   for (size_t i = 0; i < again.map.stops().size(); ++i)
     ASSERT_EQ(to_rgb8(shipped.map.stops()[i].color), to_rgb8(again.map.stops()[i].color)) << "stop " << i;
@@ -429,7 +429,7 @@ TEST(IsomapColorMap, ShippedExemplarMapIsWhatTheExemplarGives) {
   EXPECT_LT(delta_e(again.map.sample(0.0), again.background), delta_e(again.map.sample(1.0), again.background));
 }
 
-// Every colour-map file shipped in tools/colormaps/ reads without error.
+// Every colour-map file shipped in tools/color_maps/ reads without error.
 TEST(IsomapColorMap, ShippedColourMapFilesRead) {
   int files = 0;
   for (const auto& e : fs::directory_iterator(fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "colormaps"))
@@ -462,7 +462,7 @@ std::array<int, 3> image_shape(const fs::path& p) {
   return {in->spec().width, in->spec().height, in->spec().nchannels};
 }
 
-TEST(ColormapCommand, WritesTheMapAndItsStrip) {
+TEST(ColorMapCommand, WritesTheMapAndItsStrip) {
   TempDir dir;
   write_ramp_png(dir.path / "exemplar.png");
   const CommandResult r = run_physarum("colormap " + quoted(dir.path / "exemplar.png") + " --out " + quoted(dir.path / "map.json"));
@@ -488,7 +488,7 @@ TEST(ColormapCommand, WritesTheMapAndItsStrip) {
   EXPECT_FALSE(fs::exists(dir.path / "few.png"));
 }
 
-TEST(ColormapCommand, BadImageExitsOneAndLeavesNothing) {
+TEST(ColorMapCommand, BadImageExitsOneAndLeavesNothing) {
   TempDir dir;
   std::ofstream(dir.path / "not_an_image.png") << "this is text, not a PNG";
   for (const fs::path& image : {dir.path / "absent.png", dir.path / "not_an_image.png"}) {
@@ -509,8 +509,8 @@ TEST(ColormapCommand, BadImageExitsOneAndLeavesNothing) {
 }
 
 // `physarum run` colours pheromone.ply through the scene's map, records it in run.json, and
-// `physarum render` without --colormap re-colours the same way.
-TEST(ColormapCommand, RunHonoursTheScenesColormap) {
+// `physarum render` without --color_map re-colours the same way.
+TEST(ColorMapCommand, RunHonoursTheScenesColorMap) {
   TempDir dir;
   std::ofstream(dir.path / "scene.json") << R"({
   "mesh": "shape:square", "scale_to_area": 1.0, "agents": 1000, "time_step": 0.02,
@@ -550,7 +550,7 @@ TEST(ColormapCommand, RunHonoursTheScenesColormap) {
     }
     EXPECT_GT(above_u, 0) << "the run should reach the top of the levels somewhere";
   }
-  // render --colormap MAP.json: that file's map over its own levels (here the grey ramp over 0 .. 4U).
+  // render --color_map MAP.json: that file's map over its own levels (here the grey ramp over 0 .. 4U).
   std::ofstream(dir.path / "grey.json") << R"({"name": "grey", "levels": [0, 4]})";
   ASSERT_EQ(run_physarum("render " + quoted(dir.path / "run") + " --colormap " + quoted(dir.path / "grey.json") +
                          " --views 1 --width 64 --height 48 --out " + quoted(dir.path / "grey"))

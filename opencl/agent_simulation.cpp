@@ -1,4 +1,4 @@
-#include "opencl/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
 
 #include "common/simulation/simulation_state.hpp"
 
@@ -23,7 +23,7 @@
 
 namespace physarum::opencl {
 
-struct OpenCLSimulation::Kernels {
+struct OpenCLAgentSimulation::Kernels {
   cl::Kernel initialise, collect_deciders, sense_deciders, agent_step;
   cl::Kernel add_layer_to_sensed;  // competing species only (kernels/species.cl)
 };
@@ -44,7 +44,7 @@ static_assert(PHYSARUM_PURPOSE_INITIAL_PLACEMENT == static_cast<unsigned>(Random
               PHYSARUM_PURPOSE_RESPAWN_CORNER == static_cast<unsigned>(RandomPurpose::RespawnCorner));
 static_assert(static_cast<float>(kTurnDecisionTolerance) == PHYSARUM_TURN_DECISION_TOLERANCE);
 
-// The species, checked as the reference checks them (reference/simulation.cpp): each species'
+// The species, checked as the reference checks them (reference/agent_simulation.cpp): each species'
 // parameters like a one-species simulation's, then the set itself, and the agents adding up.
 void check_species_inputs(const SurfaceDomain& domain, const SpeciesSet& species, const SimulationSettings& settings) {
   for (const Species& s : species.species) {
@@ -82,21 +82,21 @@ size_t species_cell_stride(const DeviceInfo& device, size_t vertex_count, size_t
 
 }  // namespace
 
-OpenCLSimulation::~OpenCLSimulation() = default;
+OpenCLAgentSimulation::~OpenCLAgentSimulation() = default;
 
-OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
+OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationSettings& settings,
-                                   const OpenCLSimulationOptions& options)
-    : OpenCLSimulation(compute, domain, params, SimulationControls{}, settings, options) {}
+                                   const OpenCLBackendOptions& options)
+    : OpenCLAgentSimulation(compute, domain, params, SimulationControls{}, settings, options) {}
 
-OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
+OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain,
                                    const VertexParameters& params, const SimulationControls& controls,
-                                   const SimulationSettings& settings, const OpenCLSimulationOptions& options)
-    : OpenCLSimulation(compute, domain, SpeciesSet::single(settings.agents, params), controls, settings, options) {}
+                                   const SimulationSettings& settings, const OpenCLBackendOptions& options)
+    : OpenCLAgentSimulation(compute, domain, SpeciesSet::single(settings.agents, params), controls, settings, options) {}
 
-OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
+OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, const SurfaceDomain& domain, const SpeciesSet& species,
                                    const SimulationControls& controls, const SimulationSettings& settings,
-                                   const OpenCLSimulationOptions& options)
+                                   const OpenCLBackendOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
   check_species_inputs(domain, species, settings);
   check_controls(domain, controls, "opencl simulation");
@@ -323,7 +323,7 @@ OpenCLSimulation::OpenCLSimulation(const ComputeContext& compute, const SurfaceD
 
 // The agents with a decision due this step, listed and sensed ahead of the agent step
 // (kernels/sensing_steering.cl says why).
-void OpenCLSimulation::enqueue_sensing() {
+void OpenCLAgentSimulation::enqueue_sensing() {
   if (settings_.agents == 0) return;
   compute_.queue.enqueueFillBuffer(decider_count_.buffer, cl_uint{0}, 0, decider_count_.payload_bytes);
   cl::Kernel& collect = kernels_->collect_deciders;
@@ -338,7 +338,7 @@ void OpenCLSimulation::enqueue_sensing() {
                                       cl::NDRange(sensing_group_));
 }
 
-void OpenCLSimulation::enqueue_agent_step() {
+void OpenCLAgentSimulation::enqueue_agent_step() {
   if (settings_.agents == 0) return;
   cl::Kernel& k = kernels_->agent_step;
   set_arguments(k, constants_, faces_, vertex_parameters_, sensed_buffer(), read_stimulus_, alias_probability_, alias_index_, spawn_alias_probability_, spawn_alias_index_, spawn_weight_,
@@ -349,12 +349,12 @@ void OpenCLSimulation::enqueue_agent_step() {
                                       cl::NDRange(agent_group_));
 }
 
-const cl::Buffer& OpenCLSimulation::sensed_buffer() const {
+const cl::Buffer& OpenCLAgentSimulation::sensed_buffer() const {
   return species_deposits_.empty() ? layers_[0]->concentration_buffer() : sensed_.buffer;
 }
 
 // sensed_s = sum_j m_sj layer_j for every species s (kernels/species.cl), one launch per layer.
-void OpenCLSimulation::enqueue_species_sensed_fields() {
+void OpenCLAgentSimulation::enqueue_species_sensed_fields() {
   if (species_deposits_.empty() || settings_.agents == 0) return;
   cl::Kernel& k = kernels_->add_layer_to_sensed;
   const size_t group = 64;
@@ -366,7 +366,7 @@ void OpenCLSimulation::enqueue_species_sensed_fields() {
   }
 }
 
-void OpenCLSimulation::step() {
+void OpenCLAgentSimulation::step() {
   try {
     if (sort_interval_ > 0 && steps_taken_ % sort_interval_ == 0) agent_order_->enqueue_sort(agents_);
     constants_.step = static_cast<dev_uint>(steps_taken_);
@@ -386,18 +386,18 @@ void OpenCLSimulation::step() {
   ++steps_taken_;
 }
 
-void OpenCLSimulation::finish() { compute_.queue.finish(); }
+void OpenCLAgentSimulation::finish() { compute_.queue.finish(); }
 
-OpenCLField& OpenCLSimulation::checked_layer(int index, const char* what) const {
+OpenCLField& OpenCLAgentSimulation::checked_layer(int index, const char* what) const {
   check_layer_index(index, layer_count(), "opencl simulation", what);
   const size_t i = static_cast<size_t>(index);
   if (i < layers_.size()) return *layers_[i];
   return *static_fields_[i - layers_.size()];
 }
 
-OpenCLField& OpenCLSimulation::layer(int index) const { return checked_layer(index, "layer"); }
+OpenCLField& OpenCLAgentSimulation::layer(int index) const { return checked_layer(index, "layer"); }
 
-int OpenCLSimulation::add_static_layer(const IntrinsicVertexData<double>& domain_values) {
+int OpenCLAgentSimulation::add_static_layer(const IntrinsicVertexData<double>& domain_values) {
   const int index = layer_count();
   check_layer_values(domain_values, domain_.vertex_count, index, "opencl simulation", "add_static_layer");
   static_fields_.push_back(std::make_unique<OpenCLStaticField>(
@@ -406,40 +406,40 @@ int OpenCLSimulation::add_static_layer(const IntrinsicVertexData<double>& domain
   return index;
 }
 
-IntrinsicVertexData<double> OpenCLSimulation::field_values(int index) const {
+IntrinsicVertexData<double> OpenCLAgentSimulation::field_values(int index) const {
   return to_domain_order(checked_layer(index, "field_values").concentration(), vertex_order_);
 }
 
-void OpenCLSimulation::set_field(const IntrinsicVertexData<double>& domain_values, int index) {
+void OpenCLAgentSimulation::set_field(const IntrinsicVertexData<double>& domain_values, int index) {
   OpenCLField& field = checked_layer(index, "set_field");
   check_layer_values(domain_values, domain_.vertex_count, index, "opencl simulation", "set_field");
   field.set_concentration(to_device_order(domain_values, vertex_order_));
 }
 
-void OpenCLSimulation::fill_field(double value, int index) {
+void OpenCLAgentSimulation::fill_field(double value, int index) {
   OpenCLField& field = checked_layer(index, "fill_field");
   check_layer_value(value, index, "opencl simulation", "fill_field");
   field.fill(value);
 }
 
-FieldStatistics OpenCLSimulation::field_statistics(double U, int index) const {
+FieldStatistics OpenCLAgentSimulation::field_statistics(double U, int index) const {
   return checked_layer(index, "field_statistics").statistics(U);
 }
 
 // The device keeps faces in its locality order (face_records.hpp); the host sees domain faces.
-std::vector<int> OpenCLSimulation::agent_faces() const {
+std::vector<int> OpenCLAgentSimulation::agent_faces() const {
   std::vector<int> faces = agents_.download_faces(compute_);
   for (int& f : faces) f = face_order_.domain_of_device[static_cast<size_t>(f)];
   return faces;
 }
 
-Agents OpenCLSimulation::read_agents() const {
+Agents OpenCLAgentSimulation::read_agents() const {
   Agents agents = agents_.download(compute_);
   for (int& f : agents.face) f = face_order_.domain_of_device[static_cast<size_t>(f)];
   return agents;
 }
 
-void OpenCLSimulation::write_agents(const Agents& agents) {
+void OpenCLAgentSimulation::write_agents(const Agents& agents) {
   Agents on_device = agents;
   for (int& f : on_device.face) {
     if (f < 0 || f >= domain_.face_count)
@@ -450,7 +450,7 @@ void OpenCLSimulation::write_agents(const Agents& agents) {
   agents_.upload(compute_, on_device);
 }
 
-SimulationCounters OpenCLSimulation::counters() const {
+SimulationCounters OpenCLAgentSimulation::counters() const {
   std::vector<cl_ulong> partial(agent_groups_ * PHYSARUM_COUNTERS);
   compute_.queue.enqueueReadBuffer(group_counters_.buffer, CL_TRUE, 0, partial.size() * sizeof(cl_ulong), partial.data());
   SimulationCounters c;
@@ -464,7 +464,7 @@ SimulationCounters OpenCLSimulation::counters() const {
   return c;
 }
 
-SimulationState OpenCLSimulation::save_state() const {
+SimulationState OpenCLAgentSimulation::save_state() const {
   compute_.queue.finish();
   SimulationState state;
   state.steps_taken = steps_taken_;
@@ -475,7 +475,7 @@ SimulationState OpenCLSimulation::save_state() const {
   return state;
 }
 
-void OpenCLSimulation::restore_state(const SimulationState& state) {
+void OpenCLAgentSimulation::restore_state(const SimulationState& state) {
   check_state_fits(state, layer_count(), domain_.vertex_count, settings_.agents, domain_.face_count, "opencl simulation");
   try {
     compute_.queue.finish();
@@ -497,12 +497,12 @@ void OpenCLSimulation::restore_state(const SimulationState& state) {
   steps_taken_ = state.steps_taken;
 }
 
-std::string OpenCLSimulation::device_name() const {
+std::string OpenCLAgentSimulation::device_name() const {
   return compute_.device.platform_name + " / " + compute_.device.device_name + " (" + compute_.device.type + ", " +
          compute_.device.driver_version + ")";
 }
 
-std::vector<std::string> OpenCLSimulation::damaged_canaries() const {
+std::vector<std::string> OpenCLAgentSimulation::damaged_canaries() const {
   std::vector<std::string> damaged;
   for (const auto& layer : layers_)
     for (const std::string& name : layer->damaged_canaries()) damaged.push_back(name);

@@ -1,4 +1,4 @@
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 
 #include "common/simulation/simulation_state.hpp"
 
@@ -50,15 +50,15 @@ const SimulationControls& checked(const SurfaceDomain& domain, const SimulationC
 
 }  // namespace
 
-ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params,
+ReferenceAgentSimulation::ReferenceAgentSimulation(const SurfaceDomain& domain, VertexParameters params,
                                          const SimulationSettings& settings)
-    : ReferenceSimulation(domain, std::move(params), SimulationControls{}, settings) {}
+    : ReferenceAgentSimulation(domain, std::move(params), SimulationControls{}, settings) {}
 
-ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, VertexParameters params,
+ReferenceAgentSimulation::ReferenceAgentSimulation(const SurfaceDomain& domain, VertexParameters params,
                                          const SimulationControls& controls, const SimulationSettings& settings)
-    : ReferenceSimulation(domain, SpeciesSet::single(settings.agents, checked(domain, params, settings)), controls, settings) {}
+    : ReferenceAgentSimulation(domain, SpeciesSet::single(settings.agents, checked(domain, params, settings)), controls, settings) {}
 
-ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const SpeciesSet& species,
+ReferenceAgentSimulation::ReferenceAgentSimulation(const SurfaceDomain& domain, const SpeciesSet& species,
                                          const SimulationControls& controls, const SimulationSettings& settings)
     : domain_(domain),
       species_set_(checked(domain, species, settings)),
@@ -89,7 +89,7 @@ ReferenceSimulation::ReferenceSimulation(const SurfaceDomain& domain, const Spec
   if (controls_.boundary == BoundaryBehaviour::Terminate) terminated_.assign(static_cast<size_t>(settings.agents), 0);
 }
 
-void ReferenceSimulation::move_and_deposit() {
+void ReferenceAgentSimulation::move_and_deposit() {
   const double dt = settings_.time_step;
   const bool terminate = controls_.boundary == BoundaryBehaviour::Terminate;
   for (const auto& species : species_) {
@@ -124,7 +124,7 @@ void ReferenceSimulation::move_and_deposit() {
   }
 }
 
-const IntrinsicVertexData<double>& ReferenceSimulation::sensed_field(int s) {
+const IntrinsicVertexData<double>& ReferenceAgentSimulation::sensed_field(int s) {
   if (species_set_.is_single()) return layers_[0];
   std::fill(sensed_.begin(), sensed_.end(), 0.0);
   for (int j = 0; j < species_count(); ++j) {
@@ -136,7 +136,7 @@ const IntrinsicVertexData<double>& ReferenceSimulation::sensed_field(int s) {
   return sensed_;
 }
 
-void ReferenceSimulation::step() {
+void ReferenceAgentSimulation::step() {
   const double dt = settings_.time_step;
   const auto step_index = static_cast<std::uint32_t>(steps_taken_);
   const IntrinsicVertexData<double>* stimulus = controls_.read_stimulus.empty() ? nullptr : &controls_.read_stimulus;
@@ -166,7 +166,7 @@ void ReferenceSimulation::step() {
   time_ = static_cast<double>(steps_taken_) * dt;
 }
 
-SimulationState ReferenceSimulation::save_state() const {
+SimulationState ReferenceAgentSimulation::save_state() const {
   SimulationState state;
   state.steps_taken = steps_taken_;
   state.time = time_;
@@ -179,7 +179,7 @@ SimulationState ReferenceSimulation::save_state() const {
 // Copied element by element into the buffers sized at construction (step() keeps allocating
 // nothing afterwards). The per-step scratch (deposit amounts, sensed sums, trace segments) is
 // rewritten before it is read in every step, so it is not part of the state.
-void ReferenceSimulation::restore_state(const SimulationState& state) {
+void ReferenceAgentSimulation::restore_state(const SimulationState& state) {
   check_state_fits(state, layer_count(), domain_.vertex_count, agents_.count(), domain_.face_count, "simulation");
   layers_.copy_from(state.layers);
   agents_ = state.agents;
@@ -188,7 +188,7 @@ void ReferenceSimulation::restore_state(const SimulationState& state) {
   time_ = state.time;
 }
 
-FieldStatistics ReferenceSimulation::field_statistics(double U, int layer) const {
+FieldStatistics ReferenceAgentSimulation::field_statistics(double U, int layer) const {
   return compute_field_statistics(layers_.checked(layer, "field_statistics"), domain_.vertex_mass, U);
 }
 

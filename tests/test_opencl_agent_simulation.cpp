@@ -12,8 +12,8 @@
 #include "common/setup/agent_inputs.hpp"
 #include "common/simulation/field_statistics.hpp"
 #include "opencl/planted_faults.hpp"
-#include "opencl/simulation.hpp"
-#include "reference/simulation.hpp"
+#include "opencl/agent_simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "delaunay_domain.hpp"
 #include "model_scene.hpp"
 #include "one_step_comparison.hpp"
@@ -45,7 +45,7 @@ using testing::StepComparison;
 
 StepComparison compare_one_step(const SurfaceDomain& domain, const Scene& scene, int warmup,
                                 const std::string& fault = "") {
-  OpenCLSimulationOptions options;
+  OpenCLBackendOptions options;
   options.build_options = fault_build_option(fault);
   const StepComparison c = testing::compare_one_step(compute(), domain, scene, warmup, options);
   EXPECT_FALSE(c.canaries_damaged);
@@ -67,15 +67,15 @@ void expect_one_step_agrees(const std::string& spec, const Scene& scene) {
   EXPECT_LE(c.field_error, 2e-3) << spec;
 }
 
-TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceOnASphere) {
+TEST(OpenCLAgentSimulation, OneStepFromIdenticalStatesMatchesTheReferenceOnASphere) {
   expect_one_step_agrees("shape:sphere", model_scene(20000, 0.5, Integrator::Forward));
 }
-TEST(OpenCLSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBoundaries) {
+TEST(OpenCLAgentSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBoundaries) {
   expect_one_step_agrees("shape:square", model_scene(20000, 0.5, Integrator::Backward));
 }
 // Turn decisions faster than steps (2.5 per step): the first sensing of a step is done ahead of the
 // agent step (sense_deciders), the later ones inside it from the heading the earlier ones left.
-TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
+TEST(OpenCLAgentSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
   Scene scene = model_scene(20000, 0.5, Integrator::Forward);
   scene.parameters[Param::turn_frequency] = 250.0;
   expect_one_step_agrees("shape:sphere", scene);
@@ -84,7 +84,7 @@ TEST(OpenCLSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
 // The comparison has power: a planted 15 % sensor-angle error (which changes only the decisions it
 // flips: ~0.4 % of the agents here) or steering every step makes more agents disagree than the
 // 0.1 % the test above allows.
-TEST(OpenCLSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
+TEST(OpenCLAgentSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   for (const char* fault : {"sensor-angle", "turn-every-step"}) {
     const StepComparison c = compare_one_step(domain, model_scene(20000, 0.5, Integrator::Forward), 60, fault);
@@ -95,11 +95,11 @@ TEST(OpenCLSimulation, OneStepComparisonCatchesPlantedSteeringFaults) {
 
 // The initial placement follows the same rule as the reference, draw for draw: faces agree (but for
 // alias-bucket edges, see agents.cl) and positions to float rounding.
-TEST(OpenCLSimulation, InitialStateIsTheReferences) {
+TEST(OpenCLAgentSimulation, InitialStateIsTheReferences) {
   const SurfaceDomain domain = delaunay_domain("shape:torus");
   const Scene scene = model_scene(5000, 0.5, Integrator::Forward);
-  ReferenceSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
-  OpenCLSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
+  ReferenceAgentSimulation reference(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  OpenCLAgentSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   const Agents a = reference.agents(), b = device.read_agents();
   int mismatched = 0;
   for (int i = 0; i < a.count(); ++i) {
@@ -113,19 +113,19 @@ TEST(OpenCLSimulation, InitialStateIsTheReferences) {
 
 // Eq. 4 on the device: with no decay and no diffusion, one step adds exactly the deposited amount
 // N r_dep dt (every agent active) to the total; fixed-point rounding is ~1e-13 per deposit.
-TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
+TEST(OpenCLAgentSimulation, DepositsAddExactlyTheDepositedAmount) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
   Scene scene = model_scene(10000, std::nullopt, Integrator::Forward);
   scene.parameters[Param::decay_rate] = 0.0;
   scene.parameters[Param::diffuse_rate] = 0.0;
   scene.parameters[Param::activation_time] = 0.0;
-  OpenCLSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
+  OpenCLAgentSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   device.run(3);
   const double expected = 3 * scene.agents * scene.parameters[Param::deposit_rate] * scene.time_step;
   EXPECT_NEAR(device.layer(0).total_amount() / expected, 1.0, 1e-5);
   if (device.fixed_point_deposits()) {
     // Order independence: a second run gives the very same bits.
-    OpenCLSimulation again(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
+    OpenCLAgentSimulation again(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
     again.run(3);
     EXPECT_EQ(device.field_values(), again.field_values());
   }
@@ -133,13 +133,13 @@ TEST(OpenCLSimulation, DepositsAddExactlyTheDepositedAmount) {
 
 // Sorting agents by face (every 3 steps here) reorders memory only: the field and every agent's
 // state are the very same bits as without sorting.
-TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
+TEST(OpenCLAgentSimulation, SortingAgentsByFaceChangesNoResult) {
   const SurfaceDomain domain = delaunay_domain("shape:torus");
   const Scene scene = model_scene(4000, 0.3, Integrator::Forward);
-  OpenCLSimulationOptions sorted, unsorted;
+  OpenCLBackendOptions sorted, unsorted;
   sorted.sort_interval = 3;
   unsorted.sort_interval = 0;
-  OpenCLSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), sorted), b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), unsorted);
+  OpenCLAgentSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), sorted), b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), unsorted);
   a.run(20);
   b.run(20);
   if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
@@ -154,20 +154,20 @@ TEST(OpenCLSimulation, SortingAgentsByFaceChangesNoResult) {
 // Agents moving together in the vector lanes of one work-item (kernels/agent_step.cl) walk exactly
 // as they do alone: every grouping gives the very same bits. On the disk (reflections in the lane
 // walk) with an agent count that leaves the last work-item part-filled.
-TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
+TEST(OpenCLAgentSimulation, AgentsPerWorkItemChangesNoResult) {
   const SurfaceDomain domain = delaunay_domain("shape:disk");
   const Scene scene = model_scene(4001, 0.3, Integrator::Forward);
-  OpenCLSimulationOptions alone;
+  OpenCLBackendOptions alone;
   alone.agents_per_work_item = 1;
-  OpenCLSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), alone);
+  OpenCLAgentSimulation a(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), alone);
   a.run(20);
   if (!a.fixed_point_deposits()) GTEST_SKIP() << "float deposits: order-dependent rounding";
   const Agents x = a.read_agents();
   ASSERT_GT(a.counters().boundary_hits, 0) << "the scene must exercise reflections";
   for (int lanes : {3, 4}) {
-    OpenCLSimulationOptions grouped;
+    OpenCLBackendOptions grouped;
     grouped.agents_per_work_item = lanes;
-    OpenCLSimulation b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), grouped);
+    OpenCLAgentSimulation b(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), grouped);
     b.run(20);
     EXPECT_EQ(a.field_values(), b.field_values()) << lanes << " agents per work-item";
     const Agents y = b.read_agents();
@@ -178,15 +178,15 @@ TEST(OpenCLSimulation, AgentsPerWorkItemChangesNoResult) {
     EXPECT_EQ(a.counters().boundary_hits, b.counters().boundary_hits) << lanes;
     EXPECT_TRUE(b.damaged_canaries().empty());
   }
-  OpenCLSimulationOptions bad;
+  OpenCLBackendOptions bad;
   bad.agents_per_work_item = 5;
-  EXPECT_THROW(OpenCLSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), bad), InputError);
+  EXPECT_THROW(OpenCLAgentSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene), bad), InputError);
 }
 
 // Same check as the reference's: the time-averaged mean equals U within 1 % (see
 // test_reference_simulation.cpp for why the bound is that tight).
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
-  OpenCLSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
+  OpenCLAgentSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   sim.fill_field(U);
   double sum = 0.0;
@@ -204,12 +204,12 @@ void expect_mean_is_U(const std::string& spec, Integrator integrator) {
       << spec << " without turnover";
 }
 
-TEST(OpenCLSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Forward); }
-TEST(OpenCLSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::Backward); }
+TEST(OpenCLAgentSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Forward); }
+TEST(OpenCLAgentSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::Backward); }
 
-TEST(OpenCLSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
+TEST(OpenCLAgentSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
-  OpenCLSimulation sim(compute(), domain, constant_parameters(model_scene(3000, 0.5, Integrator::Forward), domain), simulation_settings(model_scene(3000, 0.5, Integrator::Forward)));
+  OpenCLAgentSimulation sim(compute(), domain, constant_parameters(model_scene(3000, 0.5, Integrator::Forward), domain), simulation_settings(model_scene(3000, 0.5, Integrator::Forward)));
   sim.run(200);
   const Agents a = sim.read_agents();
   for (int i = 0; i < a.count(); ++i) {
@@ -226,14 +226,14 @@ TEST(OpenCLSimulation, ReflectionKeepsAgentsOnTheSurfaceAndCountsHits) {
   EXPECT_TRUE(sim.damaged_canaries().empty());
 }
 
-TEST(OpenCLSimulation, RejectsBadSettingsAndOversizedAgentCounts) {
+TEST(OpenCLAgentSimulation, RejectsBadSettingsAndOversizedAgentCounts) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
   Scene scene = model_scene(100, 0.5, Integrator::Forward);
   scene.time_step = 0.0;
-  EXPECT_THROW(OpenCLSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene)), InputError);
+  EXPECT_THROW(OpenCLAgentSimulation(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene)), InputError);
   scene = model_scene(2'000'000'000, 0.5, Integrator::Forward);
   try {
-    OpenCLSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
+    OpenCLAgentSimulation sim(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
     FAIL() << "2e9 agents fit on " << compute().device.device_name;
   } catch (const DeviceError& e) {
     EXPECT_NE(std::string(e.what()).find("2000000000 agents"), std::string::npos) << e.what();

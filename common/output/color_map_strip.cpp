@@ -1,10 +1,10 @@
-#include "common/output/colormap_strip.hpp"
+#include "common/output/color_map_strip.hpp"
 
 #include "common/base/errors.hpp"
 
 namespace physarum {
 
-RgbImage colormap_strip(const ColorMap& map, int width, int height) {
+RgbImage color_map_strip(const ColorMap& map, int width, int height) {
   if (width < 2 || width > 16384 || height < 1 || height > 16384)
     throw InputError("colour-map strip: size " + std::to_string(width) + "x" + std::to_string(height) +
                      " is outside 2..16384 x 1..16384");
@@ -20,8 +20,8 @@ RgbImage colormap_strip(const ColorMap& map, int width, int height) {
   return image;
 }
 
-void write_colormap_strip_png(const std::string& path, const ColorMap& map, int width, int height) {
-  write_rgb_png(path, colormap_strip(map, width, height));
+void write_color_map_strip_png(const std::string& path, const ColorMap& map, int width, int height) {
+  write_rgb_png(path, color_map_strip(map, width, height));
 }
 
 }  // namespace physarum

@@ -1,4 +1,4 @@
-#include "common/color/colormap.hpp"
+#include "common/color/color_map.hpp"
 
 #include "common/base/errors.hpp"
 
@@ -141,7 +141,7 @@ Rgb8 to_rgb8(const SrgbColor& color) {
 
 Rgb8 ColorMap::sample8(double t) const { return to_rgb8(sample(t)); }
 
-Rgb8 colormap_color(const ColorMap& map, double t) { return map.sample8(t); }
-std::array<double, 3> colormap_color_float(const ColorMap& map, double t) { return map.sample(t); }
+Rgb8 color_map_color(const ColorMap& map, double t) { return map.sample8(t); }
+std::array<double, 3> color_map_color_float(const ColorMap& map, double t) { return map.sample(t); }
 
 }  // namespace physarum

@@ -7,7 +7,7 @@
 #include "common/scene/scene.hpp"
 #include "common/surface/surface_domain.hpp"
 #include "common/model/vertex_parameters.hpp"
-#include "reference/simulation.hpp"
+#include "reference/agent_simulation.hpp"
 #include "delaunay_domain.hpp"
 #include "model_scene.hpp"
 #include "test_support.hpp"
@@ -37,7 +37,7 @@ using testing::quoted;
 
 // Time average of the area-weighted mean over steps [first, last] of a run whose field starts at U.
 double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first, int last) {
-  ReferenceSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  ReferenceAgentSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   sim.fill_field(U);
   double sum = 0.0;
@@ -52,7 +52,7 @@ double averaged_mean(const SurfaceDomain& domain, const Scene& scene, int first,
 // fraction of them that are active (exp(-t_a / tau) in expectation, thanks to the steady-state
 // initial ages), diffusion conserves the total amount (the Laplacian's columns sum to zero), and the
 // deposits enter each Euler scheme as its source term, so the total amount's fixed point is
-// deposit / (r_dec dt) -- exactly U A (see reference/simulation.hpp). What remains is noise: the
+// deposit / (r_dec dt) -- exactly U A (see reference/agent_simulation.hpp). What remains is noise: the
 // number of active agents fluctuates by ~1% (N = 5000, p = 0.67), with a correlation time ~tau =
 // 0.2 s, and averaging over 8 s brings that to ~0.2%. r_dec dt = 2.5% makes a wrongly ordered
 // source term (U (1 -+ r_dec dt)) fail the 1% bound. Without turnover the input is deterministic.
@@ -67,16 +67,16 @@ void expect_mean_is_U(const std::string& spec, Integrator integrator) {
 }
 
 
-TEST(ReferenceSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Forward); }
-TEST(ReferenceSimulation, MeanIsUOnAClosedSurfaceBackwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Backward); }
-TEST(ReferenceSimulation, MeanIsUWithABoundaryForwardEuler) { expect_mean_is_U("shape:square", Integrator::Forward); }
-TEST(ReferenceSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::Backward); }
+TEST(ReferenceAgentSimulation, MeanIsUOnAClosedSurfaceForwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Forward); }
+TEST(ReferenceAgentSimulation, MeanIsUOnAClosedSurfaceBackwardEuler) { expect_mean_is_U("shape:sphere", Integrator::Backward); }
+TEST(ReferenceAgentSimulation, MeanIsUWithABoundaryForwardEuler) { expect_mean_is_U("shape:square", Integrator::Forward); }
+TEST(ReferenceAgentSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_is_U("shape:square", Integrator::Backward); }
 
 // k dt = 0.1 with a diffusion fast enough that forward Euler takes several sub-steps: the derivation
 // puts the mean ~4 % above U (more than the harness's 3 % margin); the run must land there, within
 // the noise of ~0.3 % (5,000 agents, 600 steps: the bound of expect_mean_is_U in
 // test_reference_simulation.cpp), and backward Euler on the same scene at U.
-TEST(ReferenceSimulation, DiscreteSteadyStateForwardEulerInSubStepsSettlesWhereDerived) {
+TEST(ReferenceAgentSimulation, DiscreteSteadyStateForwardEulerInSubStepsSettlesWhereDerived) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(5000, 0.04, 0.2, Integrator::Forward);
   scene.parameters[Param::activation_time] = 0.08;  // two whole steps: no activation factor
@@ -91,7 +91,7 @@ TEST(ReferenceSimulation, DiscreteSteadyStateForwardEulerInSubStepsSettlesWhereD
 
 // Short lives (tau = 0.05 s) and t_a = 3.33 steps: the first depositing step of an agent deposits
 // two thirds of a step, and the surviving fraction is geometric per step: ~4 % above Eq. 5.
-TEST(ReferenceSimulation, DiscreteSteadyStateFractionalActivationStepSettlesWhereDerived) {
+TEST(ReferenceAgentSimulation, DiscreteSteadyStateFractionalActivationStepSettlesWhereDerived) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(20000, 0.03, 0.05, Integrator::Backward);
   const double expected = expected_mean_over_U(scene, constant_parameters(scene, domain), domain);
@@ -107,7 +107,7 @@ struct SteadyStatistics {
 
 SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std::uint32_t seed, double seconds) {
   scene.seed = seed;
-  ReferenceSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  ReferenceAgentSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   const auto steps = std::llround(seconds / scene.time_step);
   SteadyStatistics r;
@@ -157,21 +157,21 @@ void expect_time_step_independence(Integrator integrator) {
   }
 }
 
-TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
+TEST(ReferenceAgentSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpread) {
   expect_time_step_independence(Integrator::Forward);
 }
-TEST(ReferenceSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpreadBackwardEuler) {
+TEST(ReferenceAgentSimulation, HalvingTheTimeStepKeepsMeanAndCoverageWithinSeedSpreadBackwardEuler) {
   expect_time_step_independence(Integrator::Backward);
 }
 
-TEST(ReferenceSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
+TEST(ReferenceAgentSimulation, SameSeedSameRunDifferentSeedDifferentPattern) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   const Scene scene = model_scene(1000, 0.01, 0.5, Integrator::Forward);
   const VertexParameters params = constant_parameters(scene, domain);
-  ReferenceSimulation a(domain, params, simulation_settings(scene)), b(domain, params, simulation_settings(scene));
+  ReferenceAgentSimulation a(domain, params, simulation_settings(scene)), b(domain, params, simulation_settings(scene));
   Scene other_seed = scene;
   other_seed.seed = scene.seed + 1;
-  ReferenceSimulation c(domain, params, simulation_settings(other_seed));
+  ReferenceAgentSimulation c(domain, params, simulation_settings(other_seed));
   a.run(150);
   b.run(150);
   c.run(150);
@@ -409,7 +409,7 @@ void expect_newborn_start_without_turnover(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(1000, 0.01, std::nullopt, integrator);
   scene.parameters[Param::activation_time] = 0.2;
-  ReferenceSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
+  ReferenceAgentSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
   for (double age : sim.agents().age) ASSERT_EQ(age, 0.0) << "agents start newborn without turnover";
   for (int k = 1; k <= 19; ++k) {
     sim.step();
@@ -422,10 +422,10 @@ void expect_newborn_start_without_turnover(Integrator integrator) {
   for (double age : sim.agents().age) EXPECT_NEAR(age, 3.0, 1e-9);
 }
 
-TEST(ReferenceSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationForwardEuler) {
+TEST(ReferenceAgentSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationForwardEuler) {
   expect_newborn_start_without_turnover(Integrator::Forward);
 }
-TEST(ReferenceSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationBackwardEuler) {
+TEST(ReferenceAgentSimulation, WithoutTurnoverNoRespawnsAndNoDepositBeforeActivationBackwardEuler) {
   expect_newborn_start_without_turnover(Integrator::Backward);
 }
 
