@@ -5,7 +5,7 @@
 // steps per second, face crossings (movement + sensors) per agent step and per second.
 #include "bench/bench_backends.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -30,7 +30,7 @@ struct ControlledScene {
 enum ControlBits { kMap = 1, kReadStimulus = 2, kWriteStimulus = 4, kBias = 8, kAll = 15 };
 
 ControlledScene controlled_scene(const SurfaceDomain& domain, const Scene& scene, long bits) {
-  ControlledScene c{VertexParameters::constant(scene.parameters, domain.vertex_count), {}};
+  ControlledScene c{VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count), {}};
   const size_t n = static_cast<size_t>(domain.vertex_count);
   IntrinsicVertexData<double> read_stimulus(n, 0.0), write_rate(n, 0.0);
   VertexParameters mapped = c.params;

@@ -45,7 +45,7 @@ void BM_PheromoneStep(benchmark::State& state) {
       square ? scaled_domain("shape:square", tenths_of_mm(state.range(2))) : spot_or_skip(state, state.range(2));
   if (!domain) return;
   const Scene scene = bench_scene(0);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, domain->vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain->vertex_count);
   int sub_steps = 1;
   double bytes_per_sub_step = 0.0;
   if (backend == kOpenCL) {
@@ -112,7 +112,7 @@ void BM_HostCholeskySolve(benchmark::State& state) {
   const SurfaceDomain* domain = spot_or_skip(state, state.range(2));
   if (!domain) return;
   const Scene scene = bench_scene(0);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, domain->vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain->vertex_count);
   const BackwardEulerSystem system = backward_euler_system(domain->laplacian, domain->vertex_mass,
                                                            params[Param::diffuse_rate], params[Param::decay_rate],
                                                            scene.time_step);

@@ -80,7 +80,32 @@ size_t species_cell_stride(const DeviceInfo& device, size_t vertex_count, size_t
   return std::max<size_t>(bytes / cell_bytes, 1);
 }
 
+constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+
 }  // namespace
+
+// What the constructor's steps hand on to each other: the inputs, their device order, and the choices
+// made from them. Needed only while building; the members keep what the kernels read.
+struct OpenCLAgentSimulation::Setup {
+  Setup(const SpeciesSet& species_in, const SimulationControls& controls_in, const OpenCLBackendOptions& options_in)
+      : species(species_in), controls(controls_in), options(options_in) {}
+
+  const SpeciesSet& species;
+  const SimulationControls& controls;
+  const OpenCLBackendOptions& options;
+  bool competing = false;
+  int species_count = 0;
+  int agent_count = 0;
+  size_t nv = 0;
+  SpawnDistribution spawn;
+  DeviceTuning tuning;
+  // The domain with vertices in device order: what the face records and the field are built from
+  // (needed only here; the buffers keep what the kernels read).
+  SurfaceDomain device_domain;
+  std::vector<VertexParameters> device_params;
+  PackedAgentParameters agent_parameters;
+  size_t cell_bytes = 0, cell_stride = 0;  // one deposit cell's bytes; cells per species
+};
 
 OpenCLAgentSimulation::~OpenCLAgentSimulation() = default;
 
@@ -98,20 +123,40 @@ OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, cons
                                    const SimulationControls& controls, const SimulationSettings& settings,
                                    const OpenCLBackendOptions& options)
     : compute_(compute), domain_(domain), settings_(settings), sort_interval_(options.sort_interval) {
-  check_species_inputs(domain, species, settings);
-  check_controls(domain, controls, "opencl simulation");
+  // In this order: each step needs the ones before it, and the device sees its calls and
+  // allocations in the order it always has (the same buffers, the same bits).
+  Setup setup = check_inputs(species, controls, options);
+  order_for_device(setup);
+  choose_deposits(setup);
+  set_step_constants(setup);
+  const cl::Program agent_program = build_kernels(setup);
+  count_work_groups(setup.agent_count);
+  upload_domain_buffers(setup);
+  upload_control_buffers(setup);
+  allocate_deposits(setup);
+  allocate_agent_buffers(setup.agent_count, agent_program);
+  make_layers(setup);
+  place_agents();
+}
+
+OpenCLAgentSimulation::Setup OpenCLAgentSimulation::check_inputs(const SpeciesSet& species,
+                                                                 const SimulationControls& controls,
+                                                                 const OpenCLBackendOptions& options) {
+  check_species_inputs(domain_, species, settings_);
+  check_controls(domain_, controls, "opencl simulation");
+  Setup setup(species, controls, options);
   // One species reading its own layer with weight 1 runs the base model's kernels, bit for bit.
-  const bool competing = !species.is_single();
-  const int species_count = species.count();
+  setup.competing = !species.is_single();
+  setup.species_count = species.count();
   const VertexParameters& params = species.species.front().parameters;
-  const SpawnDistribution spawn =
-      build_spawn_distribution(domain, controls.spawn_weight, hazard_rate_per_vertex(params[Param::mean_lifetime]));
+  setup.spawn =
+      build_spawn_distribution(domain_, controls.spawn_weight, hazard_rate_per_vertex(params[Param::mean_lifetime]));
   // The kernels keep one spawn table for every agent: species whose sinks differ (and so spawn
   // elsewhere) are refused rather than spawned where another species would be.
-  for (int s = 1; s < species_count; ++s) {
+  for (int s = 1; s < setup.species_count; ++s) {
     const VertexParameters& own = species.species[static_cast<size_t>(s)].parameters;
-    if (!same_spawn(spawn, build_spawn_distribution(domain, controls.spawn_weight,
-                                                    hazard_rate_per_vertex(own[Param::mean_lifetime]))))
+    if (!same_spawn(setup.spawn, build_spawn_distribution(domain_, controls.spawn_weight,
+                                                          hazard_rate_per_vertex(own[Param::mean_lifetime]))))
       throw InputError("opencl simulation: species " + std::to_string(s) +
                        " has its sinks (mean_lifetime 0) elsewhere than species 0, so it would spawn elsewhere; the "
                        "OpenCL backend spawns every species alike (use --backend reference)");
@@ -119,100 +164,128 @@ OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, cons
   if (options.agents_per_work_item < 0 || options.agents_per_work_item > 4)
     throw InputError("opencl simulation: agents_per_work_item must be 0 (automatic) or 1..4, got " +
                      std::to_string(options.agents_per_work_item));
-  const DeviceTuning tuning = tuning_for(compute.device);
-  agents_per_work_item_ = options.agents_per_work_item > 0 ? options.agents_per_work_item : tuning.agents_per_work_item;
-  const size_t nv = static_cast<size_t>(domain.vertex_count);
-  const int agent_count = settings.agents;
+  setup.tuning = tuning_for(compute_.device);
+  agents_per_work_item_ =
+      options.agents_per_work_item > 0 ? options.agents_per_work_item : setup.tuning.agents_per_work_item;
+  setup.nv = static_cast<size_t>(domain_.vertex_count);
+  setup.agent_count = settings_.agents;
+  return setup;
+}
 
+void OpenCLAgentSimulation::order_for_device(Setup& setup) {
   // ---- the device's locality order of faces and vertices (face_records.hpp) ----
-  face_order_ = locality_face_order(domain);
-  vertex_order_ = locality_vertex_order(domain, face_order_);
-  // The domain with vertices in device order: what the face records and the field are built from
-  // (needed only here; the buffers keep what the kernels read).
-  const SurfaceDomain device_domain = renumber_vertices(domain, vertex_order_);
-  std::vector<VertexParameters> device_params;
-  for (const Species& s : species.species) device_params.push_back(renumber_parameters(s.parameters, vertex_order_));
+  face_order_ = locality_face_order(domain_);
+  vertex_order_ = locality_vertex_order(domain_, face_order_);
+  setup.device_domain = renumber_vertices(domain_, vertex_order_);
+  for (const Species& s : setup.species.species)
+    setup.device_params.push_back(renumber_parameters(s.parameters, vertex_order_));
 
   // ---- parameters per vertex, and whether they are all one value ----
   // Competing species: every species' records one after the other (kernels/species.cl), read per vertex.
-  PackedAgentParameters agent_parameters = pack_agent_parameters(device_params.front());
-  for (int s = 1; s < species_count; ++s) {
-    const PackedAgentParameters own = pack_agent_parameters(device_params[static_cast<size_t>(s)]);
+  PackedAgentParameters& agent_parameters = setup.agent_parameters;
+  agent_parameters = pack_agent_parameters(setup.device_params.front());
+  for (int s = 1; s < setup.species_count; ++s) {
+    const PackedAgentParameters own = pack_agent_parameters(setup.device_params[static_cast<size_t>(s)]);
     agent_parameters.per_vertex.insert(agent_parameters.per_vertex.end(), own.per_vertex.begin(), own.per_vertex.end());
   }
-  if (competing) {
+  if (setup.competing) {
     agent_parameters.uniform = false;
     agent_parameters.mapped_build_options = every_parameter_mapped_build_options();
   }
+}
 
+void OpenCLAgentSimulation::choose_deposits(Setup& setup) {
   // ---- deposit accumulation: fixed point where 64-bit atomics exist ----
-  fixed_point_ = opencl::fixed_point_deposits(compute.device);
+  const VertexParameters& params = setup.species.species.front().parameters;
+  fixed_point_ = opencl::fixed_point_deposits(compute_.device);
   if (fixed_point_)
-    deposit_scale_ = fixed_point_deposit_scale(competing ? largest_deposit_rate(species) : params[Param::deposit_rate],
-                                               agent_count, settings.time_step);
-  const size_t cell_bytes = fixed_point_ ? sizeof(cl_long) : sizeof(cl_float);
-  const size_t cell_stride = competing ? species_cell_stride(compute.device, nv, cell_bytes) : nv;
+    deposit_scale_ =
+        fixed_point_deposit_scale(setup.competing ? largest_deposit_rate(setup.species) : params[Param::deposit_rate],
+                                  setup.agent_count, settings_.time_step);
+  setup.cell_bytes = fixed_point_ ? sizeof(cl_long) : sizeof(cl_float);
+  setup.cell_stride = setup.competing ? species_cell_stride(compute_.device, setup.nv, setup.cell_bytes) : setup.nv;
+}
 
-  constants_.dt = static_cast<float>(settings.time_step);
+void OpenCLAgentSimulation::set_step_constants(const Setup& setup) {
+  constants_.dt = static_cast<float>(settings_.time_step);
   constants_.deposit_scale = static_cast<float>(deposit_scale_);
-  constants_.seed = settings.seed;
+  constants_.seed = settings_.seed;
   constants_.step = 0;
-  constants_.agent_count = agent_count;
-  constants_.face_count = domain.face_count;
-  constants_.uniform_parameters = agent_parameters.uniform ? 1 : 0;
+  constants_.agent_count = setup.agent_count;
+  constants_.face_count = domain_.face_count;
+  constants_.uniform_parameters = setup.agent_parameters.uniform ? 1 : 0;
   constants_.pad = 0;
-  constants_.uniform = nv > 0 ? agent_parameters.per_vertex[0] : PhysarumAgentParameters{};
+  constants_.uniform = setup.nv > 0 ? setup.agent_parameters.per_vertex[0] : PhysarumAgentParameters{};
+}
 
-  // ---- kernels ----
-  kernels_ = std::make_unique<Kernels>();
-  cl::Program agent_program;
-  std::string build = options.build_options + agent_parameters.mapped_build_options;
+std::string OpenCLAgentSimulation::agent_build_options(const Setup& setup) const {
+  const SimulationControls& controls = setup.controls;
+  std::string build = setup.options.build_options + setup.agent_parameters.mapped_build_options;
   if (!fixed_point_) build += " -DPHYSARUM_FLOAT_DEPOSITS";
   // The controls present, as build options (kernels/agent_step.cl): absent ones compile to nothing.
   if (!controls.read_stimulus.empty()) build += " -DPHYSARUM_READ_STIMULUS";
-  if (spawn.weighted) build += " -DPHYSARUM_SPAWN_WEIGHTS";
+  if (setup.spawn.weighted) build += " -DPHYSARUM_SPAWN_WEIGHTS";
   if (controls.bias) {
     build += " -DPHYSARUM_BIAS -DPHYSARUM_BIAS_SYMMETRY=" + std::to_string(controls.bias->symmetry);
     if (is_uniform(controls.bias->strength)) build += " -DPHYSARUM_BIAS_UNIFORM_STRENGTH";
     if (controls.spawn_heading == SpawnHeading::Bias) build += " -DPHYSARUM_SPAWN_HEADING_BIAS";
   }
   if (controls.boundary == BoundaryBehaviour::Terminate) build += " -DPHYSARUM_BOUNDARY_TERMINATE";
-  if (competing) {
+  if (setup.competing) {
+    const int species_count = setup.species_count;
     std::string first_ids;
-    for (int s = 0; s <= species_count; ++s)
-      first_ids += (s ? "," : "") + std::to_string(s < species_count ? species.first_agent(s) : agent_count);
+    for (int s = 0; s <= species_count; ++s) {
+      // Two appends, not "," + id: GCC 12 at -O3 takes the latter for an overlapping copy (-Wrestrict).
+      if (s) first_ids += ",";
+      first_ids += std::to_string(s < species_count ? setup.species.first_agent(s) : setup.agent_count);
+    }
     build += " -DPHYSARUM_SPECIES=" + std::to_string(species_count) + " -DPHYSARUM_SPECIES_FIRST_IDS=" + first_ids +
-             " -DPHYSARUM_SPECIES_VERTICES=" + std::to_string(nv) + " -DPHYSARUM_SPECIES_CELLS=" + std::to_string(cell_stride);
+             " -DPHYSARUM_SPECIES_VERTICES=" + std::to_string(setup.nv) +
+             " -DPHYSARUM_SPECIES_CELLS=" + std::to_string(setup.cell_stride);
   }
+  return build;
+}
+
+cl::Program OpenCLAgentSimulation::build_kernels(const Setup& setup) {
+  kernels_ = std::make_unique<Kernels>();
+  cl::Program agent_program;
+  std::string build = agent_build_options(setup);
   // Sensing walks 16 traces at once where agents share vector lanes (CPUs), one where they do not.
   const bool vector_lanes = agents_per_work_item_ > 1;
-  const std::string prefetch = tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
+  const std::string prefetch = setup.tuning.clang_prefetch ? " -DPHYSARUM_CLANG_PREFETCH" : "";
   const std::string sensing_build = build + " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "16" : "1") + prefetch;
-  const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
   // Moves too: walkers of 4 lanes taking turns (movement.cl), PHYSARUM_VECTOR_MOVE_WALKERS of them.
-  const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   build += " -DPHYSARUM_AGENTS_PER_WORK_ITEM=" + std::to_string(agents_per_work_item_) +
            " -DPHYSARUM_WALK_LANES=" + (vector_lanes ? "4" : "1") + prefetch;
   try {
     const cl::Program program =
-        build_program(compute.context, compute.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
+        build_program(compute_.context, compute_.device, "agent_step.cl", kernel_source("agent_step.cl"), build);
     kernels_->initialise = cl::Kernel(program, "initialise_agents");
     kernels_->agent_step = cl::Kernel(program, "agent_step");
-    if (competing) kernels_->add_layer_to_sensed = cl::Kernel(program, "add_layer_to_sensed");
-    agent_group_ = work_group_size(kernels_->agent_step, compute.device, 64);
+    if (setup.competing) kernels_->add_layer_to_sensed = cl::Kernel(program, "add_layer_to_sensed");
+    agent_group_ = work_group_size(kernels_->agent_step, compute_.device, 64);
     agent_program = program;
   } catch (const cl::Error& e) {
-    throw device_error("preparing the agent kernels (agent_step.cl) on " + compute.device.device_name, e.err());
+    throw device_error("preparing the agent kernels (agent_step.cl) on " + compute_.device.device_name, e.err());
   }
   try {
-    const cl::Program program = build_program(compute.context, compute.device, "sensing_steering.cl",
+    const cl::Program program = build_program(compute_.context, compute_.device, "sensing_steering.cl",
                                               kernel_source("sensing_steering.cl"), sensing_build);
     kernels_->collect_deciders = cl::Kernel(program, "collect_deciders");
     kernels_->sense_deciders = cl::Kernel(program, "sense_deciders");
-    sensing_group_ = work_group_size(kernels_->sense_deciders, compute.device, 64);
+    sensing_group_ = work_group_size(kernels_->sense_deciders, compute_.device, 64);
   } catch (const cl::Error& e) {
-    throw device_error("preparing the sensing kernels (sensing_steering.cl) on " + compute.device.device_name, e.err());
+    throw device_error("preparing the sensing kernels (sensing_steering.cl) on " + compute_.device.device_name, e.err());
   }
+  return agent_program;
+}
+
+void OpenCLAgentSimulation::count_work_groups(int agent_count) {
+  // The agents one work-item takes, as the kernels were built for them (build_kernels): 16 traces
+  // sensed at once and PHYSARUM_VECTOR_MOVE_WALKERS walkers where agents share vector lanes.
+  const bool vector_lanes = agents_per_work_item_ > 1;
+  const size_t sensing_agents_per_item = vector_lanes ? PHYSARUM_SENSING_AGENTS_PER_WALKER * PHYSARUM_SENSING_WALKERS : 1;
+  const int move_walkers = vector_lanes ? PHYSARUM_VECTOR_MOVE_WALKERS : 1;
   agent_groups_ = padded_global_size(static_cast<size_t>(std::max(agent_count, 1)), agent_group_) / agent_group_;
   const size_t step_agents_per_item = static_cast<size_t>(agents_per_work_item_ * move_walkers);
   const size_t step_items = (static_cast<size_t>(std::max(agent_count, 1)) + step_agents_per_item - 1) /
@@ -223,53 +296,64 @@ OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, cons
   // sense_deciders loops over its blocks of agents: 16 work-groups per compute unit keep every unit
   // busy whatever the share of agents that sense.
   sensing_groups_ = std::min<size_t>(padded_global_size(sensing_items, sensing_group_) / sensing_group_,
-                                     16 * std::max(1u, compute.device.compute_units));
+                                     16 * std::max(1u, compute_.device.compute_units));
+}
 
-  // ---- buffers ----
-  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  faces_ = upload_random_access_buffer(compute, "face records", build_face_records(device_domain, face_order_));
-  device_face_ = upload_buffer(compute, "device face of each domain face", face_order_.device_of_domain, kRead, false);
-  vertex_parameters_ = upload_buffer(compute, "vertex parameters", agent_parameters.per_vertex, kRead, false);
-  const std::vector<float> probability(domain.face_sampler.probability.begin(), domain.face_sampler.probability.end());
-  alias_probability_ = upload_buffer(compute, "face sampler probabilities", probability, kRead, false);
-  alias_index_ = upload_buffer(compute, "face sampler aliases", domain.face_sampler.alias, kRead, false);
+void OpenCLAgentSimulation::upload_domain_buffers(const Setup& setup) {
+  faces_ = upload_random_access_buffer(compute_, "face records", build_face_records(setup.device_domain, face_order_));
+  device_face_ = upload_buffer(compute_, "device face of each domain face", face_order_.device_of_domain, kRead, false);
+  vertex_parameters_ = upload_buffer(compute_, "vertex parameters", setup.agent_parameters.per_vertex, kRead, false);
+  const std::vector<float> probability(domain_.face_sampler.probability.begin(),
+                                       domain_.face_sampler.probability.end());
+  alias_probability_ = upload_buffer(compute_, "face sampler probabilities", probability, kRead, false);
+  alias_index_ = upload_buffer(compute_, "face sampler aliases", domain_.face_sampler.alias, kRead, false);
+}
+
+void OpenCLAgentSimulation::upload_control_buffers(const Setup& setup) {
+  const SimulationControls& controls = setup.controls;
+  const SpawnDistribution& spawn = setup.spawn;
   // ---- the controls' arrays (placeholders of one element where absent) ----
   const auto per_vertex = [&](const char* name, const IntrinsicVertexData<double>& values) {
-    if (values.empty()) return upload_buffer(compute, name, std::vector<float>{0.0f}, kRead, false);
+    if (values.empty()) return upload_buffer(compute_, name, std::vector<float>{0.0f}, kRead, false);
     const DeviceVertexData<double> device_values = to_device_order(values, vertex_order_);
-    return upload_buffer(compute, name, std::vector<float>(device_values.begin(), device_values.end()), kRead, false);
+    return upload_buffer(compute_, name, std::vector<float>(device_values.begin(), device_values.end()), kRead, false);
   };
   read_stimulus_ = per_vertex("read stimulus", controls.read_stimulus);
   spawn_weight_ = per_vertex("spawn weights", spawn.weighted ? spawn.vertex_weight : IntrinsicVertexData<double>{});
   if (spawn.weighted) {
     // In domain face order, like the domain's table (device_face maps the answer).
     spawn_alias_probability_ = upload_buffer(
-        compute, "spawn sampler probabilities",
+        compute_, "spawn sampler probabilities",
         std::vector<float>(spawn.face_sampler.probability.begin(), spawn.face_sampler.probability.end()), kRead, false);
-    spawn_alias_index_ = upload_buffer(compute, "spawn sampler aliases", spawn.face_sampler.alias, kRead, false);
+    spawn_alias_index_ = upload_buffer(compute_, "spawn sampler aliases", spawn.face_sampler.alias, kRead, false);
   } else {
-    spawn_alias_probability_ = upload_buffer(compute, "spawn sampler probabilities", std::vector<float>{0.0f}, kRead, false);
-    spawn_alias_index_ = upload_buffer(compute, "spawn sampler aliases", std::vector<cl_int>{0}, kRead, false);
+    spawn_alias_probability_ = upload_buffer(compute_, "spawn sampler probabilities", std::vector<float>{0.0f}, kRead, false);
+    spawn_alias_index_ = upload_buffer(compute_, "spawn sampler aliases", std::vector<cl_int>{0}, kRead, false);
   }
   // A uniform strength (the usual number in a scene) travels as its one value: no vertex reads.
   const bool uniform_strength = controls.bias && is_uniform(controls.bias->strength);
-  bias_strength_ = uniform_strength ? upload_buffer(compute, "bias strength",
+  bias_strength_ = uniform_strength ? upload_buffer(compute_, "bias strength",
                                                     std::vector<float>{static_cast<float>(controls.bias->strength.front())},
                                                     kRead, false)
                                     : per_vertex("bias strength", controls.bias ? controls.bias->strength
                                                                                 : IntrinsicVertexData<double>{});
-  std::vector<cl_float2> directions(controls.bias ? static_cast<size_t>(domain.face_count) : 1, cl_float2{{0.0f, 0.0f}});
+  std::vector<cl_float2> directions(controls.bias ? static_cast<size_t>(domain_.face_count) : 1, cl_float2{{0.0f, 0.0f}});
   if (controls.bias)
-    for (int f = 0; f < domain.face_count; ++f) {
+    for (int f = 0; f < domain_.face_count; ++f) {
       const std::array<double, 2>& d = controls.bias->direction[f];
       directions[static_cast<size_t>(face_order_.device_of_domain[static_cast<size_t>(f)])] =
           cl_float2{{static_cast<float>(d[0]), static_cast<float>(d[1])}};
     }
-  bias_direction_ = upload_buffer(compute, "bias directions", directions, kRead, false);
-  const size_t cells = competing ? cell_stride * static_cast<size_t>(species_count) : nv;
-  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute, "deposit accumulator", cells)
-                          : allocate_written<cl_float>(compute, "deposit accumulator", cells);
-  if (competing) {
+  bias_direction_ = upload_buffer(compute_, "bias directions", directions, kRead, false);
+}
+
+void OpenCLAgentSimulation::allocate_deposits(const Setup& setup) {
+  const size_t nv = setup.nv, cell_stride = setup.cell_stride, cell_bytes = setup.cell_bytes;
+  const int species_count = setup.species_count;
+  const size_t cells = setup.competing ? cell_stride * static_cast<size_t>(species_count) : nv;
+  deposits_ = fixed_point_ ? allocate_written<cl_long>(compute_, "deposit accumulator", cells)
+                          : allocate_written<cl_float>(compute_, "deposit accumulator", cells);
+  if (setup.competing) {
     // Each species' cells as a buffer of their own, what its layer's advance empties.
     for (int s = 0; s < species_count; ++s) {
       const cl_buffer_region region{static_cast<size_t>(s) * cell_stride * cell_bytes, nv * cell_bytes};
@@ -279,45 +363,57 @@ OpenCLAgentSimulation::OpenCLAgentSimulation(const ComputeContext& compute, cons
       own.payload_bytes = nv * cell_bytes;
       species_deposits_.push_back(std::move(own));
     }
-    sensed_ = allocate_written<cl_float>(compute, "sensed field of each species", nv * static_cast<size_t>(species_count));
-    sensing_matrix_ = upload_buffer(compute, "sensing matrix", std::vector<float>(species.sensing.begin(), species.sensing.end()),
+    sensed_ = allocate_written<cl_float>(compute_, "sensed field of each species", nv * static_cast<size_t>(species_count));
+    sensing_matrix_ = upload_buffer(compute_, "sensing matrix",
+                                    std::vector<float>(setup.species.sensing.begin(), setup.species.sensing.end()),
                                     kRead, false);
   }
-  group_counters_ = allocate_written<cl_ulong>(compute, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
-  agents_ = DeviceAgents::allocate(compute, agent_count);
+}
+
+void OpenCLAgentSimulation::allocate_agent_buffers(int agent_count, const cl::Program& agent_program) {
+  group_counters_ = allocate_written<cl_ulong>(compute_, "agent step counters", agent_groups_ * PHYSARUM_COUNTERS);
+  agents_ = DeviceAgents::allocate(compute_, agent_count);
   const size_t agent_slots = static_cast<size_t>(std::max(agent_count, 1));
-  deciders_ = allocate_written<cl_int>(compute, "agents with a decision due", agent_slots);
-  decider_count_ = allocate_written<cl_uint>(compute, "count of agents with a decision due", 1);
-  first_sensing_ = allocate_written<cl_uint>(compute, "first sensing of each agent", agent_slots);
+  deciders_ = allocate_written<cl_int>(compute_, "agents with a decision due", agent_slots);
+  decider_count_ = allocate_written<cl_uint>(compute_, "count of agents with a decision due", 1);
+  first_sensing_ = allocate_written<cl_uint>(compute_, "first sensing of each agent", agent_slots);
   if (sort_interval_ > 0)
-    agent_order_ = std::make_unique<DeviceAgentOrder>(compute, agent_program, domain.face_count, agent_count,
+    agent_order_ = std::make_unique<DeviceAgentOrder>(compute_, agent_program, domain_.face_count, agent_count,
                                                       agent_group_, agent_groups_);
-  OpenCLDiffusionDecayOptions pheromone_options = options.pheromone;
-  pheromone_options.build_options += " " + options.build_options;
+}
+
+void OpenCLAgentSimulation::make_layers(const Setup& setup) {
+  OpenCLDiffusionDecayOptions pheromone_options = setup.options.pheromone;
+  pheromone_options.build_options += " " + setup.options.build_options;
   // One dynamic layer per species, with its species' decay and diffusion: the pheromone its agents
   // deposit into (and, for one species, sense); the write-stimuli are every layer's source term.
-  for (int s = 0; s < species_count; ++s) {
-    auto pheromone = std::make_unique<OpenCLDiffusionDecay>(compute, device_domain, device_params[static_cast<size_t>(s)],
-                                                            settings.integrator, settings.time_step, pheromone_options);
-    if (!controls.write_rate.empty()) pheromone->set_write_rate(to_device_order(controls.write_rate, vertex_order_));
+  for (int s = 0; s < setup.species_count; ++s) {
+    auto pheromone = std::make_unique<OpenCLDiffusionDecay>(compute_, setup.device_domain,
+                                                            setup.device_params[static_cast<size_t>(s)],
+                                                            settings_.integrator, settings_.time_step, pheromone_options);
+    if (!setup.controls.write_rate.empty())
+      pheromone->set_write_rate(to_device_order(setup.controls.write_rate, vertex_order_));
     layers_.push_back(std::move(pheromone));
   }
+}
 
+void OpenCLAgentSimulation::place_agents() {
+  const int agent_count = settings_.agents;
   try {
-    compute.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
-    compute.queue.enqueueFillBuffer(group_counters_.buffer, cl_uint{0}, 0, group_counters_.payload_bytes);
-    compute.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
+    compute_.queue.enqueueFillBuffer(deposits_.buffer, cl_uint{0}, 0, deposits_.payload_bytes);
+    compute_.queue.enqueueFillBuffer(group_counters_.buffer, cl_uint{0}, 0, group_counters_.payload_bytes);
+    compute_.queue.enqueueFillBuffer(first_sensing_.buffer, cl_uint{0}, 0, first_sensing_.payload_bytes);
     if (agent_count > 0) {
       cl::Kernel& k = kernels_->initialise;
       set_arguments(k, constants_, faces_, vertex_parameters_, alias_probability_, alias_index_,
                     spawn_alias_probability_, spawn_alias_index_, spawn_weight_, bias_direction_, device_face_,
                     agents_.buffers());
-      compute.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
-                                         cl::NDRange(agent_group_));
+      compute_.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(agent_groups_ * agent_group_),
+                                          cl::NDRange(agent_group_));
     }
-    compute.queue.finish();
+    compute_.queue.finish();
   } catch (const cl::Error& e) {
-    throw device_error("placing " + std::to_string(agent_count) + " agents on " + compute.device.device_name, e.err());
+    throw device_error("placing " + std::to_string(agent_count) + " agents on " + compute_.device.device_name, e.err());
   }
 }
 

@@ -127,6 +127,35 @@ class OpenCLAgentSimulation final : public SimulationBackend {
 
  private:
   struct Kernels;
+  // What the constructor's steps hand on to each other (defined in the .cpp; gone once built).
+  struct Setup;
+  // The constructor's steps, in the constructor's order (each needs the ones before it).
+  // Checks species, controls and options as the reference does; the spawn table and device tuning.
+  Setup check_inputs(const SpeciesSet& species, const SimulationControls& controls,
+                     const OpenCLBackendOptions& options);
+  // face_order_, vertex_order_, and the domain and parameters renumbered and packed in them.
+  void order_for_device(Setup& setup);
+  // fixed_point_ and deposit_scale_, and the deposit cells' layout (per species when competing).
+  void choose_deposits(Setup& setup);
+  void set_step_constants(const Setup& setup);
+  // The agent program's build options: the controls present and the species, as -D flags.
+  std::string agent_build_options(const Setup& setup) const;
+  // Builds both programs and takes their kernels; returns the agent program (agent_order_ uses it too).
+  cl::Program build_kernels(const Setup& setup);
+  // agent_groups_, step_groups_, sensing_groups_ from the built kernels' work-group sizes.
+  void count_work_groups(int agent_count);
+  // Face records, the device's face map, the vertex parameters and the domain's face sampler.
+  void upload_domain_buffers(const Setup& setup);
+  // The controls' arrays, in device order (placeholders where absent).
+  void upload_control_buffers(const Setup& setup);
+  // deposits_, and with competing species their sub-buffers, sensed_ and sensing_matrix_.
+  void allocate_deposits(const Setup& setup);
+  // The agents, their step's scratch and counters, and the sort (agent_order_).
+  void allocate_agent_buffers(int agent_count, const cl::Program& agent_program);
+  // One dynamic layer (diffusion-decay) per species.
+  void make_layers(const Setup& setup);
+  // Clears the accumulators and places the agents with the reference's initial-state rule; waits.
+  void place_agents();
   void enqueue_agent_step();
   void enqueue_sensing();
   void enqueue_species_sensed_fields();

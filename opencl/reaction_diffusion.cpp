@@ -69,7 +69,22 @@ bool has_option(const std::string& options, const std::string& define) {
   return options.find("-D" + define) != std::string::npos;
 }
 
+constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+
 }  // namespace
+
+// What the constructor's steps hand on to each other: the kinetics as OpenCL C and the explicit
+// sub-step's operator. Needed only while building.
+struct OpenCLReactionDiffusion::Setup {
+  std::vector<size_t> varying;  // coefficients read per vertex, in slot order
+  std::string reactions, loads;
+  bool shared_weights = false;
+  std::string scales;  // c_m of K_m = c_m K_0, as literals (RD_WEIGHT_SCALES)
+  std::vector<CsrMatrix> substep_matrices;
+  bool zero_row_sums = false;
+  int ell_width = PHYSARUM_ELL_WIDTH;
+  std::string floors;
+};
 
 OpenCLReactionDiffusion::~OpenCLReactionDiffusion() = default;
 
@@ -95,8 +110,29 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   if (has_option(options.build_options, "PHYSARUM_FAULT_RD_SWAP_DIFFUSION") && integrator_ == Integrator::Imex)
     std::swap(stiffness_[0], stiffness_[1]);
 
-  // ---- the kinetics as OpenCL C ----
-  std::vector<size_t> varying;  // coefficients read per vertex, in slot order
+  // In this order: each step needs the ones before it, and the device sees its calls and
+  // allocations in the order it always has (the same buffers, the same bits).
+  Setup setup;
+  translate_kinetics(system, setup);
+  find_shared_weights(system, setup);
+  make_substep_matrices(system, setup);
+  write_floors(system, setup);
+  build_kernels(kernel_prelude(setup));
+  choose_stride();
+  upload_vertex_data(system, setup.varying);
+  allocate_state(system);
+  if (integrator_ == Integrator::Forward)
+    upload_explicit_operator(setup);
+  else
+    make_imex_solvers(system);
+
+  statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
+  for (size_t m = 0; m < M; ++m) set_field(system.initial[m], static_cast<int>(m));
+}
+
+void OpenCLReactionDiffusion::translate_kinetics(const ReactionDiffusionSystem& system, Setup& setup) {
+  const size_t M = static_cast<size_t>(morphogen_count_);
+  std::vector<size_t>& varying = setup.varying;
   std::map<std::string, std::string> names;
   for (size_t m = 0; m < M; ++m) names[system.morphogens[m]] = "rd_u[" + std::to_string(m) + "]";
   for (size_t c = 0; c < system.coefficient_names.size(); ++c) {
@@ -107,25 +143,30 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       varying.push_back(c);
     }
   }
-  std::string reactions;
+  std::string& reactions = setup.reactions;
   for (size_t m = 0; m < M; ++m) {
     std::map<std::string, std::string> formula_names = names;
     // The planted fault rd-no-feed: Gray-Scott's feed term F (1 - u) dropped from the first formula.
-    if (m == 0 && has_option(options.build_options, "PHYSARUM_FAULT_RD_NO_FEED") && formula_names.count("F"))
+    if (m == 0 && has_option(options_.build_options, "PHYSARUM_FAULT_RD_NO_FEED") && formula_names.count("F"))
       formula_names["F"] = "0.0f";
     translated_.push_back(translate_reaction_formula(system.reaction[m], formula_names,
                                                      std::string(kWho) + ": the reaction of morphogen '" +
                                                          system.morphogens[m] + "'"));
     reactions += "rd_r[" + std::to_string(m) + "] = " + translated_.back() + "; ";
   }
-  std::string loads;
+  std::string& loads = setup.loads;
   for (size_t slot = 0; slot < varying.size(); ++slot)
     loads += "const float rd_c" + std::to_string(slot) + " = coefficients[" + std::to_string(slot) + "u * stride + i]; ";
+}
+
+void OpenCLReactionDiffusion::find_shared_weights(const ReactionDiffusionSystem& system, Setup& setup) const {
+  const size_t M = static_cast<size_t>(morphogen_count_);
   // Isotropic morphogens have stiffness D_m L: when every K_m is c_m K_0, the explicit sub-step
   // reads one set of weights for all of them and scales each morphogen's sum by c_m, a third fewer
   // bytes per vertex for two morphogens (bench_reaction_diffusion).
   std::vector<double> weight_scale(M, 1.0);
-  bool shared_weights = integrator_ == Integrator::Forward;
+  bool& shared_weights = setup.shared_weights;
+  shared_weights = integrator_ == Integrator::Forward;
   const std::vector<double>& K0 = system.stiffness[0].value;
   const auto reference = std::find_if(K0.begin(), K0.end(), [](double v) { return v != 0.0; });
   if (reference == K0.end()) shared_weights = false;
@@ -136,15 +177,22 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       shared_weights = std::abs(Km[e] - c * K0[e]) <= 1e-12 * std::max(std::abs(Km[e]), std::abs(c * K0[e]));
     weight_scale[m] = c;
   }
-  std::string scales;
+  std::string& scales = setup.scales;
   for (size_t m = 0; m < M; ++m) scales += (m ? ", " : "") + float_literal(weight_scale[m]);
+}
+
+void OpenCLReactionDiffusion::make_substep_matrices(const ReactionDiffusionSystem& system, Setup& setup) const {
+  const int n = vertex_count_;
+  const size_t M = static_cast<size_t>(morphogen_count_);
   // The explicit sub-step matrices W_m = -h M^-1 K_m, rows of held vertices zero. When every K_m's
   // rows sum to zero (diffusion: always, unless a caller's stiffness says otherwise) only their
   // off-diagonal entries go to the device (RD_ZERO_ROW_SUMS in reaction_diffusion.cl); the ELL width
   // is the narrowest that holds 97 % of the rows whole (opencl/hybrid_matrix.hpp).
-  std::vector<CsrMatrix> substep_matrices;
-  bool zero_row_sums = integrator_ == Integrator::Forward;
-  int ell_width = PHYSARUM_ELL_WIDTH;
+  std::vector<CsrMatrix>& substep_matrices = setup.substep_matrices;
+  bool& zero_row_sums = setup.zero_row_sums;
+  zero_row_sums = integrator_ == Integrator::Forward;
+  int& ell_width = setup.ell_width;
+  ell_width = PHYSARUM_ELL_WIDTH;
   if (integrator_ == Integrator::Forward) {
     for (size_t m = 0; m < M; ++m) {
       zero_row_sums = zero_row_sums && rows_sum_to_zero(system.stiffness[m]);
@@ -158,59 +206,80 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       for (CsrMatrix& W : substep_matrices) W = off_diagonal(W);
     ell_width = ell_width_for(substep_matrices[0], PHYSARUM_ELL_WIDTH, 0.03);
   }
+}
+
+void OpenCLReactionDiffusion::write_floors(const ReactionDiffusionSystem& system, Setup& setup) {
+  const size_t M = static_cast<size_t>(morphogen_count_);
   // The floors, as literals: -INFINITY for a morphogen without one.
-  std::string floors;
+  std::string& floors = setup.floors;
   for (size_t m = 0; m < M; ++m) {
     const bool floored = !system.minimum.empty() && std::isfinite(system.minimum[m]);
     has_floors_ = has_floors_ || floored;
     floors += std::string(m ? ", " : "") + (floored ? float_literal(system.minimum[m]) : "-INFINITY");
   }
-  const std::string prelude = "#define RD_FLOORS {" + floors + "}\n#define RD_MORPHOGENS " + std::to_string(M) + "\n#define RD_LOAD_COEFFICIENTS " + loads +
-                              "\n#define RD_REACTIONS " + reactions + "\n" + (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
-                              (shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + scales + "}\n" : "") +
-                              "#define RD_ELL_WIDTH " + std::to_string(ell_width) + "\n" +
-                              (zero_row_sums ? "#define RD_ZERO_ROW_SUMS\n" : "");
+}
 
-  // ---- program and launch sizes ----
+std::string OpenCLReactionDiffusion::kernel_prelude(const Setup& setup) const {
+  const size_t M = static_cast<size_t>(morphogen_count_);
+  return "#define RD_FLOORS {" + setup.floors + "}\n#define RD_MORPHOGENS " + std::to_string(M) +
+         "\n#define RD_LOAD_COEFFICIENTS " + setup.loads + "\n#define RD_REACTIONS " + setup.reactions + "\n" +
+         (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
+         (setup.shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + setup.scales + "}\n" : "") +
+         "#define RD_ELL_WIDTH " + std::to_string(setup.ell_width) + "\n" +
+         (setup.zero_row_sums ? "#define RD_ZERO_ROW_SUMS\n" : "");
+}
+
+void OpenCLReactionDiffusion::build_kernels(const std::string& prelude) {
   kernels_ = std::make_unique<Kernels>();
   try {
-    const cl::Program program = build_program(compute.context, compute.device, "reaction_diffusion.cl",
-                                              prelude + kernel_source("reaction_diffusion.cl"), options.build_options);
+    const cl::Program program = build_program(compute_.context, compute_.device, "reaction_diffusion.cl",
+                                              prelude + kernel_source("reaction_diffusion.cl"), options_.build_options);
     kernels_->substep = cl::Kernel(program, "rd_explicit_substep");
     kernels_->overflow = cl::Kernel(program, "rd_explicit_overflow");
     kernels_->imex_rhs = cl::Kernel(program, "rd_imex_rhs");
     kernels_->floors = cl::Kernel(program, "rd_apply_floors");
     group_ = common_work_group_size({&kernels_->substep, &kernels_->overflow, &kernels_->imex_rhs, &kernels_->floors},
-                                    compute.device, 256);
+                                    compute_.device, 256);
   } catch (const cl::Error& e) {
     throw device_error("preparing the reaction-diffusion kernels (reaction_diffusion.cl) on " +
-                           compute.device.device_name,
+                           compute_.device.device_name,
                        e.err());
   }
+}
+
+void OpenCLReactionDiffusion::choose_stride() {
+  const size_t un = static_cast<size_t>(vertex_count_);
   // Morphogen blocks start on the device's sub-buffer alignment, so each can be a sub-buffer.
   const size_t align_floats =
-      std::max<size_t>(1, compute.device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / (8 * sizeof(cl_float)));
+      std::max<size_t>(1, compute_.device.device.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / (8 * sizeof(cl_float)));
   const size_t unit = std::max(group_, align_floats);
   stride_ = (un + unit - 1) / unit * unit;
+}
 
-  // ---- buffers ----
-  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+void OpenCLReactionDiffusion::upload_vertex_data(const ReactionDiffusionSystem& system,
+                                                 const std::vector<size_t>& varying) {
+  const size_t un = static_cast<size_t>(vertex_count_);
   std::vector<float> coefficient_values(std::max<size_t>(1, varying.size() * stride_), 0.0f);
   for (size_t slot = 0; slot < varying.size(); ++slot)
     for (size_t i = 0; i < un; ++i)
       coefficient_values[slot * stride_ + i] = static_cast<float>(system.coefficients[varying[slot]][i]);
-  coefficients_ = upload_buffer(compute, "reaction coefficients", coefficient_values, kRead, false);
-  fixed_ = upload_buffer(compute, "held vertices", has_fixed_ ? fixed_host_ : std::vector<std::uint8_t>(1, 0), kRead,
+  coefficients_ = upload_buffer(compute_, "reaction coefficients", coefficient_values, kRead, false);
+  fixed_ = upload_buffer(compute_, "held vertices", has_fixed_ ? fixed_host_ : std::vector<std::uint8_t>(1, 0), kRead,
                          false);
   std::vector<float> mass(stride_, 0.0f);
   for (size_t i = 0; i < un; ++i) mass[i] = static_cast<float>(system.mass[i]);
-  mass_ = upload_buffer(compute, "vertex mass", mass, kRead, false);
+  mass_ = upload_buffer(compute_, "vertex mass", mass, kRead, false);
+}
+
+void OpenCLReactionDiffusion::allocate_state(const ReactionDiffusionSystem& system) {
+  const size_t un = static_cast<size_t>(vertex_count_);
+  const size_t M = static_cast<size_t>(morphogen_count_);
   // Two halves of the state for the explicit integrator's double buffer, one for IMEX.
   const size_t halves = integrator_ == Integrator::Forward ? 2 : 1;
   for (size_t half = 0; half < halves; ++half) {
     DeviceBuffer& u = state_[half];
-    u = allocate_written<cl_float>(compute, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
-    compute.queue.enqueueFillBuffer(u.buffer, 0.0f, 0, u.payload_bytes);
+    u = allocate_written<cl_float>(compute_, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
+    compute_.queue.enqueueFillBuffer(u.buffer, 0.0f, 0, u.payload_bytes);
     for (size_t m = 0; m < M; ++m) {
       cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
       DeviceBuffer view;
@@ -220,86 +289,92 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
       state_views_[half].push_back(view);
     }
   }
+}
 
-  if (integrator_ == Integrator::Forward) {
-    // W_m in hybrid form with one ELL row per padded row.
-    std::vector<HybridMatrix> hybrid;
-    for (size_t m = 0; m < M; ++m) hybrid.push_back(to_hybrid(substep_matrices[m], static_cast<int>(stride_), ell_width));
-    // Each ELL slot's column beside morphogen 0's weight (its bits), one 8-byte pair per slot and
-    // row (kernels/reaction_diffusion.cl says why); then a block of weights for each other
-    // morphogen, none when the weights are shared.
-    const HybridMatrix& shape = hybrid[0];
-    std::vector<cl_int> column_weight(2 * shape.column.size());
-    for (size_t e = 0; e < shape.column.size(); ++e) {
-      column_weight[2 * e] = shape.column[e];
-      std::memcpy(&column_weight[2 * e + 1], &shape.value[e], sizeof(cl_float));
-    }
-    std::vector<float> values, overflow_values;
-    for (size_t m = 0; m < (shared_weights ? 1 : M); ++m) {
-      if (m > 0) values.insert(values.end(), hybrid[m].value.begin(), hybrid[m].value.end());
-      overflow_values.insert(overflow_values.end(), hybrid[m].overflow_value.begin(), hybrid[m].overflow_value.end());
-    }
-    if (values.empty()) values.push_back(0.0f);  // a buffer may not be empty
-    const double weight_blocks = shared_weights ? 1.0 : static_cast<double>(M);
-    overflow_rows_ = shape.overflow_rows();
-    overflow_entries_ = static_cast<int>(shape.overflow_column.size());
-    if (overflow_values.empty()) overflow_values.push_back(0.0f);  // a buffer may not be empty
-    auto non_empty = [](std::vector<int> v) { return v.empty() ? std::vector<int>{0} : v; };
-    column_ = upload_buffer(compute, "reaction-diffusion ELL columns and weights", column_weight, kRead, false);
-    value_ = upload_buffer(compute, "reaction-diffusion ELL weights of morphogens 1..", values, kRead, false);
-    overflow_row_ = upload_buffer(compute, "reaction-diffusion overflow rows", non_empty(shape.overflow_row), kRead, false);
-    overflow_start_ = upload_buffer(compute, "reaction-diffusion overflow starts", shape.overflow_start, kRead, false);
-    overflow_column_ =
-        upload_buffer(compute, "reaction-diffusion overflow columns", non_empty(shape.overflow_column), kRead, false);
-    overflow_value_ = upload_buffer(compute, "reaction-diffusion overflow values", overflow_values, kRead, false);
-    const double ell = static_cast<double>(shape.column.size());
-    bytes_per_sub_step_ = 4.0 * (ell * (1.0 + weight_blocks) +
-                                 static_cast<double>(shape.overflow_row.size() + shape.overflow_start.size()) +
-                                 static_cast<double>(overflow_entries_) * (1.0 + weight_blocks) +
-                                 2.0 * static_cast<double>(M) * static_cast<double>(overflow_rows_) +
-                                 2.0 * static_cast<double>(M * un) + static_cast<double>(varying.size() * un)) +
-                          (has_fixed_ ? static_cast<double>(un) : 0.0);
-  } else {
-    imex_solver_ = options.imex_solver;
-    if (imex_solver_ == ImexSolver::Automatic)
-      imex_solver_ =
-          implicit_solve_on_host(compute.device, n) ? ImexSolver::HostFactorization : ImexSolver::DeviceConjugateGradients;
-    rhs_ = allocate_written<cl_float>(compute, "IMEX right-hand sides", M * stride_);
-    coupling_ = has_fixed_ ? allocate_written<cl_float>(compute, "Dirichlet coupling", M * stride_)
-                           : allocate_written<cl_float>(compute, "Dirichlet coupling", 1);
-    if (imex_solver_ == ImexSolver::HostFactorization && has_fixed_) held_solution_.resize(un);
-    for (size_t m = 0; m < M; ++m) {
-      // S = M + h K_m with the held vertices' rows and columns replaced by m_i on the diagonal.
-      const CsrMatrix& K = stiffness_[m];
-      std::vector<Eigen::Triplet<double>> entries;
-      for (int i = 0; i < n; ++i) {
-        if (fixed_host_[i]) {
-          entries.emplace_back(i, i, system.mass[i]);
-          continue;
-        }
+void OpenCLReactionDiffusion::upload_explicit_operator(const Setup& setup) {
+  const size_t un = static_cast<size_t>(vertex_count_);
+  const size_t M = static_cast<size_t>(morphogen_count_);
+  const bool shared_weights = setup.shared_weights;
+  // W_m in hybrid form with one ELL row per padded row.
+  std::vector<HybridMatrix> hybrid;
+  for (size_t m = 0; m < M; ++m)
+    hybrid.push_back(to_hybrid(setup.substep_matrices[m], static_cast<int>(stride_), setup.ell_width));
+  // Each ELL slot's column beside morphogen 0's weight (its bits), one 8-byte pair per slot and
+  // row (kernels/reaction_diffusion.cl says why); then a block of weights for each other
+  // morphogen, none when the weights are shared.
+  const HybridMatrix& shape = hybrid[0];
+  std::vector<cl_int> column_weight(2 * shape.column.size());
+  for (size_t e = 0; e < shape.column.size(); ++e) {
+    column_weight[2 * e] = shape.column[e];
+    std::memcpy(&column_weight[2 * e + 1], &shape.value[e], sizeof(cl_float));
+  }
+  std::vector<float> values, overflow_values;
+  for (size_t m = 0; m < (shared_weights ? 1 : M); ++m) {
+    if (m > 0) values.insert(values.end(), hybrid[m].value.begin(), hybrid[m].value.end());
+    overflow_values.insert(overflow_values.end(), hybrid[m].overflow_value.begin(), hybrid[m].overflow_value.end());
+  }
+  if (values.empty()) values.push_back(0.0f);  // a buffer may not be empty
+  const double weight_blocks = shared_weights ? 1.0 : static_cast<double>(M);
+  overflow_rows_ = shape.overflow_rows();
+  overflow_entries_ = static_cast<int>(shape.overflow_column.size());
+  if (overflow_values.empty()) overflow_values.push_back(0.0f);  // a buffer may not be empty
+  auto non_empty = [](std::vector<int> v) { return v.empty() ? std::vector<int>{0} : v; };
+  column_ = upload_buffer(compute_, "reaction-diffusion ELL columns and weights", column_weight, kRead, false);
+  value_ = upload_buffer(compute_, "reaction-diffusion ELL weights of morphogens 1..", values, kRead, false);
+  overflow_row_ = upload_buffer(compute_, "reaction-diffusion overflow rows", non_empty(shape.overflow_row), kRead, false);
+  overflow_start_ = upload_buffer(compute_, "reaction-diffusion overflow starts", shape.overflow_start, kRead, false);
+  overflow_column_ =
+      upload_buffer(compute_, "reaction-diffusion overflow columns", non_empty(shape.overflow_column), kRead, false);
+  overflow_value_ = upload_buffer(compute_, "reaction-diffusion overflow values", overflow_values, kRead, false);
+  const double ell = static_cast<double>(shape.column.size());
+  bytes_per_sub_step_ = 4.0 * (ell * (1.0 + weight_blocks) +
+                               static_cast<double>(shape.overflow_row.size() + shape.overflow_start.size()) +
+                               static_cast<double>(overflow_entries_) * (1.0 + weight_blocks) +
+                               2.0 * static_cast<double>(M) * static_cast<double>(overflow_rows_) +
+                               2.0 * static_cast<double>(M * un) + static_cast<double>(setup.varying.size() * un)) +
+                        (has_fixed_ ? static_cast<double>(un) : 0.0);
+}
+
+void OpenCLReactionDiffusion::make_imex_solvers(const ReactionDiffusionSystem& system) {
+  const int n = vertex_count_;
+  const size_t un = static_cast<size_t>(n);
+  const size_t M = static_cast<size_t>(morphogen_count_);
+  imex_solver_ = options_.imex_solver;
+  if (imex_solver_ == ImexSolver::Automatic)
+    imex_solver_ =
+        implicit_solve_on_host(compute_.device, n) ? ImexSolver::HostFactorization : ImexSolver::DeviceConjugateGradients;
+  rhs_ = allocate_written<cl_float>(compute_, "IMEX right-hand sides", M * stride_);
+  coupling_ = has_fixed_ ? allocate_written<cl_float>(compute_, "Dirichlet coupling", M * stride_)
+                         : allocate_written<cl_float>(compute_, "Dirichlet coupling", 1);
+  if (imex_solver_ == ImexSolver::HostFactorization && has_fixed_) held_solution_.resize(un);
+  for (size_t m = 0; m < M; ++m) {
+    // S = M + h K_m with the held vertices' rows and columns replaced by m_i on the diagonal.
+    const CsrMatrix& K = stiffness_[m];
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < n; ++i) {
+      if (fixed_host_[i]) {
         entries.emplace_back(i, i, system.mass[i]);
-        for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e)
-          if (!fixed_host_[K.column[e]]) entries.emplace_back(i, K.column[e], sub_step_ * K.value[e]);
+        continue;
       }
-      Eigen::SparseMatrix<double, Eigen::RowMajor> S(n, n);
-      S.setFromTriplets(entries.begin(), entries.end());
-      if (imex_solver_ == ImexSolver::HostFactorization) {
-        host_solvers_.push_back(std::make_unique<HostCholeskySolve>(
-            CsrMatrix::from_eigen(S), FactorPrecision::Double, std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
-                                          "' (a stiffness matrix that is not positive semi-definite?)"));
-      } else {
-        std::vector<double> inverse_diagonal(un);
-        for (int i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / S.coeff(i, i);
-        solvers_.push_back(std::make_unique<DeviceConjugateGradients>(
-            compute, CsrMatrix::from_eigen(S), inverse_diagonal,
-            ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
-            options.build_options));
-      }
+      entries.emplace_back(i, i, system.mass[i]);
+      for (int e = K.row_start[i]; e < K.row_start[i + 1]; ++e)
+        if (!fixed_host_[K.column[e]]) entries.emplace_back(i, K.column[e], sub_step_ * K.value[e]);
+    }
+    Eigen::SparseMatrix<double, Eigen::RowMajor> S(n, n);
+    S.setFromTriplets(entries.begin(), entries.end());
+    if (imex_solver_ == ImexSolver::HostFactorization) {
+      host_solvers_.push_back(std::make_unique<HostCholeskySolve>(
+          CsrMatrix::from_eigen(S), FactorPrecision::Double, std::string(kWho) + ": the IMEX system of '" + system.morphogens[m] +
+                                        "' (a stiffness matrix that is not positive semi-definite?)"));
+    } else {
+      std::vector<double> inverse_diagonal(un);
+      for (int i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / S.coeff(i, i);
+      solvers_.push_back(std::make_unique<DeviceConjugateGradients>(
+          compute_, CsrMatrix::from_eigen(S), inverse_diagonal,
+          ConjugateGradientOptions{options_.cg_relative_tolerance, options_.cg_max_iterations, options_.cg_check_interval},
+          options_.build_options));
     }
   }
-
-  statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
-  for (size_t m = 0; m < M; ++m) set_field(system.initial[m], static_cast<int>(m));
 }
 
 std::string OpenCLReactionDiffusion::device_name() const { return compute_.device.describe(); }

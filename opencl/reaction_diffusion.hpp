@@ -114,6 +114,31 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
 
  private:
   struct Kernels;
+  // What the constructor's steps hand on to each other (defined in the .cpp; gone once built).
+  struct Setup;
+  // The constructor's steps, in the constructor's order (each needs the ones before it).
+  // The formulas as OpenCL C (translated_), and which coefficients are read per vertex.
+  void translate_kinetics(const ReactionDiffusionSystem& system, Setup& setup);
+  // Whether every K_m is c_m K_0, so that the explicit sub-step reads one set of weights.
+  void find_shared_weights(const ReactionDiffusionSystem& system, Setup& setup) const;
+  // The explicit sub-step's W_m = -h M^-1 K_m and their ELL width (none for IMEX).
+  void make_substep_matrices(const ReactionDiffusionSystem& system, Setup& setup) const;
+  // The floors as literals; has_floors_.
+  void write_floors(const ReactionDiffusionSystem& system, Setup& setup);
+  // The #defines that compile the system into kernels/reaction_diffusion.cl.
+  std::string kernel_prelude(const Setup& setup) const;
+  // Builds the program, takes its kernels and their common work-group size (group_).
+  void build_kernels(const std::string& prelude);
+  // stride_: vertices padded to the work-group size and the device's sub-buffer alignment.
+  void choose_stride();
+  // The varying coefficients, the held flags and the masses.
+  void upload_vertex_data(const ReactionDiffusionSystem& system, const std::vector<size_t>& varying);
+  // The state's halves (two explicit, one IMEX), zeroed, with their per-morphogen views.
+  void allocate_state(const ReactionDiffusionSystem& system);
+  // Explicit: the W_m in hybrid form; bytes_per_sub_step_.
+  void upload_explicit_operator(const Setup& setup);
+  // IMEX: the solver choice, the right-hand side buffers and one solver per morphogen.
+  void make_imex_solvers(const ReactionDiffusionSystem& system);
   void explicit_step();
   void imex_step();
   void host_imex_solve();

@@ -8,7 +8,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <string>
 #include <utility>
 
@@ -20,16 +19,8 @@ struct LoadedScene {
   SceneArrays arrays;
 };
 
-// The scene alone, read from a file written with `j` (the file's checks and defaults apply).
-inline Scene scene_from_json(const nlohmann::json& j) {
-  TempDir dir;
-  const std::string path = (dir.path / "scene.json").string();
-  std::ofstream(path) << j.dump(2);
-  return load_scene(path);
-}
-
 inline LoadedScene load_scene_json(const nlohmann::json& j) {
-  Scene scene = scene_from_json(j);
+  Scene scene = physarum::scene_from_json(j);  // the library's reader: the file's checks and defaults
   PreparedSurface surface = prepare_scene_surface(scene);
   SceneArrays arrays = scene_arrays(scene, surface);
   return LoadedScene{std::move(scene), std::move(surface), std::move(arrays)};

@@ -12,10 +12,10 @@ namespace physarum::testing {
 inline Scene model_scene(int agents, double time_step, std::optional<double> mean_lifetime, Integrator integrator) {
   Scene s = default_scene_parameters(agents);
   s.time_step = time_step;
-  s.parameters[Param::decay_rate] = 2.5;
-  s.parameters[Param::mean_lifetime] = mean_lifetime.value_or(std::numeric_limits<double>::infinity());
-  s.parameters[Param::activation_time] = 0.1;
-  s.integrator = integrator;
+  s.agent_model().parameters[Param::decay_rate] = 2.5;
+  s.agent_model().parameters[Param::mean_lifetime] = mean_lifetime.value_or(std::numeric_limits<double>::infinity());
+  s.agent_model().parameters[Param::activation_time] = 0.1;
+  s.agent_model().integrator = integrator;
   s.seed = 11;
   return s;
 }

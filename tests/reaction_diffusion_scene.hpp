@@ -1,5 +1,5 @@
 #pragma once
-// Reaction-diffusion scenes given as JSON in a test (the scene alone: loaded_scene.hpp's
+// Reaction-diffusion scenes given as JSON in a test (the scene alone: the library's
 // scene_from_json), and for the numerical tests its surface, evaluated maps and the built system.
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"

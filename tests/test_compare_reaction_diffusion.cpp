@@ -70,7 +70,7 @@ TEST(ReactionDiffusionMetrics, ARampCoversTheShareOfTheSquareAboveEachFraction) 
   for (size_t i = 0; i < p.size(); ++i) u[i] = 2.0 + (p[i].x() - low) / (high - low);
   // The preview morphogen is v (the default: the second); make u the shown one.
   Scene scene = rd.scene;
-  scene.reaction_diffusion->preview_morphogen = "u";
+  scene.reaction_diffusion()->preview_morphogen = "u";
   const ReactionDiffusionMetrics metrics(rd.surface, scene, 1.0);
   const std::vector<double> m = metrics.snapshot({u, v});
   const auto& info = metrics.metrics();

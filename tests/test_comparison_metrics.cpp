@@ -1,4 +1,4 @@
-// ComparisonMetrics shared between two arms (tools/compare/comparison_arms.cpp shares one object when the
+// ComparisonMetrics shared between two arms (api/compare/comparison_arms.cpp shares one object when the
 // arms run on one surface): each seed must still run its OWN scene's simulated time at its own
 // time step and be measured against its own U. Measuring with the first arm's dt and U made
 // `--arm time_step=X --arm time_step=X/2` run the second arm for half the simulated time, so its

@@ -94,7 +94,7 @@ SimulationSettings settings_of(const Scene& scene) { return simulation_settings(
 void expect_zero_write_rate_changes_nothing(Backend b, Integrator integrator) {
   const Scene scene = testing::model_scene(500, 0.01, 0.2, integrator);
   const SurfaceDomain& d = sphere().domain;
-  const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   SimulationControls zero;
   zero.write_rate.assign(static_cast<size_t>(d.vertex_count), 0.0);
   auto base = make(b, d, params, SimulationControls{}, settings_of(scene));
@@ -118,13 +118,13 @@ TEST(Controls, ZeroWriteRateIsBitIdenticalToNone) {
 // concentration being clamped at zero), exactly for both integrators' fixed points.
 void expect_write_steady_state(Backend b, Integrator integrator) {
   Scene scene = testing::model_scene(0, 0.05, std::nullopt, integrator);
-  scene.parameters[Param::diffuse_rate] = 0.0;
-  const double r_dec = scene.parameters[Param::decay_rate];
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.0;
+  const double r_dec = scene.agent_model().parameters[Param::decay_rate];
   const SurfaceDomain& d = sphere().domain;
   SimulationControls controls;
   controls.write_rate.assign(static_cast<size_t>(d.vertex_count), 0.0);
   for (int i = 0; i < d.vertex_count; ++i) controls.write_rate[i] = -0.5 + 2.5 * ((i * 37) % 101) / 100.0;
-  auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene));
+  auto sim = make(b, d, VertexParameters::constant(scene.agent_model().parameters, d.vertex_count), controls, settings_of(scene));
   sim->run(600);  // 30 s = 75 relaxation times 1 / r_dec: the transient is below 1e-30
   const IntrinsicVertexData<double> u = sim->field_values();
   for (int i = 0; i < d.vertex_count; ++i) {
@@ -147,10 +147,10 @@ TEST(Controls, WriteStimulusReachesRateOverDecay) {
 // times) of relaxation.
 void expect_u_metric(Backend b) {
   Scene scene = testing::model_scene(3000, 0.01, 1.0, Integrator::Forward);
-  scene.parameters[Param::activation_time] = 0.02;
+  scene.agent_model().parameters[Param::activation_time] = 0.02;
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
-  VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   SimulationControls controls;
   controls.read_stimulus.assign(static_cast<size_t>(d.vertex_count), 0.0);
   DirectionalBias bias;
@@ -238,7 +238,7 @@ void expect_spawn_density(Backend b, const std::string& fault = "") {
   Scene scene = testing::model_scene(20000, 0.01, 0.02, Integrator::Forward);
   SimulationControls controls;
   controls.spawn_weight = cap_and_ramp_weights(s);
-  auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene), fault);
+  auto sim = make(b, d, VertexParameters::constant(scene.agent_model().parameters, d.vertex_count), controls, settings_of(scene), fault);
   const auto zero_face = [&](int f) {
     for (int v : d.face_vertices[f])
       if (controls.spawn_weight[v] != 0.0) return false;
@@ -273,7 +273,7 @@ void expect_spawn_density(Backend b, const std::string& fault = "") {
   double chi2 = 0.0;
   int used = 0;
   for (int g = 0; g < groups; ++g) {
-    const double e = expected[static_cast<size_t>(g)] / total * scene.agents;
+    const double e = expected[static_cast<size_t>(g)] / total * scene.agent_model().agents;
     if (e == 0.0) continue;  // a band inside the zero cap: covered by the check above
     chi2 += std::pow(observed[static_cast<size_t>(g)] - e, 2) / e;
     ++used;
@@ -290,7 +290,7 @@ void expect_spawn_density(Backend b, const std::string& fault = "") {
         ASSERT_FALSE(zero_face(a.face[i])) << name(b) << ": a respawn landed on a zero-weight face";
       }
   }
-  EXPECT_GT(sim->counters().respawns, 2 * scene.agents) << name(b);
+  EXPECT_GT(sim->counters().respawns, 2 * scene.agent_model().agents) << name(b);
 }
 
 TEST(Controls, SpawnPositionsFollowAreaTimesWeight) {
@@ -306,7 +306,7 @@ TEST(Controls, AllZeroSpawnWeightsAreRefused) {
   const Scene scene = testing::model_scene(10, 0.01, 0.2, Integrator::Forward);
   SimulationControls controls;
   controls.spawn_weight.assign(static_cast<size_t>(d.vertex_count), 0.0);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   for (Backend b : {Backend::Reference, Backend::OpenCL})
     EXPECT_THROW(make(b, d, params, controls, settings_of(scene)), InputError) << name(b);
   controls.spawn_weight[0] = -1.0;
@@ -321,7 +321,7 @@ void expect_sink_empty(Backend b) {
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
   Scene scene = testing::model_scene(3000, 0.01, std::nullopt, Integrator::Forward);
-  VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   std::vector<char> sink(static_cast<size_t>(d.vertex_count), 0);
   for (int i = 0; i < d.vertex_count; ++i)
     if (s.position[static_cast<size_t>(i)].z() / s.position[static_cast<size_t>(i)].norm() > 0.5) {
@@ -405,7 +405,7 @@ double alignment_after(Backend b, int symmetry, double strength, const std::stri
   bias.direction = IntrinsicFaceData<std::array<double, 2>>(world_x_in_faces(s));
   bias.strength.assign(static_cast<size_t>(d.vertex_count), strength);
   controls.bias = bias;
-  auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene), fault);
+  auto sim = make(b, d, VertexParameters::constant(scene.agent_model().parameters, d.vertex_count), controls, settings_of(scene), fault);
   sim->run(100);
   return heading_alignment(*sim, bias);
 }
@@ -435,7 +435,7 @@ TEST(Controls, SpawnHeadingAlongBias) {
   controls.bias = bias;
   controls.spawn_heading = SpawnHeading::Bias;
   for (Backend b : {Backend::Reference, Backend::OpenCL}) {
-    auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene));
+    auto sim = make(b, d, VertexParameters::constant(scene.agent_model().parameters, d.vertex_count), controls, settings_of(scene));
     EXPECT_NEAR(heading_alignment(*sim, bias), 1.0, 1e-5) << name(b);
   }
 }
@@ -464,7 +464,7 @@ double disk_ratio(Backend b, double weight_in_u, const std::string& fault = "") 
       inside[static_cast<size_t>(i)] = 1;
       controls.read_stimulus[i] = weight_in_u * U;
     }
-  auto sim = make(b, d, VertexParameters::constant(scene.parameters, d.vertex_count), controls, settings_of(scene), fault);
+  auto sim = make(b, d, VertexParameters::constant(scene.agent_model().parameters, d.vertex_count), controls, settings_of(scene), fault);
   sim->run(100);
   double in = 0.0, out = 0.0, m_in = 0.0, m_out = 0.0;
   for (int k = 0; k < 20; ++k) {
@@ -498,7 +498,7 @@ TEST(Controls, InitialAgesFollowTheLocalLifetime) {
   const TestSurface& s = sphere();
   const SurfaceDomain& d = s.domain;
   const Scene scene = testing::model_scene(20000, 0.01, 1.0, Integrator::Forward);
-  VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   std::vector<int> cap(static_cast<size_t>(d.vertex_count));
   for (int i = 0; i < d.vertex_count; ++i) {
     const double z = s.position[static_cast<size_t>(i)].z() / s.position[static_cast<size_t>(i)].norm();
@@ -531,7 +531,7 @@ TEST(Controls, InitialAgesFollowTheLocalLifetime) {
 TEST(Controls, TerminateRespawnsAtTheBoundary) {
   const SurfaceDomain& d = square().domain;
   const Scene scene = testing::model_scene(2000, 0.01, std::nullopt, Integrator::Forward);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   SimulationControls terminate;
   terminate.boundary = BoundaryBehaviour::Terminate;
   for (Backend b : {Backend::Reference, Backend::OpenCL}) {
@@ -555,7 +555,7 @@ TEST(Controls, TerminateRespawnsAtTheBoundary) {
 double worst_move_error(Backend b, const std::string& fault = "") {
   const SurfaceDomain& d = sphere().domain;
   Scene scene = testing::model_scene(64, 0.001, std::nullopt, Integrator::Forward);
-  VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   for (int i = 0; i < d.vertex_count; ++i) params[Param::move_rate][i] = 0.5 + (i % 7) * 0.5;
   params[Param::turn_frequency].assign(static_cast<size_t>(d.vertex_count), 1e-3);  // no turn decision in one step
   auto sim = make(b, d, params, SimulationControls{}, settings_of(scene), fault);

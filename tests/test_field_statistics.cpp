@@ -48,11 +48,11 @@ TEST(FieldStatistics, UniformSteadyStateFollowsEquationFive) {
                                    0.2, 0.5),
               1.0);
   Scene s;
-  s.agents = 50;
-  s.parameters[Param::deposit_rate] = 3.0;
-  s.parameters[Param::decay_rate] = 1.5;
-  s.parameters[Param::activation_time] = 0.1;
-  s.parameters[Param::mean_lifetime] = 0.4;
+  s.agent_model().agents = 50;
+  s.agent_model().parameters[Param::deposit_rate] = 3.0;
+  s.agent_model().parameters[Param::decay_rate] = 1.5;
+  s.agent_model().parameters[Param::activation_time] = 0.1;
+  s.agent_model().parameters[Param::mean_lifetime] = 0.4;
   EXPECT_DOUBLE_EQ(uniform_steady_state(s, 2.0), 50 * 3.0 / (1.5 * 2.0) * std::exp(-0.25));
   EXPECT_THROW(uniform_steady_state(1, 1.0, 0.0, 1.0, 0.0, kNoTurnover), InputError);
 }

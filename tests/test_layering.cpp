@@ -112,4 +112,20 @@ TEST(Layering, BackendsSeeOnlyTheModelAndGeometryLayers) {
   }
 }
 
+// The command line is a client of the library (api/physarum.hpp): neither the library nor anything
+// below it includes a header of tools/.
+TEST(Layering, TheLibraryNeverIncludesTheCommandLine) {
+  static const std::regex include(R"re(^\s*#\s*include\s*"tools/)re");
+  for (const char* folder : {"api", "common", "reference", "opencl"}) {
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(kSource / folder)) {
+      if (!e.is_regular_file()) continue;
+      std::ifstream in(e.path());
+      std::string line;
+      for (int n = 1; std::getline(in, line); ++n)
+        EXPECT_FALSE(std::regex_search(line, include))
+            << fs::relative(e.path(), kSource).string() << ":" << n << " includes the command line: " << line;
+    }
+  }
+}
+
 }  // namespace

@@ -77,7 +77,7 @@ TEST(OpenCLAgentSimulation, OneStepFromIdenticalStatesMatchesTheReferenceWithBou
 // agent step (sense_deciders), the later ones inside it from the heading the earlier ones left.
 TEST(OpenCLAgentSimulation, OneStepWithSeveralDecisionsPerStepMatchesTheReference) {
   Scene scene = model_scene(20000, 0.5, Integrator::Forward);
-  scene.parameters[Param::turn_frequency] = 250.0;
+  scene.agent_model().parameters[Param::turn_frequency] = 250.0;
   expect_one_step_agrees("shape:sphere", scene);
 }
 
@@ -116,12 +116,12 @@ TEST(OpenCLAgentSimulation, InitialStateIsTheReferences) {
 TEST(OpenCLAgentSimulation, DepositsAddExactlyTheDepositedAmount) {
   const SurfaceDomain domain = delaunay_domain("shape:square");
   Scene scene = model_scene(10000, std::nullopt, Integrator::Forward);
-  scene.parameters[Param::decay_rate] = 0.0;
-  scene.parameters[Param::diffuse_rate] = 0.0;
-  scene.parameters[Param::activation_time] = 0.0;
+  scene.agent_model().parameters[Param::decay_rate] = 0.0;
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.0;
+  scene.agent_model().parameters[Param::activation_time] = 0.0;
   OpenCLAgentSimulation device(compute(), domain, constant_parameters(scene, domain), simulation_settings(scene));
   device.run(3);
-  const double expected = 3 * scene.agents * scene.parameters[Param::deposit_rate] * scene.time_step;
+  const double expected = 3 * scene.agent_model().agents * scene.agent_model().parameters[Param::deposit_rate] * scene.time_step;
   EXPECT_NEAR(device.layer(0).total_amount() / expected, 1.0, 1e-5);
   if (device.fixed_point_deposits()) {
     // Order independence: a second run gives the very same bits.

@@ -111,7 +111,7 @@ TEST(ParameterTable, ParsingFollowsTheTable) {
     json missing = valid;
     missing.erase(std::string(p.key));
     if (p.default_value) {
-      EXPECT_EQ(load(missing).parameters[p.id], *p.default_value * p.file_to_si) << p.key;
+      EXPECT_EQ(load(missing).agent_model().parameters[p.id], *p.default_value * p.file_to_si) << p.key;
     } else {
       try {
         load(missing);
@@ -139,11 +139,11 @@ TEST(ParameterTable, ParsingFollowsTheTable) {
 TEST(ParameterTable, RunJsonParametersRoundTrip) {
   Scene scene;
   scene.mesh = "shape:sphere";
-  scene.agents = 5;
+  scene.agent_model().agents = 5;
   scene.time_step = 0.02;
   double value = 0.25;
-  for (const ParameterSpec& p : kParameterTable) scene.parameters[p.id] = (value += 0.125) * p.file_to_si;
-  scene.parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
+  for (const ParameterSpec& p : kParameterTable) scene.agent_model().parameters[p.id] = (value += 0.125) * p.file_to_si;
+  scene.agent_model().parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
   const nlohmann::ordered_json j = scene_parameters_json(scene);
   for (const ParameterSpec& p : kParameterTable) ASSERT_TRUE(j.contains(std::string(p.key))) << p.key;
   EXPECT_TRUE(j["mean_lifetime"].is_null());
@@ -153,9 +153,9 @@ TEST(ParameterTable, RunJsonParametersRoundTrip) {
   const Scene again = load_scene(path);
   for (const ParameterSpec& p : kParameterTable) {
     if (p.id == Param::mean_lifetime) continue;  // +infinity, checked below
-    EXPECT_NEAR(again.parameters[p.id], scene.parameters[p.id], 1e-12 * std::abs(scene.parameters[p.id])) << p.key;
+    EXPECT_NEAR(again.agent_model().parameters[p.id], scene.agent_model().parameters[p.id], 1e-12 * std::abs(scene.agent_model().parameters[p.id])) << p.key;
   }
-  EXPECT_TRUE(std::isinf(again.parameters[Param::mean_lifetime]));
+  EXPECT_TRUE(std::isinf(again.agent_model().parameters[Param::mean_lifetime]));
 }
 
 // The kernels' record has one named float per agent parameter, in table order, and the host packs

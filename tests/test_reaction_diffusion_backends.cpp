@@ -1,5 +1,5 @@
 // The two reaction-diffusion backends on one scene, built as `physarum run` builds them
-// (tools/backend_factory.hpp from the scene's system): the OpenCL backend follows the reference
+// (api/backend_factory.hpp from the scene's system): the OpenCL backend follows the reference
 // element by element within float rounding over many steps of a growing Gray-Scott pattern, in both
 // integrators; each planted fault moves it far outside that; and a saved state restored into a fresh
 // backend continues bit for bit (the checkpoint/resume contract of common/simulation/simulation_backend.hpp).
@@ -7,7 +7,7 @@
 #include "opencl/runtime/compute_context.hpp"
 #include "opencl/planted_faults.hpp"
 #include "reaction_diffusion_scene.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 

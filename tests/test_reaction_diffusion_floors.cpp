@@ -6,7 +6,7 @@
 #include "common/simulation/simulation_state.hpp"
 #include "opencl/runtime/compute_context.hpp"
 #include "reaction_diffusion_scene.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 

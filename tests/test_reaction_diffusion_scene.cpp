@@ -13,7 +13,7 @@ namespace physarum {
 namespace {
 
 using nlohmann::json;
-using testing::scene_from_json;
+
 
 json base(json extra) {
   json j = {{"mesh", "shape:square"}, {"time_step", 1.0}};
@@ -41,7 +41,7 @@ double coefficient(const ReactionDiffusionSpec& spec, const std::string& name) {
 TEST(ReactionDiffusionScene, NamedModelNeedsNoAgentKeysAndTakesThePapersDefaults) {
   const Scene scene = scene_from_json(base({{"model", "gray-scott"}}));
   ASSERT_TRUE(is_reaction_diffusion(scene));
-  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion;
+  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion();
   ASSERT_EQ(rd.morphogens.size(), 2u);
   EXPECT_EQ(rd.morphogens[0].name, "u");
   EXPECT_EQ(rd.morphogens[1].name, "v");
@@ -82,7 +82,7 @@ TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
                                           {"morphogens", {{"v", {{"diffusion", 3e-5}, {"initial", 0.5}}}}},
                                           {"integrator", "imex"},
                                           {"preview_morphogen", "u"}}));
-  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion;
+  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion();
   EXPECT_EQ(coefficient(rd, "F"), 0.03);
   EXPECT_EQ(coefficient(rd, "k"), 0.06);
   EXPECT_EQ(std::get<double>(rd.morphogens[1].diffusion), 3e-5);
@@ -97,7 +97,7 @@ TEST(ReactionDiffusionScene, CustomKineticsTakeTheMorphogensInAlphabeticalOrder)
                                           {"morphogens", {{"u", {{"diffusion", 1e-4}}},
                                                           {"v", {{"diffusion", 0.0}}},
                                                           {"w", {{"diffusion", 1e-5}, {"initial", 3.0}}}}}}));
-  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion;
+  const ReactionDiffusionSpec& rd = *scene.reaction_diffusion();
   EXPECT_EQ(rd.model, "custom");
   ASSERT_EQ(rd.morphogens.size(), 3u);
   EXPECT_EQ(rd.morphogens[0].name, "u");

@@ -79,12 +79,12 @@ TEST(ReferenceAgentSimulation, MeanIsUWithABoundaryBackwardEuler) { expect_mean_
 TEST(ReferenceAgentSimulation, DiscreteSteadyStateForwardEulerInSubStepsSettlesWhereDerived) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(5000, 0.04, 0.2, Integrator::Forward);
-  scene.parameters[Param::activation_time] = 0.08;  // two whole steps: no activation factor
-  scene.parameters[Param::diffuse_rate] = 0.2;
+  scene.agent_model().parameters[Param::activation_time] = 0.08;  // two whole steps: no activation factor
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.2;
   const double expected = expected_mean_over_U(scene, constant_parameters(scene, domain), domain);
   ASSERT_GT(expected, 1.035) << "the scene must take enough sub-steps to show the effect";
   EXPECT_NEAR(averaged_mean(domain, scene, 200, 800), expected, 0.01);
-  scene.integrator = Integrator::Backward;
+  scene.agent_model().integrator = Integrator::Backward;
   EXPECT_EQ(expected_mean_over_U(scene, constant_parameters(scene, domain), domain), 1.0);
   EXPECT_NEAR(averaged_mean(domain, scene, 200, 800), 1.0, 0.01);
 }
@@ -129,7 +129,7 @@ SteadyStatistics steady_statistics(const SurfaceDomain& domain, Scene scene, std
 void expect_time_step_independence(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(3000, 0.01, 0.5, integrator);
-  scene.parameters[Param::decay_rate] = 1.0;
+  scene.agent_model().parameters[Param::decay_rate] = 1.0;
   const int seeds = 4;
   std::vector<SteadyStatistics> coarse, fine;
   for (int s = 0; s < seeds; ++s) {
@@ -294,7 +294,7 @@ TEST_P(ShippedScenesLoad, WithARunLength) {
     if (!std::filesystem::exists(mesh_path)) GTEST_SKIP() << "mesh " << mesh_path << " of " << p << " is absent";
   }
   const Scene s = load_scene(p.string());
-  EXPECT_GT(s.agents, 0);
+  EXPECT_GT(s.agent_model().agents, 0);
   EXPECT_TRUE(s.steps || s.sim_time) << "a shipped scene must run without --steps / --sim-time";
 }
 
@@ -315,8 +315,8 @@ TEST(ReferenceRunCommand, PrismSceneFollowsFigure10a) {
   EXPECT_FALSE(s.scale_to_area) << "the prism is used at its own size, in metres";
   ASSERT_TRUE(s.max_circumradius);
   EXPECT_LE(*s.max_circumradius, 0.03);
-  EXPECT_GE(s.agents, 1000);
-  EXPECT_LE(s.agents, 2000);
+  EXPECT_GE(s.agent_model().agents, 1000);
+  EXPECT_LE(s.agent_model().agents, 2000);
   EXPECT_LE(s.time_step, 0.001);
 }
 
@@ -408,7 +408,7 @@ TEST(ReferenceRunCommand, PlyIsTheUnscaledInputMeshAfterRefinementAndScaling) {
 void expect_newborn_start_without_turnover(Integrator integrator) {
   const SurfaceDomain domain = delaunay_domain("shape:sphere");
   Scene scene = model_scene(1000, 0.01, std::nullopt, integrator);
-  scene.parameters[Param::activation_time] = 0.2;
+  scene.agent_model().parameters[Param::activation_time] = 0.2;
   ReferenceAgentSimulation sim(domain, constant_parameters(scene, domain), simulation_settings(scene));
   for (double age : sim.agents().age) ASSERT_EQ(age, 0.0) << "agents start newborn without turnover";
   for (int k = 1; k <= 19; ++k) {

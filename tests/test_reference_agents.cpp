@@ -63,7 +63,7 @@ SurfaceDomain domain_as_is(const InputMesh& mesh) { return build_surface_domain(
 Scene plain_scene() {
   Scene s = default_scene_parameters(1);
   s.mesh = "shape:square";
-  s.parameters[Param::diffuse_rate] = 0.0;
+  s.agent_model().parameters[Param::diffuse_rate] = 0.0;
   return s;
 }
 
@@ -286,11 +286,11 @@ SteeringRun steer_in_gradient(double dt, double seconds, double sensor_angle_deg
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
-  scene.parameters[Param::turn_rate] = 20.0 * kDegree;  // 1 degree per decision at f = 20
-  scene.parameters[Param::turn_frequency] = 20.0;
-  scene.parameters[Param::sensor_angle] = sensor_angle_deg * kDegree;
-  scene.parameters[Param::sensor_distance] = 0.1;
-  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  scene.agent_model().parameters[Param::turn_rate] = 20.0 * kDegree;  // 1 degree per decision at f = 20
+  scene.agent_model().parameters[Param::turn_frequency] = 20.0;
+  scene.agent_model().parameters[Param::sensor_angle] = sensor_angle_deg * kDegree;
+  scene.agent_model().parameters[Param::sensor_distance] = 0.1;
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count);
   IntrinsicVertexData<double> u(static_cast<size_t>(domain.vertex_count));
   for (int v = 0; v < domain.vertex_count; ++v) u[v] = mesh.positions[v].x();
   Agents agents;
@@ -325,9 +325,9 @@ TEST(ReferenceAgents, CentreWeakestTurnsToARandomSide) {
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
-  scene.parameters[Param::turn_rate] = 20.0 * kDegree;
-  scene.parameters[Param::sensor_distance] = 0.1;
-  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  scene.agent_model().parameters[Param::turn_rate] = 20.0 * kDegree;
+  scene.agent_model().parameters[Param::sensor_distance] = 0.1;
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count);
   IntrinsicVertexData<double> u(static_cast<size_t>(domain.vertex_count));
   for (int v = 0; v < domain.vertex_count; ++v) u[v] = std::abs(mesh.positions[v].x() - 0.5);
   const int n = 4000;
@@ -425,10 +425,10 @@ TEST(ReferenceAgents, ReflectionKeepsEveryAgentInsideItsFace) {
   const InputMesh mesh = load_mesh("shape:square");
   const SurfaceDomain domain = domain_as_is(mesh);
   Scene scene = plain_scene();
-  scene.agents = 500;
-  scene.parameters[Param::move_rate] = 2.0;  // 0.02 per step: a boundary every ~25 steps
-  SimulationSettings settings{scene.agents, scene.time_step, 2, Integrator::Forward};
-  ReferenceAgentSimulation sim(domain, VertexParameters::constant(scene.parameters, domain.vertex_count), settings);
+  scene.agent_model().agents = 500;
+  scene.agent_model().parameters[Param::move_rate] = 2.0;  // 0.02 per step: a boundary every ~25 steps
+  SimulationSettings settings{scene.agent_model().agents, scene.time_step, 2, Integrator::Forward};
+  ReferenceAgentSimulation sim(domain, VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count), settings);
   double worst = 0.0;
   for (int s = 0; s < 200; ++s) {
     sim.step();
@@ -472,12 +472,12 @@ TEST(ReferenceAgents, ZeroTurnRateWalksGeodesics) {
     const InputMesh mesh = load_mesh("shape:sphere");
     const SurfaceDomain domain = domain_as_is(mesh);
     Scene scene = plain_scene();
-    scene.parameters[Param::turn_rate] = 0.0;
-    scene.parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
-    scene.agents = 50;
-    scene.parameters[Param::move_rate] = 0.5;
-    SimulationSettings settings{scene.agents, scene.time_step, 6, Integrator::Forward};
-    VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+    scene.agent_model().parameters[Param::turn_rate] = 0.0;
+    scene.agent_model().parameters[Param::mean_lifetime] = std::numeric_limits<double>::infinity();
+    scene.agent_model().agents = 50;
+    scene.agent_model().parameters[Param::move_rate] = 0.5;
+    SimulationSettings settings{scene.agent_model().agents, scene.time_step, 6, Integrator::Forward};
+    VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count);
     ReferenceAgentSimulation sim(domain, params, settings);
     const Eigen::Vector3d x0 = point_in_3d(mesh, domain, sim.agents().face[0], sim.agents().position[0]);
     const Eigen::Vector3d d0 = direction_in_3d(mesh, sim.agents().face[0], sim.agents().heading[0]);

@@ -135,9 +135,9 @@ TEST(ReferenceAllocations, CounterSeesAnAllocation) {
 
 Scene uniform_scene(Integrator integrator) {
   Scene s = default_scene_parameters(500);
-  s.parameters[Param::mean_lifetime] = 0.2;  // short, so respawns happen inside the counted steps
-  s.parameters[Param::activation_time] = 0.05;
-  s.integrator = integrator;
+  s.agent_model().parameters[Param::mean_lifetime] = 0.2;  // short, so respawns happen inside the counted steps
+  s.agent_model().parameters[Param::activation_time] = 0.05;
+  s.agent_model().integrator = integrator;
   s.seed = 5;
   return s;
 }
@@ -162,7 +162,7 @@ void expect_steps_allocate_nothing(Integrator integrator) {
 TEST(ReferenceAllocations, TwoSpeciesStepAllocatesNothing) {
   const SurfaceDomain domain = testing::delaunay_domain("shape:sphere");
   const Scene scene = uniform_scene(Integrator::Forward);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, domain.vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, domain.vertex_count);
   SpeciesSet species;
   species.species = {Species{300, params}, Species{200, params}};
   species.sensing = {1.0, -0.5, -0.5, 1.0};

@@ -53,21 +53,21 @@ TEST(Scene, LoadsTheDesignExampleWithUnitsConverted) {
   TempDir dir;
   const Scene s = load_scene(write(dir, valid_scene().dump()));
   EXPECT_EQ(s.mesh, "shape:sphere");
-  EXPECT_EQ(s.agents, 100000);
+  EXPECT_EQ(s.agent_model().agents, 100000);
   EXPECT_DOUBLE_EQ(*s.scale_to_area, 4.0);
   EXPECT_DOUBLE_EQ(*s.max_circumradius, 0.02);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::sensor_angle], 22.5 * std::numbers::pi / 180.0);  // degrees in the file
-  EXPECT_DOUBLE_EQ(s.parameters[Param::turn_rate], std::numbers::pi);                    // 180 deg/s
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::sensor_angle], 22.5 * std::numbers::pi / 180.0);  // degrees in the file
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::turn_rate], std::numbers::pi);                    // 180 deg/s
   EXPECT_DOUBLE_EQ(s.time_step, 0.01);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::sensor_distance], 0.05);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::move_rate], 0.5);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::turn_frequency], 20.0);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::deposit_rate], 1.0);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::decay_rate], 1.0);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::diffuse_rate], 0.0002);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::mean_lifetime], 1.0);
-  EXPECT_DOUBLE_EQ(s.parameters[Param::activation_time], 0.2);
-  EXPECT_EQ(s.integrator, Integrator::Forward);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::sensor_distance], 0.05);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::move_rate], 0.5);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::turn_frequency], 20.0);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::deposit_rate], 1.0);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::decay_rate], 1.0);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::diffuse_rate], 0.0002);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::mean_lifetime], 1.0);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::activation_time], 0.2);
+  EXPECT_EQ(s.agent_model().integrator, Integrator::Forward);
   EXPECT_EQ(s.seed, 1u);
   EXPECT_FALSE(s.steps.has_value());
   EXPECT_FALSE(s.sim_time.has_value());
@@ -85,13 +85,13 @@ TEST(Scene, OptionalKeysAndNullLifetime) {
   j.erase("activation_time");
   TempDir dir;
   const Scene s = load_scene(write(dir, j.dump()));
-  EXPECT_TRUE(std::isinf(s.parameters[Param::mean_lifetime]));  // null: no turnover
-  EXPECT_EQ(s.integrator, Integrator::Backward);
+  EXPECT_TRUE(std::isinf(s.agent_model().parameters[Param::mean_lifetime]));  // null: no turnover
+  EXPECT_EQ(s.agent_model().integrator, Integrator::Backward);
   EXPECT_DOUBLE_EQ(s.min_angle_deg, 25.0);
   EXPECT_EQ(*s.steps, 300);
   EXPECT_EQ(s.seed, 4294967295u);
   EXPECT_FALSE(s.scale_to_area.has_value());
-  EXPECT_DOUBLE_EQ(s.parameters[Param::activation_time], 0.0);
+  EXPECT_DOUBLE_EQ(s.agent_model().parameters[Param::activation_time], 0.0);
   // No turnover: every agent deposits eventually, so U has no exp(-t_a / tau) factor.
   EXPECT_DOUBLE_EQ(uniform_steady_state(s, 2.0), 100000 * 1.0 / (1.0 * 2.0));
 }
@@ -235,7 +235,7 @@ TEST(Scene, ValidateSceneChecksSceneBuiltInCode) {
   TempDir dir;
   Scene s = load_scene(write(dir, valid_scene().dump()));
   EXPECT_NO_THROW(validate_scene(s));
-  s.parameters[Param::sensor_angle] = 4.0;  // radians: 229 degrees
+  s.agent_model().parameters[Param::sensor_angle] = 4.0;  // radians: 229 degrees
   try {
     validate_scene(s);
     FAIL() << "sensor angle of 229 degrees accepted";
@@ -253,13 +253,13 @@ TEST(Scene, VertexParametersAreConstantPerVertex) {
   json j = valid_scene();
   j["mean_lifetime"] = nullptr;
   const Scene s = load_scene(write(dir, j.dump()));
-  const VertexParameters p = VertexParameters::constant(s.parameters, 7);
+  const VertexParameters p = VertexParameters::constant(s.agent_model().parameters, 7);
   EXPECT_EQ(p.vertex_count(), 7);
   for (const ParameterSpec& spec : kParameterTable) {
     EXPECT_EQ(p[spec.id].size(), 7u) << spec.key;
     EXPECT_TRUE(is_uniform(p[spec.id])) << spec.key;
   }
-  EXPECT_DOUBLE_EQ(p[Param::sensor_angle][3], s.parameters[Param::sensor_angle]);
+  EXPECT_DOUBLE_EQ(p[Param::sensor_angle][3], s.agent_model().parameters[Param::sensor_angle]);
   EXPECT_DOUBLE_EQ(p[Param::diffuse_rate][6], 0.0002);
   EXPECT_TRUE(std::isinf(p[Param::mean_lifetime][0]));  // no turnover: zero hazard
   EXPECT_FALSE(is_uniform(IntrinsicVertexData<double>(std::vector<double>{1.0, 1.0, 2.0})));
@@ -269,12 +269,12 @@ TEST(Scene, VertexParametersAreConstantPerVertex) {
 // bit for bit, as load_scene converts them.
 TEST(Scene, DefaultSceneParametersAreTheShippedDefaultScene) {
   const Scene file = load_scene(std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/default.json");
-  const Scene code = default_scene_parameters(file.agents);
-  EXPECT_EQ(code.agents, file.agents);
+  const Scene code = default_scene_parameters(file.agent_model().agents);
+  EXPECT_EQ(code.agent_model().agents, file.agent_model().agents);
   EXPECT_EQ(code.time_step, file.time_step);
   for (const ParameterSpec& spec : kParameterTable)
-    EXPECT_EQ(code.parameters[spec.id], file.parameters[spec.id]) << spec.key;
-  EXPECT_EQ(code.integrator, file.integrator);
+    EXPECT_EQ(code.agent_model().parameters[spec.id], file.agent_model().parameters[spec.id]) << spec.key;
+  EXPECT_EQ(code.agent_model().integrator, file.agent_model().integrator);
   EXPECT_EQ(code.seed, file.seed);
 }
 

@@ -11,7 +11,7 @@
 #include "common/setup/scene_surface.hpp"
 #include "opencl/runtime/compute_context.hpp"
 #include "test_support.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -68,7 +68,7 @@ TEST(SceneMaps, ASceneWithoutMapsIsExactlyTheConstantModel) {
   const Scene scene = load_scene(write_scene(dir, base_scene()));
   const PreparedSurface surface = prepare_scene_surface(scene);
   const SceneArrays arrays = scene_arrays(scene, surface);
-  const VertexParameters constant = VertexParameters::constant(scene.parameters, surface.domain.vertex_count);
+  const VertexParameters constant = VertexParameters::constant(scene.agent_model().parameters, surface.domain.vertex_count);
   for (const ParameterSpec& p : kParameterTable) EXPECT_EQ(arrays.parameters[p.id], constant[p.id]) << p.key;
   EXPECT_TRUE(arrays.controls.read_stimulus.empty());
   EXPECT_TRUE(arrays.controls.write_rate.empty());
@@ -90,7 +90,7 @@ TEST(SceneMaps, ParametersTakeTheMapsValuesInFileUnits) {
   j["sensor_angle"] = "thirty";                                        // degrees, as the file's numbers
   j["move_rate"] = {{"map", "ramp_y"}};                                // no range: the map's values (m/s)
   const Scene scene = load_scene(write_scene(dir, j));
-  EXPECT_TRUE(std::isnan(scene.parameters[Param::sensor_distance]));  // per vertex until evaluated
+  EXPECT_TRUE(std::isnan(scene.agent_model().parameters[Param::sensor_distance]));  // per vertex until evaluated
   const PreparedSurface surface = prepare_scene_surface(scene);
   const VertexParameters p = vertex_parameters(scene, surface);
   for (int v = 0; v < surface.domain.vertex_count; ++v) {
@@ -100,14 +100,14 @@ TEST(SceneMaps, ParametersTakeTheMapsValuesInFileUnits) {
     EXPECT_NEAR(p[Param::sensor_distance][v], 0.02 + 0.04 * x.x(), 1e-15);
     EXPECT_NEAR(p[Param::sensor_angle][v], 30.0 * std::numbers::pi / 180.0, 1e-15);
     EXPECT_NEAR(p[Param::move_rate][v], x.y(), 1e-15);
-    EXPECT_EQ(p[Param::turn_rate][v], scene.parameters[Param::turn_rate]);  // the others stay constant
+    EXPECT_EQ(p[Param::turn_rate][v], scene.agent_model().parameters[Param::turn_rate]);  // the others stay constant
   }
   // The summary value: the square and its grid are symmetric about x = 1/2, so the ramp's
   // mass-weighted mean is exactly 1/2 and sensor_distance's is 0.04.
   const Scene summary = with_mean_parameters(scene, p, surface.domain);
-  EXPECT_NEAR(summary.parameters[Param::sensor_distance], 0.04, 1e-12);
-  EXPECT_NEAR(summary.parameters[Param::move_rate], 0.5, 1e-12);
-  EXPECT_EQ(summary.parameters[Param::decay_rate], scene.parameters[Param::decay_rate]);
+  EXPECT_NEAR(summary.agent_model().parameters[Param::sensor_distance], 0.04, 1e-12);
+  EXPECT_NEAR(summary.agent_model().parameters[Param::move_rate], 0.5, 1e-12);
+  EXPECT_EQ(summary.agent_model().parameters[Param::decay_rate], scene.agent_model().parameters[Param::decay_rate]);
 }
 
 // A mean-lifetime map may reach 0 (a sink, Sec. 3.3), where the hazard is infinite; the constant 0

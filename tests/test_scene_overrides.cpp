@@ -62,9 +62,9 @@ TEST(SceneOverrides, LoadSceneAppliesNestedOverridesWithItsChecks) {
     "mean_lifetime": 1.0, "activation_time": 0.2,
     "maps": {"east": {"direction": [1, 0, 0]}}, "bias": {"direction": "east", "strength": 10}})";
   const Scene s = load_scene(path.string(), json{{"bias.strength", 40.0}, {"agents", 25}});
-  EXPECT_EQ(s.agents, 25);
-  ASSERT_TRUE(s.controls.bias.has_value());
-  EXPECT_EQ(std::get<double>(s.controls.bias->strength), 40.0);
+  EXPECT_EQ(s.agent_model().agents, 25);
+  ASSERT_TRUE(s.agent_model().controls.bias.has_value());
+  EXPECT_EQ(std::get<double>(s.agent_model().controls.bias->strength), 40.0);
   // A nested override goes through the same validation: a negative agent count is refused.
   EXPECT_THROW(load_scene(path.string(), json{{"agents", -1}}), InputError);
   EXPECT_THROW(load_scene(path.string(), json{{"bias.no_such_key", 1}}), InputError);

@@ -64,7 +64,7 @@ TEST(SpeciesScene, EachSpeciesOverridesOnlyWhatItGivesAndTheAgentsAddUp) {
                   {{"agents", 50}, {"sensor_distance", {{"map", "ramp_x"}, {"range", {0.02, 0.06}}}}, {"mean_lifetime", nullptr}}};
   Scene scene;
   const SceneArrays arrays = arrays_of(j, &scene);
-  EXPECT_EQ(scene.agents, 150);  // the top-level count left out: the sum
+  EXPECT_EQ(scene.agent_model().agents, 150);  // the top-level count left out: the sum
   const SpeciesSet& set = arrays.species;
   ASSERT_EQ(set.count(), 2);
   EXPECT_EQ(set.species[0].agents, 100);

@@ -4,7 +4,7 @@
 #include "common/setup/agent_inputs.hpp"
 #include "common/setup/workload.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 

@@ -36,7 +36,7 @@ double mean_edge_length(const SurfaceDomain& domain) {
 ComparisonMetrics::ComparisonMetrics(const PreparedSurface& surface, const Scene& scene, ArmsShare share)
     : domain_(surface.domain), settings_(scene.comparison) {
   const ComparisonSettings& c = settings_;
-  const double d = scene.parameters[Param::sensor_distance];
+  const double d = scene.agent_model().parameters[Param::sensor_distance];
   // The coarsest scale the pattern has: spectral bands above it see only how the network's cells
   // happen to be laid out on the surface, which is metastable and differs from seed to seed by as
   // much as a third, so no affordable number of seeds decides them.

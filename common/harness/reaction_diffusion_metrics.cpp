@@ -90,9 +90,9 @@ double reaction_diffusion_pattern_scale(const ReactionDiffusionSystem& system, c
 ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surface, const Scene& scene,
                                                    double pattern_scale, ArmsShare share)
     : domain_(surface.domain), pattern_scale_(pattern_scale) {
-  if (!scene.reaction_diffusion)
+  if (!scene.reaction_diffusion())
     throw InputError(scene.source + ": reaction-diffusion metrics for a scene that is not a reaction-diffusion system");
-  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
+  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
   const ComparisonSettings& c = scene.comparison;
   morphogens_ = static_cast<int>(spec.morphogens.size());
   preview_ = spec.morphogen_index(spec.preview_morphogen);
@@ -252,7 +252,7 @@ std::vector<double> ReactionDiffusionMetrics::measure_seed(SimulationBackend& si
       for (double x : layers[static_cast<size_t>(k)])
         if (!std::isfinite(x))
           throw InputError(scene.source + ": seed " + std::to_string(scene.seed) + " on the " + sim.backend_name() +
-                           " backend diverged (morphogen '" + scene.reaction_diffusion->morphogens[static_cast<size_t>(k)].name +
+                           " backend diverged (morphogen '" + scene.reaction_diffusion()->morphogens[static_cast<size_t>(k)].name +
                            "' not finite at t = " + std::to_string(sim.time()) +
                            " s); a smaller time_step, or \"integrator\": \"imex\"");
     }

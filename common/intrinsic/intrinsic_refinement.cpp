@@ -263,6 +263,51 @@ int IntrinsicTriangulation::encroached_boundary_edge(int face, const Corners& co
 // Refinement
 // ------------------------------------------------------------------------------------------------
 
+// One refine() call: the queue of faces to refine, the faces where an insertion failed, and the
+// counts it reports.
+class IntrinsicTriangulation::Refinement {
+ public:
+  Refinement(IntrinsicTriangulation& t, const RefinementOptions& options)
+      : t_(t),
+        options_(options),
+        flips_before_(t.flip_count_),
+        angle_threshold_(options.min_angle_deg * kPi / 180.0),
+        max_r_(options.max_circumradius),
+        failed_(t.face_count(), {RefinementGuard::TraceFailed, -1.0}) {}
+
+  RefinementResult run();
+
+ private:
+  enum class Verdict { Fine, Refine, SkipNeedle, SkipCorner };
+  using Entry = std::tuple<double, double, int>;  // (priority, area when queued, face)
+
+  Verdict verdict(int f) const;
+  double priority(int f) const;
+  void consider(int f);
+  const RefinementGuard* failure_of(int f) const;
+  void flip_and_queue_everything();
+  void refine_until_done();
+  bool requeue_missed_violations();
+  void check_insertion_budget() const;
+  void refine_face(int f);
+  void grow_failed_to_face_count();
+  void requeue_around(int m);
+  int insert_circumcenter(int f, RefinementGuard& refused);
+  int boundary_edge_in_the_way(const Walk& walk) const;
+  int insert_inside_walk_face(int f, int best, double best_angle, const Walk& walk);
+  void report_skipped_faces();
+
+  IntrinsicTriangulation& t_;
+  const RefinementOptions& options_;
+  RefinementResult result_;
+  const size_t flips_before_;
+  const double angle_threshold_;
+  const double max_r_;
+  std::priority_queue<Entry> face_queue_;
+  // Faces where an insertion attempt failed, with their area at that time (stale once it changed).
+  std::vector<std::pair<RefinementGuard, double>> failed_;
+};
+
 RefinementResult IntrinsicTriangulation::refine(const RefinementOptions& options) {
   if (!(options.max_circumradius > 0.0))
     throw InputError(source_ + ": refinement needs a positive max circumradius, got " +
@@ -270,194 +315,233 @@ RefinementResult IntrinsicTriangulation::refine(const RefinementOptions& options
   if (!(options.min_angle_deg >= 0.0 && options.min_angle_deg <= 35.0))
     throw InputError(source_ + ": refinement min angle must be in [0, 35] degrees (larger bounds do not terminate), got " +
                      std::to_string(options.min_angle_deg));
+  return Refinement(*this, options).run();
+}
 
-  RefinementResult result;
-  const size_t flips_before = flip_count_;
-  const double angle_threshold = options.min_angle_deg * kPi / 180.0;
-  const double max_r = options.max_circumradius;
+RefinementResult IntrinsicTriangulation::Refinement::run() {
+  flip_and_queue_everything();
+  refine_until_done();
+  report_skipped_faces();
+  result_.flips = t_.flip_count_ - flips_before_;
+  return std::move(result_);
+}
 
-  enum class Verdict { Fine, Refine, SkipNeedle, SkipCorner };
-  const auto verdict = [&](int f) {
-    int needles = 0;
-    bool small_angle = false, unimprovable = false;
-    for (int i = 0; i < 3; ++i) {
-      const int h = 3 * f + i;
-      if (vertex_angle_sum_[tail_[h]] < kPi / 3.0) ++needles;
-      if (angle_threshold > 0.0 && corner_angle_at(h) < angle_threshold) {
-        const bool degree_one = prev(h) == twin_[h];
-        const bool between_boundaries = twin_[h] < 0 && twin_[prev(h)] < 0;
-        if (degree_one || between_boundaries)
-          unimprovable = true;
-        else
-          small_angle = true;
-      }
+IntrinsicTriangulation::Refinement::Verdict IntrinsicTriangulation::Refinement::verdict(int f) const {
+  int needles = 0;
+  bool small_angle = false, unimprovable = false;
+  for (int i = 0; i < 3; ++i) {
+    const int h = 3 * f + i;
+    if (t_.vertex_angle_sum_[t_.tail_[h]] < kPi / 3.0) ++needles;
+    if (angle_threshold_ > 0.0 && t_.corner_angle_at(h) < angle_threshold_) {
+      const bool degree_one = prev(h) == t_.twin_[h];
+      const bool between_boundaries = t_.twin_[h] < 0 && t_.twin_[prev(h)] < 0;
+      if (degree_one || between_boundaries)
+        unimprovable = true;
+      else
+        small_angle = true;
     }
-    const bool too_big = face_circumradius(f) > max_r;
-    if (!too_big && !small_angle) return unimprovable ? Verdict::SkipCorner : Verdict::Fine;
-    // Guard: exactly one corner at a needle (cone) vertex -- see RefinementGuard::NeedleVertex.
-    if (needles == 1) return Verdict::SkipNeedle;
-    return Verdict::Refine;
-  };
-  // Faces on the boundary first (their circumcenters may need boundary splits, which are best done
-  // before the interior fills up), then the largest faces: geometry-central's order.
-  const auto priority = [&](int f) {
-    for (int i = 0; i < 3; ++i)
-      if (twin_[3 * f + i] < 0) return std::numeric_limits<double>::infinity();
-    return face_area(f);
-  };
-  using Entry = std::tuple<double, double, int>;  // (priority, area when queued, face)
-  std::priority_queue<Entry> face_queue;
-  const auto consider = [&](int f) {
-    if (verdict(f) == Verdict::Refine) face_queue.emplace(priority(f), face_area(f), f);
-  };
+  }
+  const bool too_big = t_.face_circumradius(f) > max_r_;
+  if (!too_big && !small_angle) return unimprovable ? Verdict::SkipCorner : Verdict::Fine;
+  // Guard: exactly one corner at a needle (cone) vertex -- see RefinementGuard::NeedleVertex.
+  if (needles == 1) return Verdict::SkipNeedle;
+  return Verdict::Refine;
+}
 
-  // Faces where an insertion attempt failed, with their area at that time (stale once it changed).
-  std::vector<std::pair<RefinementGuard, double>> failed(face_count(), {RefinementGuard::TraceFailed, -1.0});
-  const auto failure_of = [&](int f) -> const RefinementGuard* {
-    if (f < static_cast<int>(failed.size()) && failed[f].second >= 0.0 && failed[f].second == face_area(f))
-      return &failed[f].first;
-    return nullptr;
-  };
+// Faces on the boundary first (their circumcenters may need boundary splits, which are best done
+// before the interior fills up), then the largest faces: geometry-central's order.
+double IntrinsicTriangulation::Refinement::priority(int f) const {
+  for (int i = 0; i < 3; ++i)
+    if (t_.twin_[3 * f + i] < 0) return std::numeric_limits<double>::infinity();
+  return t_.face_area(f);
+}
 
-  // Inserts the circumcenter of f (or splits the boundary edge in the way); returns the new vertex
-  // or -1 with the guard that refused.
-  const auto insert_circumcenter = [&](int f, RefinementGuard& refused) -> int {
-    int best = 0;
-    double best_angle = -1.0;
-    for (int i = 0; i < 3; ++i) {
-      const double angle = corner_angle_at(3 * f + i);
-      if (angle > best_angle) {
-        best_angle = angle;
-        best = i;
-      }
-    }
-    // From the corner with the largest angle, the circumcenter direction always lies inside the
-    // corner (for an obtuse triangle the circumcenter is beyond the opposite edge).
-    const Corners layout = layout_face(length_, f, best);
-    const Vector2d center = geometry::circumcenter(layout[0], layout[1], layout[2]);
-    const double distance = center.norm();
-    if (!(distance > 0.0) || !std::isfinite(distance)) {
-      refused = RefinementGuard::TraceFailed;
-      return -1;
-    }
-    const Vector2d direction = center / distance;
-    const double raw = std::clamp(direction_angle(direction), 0.0, best_angle);
-    const Vector2d ray(std::cos(raw), std::sin(raw));
-    const Walk walk = walk_straight(twin_, length_, f, layout, Vector2d::Zero(), ray, distance);
-    if (walk.end == Walk::End::Failed) {
-      refused = RefinementGuard::TraceFailed;
-      return -1;
-    }
-    int boundary_hit = walk.end == Walk::End::Boundary ? walk.boundary_halfedge : -1;
-    if (boundary_hit < 0) {
-      // A circumcenter ON a boundary edge (the hypotenuse of a right triangle, up to rounding)
-      // counts as outside: inserting it as an interior vertex would make a flat, unflippable face.
-      const Vector3d b = geometry::barycentric(walk.corners[0], walk.corners[1], walk.corners[2], walk.point);
-      for (int k = 0; k < 3; ++k) {
-        const int edge = 3 * walk.face + (k + 1) % 3;  // the edge opposite corner k
-        if (twin_[edge] < 0 && b[k] < kOnEdgeBarycentric) boundary_hit = edge;
-      }
-    }
-    if (boundary_hit < 0) boundary_hit = encroached_boundary_edge(walk.face, walk.corners, walk.point);
-    if (boundary_hit >= 0) {
-      ++result.boundary_splits;
-      return split_boundary_edge(boundary_hit);
-    }
-    for (const Vector2d& corner : walk.corners)
-      if ((corner - walk.point).norm() < kTooCloseFraction * distance) {
-        refused = RefinementGuard::InsertionTooClose;
-        return -1;
-      }
-    // Keep the new vertex strictly inside its face (a point on an edge would make a flat triangle
-    // whose area, from rounded lengths, is badly conditioned), then aim the input-mesh trace at the
-    // moved point: the walk's plane has the source vertex at the origin and halfedge 3f+best on +x,
-    // the frame in which `raw` was measured, so the moved point gives the exact direction and distance.
-    Vector3d inside =
-        clamped_barycentric(geometry::barycentric(walk.corners[0], walk.corners[1], walk.corners[2], walk.point));
-    for (int i = 0; i < 3; ++i) inside[i] = std::max(inside[i], kMinBarycentric);
-    inside /= inside.sum();
-    const Vector2d target = inside[0] * walk.corners[0] + inside[1] * walk.corners[1] + inside[2] * walk.corners[2];
-    const double target_distance = target.norm();
-    const double target_raw = std::clamp(direction_angle(target), 0.0, best_angle);
-    const int source = tail_[3 * f + best];
-    const double source_angle = geometry::wrap_angle(signpost_[3 * f + best] + vertex_scale(source) * target_raw);
-    ++result.circumcenter_insertions;
-    return insert_in_face(walk.face, walk.corners, target, target / target_distance, source, source_angle,
-                          target_distance);
-  };
+void IntrinsicTriangulation::Refinement::consider(int f) {
+  if (verdict(f) == Verdict::Refine) face_queue_.emplace(priority(f), t_.face_area(f), f);
+}
 
-  for (size_t h = 0; h < tail_.size(); ++h)
-    if (twin_[h] > static_cast<int>(h)) enqueue_edge(static_cast<int>(h));
-  flip_queued_edges(nullptr);
-  for (int f = 0; f < face_count(); ++f) consider(f);
+const RefinementGuard* IntrinsicTriangulation::Refinement::failure_of(int f) const {
+  if (f < static_cast<int>(failed_.size()) && failed_[f].second >= 0.0 && failed_[f].second == t_.face_area(f))
+    return &failed_[f].first;
+  return nullptr;
+}
 
+void IntrinsicTriangulation::Refinement::flip_and_queue_everything() {
+  for (size_t h = 0; h < t_.tail_.size(); ++h)
+    if (t_.twin_[h] > static_cast<int>(h)) t_.enqueue_edge(static_cast<int>(h));
+  t_.flip_queued_edges(nullptr);
+  for (int f = 0; f < t_.face_count(); ++f) consider(f);
+}
+
+void IntrinsicTriangulation::Refinement::refine_until_done() {
   std::vector<int> touched;
   int rechecks = 0;
   for (;;) {
     touched.clear();
-    flip_queued_edges(&touched);
+    t_.flip_queued_edges(&touched);
     for (const int f : touched) consider(f);
 
-    if (face_queue.empty()) {
+    if (face_queue_.empty()) {
       // Re-scan everything a few times: rounding can hide a violation from the incremental queues.
       if (rechecks++ >= kMaxRechecks) break;
-      bool found = false;
-      for (int f = 0; f < face_count(); ++f)
-        if (verdict(f) == Verdict::Refine && !failure_of(f)) {
-          consider(f);
-          found = true;
-        }
-      for (size_t h = 0; h < tail_.size(); ++h)
-        if (twin_[h] > static_cast<int>(h) && !edge_is_delaunay(static_cast<int>(h), kDelaunayTolerance)) {
-          enqueue_edge(static_cast<int>(h));
-          found = true;
-        }
-      if (!found) break;
+      if (!requeue_missed_violations()) break;
       continue;
     }
 
-    const auto [weight, area, f] = face_queue.top();
-    face_queue.pop();
+    const auto [weight, area, f] = face_queue_.top();
+    face_queue_.pop();
     (void)weight;
     // Stale entry: the face changed since it was queued (it was re-queued then if still bad).
-    if (area != face_area(f) || verdict(f) != Verdict::Refine || failure_of(f)) continue;
+    if (area != t_.face_area(f) || verdict(f) != Verdict::Refine || failure_of(f)) continue;
 
-    if (result.insertions() >= options.max_insertions)
-      throw InputError(source_ + ": intrinsic refinement to max circumradius " + format_number(max_r) +
-                       (angle_threshold > 0.0 ? " and min angle " + format_number(options.min_angle_deg) + " degrees"
-                                              : std::string()) +
-                       " needs more than the budget of " + std::to_string(options.max_insertions) +
-                       " vertex insertions (" + std::to_string(vertex_count()) +
-                       " vertices so far); use a larger circumradius or a smaller min angle");
+    check_insertion_budget();
+    refine_face(f);
+  }
+}
 
-    RefinementGuard refused = RefinementGuard::TraceFailed;
-    const int m = insert_circumcenter(f, refused);
-    if (m < 0) {
-      if (static_cast<int>(failed.size()) < face_count()) failed.resize(face_count(), {RefinementGuard::TraceFailed, -1.0});
-      failed[f] = {refused, face_area(f)};
-      continue;
+// Queues every face that still needs refining and every non-Delaunay edge; false when there is none.
+bool IntrinsicTriangulation::Refinement::requeue_missed_violations() {
+  bool found = false;
+  for (int f = 0; f < t_.face_count(); ++f)
+    if (verdict(f) == Verdict::Refine && !failure_of(f)) {
+      consider(f);
+      found = true;
     }
-    if (static_cast<int>(failed.size()) < face_count()) failed.resize(face_count(), {RefinementGuard::TraceFailed, -1.0});
-    // Every face around the new vertex may violate a bound, and every edge of them may be non-Delaunay.
-    const int first = outgoing_[m];
-    for (int h = first, guard = 0; guard < 64; ++guard) {
-      const int face = h / 3;
-      failed[face].second = -1.0;
-      consider(face);
-      for (int i = 0; i < 3; ++i) enqueue_edge(3 * face + i);
-      const int n = twin_[prev(h)];
-      if (n < 0 || n == first) break;
-      h = n;
+  for (size_t h = 0; h < t_.tail_.size(); ++h)
+    if (t_.twin_[h] > static_cast<int>(h) && !t_.edge_is_delaunay(static_cast<int>(h), kDelaunayTolerance)) {
+      t_.enqueue_edge(static_cast<int>(h));
+      found = true;
+    }
+  return found;
+}
+
+void IntrinsicTriangulation::Refinement::check_insertion_budget() const {
+  if (result_.insertions() >= options_.max_insertions)
+    throw InputError(t_.source_ + ": intrinsic refinement to max circumradius " + format_number(max_r_) +
+                     (angle_threshold_ > 0.0 ? " and min angle " + format_number(options_.min_angle_deg) + " degrees"
+                                             : std::string()) +
+                     " needs more than the budget of " + std::to_string(options_.max_insertions) +
+                     " vertex insertions (" + std::to_string(t_.vertex_count()) +
+                     " vertices so far); use a larger circumradius or a smaller min angle");
+}
+
+void IntrinsicTriangulation::Refinement::refine_face(int f) {
+  RefinementGuard refused = RefinementGuard::TraceFailed;
+  const int m = insert_circumcenter(f, refused);
+  if (m < 0) {
+    grow_failed_to_face_count();
+    failed_[f] = {refused, t_.face_area(f)};
+    return;
+  }
+  grow_failed_to_face_count();
+  requeue_around(m);
+}
+
+void IntrinsicTriangulation::Refinement::grow_failed_to_face_count() {
+  if (static_cast<int>(failed_.size()) < t_.face_count())
+    failed_.resize(t_.face_count(), {RefinementGuard::TraceFailed, -1.0});
+}
+
+// Every face around the new vertex may violate a bound, and every edge of them may be non-Delaunay.
+void IntrinsicTriangulation::Refinement::requeue_around(int m) {
+  const int first = t_.outgoing_[m];
+  for (int h = first, guard = 0; guard < 64; ++guard) {
+    const int face = h / 3;
+    failed_[face].second = -1.0;
+    consider(face);
+    for (int i = 0; i < 3; ++i) t_.enqueue_edge(3 * face + i);
+    const int n = t_.twin_[prev(h)];
+    if (n < 0 || n == first) break;
+    h = n;
+  }
+}
+
+// Inserts the circumcenter of f (or splits the boundary edge in the way); returns the new vertex
+// or -1 with the guard that refused.
+int IntrinsicTriangulation::Refinement::insert_circumcenter(int f, RefinementGuard& refused) {
+  int best = 0;
+  double best_angle = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double angle = t_.corner_angle_at(3 * f + i);
+    if (angle > best_angle) {
+      best_angle = angle;
+      best = i;
     }
   }
+  // From the corner with the largest angle, the circumcenter direction always lies inside the
+  // corner (for an obtuse triangle the circumcenter is beyond the opposite edge).
+  const Corners layout = layout_face(t_.length_, f, best);
+  const Vector2d center = geometry::circumcenter(layout[0], layout[1], layout[2]);
+  const double distance = center.norm();
+  if (!(distance > 0.0) || !std::isfinite(distance)) {
+    refused = RefinementGuard::TraceFailed;
+    return -1;
+  }
+  const Vector2d direction = center / distance;
+  const double raw = std::clamp(direction_angle(direction), 0.0, best_angle);
+  const Vector2d ray(std::cos(raw), std::sin(raw));
+  const Walk walk = walk_straight(t_.twin_, t_.length_, f, layout, Vector2d::Zero(), ray, distance);
+  if (walk.end == Walk::End::Failed) {
+    refused = RefinementGuard::TraceFailed;
+    return -1;
+  }
+  const int boundary_hit = boundary_edge_in_the_way(walk);
+  if (boundary_hit >= 0) {
+    ++result_.boundary_splits;
+    return t_.split_boundary_edge(boundary_hit);
+  }
+  for (const Vector2d& corner : walk.corners)
+    if ((corner - walk.point).norm() < kTooCloseFraction * distance) {
+      refused = RefinementGuard::InsertionTooClose;
+      return -1;
+    }
+  return insert_inside_walk_face(f, best, best_angle, walk);
+}
 
-  for (int f = 0; f < face_count(); ++f) {
+// The boundary edge to split instead of inserting the walk's end point, or -1: the edge the walk
+// stopped at, one the point lies on, or one whose diametral disk holds it.
+int IntrinsicTriangulation::Refinement::boundary_edge_in_the_way(const Walk& walk) const {
+  int boundary_hit = walk.end == Walk::End::Boundary ? walk.boundary_halfedge : -1;
+  if (boundary_hit < 0) {
+    // A circumcenter ON a boundary edge (the hypotenuse of a right triangle, up to rounding)
+    // counts as outside: inserting it as an interior vertex would make a flat, unflippable face.
+    const Vector3d b = geometry::barycentric(walk.corners[0], walk.corners[1], walk.corners[2], walk.point);
+    for (int k = 0; k < 3; ++k) {
+      const int edge = 3 * walk.face + (k + 1) % 3;  // the edge opposite corner k
+      if (t_.twin_[edge] < 0 && b[k] < kOnEdgeBarycentric) boundary_hit = edge;
+    }
+  }
+  if (boundary_hit < 0) boundary_hit = t_.encroached_boundary_edge(walk.face, walk.corners, walk.point);
+  return boundary_hit;
+}
+
+int IntrinsicTriangulation::Refinement::insert_inside_walk_face(int f, int best, double best_angle, const Walk& walk) {
+  // Keep the new vertex strictly inside its face (a point on an edge would make a flat triangle
+  // whose area, from rounded lengths, is badly conditioned), then aim the input-mesh trace at the
+  // moved point: the walk's plane has the source vertex at the origin and halfedge 3f+best on +x,
+  // the frame in which `raw` was measured, so the moved point gives the exact direction and distance.
+  Vector3d inside =
+      clamped_barycentric(geometry::barycentric(walk.corners[0], walk.corners[1], walk.corners[2], walk.point));
+  for (int i = 0; i < 3; ++i) inside[i] = std::max(inside[i], kMinBarycentric);
+  inside /= inside.sum();
+  const Vector2d target = inside[0] * walk.corners[0] + inside[1] * walk.corners[1] + inside[2] * walk.corners[2];
+  const double target_distance = target.norm();
+  const double target_raw = std::clamp(direction_angle(target), 0.0, best_angle);
+  const int source = t_.tail_[3 * f + best];
+  const double source_angle = geometry::wrap_angle(t_.signpost_[3 * f + best] + t_.vertex_scale(source) * target_raw);
+  ++result_.circumcenter_insertions;
+  return t_.insert_in_face(walk.face, walk.corners, target, target / target_distance, source, source_angle,
+                           target_distance);
+}
+
+void IntrinsicTriangulation::Refinement::report_skipped_faces() {
+  for (int f = 0; f < t_.face_count(); ++f) {
     const Verdict v = verdict(f);
     if (v == Verdict::Fine) continue;
     SkippedFace skipped;
     skipped.face = f;
-    skipped.circumradius = face_circumradius(f);
-    skipped.min_angle_deg = face_min_angle_deg(f);
+    skipped.circumradius = t_.face_circumradius(f);
+    skipped.min_angle_deg = t_.face_min_angle_deg(f);
     if (v == Verdict::SkipNeedle)
       skipped.guard = RefinementGuard::NeedleVertex;
     else if (v == Verdict::SkipCorner)
@@ -466,10 +550,8 @@ RefinementResult IntrinsicTriangulation::refine(const RefinementOptions& options
       skipped.guard = *g;
     else
       skipped.guard = RefinementGuard::Unresolved;
-    result.skipped_faces.push_back(skipped);
+    result_.skipped_faces.push_back(skipped);
   }
-  result.flips = flip_count_ - flips_before;
-  return result;
 }
 
 }  // namespace physarum

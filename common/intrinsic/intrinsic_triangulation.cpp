@@ -49,8 +49,17 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
   const int nf = mesh.triangle_count();
   input_vertex_count_ = nv;
   if (nf == 0) throw InputError(source_ + ": the mesh has no triangles");
+  read_input_corners(mesh);
+  match_input_twins();
+  const std::vector<int> corner_count = find_input_fans(nv);
+  measure_input_angles(corner_count);
+  start_from_input();
+}
 
-  // Corners and edge lengths.
+// Corners and edge lengths.
+void IntrinsicTriangulation::read_input_corners(const InputMesh& mesh) {
+  const int nv = mesh.vertex_count();
+  const int nf = mesh.triangle_count();
   tail_.resize(3 * static_cast<size_t>(nf));
   input_.length.resize(tail_.size());
   for (int f = 0; f < nf; ++f) {
@@ -70,8 +79,10 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
       input_.length[3 * f + i] = l;
     }
   }
+}
 
-  // Twins: sort directed edges (a, b) so that (b, a) can be found by binary search.
+// Twins: sort directed edges (a, b) so that (b, a) can be found by binary search.
+void IntrinsicTriangulation::match_input_twins() {
   const size_t nh = tail_.size();
   std::vector<std::pair<long long, int>> directed(nh);
   auto key = [](int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); };
@@ -91,8 +102,11 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
     auto it = std::lower_bound(directed.begin(), directed.end(), std::make_pair(reverse, -1));
     if (it != directed.end() && it->first == reverse) input_.twin[h] = it->second;
   }
+}
 
-  // Vertex fans: the boundary vertices start at their outgoing boundary halfedge.
+// Vertex fans: the boundary vertices start at their outgoing boundary halfedge.
+std::vector<int> IntrinsicTriangulation::find_input_fans(int nv) {
+  const size_t nh = tail_.size();
   std::vector<int> corner_count(nv, 0);
   input_first_outgoing_.assign(nv, -1);
   vertex_is_boundary_.assign(nv, 0);
@@ -111,10 +125,14 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
   }
   for (int v = 0; v < nv; ++v)
     if (corner_count[v] == 0) throw InputError(source_ + ": vertex " + std::to_string(v) + " is used by no triangle");
+  return corner_count;
+}
 
-  // Angle sums and signposts, walking each fan counter-clockwise: the next outgoing halfedge after
-  // h is twin(prev(h)).
-  input_signpost_.assign(nh, 0.0);
+// Angle sums and signposts, walking each fan counter-clockwise: the next outgoing halfedge after
+// h is twin(prev(h)).
+void IntrinsicTriangulation::measure_input_angles(const std::vector<int>& corner_count) {
+  const int nv = input_vertex_count_;
+  input_signpost_.assign(tail_.size(), 0.0);
   vertex_angle_sum_.assign(nv, 0.0);
   const auto input_corner = [&](int h) {
     return geometry::corner_angle(input_.length[h], input_.length[prev(h)], input_.length[next(h)]);
@@ -148,8 +166,11 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
       h = n;
     }
   }
+}
 
-  // The intrinsic triangulation starts as the input itself.
+// The intrinsic triangulation starts as the input itself.
+void IntrinsicTriangulation::start_from_input() {
+  const int nv = input_vertex_count_;
   twin_ = input_.twin;
   length_ = input_.length;
   signpost_ = input_signpost_;
@@ -164,7 +185,7 @@ IntrinsicTriangulation::IntrinsicTriangulation(const InputMesh& mesh) : source_(
   input_direction_offset_.assign(nv, 0.0);
   boundary_input_halfedge_.assign(nv, -1);
   boundary_parameter_.assign(nv, 0.0);
-  in_edge_queue_.assign(nh, 0);
+  in_edge_queue_.assign(tail_.size(), 0);
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -123,6 +123,15 @@ class IntrinsicTriangulation {
     std::vector<double> length;
   };
 
+  class Refinement;  // one refine() call's queues and bookkeeping (intrinsic_refinement.cpp)
+
+  // ---- construction: the constructor's steps, in order ----
+  void read_input_corners(const InputMesh& mesh);
+  void match_input_twins();
+  std::vector<int> find_input_fans(int nv);  // returns each vertex's corner count
+  void measure_input_angles(const std::vector<int>& corner_count);
+  void start_from_input();
+
   // ---- elementary navigation ----
   static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
   static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }

@@ -65,25 +65,23 @@ double enclosed_volume(const std::vector<Vec3>& positions, const std::vector<std
   return six_volume / 6.0;
 }
 
-ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, const std::string& where) {
-  if (!std::isfinite(time) || !(time > 0.0))
-    throw InputError(where + ": \"time\" = " + std::to_string(time) + " must be a positive finite time");
-  if (steps < 1) throw InputError(where + ": \"steps\" = " + std::to_string(steps) + " must be at least 1");
-  const int n = input.vertex_count();
-  const InputMeshStatistics statistics = compute_statistics(input);
-  const double diagonal = statistics.bounding_box_diagonal;
-  if (!(diagonal > 0.0)) throw InputError(where + ": the input mesh " + input.source + " has no extent to smooth");
+namespace {
 
-  // The fixed stiffness of the input geometry, and the boundary (held in place) from its halfedges.
-  IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
+// The fixed stiffness of the input geometry.
+Eigen::SparseMatrix<double> input_laplacian(const IntrinsicMesh& mesh, const InputMesh& input, const std::string& where) {
   Eigen::SparseMatrix<double> laplacian;
   try {
     laplacian = cotan_laplacian(mesh);
   } catch (const InputError& error) {
     throw InputError(where + ": the input mesh " + input.source + " cannot be smoothed: " + error.what());
   }
-  const InputComponents components = input_components(input);
-  std::vector<bool> on_boundary(static_cast<size_t>(n), false), component_open(components.faces.size(), false);
+  return laplacian;
+}
+
+// The boundary (held in place) from the mesh's halfedges: per vertex, and per component whether it
+// has any (an open component keeps no volume).
+void mark_boundary(const IntrinsicMesh& mesh, const InputComponents& components, std::vector<bool>& on_boundary,
+                   std::vector<bool>& component_open) {
   for (int f = 0; f < mesh.face_count(); ++f)
     for (int i = 0; i < 3; ++i)
       if (mesh.twin[f][i] < 0)
@@ -91,8 +89,18 @@ ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, c
           on_boundary[static_cast<size_t>(v)] = true;
           component_open[static_cast<size_t>(components.label[static_cast<size_t>(v)])] = true;
         }
+}
 
-  // Free vertices, and the parts of L that couple them to each other and to the held boundary.
+// Free vertices, and the parts of L that couple them to each other and to the held boundary.
+struct FreeSystem {
+  std::vector<int> free_vertex;
+  Eigen::SparseMatrix<double> stiffness;  // L_ff
+  Eigen::MatrixXd boundary_load;          // L_fb X_b, constant in time
+};
+
+FreeSystem free_system(const Eigen::SparseMatrix<double>& laplacian, const std::vector<bool>& on_boundary,
+                       const InputMesh& input) {
+  const int n = input.vertex_count();
   std::vector<int> free_index(static_cast<size_t>(n), -1);
   std::vector<int> free_vertex;
   for (int v = 0; v < n; ++v)
@@ -112,23 +120,28 @@ ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, c
     }
   Eigen::SparseMatrix<double> stiffness(m, m);
   stiffness.setFromTriplets(free_free.begin(), free_free.end());
+  return FreeSystem{std::move(free_vertex), std::move(stiffness), std::move(boundary_load)};
+}
 
-  // 1. The flow, the mass updated every step (the system's pattern analysed once).
-  std::vector<Vec3> x = input.positions;
-  const double h = time * diagonal * diagonal / steps;
+// 1. The flow, the mass updated every step (the system's pattern analysed once): `steps` backward
+// Euler steps of length h, moving the free vertices of x.
+void mean_curvature_flow(const InputMesh& input, const FreeSystem& system, double h, int steps, const std::string& where,
+                         std::vector<Vec3>& x) {
+  const std::vector<int>& free_vertex = system.free_vertex;
+  const int m = static_cast<int>(free_vertex.size());
   if (m > 0) {
     // L_ff's diagonal is stored (every free vertex has a face), so adding the mass keeps the
     // pattern: it is analysed once.
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-    solver.analyzePattern(stiffness);
+    solver.analyzePattern(system.stiffness);
     for (int step = 0; step < steps; ++step) {
       const Eigen::VectorXd mass = lumped_mass_at(x, input.triangles);
-      Eigen::SparseMatrix<double> a = h * stiffness;
+      Eigen::SparseMatrix<double> a = h * system.stiffness;
       Eigen::MatrixXd rhs(m, 3);
       for (int i = 0; i < m; ++i) {
         const int v = free_vertex[static_cast<size_t>(i)];
         a.coeffRef(i, i) += mass[v];
-        rhs.row(i) = mass[v] * x[static_cast<size_t>(v)].transpose() - h * boundary_load.row(i);
+        rhs.row(i) = mass[v] * x[static_cast<size_t>(v)].transpose() - h * system.boundary_load.row(i);
       }
       solver.factorize(a);
       if (solver.info() != Eigen::Success)
@@ -138,8 +151,13 @@ ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, c
       for (int i = 0; i < m; ++i) x[static_cast<size_t>(free_vertex[static_cast<size_t>(i)])] = next.row(i).transpose();
     }
   }
+}
 
-  // 2. Each closed component back to its own volume, about its volume centroid.
+// 2. Each closed component back to its own volume, about its volume centroid.
+void restore_closed_volumes(const InputMesh& input, const InputComponents& components,
+                            const std::vector<bool>& component_open, double time, const std::string& where,
+                            std::vector<Vec3>& x) {
+  const int n = input.vertex_count();
   for (size_t c = 0; c < components.faces.size(); ++c) {
     if (component_open[c]) continue;
     const auto& faces = components.faces[c];
@@ -157,25 +175,61 @@ ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, c
     for (int v = 0; v < n; ++v)
       if (components.label[static_cast<size_t>(v)] == static_cast<int>(c)) x[static_cast<size_t>(v)] = centroid + scale * (x[static_cast<size_t>(v)] - centroid);
   }
+}
 
-  // 3. Signed distance along the outward vertex normal.
+// 3. Signed distance along the outward vertex normal.
+InputVertexData<double> signed_distance_along_normals(const InputMesh& input, const std::vector<Vec3>& x) {
+  const int n = input.vertex_count();
   std::vector<Vec3> normal(static_cast<size_t>(n), Vec3::Zero());
   for (const auto& t : input.triangles) {
     const Vec3 face_normal = (input.positions[t[1]] - input.positions[t[0]]).cross(input.positions[t[2]] - input.positions[t[0]]);
     for (const int v : t) normal[static_cast<size_t>(v)] += face_normal;  // |face_normal| = 2 area: area-weighted
   }
-  ElevationProxy out;
-  out.signed_distance = InputVertexData<double>(static_cast<size_t>(n), 0.0);
+  InputVertexData<double> signed_distance(static_cast<size_t>(n), 0.0);
   for (int v = 0; v < n; ++v) {
     const Vec3& nv = normal[static_cast<size_t>(v)];
-    if (nv.norm() > 0.0) out.signed_distance[v] = (input.positions[static_cast<size_t>(v)] - x[static_cast<size_t>(v)]).dot(nv.normalized());
+    if (nv.norm() > 0.0) signed_distance[v] = (input.positions[static_cast<size_t>(v)] - x[static_cast<size_t>(v)]).dot(nv.normalized());
   }
+  return signed_distance;
+}
 
-  // 4. Normalised, without stretching a relief below the floor.
-  const auto [low, high] = std::minmax_element(out.signed_distance.begin(), out.signed_distance.end());
+// 4. Normalised, without stretching a relief below the floor.
+InputVertexData<double> normalised_relief(const InputVertexData<double>& signed_distance, double diagonal) {
+  const int n = static_cast<int>(signed_distance.size());
+  const auto [low, high] = std::minmax_element(signed_distance.begin(), signed_distance.end());
   const double mid = 0.5 * (*low + *high), width = std::max(*high - *low, kElevationReliefFloor * diagonal);
-  out.value = InputVertexData<double>(static_cast<size_t>(n));
-  for (int v = 0; v < n; ++v) out.value[v] = std::clamp(0.5 + (out.signed_distance[v] - mid) / width, 0.0, 1.0);
+  InputVertexData<double> value(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v) value[v] = std::clamp(0.5 + (signed_distance[v] - mid) / width, 0.0, 1.0);
+  return value;
+}
+
+}  // namespace
+
+ElevationProxy elevation_proxy(const InputMesh& input, double time, int steps, const std::string& where) {
+  if (!std::isfinite(time) || !(time > 0.0))
+    throw InputError(where + ": \"time\" = " + std::to_string(time) + " must be a positive finite time");
+  if (steps < 1) throw InputError(where + ": \"steps\" = " + std::to_string(steps) + " must be at least 1");
+  const int n = input.vertex_count();
+  const InputMeshStatistics statistics = compute_statistics(input);
+  const double diagonal = statistics.bounding_box_diagonal;
+  if (!(diagonal > 0.0)) throw InputError(where + ": the input mesh " + input.source + " has no extent to smooth");
+
+  // The fixed stiffness of the input geometry, and the boundary (held in place) from its halfedges.
+  IntrinsicMesh mesh = intrinsic_mesh_from_input(input);
+  const Eigen::SparseMatrix<double> laplacian = input_laplacian(mesh, input, where);
+  const InputComponents components = input_components(input);
+  std::vector<bool> on_boundary(static_cast<size_t>(n), false), component_open(components.faces.size(), false);
+  mark_boundary(mesh, components, on_boundary, component_open);
+  const FreeSystem system = free_system(laplacian, on_boundary, input);
+
+  std::vector<Vec3> x = input.positions;
+  const double h = time * diagonal * diagonal / steps;
+  mean_curvature_flow(input, system, h, steps, where, x);
+  restore_closed_volumes(input, components, component_open, time, where, x);
+
+  ElevationProxy out;
+  out.signed_distance = signed_distance_along_normals(input, x);
+  out.value = normalised_relief(out.signed_distance, diagonal);
   out.smoothed = std::move(x);
   return out;
 }

@@ -96,6 +96,184 @@ SparseMatrix with_identity_rows(SparseMatrix a, const std::vector<char>& removed
   return a;
 }
 
+// ---- the steps of distance() ----------------------------------------------------------------------
+
+// Seeds inside and on the boundary: a seed on the boundary keeps its Neumann value (u = 0 on the
+// rest of the boundary), so the Dirichlet solution has the heat leaving it into the surface too.
+// The Dirichlet solution is averaged into the Neumann one `u`.
+void average_with_dirichlet(ScaledHeat& u, const Eigen::VectorXd& delta, const std::vector<int>& seeds,
+                            const CholeskyFactor& dirichlet, const SparseMatrix& dirichlet_matrix,
+                            const SparseMatrix& heat_matrix, const std::vector<char>& on_boundary) {
+  const int n = static_cast<int>(delta.size());
+  // Its couplings to interior vertices move to the right-hand side (they are zero in the matrix).
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  for (const int s : seeds) {
+    if (!on_boundary[static_cast<size_t>(s)]) {
+      rhs[s] += delta[s];
+      continue;
+    }
+    rhs[s] = u.value[s];  // level 0: a seed is among the largest values
+    for (SparseMatrix::InnerIterator it(heat_matrix, s); it; ++it)
+      if (!on_boundary[static_cast<size_t>(it.row())]) rhs[it.row()] -= it.value() * u.value[s];
+  }
+  // The average, at the Neumann solution's scale: u_D <= u_N (the boundary drains heat), so the
+  // Dirichlet value can only underflow there, never overflow.
+  const ScaledHeat d = heat_in_levels(dirichlet, dirichlet_matrix, rhs);
+  for (int v = 0; v < n; ++v) {
+    const double dirichlet_value =
+        d.value[v] == 0.0 ? 0.0 : d.value[v] * std::exp(u.log_scale[static_cast<size_t>(v)] - d.log_scale[static_cast<size_t>(v)]);
+    u.value[v] = 0.5 * (u.value[v] + dirichlet_value);
+  }
+}
+
+// 2 + 3. The unit field X = -grad u / |grad u| per face, and its integrated divergence per vertex
+// (Crane et al. Sec. 3.2: b_i = 1/2 sum over faces of cot(theta_1) e_1.X + cot(theta_2) e_2.X, e the
+// edges leaving i, theta the angles opposite them), except in the faces around a lone seed corner.
+//
+// There the distance is a cone, and phi (the piecewise linear function whose gradient fits X best)
+// cannot follow it: the interpolant of a cone has a gradient LONGER than 1 in those faces
+// (1 / cos(theta/2) for an apex angle theta: 1.15 on an equilateral fan), so a unit field makes the
+// first ring rise too little from the seed, and everything beyond inherits the deficit as an offset
+// (measured on the unit icosphere of shape:sphere: first ring ~0.17 h too low, mean error -0.013
+// rad, i.e. most of the 0.93-1.09 % of pi). Those faces are flat and touch the seed, so the distance
+// at their corners is known: 0 at the seed and the edge length to the nearest adjacent seed at the
+// others; X there is the gradient of that linear function. Faces with three seed corners lie
+// inside a region of seeds, where the distance is 0, so X = 0 there (the heat's field flows outward
+// from the region's middle and made the result the distance from that middle: 0.47 on the rim of a
+// seeded cap of radius 0.5). Faces with two seed corners keep the heat's field: a seed edge is a
+// piece of a source curve, whose distance grows at unit rate across it.
+
+// Per vertex beside a seed (not a seed itself): the length of the shortest face side to a seed.
+std::vector<double> distance_next_to_seed(const SurfaceDomain& domain, const std::vector<char>& is_seed) {
+  std::vector<double> next_to_seed(static_cast<size_t>(domain.vertex_count), std::numeric_limits<double>::infinity());
+  for (int face = 0; face < domain.face_count; ++face) {
+    const auto& p = domain.face_corners[face];
+    const auto& v = domain.face_vertices[face];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (is_seed[static_cast<size_t>(v[a])] && !is_seed[static_cast<size_t>(v[b])]) {
+          double& d = next_to_seed[static_cast<size_t>(v[b])];
+          d = std::min(d, (p[a] - p[b]).norm());
+        }
+  }
+  return next_to_seed;
+}
+
+// X on a face with one seed corner: the gradient of the distance's interpolant there.
+Eigen::Vector2d cone_field(const std::array<Eigen::Vector2d, 3>& p, const std::array<int, 3>& v,
+                           const std::vector<char>& is_seed, const std::vector<double>& next_to_seed) {
+  Eigen::Vector2d cone = Eigen::Vector2d::Zero();  // the interpolant's gradient times 2A
+  for (int k = 0; k < 3; ++k) {
+    if (is_seed[static_cast<size_t>(v[k])]) continue;
+    const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
+    cone += next_to_seed[static_cast<size_t>(v[k])] * Eigen::Vector2d(-e.y(), e.x());
+  }
+  const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
+  return Eigen::Vector2d(cone / (a.x() * b.y() - a.y() * b.x()));  // signed 2A: the layout's orientation cancels
+}
+
+// X = -grad u / |grad u| on a face, or nothing where no heat reached it.
+std::optional<Eigen::Vector2d> heat_field(const std::array<Eigen::Vector2d, 3>& p, const std::array<int, 3>& v,
+                                          const ScaledHeat& u) {
+  // The corners in one scale. On one level (nearly every face) their values are that; a face
+  // across levels is taken in logarithms with its largest corner at 1 (one level's scale differs
+  // from the next by 440 decades, so no product of a value and a scale factor is safe there).
+  std::array<double, 3> corner_heat{u.value[v[0]], u.value[v[1]], u.value[v[2]]};
+  const double level0 = u.log_scale[static_cast<size_t>(v[0])];
+  if (level0 != u.log_scale[static_cast<size_t>(v[1])] || level0 != u.log_scale[static_cast<size_t>(v[2])]) {
+    std::array<double, 3> log_heat{};
+    double largest = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      log_heat[k] = corner_heat[k] > 0.0 ? std::log(corner_heat[k]) - u.log_scale[static_cast<size_t>(v[k])]
+                                         : -std::numeric_limits<double>::infinity();
+      largest = std::max(largest, log_heat[k]);
+    }
+    for (int k = 0; k < 3; ++k) corner_heat[k] = corner_heat[k] > 0.0 ? std::exp(log_heat[k] - largest) : 0.0;
+  }
+  Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
+    grad += corner_heat[k] * Eigen::Vector2d(-e.y(), e.x());
+  }
+  // Only the direction counts: scaled to its largest component first, because far from the
+  // seeds the components can be ~1e-290 and their squares underflow.
+  const double largest = grad.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) return std::nullopt;  // no heat reached this face: no direction
+  return Eigen::Vector2d(-(grad / largest).normalized());
+}
+
+// The unit field X on one face, or nothing where no heat reached it (or inside a seed region).
+std::optional<Eigen::Vector2d> unit_field_on(const SurfaceDomain& domain, const std::vector<char>& is_seed,
+                                             const std::vector<double>& next_to_seed, const ScaledHeat& u, int face) {
+  const auto& p = domain.face_corners[face];
+  const auto& v = domain.face_vertices[face];
+  const int seed_corners = is_seed[static_cast<size_t>(v[0])] + is_seed[static_cast<size_t>(v[1])] + is_seed[static_cast<size_t>(v[2])];
+  if (seed_corners == 3) return std::nullopt;  // inside a region of seeds: X = grad 0 = 0
+  if (seed_corners == 1) return cone_field(p, v, is_seed, next_to_seed);
+  return heat_field(p, v, u);
+}
+
+// The integrated divergence of X per vertex; `replaced` (empty, or per face an index into
+// `outflow`, -1 for none) overrides field_on.
+//
+// Large meshes: faces in a fixed number of chunks, each summing into its own vector, added in chunk
+// order, so the cores share the pass (70 ms at 1.3 M faces on one) and the result does not depend
+// on the threads. Small ones: one chunk, no thread started.
+template <class FieldOn>
+Eigen::VectorXd integrated_divergence(const SurfaceDomain& domain, const std::vector<std::array<double, 3>>& corner_cot,
+                                      const std::vector<FaceDirectionOverride>& outflow, const std::vector<int>& replaced,
+                                      const FieldOn& field_on) {
+  const int n = domain.vertex_count;
+  const int chunks = domain.face_count < 65536 ? 1 : 4;
+  std::vector<Eigen::VectorXd> partial(static_cast<size_t>(chunks), Eigen::VectorXd::Zero(n));
+  parallel_chunks(chunks, [&](int chunk) {
+    Eigen::VectorXd& divergence = partial[static_cast<size_t>(chunk)];
+    const int first = static_cast<int>(static_cast<long long>(domain.face_count) * chunk / chunks);
+    const int last = static_cast<int>(static_cast<long long>(domain.face_count) * (chunk + 1) / chunks);
+    for (int face = first; face < last; ++face) {
+      std::optional<Eigen::Vector2d> field;
+      if (!replaced.empty() && replaced[static_cast<size_t>(face)] >= 0) field = outflow[static_cast<size_t>(replaced[static_cast<size_t>(face)])].direction;
+      else field = field_on(face);
+      if (!field) continue;
+      const Eigen::Vector2d& x = *field;
+      const auto& p = domain.face_corners[face];
+      const auto& v = domain.face_vertices[face];
+      const auto& cot = corner_cot[static_cast<size_t>(face)];
+      for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        divergence[v[i]] += 0.5 * (cot[k] * (p[j] - p[i]).dot(x) + cot[j] * (p[k] - p[i]).dot(x));
+      }
+    }
+  });
+  Eigen::VectorXd divergence = std::move(partial[0]);
+  for (int chunk = 1; chunk < chunks; ++chunk) divergence += partial[static_cast<size_t>(chunk)];
+  return divergence;
+}
+
+// L phi = -b (L is the positive semi-definite Laplacian, Crane's L_C = -L).
+IntrinsicVertexData<double> solve_poisson(const CholeskyFactor& poisson, const std::vector<char>& pinned,
+                                          const Eigen::VectorXd& divergence) {
+  const int n = static_cast<int>(divergence.size());
+  Eigen::VectorXd rhs = -divergence;
+  for (int v = 0; v < n; ++v)
+    if (pinned[static_cast<size_t>(v)]) rhs[v] = 0.0;
+  IntrinsicVertexData<double> phi(static_cast<size_t>(n), 0.0);
+  Eigen::Map<Eigen::VectorXd>(phi.data(), n) = poisson.solve(rhs);
+  return phi;
+}
+
+// Per piece: the smallest value over its seeds becomes 0.
+void shift_to_zero_at_seeds(IntrinsicVertexData<double>& phi, const std::vector<int>& seeds, const SurfacePieces& pieces) {
+  const int n = static_cast<int>(phi.size());
+  std::vector<double> shift(static_cast<size_t>(pieces.count()), std::numeric_limits<double>::infinity());
+  for (const int s : seeds) {
+    double& m = shift[static_cast<size_t>(pieces.piece_of_vertex[static_cast<size_t>(s)])];
+    m = std::min(m, phi[static_cast<size_t>(s)]);
+  }
+  for (int v = 0; v < n; ++v)
+    phi[static_cast<size_t>(v)] = std::max(0.0, phi[static_cast<size_t>(v)] - shift[static_cast<size_t>(pieces.piece_of_vertex[static_cast<size_t>(v)])]);
+}
+
 }  // namespace
 
 struct HeatGeodesicSolver::Factorizations {
@@ -219,104 +397,15 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
   // from a whole side 2.81 -> 0.61 % (tests/test_geodesic_heat.cpp).
   const bool neumann_only =
       f.boundary && std::all_of(seeds.begin(), seeds.end(), [&](int s) { return f.on_boundary[static_cast<size_t>(s)] != 0; });
-  if (f.boundary && !neumann_only) {
-    // Seeds inside and on the boundary: a seed on the boundary keeps its Neumann value (u = 0 on the
-    // rest of the boundary), so the Dirichlet solution has the heat leaving it into the surface too.
-    // Its couplings to interior vertices move to the right-hand side (they are zero in the matrix).
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-    for (const int s : seeds) {
-      if (!f.on_boundary[static_cast<size_t>(s)]) {
-        rhs[s] += delta[s];
-        continue;
-      }
-      rhs[s] = u.value[s];  // level 0: a seed is among the largest values
-      for (SparseMatrix::InnerIterator it(f.heat_matrix, s); it; ++it)
-        if (!f.on_boundary[static_cast<size_t>(it.row())]) rhs[it.row()] -= it.value() * u.value[s];
-    }
-    // The average, at the Neumann solution's scale: u_D <= u_N (the boundary drains heat), so the
-    // Dirichlet value can only underflow there, never overflow.
-    const ScaledHeat d = heat_in_levels(f.dirichlet, f.dirichlet_matrix, rhs);
-    for (int v = 0; v < n; ++v) {
-      const double dirichlet =
-          d.value[v] == 0.0 ? 0.0 : d.value[v] * std::exp(u.log_scale[static_cast<size_t>(v)] - d.log_scale[static_cast<size_t>(v)]);
-      u.value[v] = 0.5 * (u.value[v] + dirichlet);
-    }
-  }
+  if (f.boundary && !neumann_only)
+    average_with_dirichlet(u, delta, seeds, f.dirichlet, f.dirichlet_matrix, f.heat_matrix, f.on_boundary);
 
-  // 2 + 3. The unit field X = -grad u / |grad u| per face, and its integrated divergence per vertex
-  // (Crane et al. Sec. 3.2: b_i = 1/2 sum over faces of cot(theta_1) e_1.X + cot(theta_2) e_2.X, e the
-  // edges leaving i, theta the angles opposite them), except in the faces around a lone seed corner.
-  //
-  // There the distance is a cone, and phi (the piecewise linear function whose gradient fits X best)
-  // cannot follow it: the interpolant of a cone has a gradient LONGER than 1 in those faces
-  // (1 / cos(theta/2) for an apex angle theta: 1.15 on an equilateral fan), so a unit field makes the
-  // first ring rise too little from the seed, and everything beyond inherits the deficit as an offset
-  // (measured on the unit icosphere of shape:sphere: first ring ~0.17 h too low, mean error -0.013
-  // rad, i.e. most of the 0.93-1.09 % of pi). Those faces are flat and touch the seed, so the distance
-  // at their corners is known: 0 at the seed and the edge length to the nearest adjacent seed at the
-  // others; X there is the gradient of that linear function. Faces with three seed corners lie
-  // inside a region of seeds, where the distance is 0, so X = 0 there (the heat's field flows outward
-  // from the region's middle and made the result the distance from that middle: 0.47 on the rim of a
-  // seeded cap of radius 0.5). Faces with two seed corners keep the heat's field: a seed edge is a
-  // piece of a source curve, whose distance grows at unit rate across it.
+  // 2 + 3. The unit field X per face (the comment above unit_field_on says which) and its
+  // integrated divergence per vertex.
   std::vector<char> is_seed(static_cast<size_t>(n), 0);
   for (const int s : seeds) is_seed[static_cast<size_t>(s)] = 1;
-  std::vector<double> next_to_seed(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
-  for (int face = 0; face < domain_.face_count; ++face) {
-    const auto& p = domain_.face_corners[face];
-    const auto& v = domain_.face_vertices[face];
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        if (is_seed[static_cast<size_t>(v[a])] && !is_seed[static_cast<size_t>(v[b])]) {
-          double& d = next_to_seed[static_cast<size_t>(v[b])];
-          d = std::min(d, (p[a] - p[b]).norm());
-        }
-  }
-  // Large meshes: faces in a fixed number of chunks, each summing into its own vector, added in chunk
-  // order, so the cores share the pass (70 ms at 1.3 M faces on one) and the result does not depend
-  // on the threads. Small ones: one chunk, no thread started.
-  // The unit field X on one face, or nothing where no heat reached it (or inside a seed region).
-  auto field_on = [&](int face) -> std::optional<Eigen::Vector2d> {
-    const auto& p = domain_.face_corners[face];
-    const auto& v = domain_.face_vertices[face];
-    const int seed_corners = is_seed[static_cast<size_t>(v[0])] + is_seed[static_cast<size_t>(v[1])] + is_seed[static_cast<size_t>(v[2])];
-    if (seed_corners == 3) return std::nullopt;  // inside a region of seeds: X = grad 0 = 0
-    if (seed_corners == 1) {
-      Eigen::Vector2d cone = Eigen::Vector2d::Zero();  // the interpolant's gradient times 2A
-      for (int k = 0; k < 3; ++k) {
-        if (is_seed[static_cast<size_t>(v[k])]) continue;
-        const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
-        cone += next_to_seed[static_cast<size_t>(v[k])] * Eigen::Vector2d(-e.y(), e.x());
-      }
-      const Eigen::Vector2d a = p[1] - p[0], b = p[2] - p[0];
-      return Eigen::Vector2d(cone / (a.x() * b.y() - a.y() * b.x()));  // signed 2A: the layout's orientation cancels
-    }
-    // The corners in one scale. On one level (nearly every face) their values are that; a face
-    // across levels is taken in logarithms with its largest corner at 1 (one level's scale differs
-    // from the next by 440 decades, so no product of a value and a scale factor is safe there).
-    std::array<double, 3> corner_heat{u.value[v[0]], u.value[v[1]], u.value[v[2]]};
-    const double level0 = u.log_scale[static_cast<size_t>(v[0])];
-    if (level0 != u.log_scale[static_cast<size_t>(v[1])] || level0 != u.log_scale[static_cast<size_t>(v[2])]) {
-      std::array<double, 3> log_heat{};
-      double largest = -std::numeric_limits<double>::infinity();
-      for (int k = 0; k < 3; ++k) {
-        log_heat[k] = corner_heat[k] > 0.0 ? std::log(corner_heat[k]) - u.log_scale[static_cast<size_t>(v[k])]
-                                           : -std::numeric_limits<double>::infinity();
-        largest = std::max(largest, log_heat[k]);
-      }
-      for (int k = 0; k < 3; ++k) corner_heat[k] = corner_heat[k] > 0.0 ? std::exp(log_heat[k] - largest) : 0.0;
-    }
-    Eigen::Vector2d grad = Eigen::Vector2d::Zero();  // times 2A: only the direction is used
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d e = p[(k + 2) % 3] - p[(k + 1) % 3];
-      grad += corner_heat[k] * Eigen::Vector2d(-e.y(), e.x());
-    }
-    // Only the direction counts: scaled to its largest component first, because far from the
-    // seeds the components can be ~1e-290 and their squares underflow.
-    const double largest = grad.cwiseAbs().maxCoeff();
-    if (!(largest > 0.0)) return std::nullopt;  // no heat reached this face: no direction
-    return Eigen::Vector2d(-(grad / largest).normalized());
-  };
+  const std::vector<double> next_to_seed = distance_next_to_seed(domain_, is_seed);
+  auto field_on = [&](int face) { return unit_field_on(domain_, is_seed, next_to_seed, u, face); };
   // With the Neumann heat alone, the boundary faces where the geodesics leave the surface take the
   // direction from the interior (common/map_tools/boundary_outflow.hpp); replaced[face] indexes `outflow`.
   std::vector<FaceDirectionOverride> outflow;
@@ -326,49 +415,10 @@ IntrinsicVertexData<double> HeatGeodesicSolver::distance(const std::vector<int>&
     replaced.assign(static_cast<size_t>(domain_.face_count), -1);
     for (size_t i = 0; i < outflow.size(); ++i) replaced[static_cast<size_t>(outflow[i].face)] = static_cast<int>(i);
   }
+  const Eigen::VectorXd divergence = integrated_divergence(domain_, f.corner_cot, outflow, replaced, field_on);
 
-  // Large meshes: faces in a fixed number of chunks, each summing into its own vector, added in chunk
-  // order, so the cores share the pass (70 ms at 1.3 M faces on one) and the result does not depend
-  // on the threads. Small ones: one chunk, no thread started.
-  const int chunks = domain_.face_count < 65536 ? 1 : 4;
-  std::vector<Eigen::VectorXd> partial(static_cast<size_t>(chunks), Eigen::VectorXd::Zero(n));
-  parallel_chunks(chunks, [&](int chunk) {
-    Eigen::VectorXd& divergence = partial[static_cast<size_t>(chunk)];
-    const int first = static_cast<int>(static_cast<long long>(domain_.face_count) * chunk / chunks);
-    const int last = static_cast<int>(static_cast<long long>(domain_.face_count) * (chunk + 1) / chunks);
-    for (int face = first; face < last; ++face) {
-      std::optional<Eigen::Vector2d> field;
-      if (!replaced.empty() && replaced[static_cast<size_t>(face)] >= 0) field = outflow[static_cast<size_t>(replaced[static_cast<size_t>(face)])].direction;
-      else field = field_on(face);
-      if (!field) continue;
-      const Eigen::Vector2d& x = *field;
-      const auto& p = domain_.face_corners[face];
-      const auto& v = domain_.face_vertices[face];
-      const auto& cot = f.corner_cot[static_cast<size_t>(face)];
-      for (int i = 0; i < 3; ++i) {
-        const int j = (i + 1) % 3, k = (i + 2) % 3;
-        divergence[v[i]] += 0.5 * (cot[k] * (p[j] - p[i]).dot(x) + cot[j] * (p[k] - p[i]).dot(x));
-      }
-    }
-  });
-  Eigen::VectorXd divergence = std::move(partial[0]);
-  for (int chunk = 1; chunk < chunks; ++chunk) divergence += partial[static_cast<size_t>(chunk)];
-
-  // L phi = -b (L is the positive semi-definite Laplacian, Crane's L_C = -L).
-  Eigen::VectorXd rhs = -divergence;
-  for (int v = 0; v < n; ++v)
-    if (f.pinned[static_cast<size_t>(v)]) rhs[v] = 0.0;
-  IntrinsicVertexData<double> phi(static_cast<size_t>(n), 0.0);
-  Eigen::Map<Eigen::VectorXd>(phi.data(), n) = f.poisson.solve(rhs);
-
-  // Per piece: the smallest value over its seeds becomes 0.
-  std::vector<double> shift(static_cast<size_t>(f.pieces.count()), std::numeric_limits<double>::infinity());
-  for (const int s : seeds) {
-    double& m = shift[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(s)])];
-    m = std::min(m, phi[static_cast<size_t>(s)]);
-  }
-  for (int v = 0; v < n; ++v)
-    phi[static_cast<size_t>(v)] = std::max(0.0, phi[static_cast<size_t>(v)] - shift[static_cast<size_t>(f.pieces.piece_of_vertex[static_cast<size_t>(v)])]);
+  IntrinsicVertexData<double> phi = solve_poisson(f.poisson, f.pinned, divergence);
+  shift_to_zero_at_seeds(phi, seeds, f.pieces);
   return phi;
 }
 

@@ -145,6 +145,86 @@ std::vector<int> region_vertices(const Evaluation& e, const std::string& region)
   return vertices;
 }
 
+// A PLY vertex map at the intrinsic vertices: interpolated linearly in their input faces.
+IntrinsicVertexData<double> ply_vertex_map(const Evaluation& e, const std::string& name, const PlyVertexSource& s) {
+  const int n = e.vertex_count();
+  const SurfaceDomain& domain = e.surface.domain;
+  const InputMesh& input = e.input();
+  IntrinsicVertexData<double> out(static_cast<size_t>(n));
+  const InputVertexData<double> on_input = ply_vertex_values(e, name, s);
+  for (int v = 0; v < n; ++v) {
+    const SurfacePoint& p = domain.vertex_location[v];
+    const auto& t = input.triangles[static_cast<size_t>(p.face)];
+    out[v] = p.barycentric[0] * on_input[t[0]] + p.barycentric[1] * on_input[t[1]] + p.barycentric[2] * on_input[t[2]];
+  }
+  return out;
+}
+
+// A texture sampled at the intrinsic vertices' UVs (interpolated in their input faces).
+IntrinsicVertexData<double> texture_map(const Evaluation& e, const std::string& name, const TextureSource& s) {
+  const int n = e.vertex_count();
+  const SurfaceDomain& domain = e.surface.domain;
+  const InputMesh& input = e.input();
+  IntrinsicVertexData<double> out(static_cast<size_t>(n));
+  if (input.uvs.empty())
+    e.fail(name, "\"texture\" needs texture coordinates (UVs), and " + input.source + " has none");
+  const MapImage image = read_map_image(s.path, s.channel, e.where + ": key 'maps': map '" + name + "'");
+  for (int v = 0; v < n; ++v) {
+    const SurfacePoint& p = domain.vertex_location[v];
+    const auto& t = input.triangle_uvs[static_cast<size_t>(p.face)];
+    const Eigen::Vector2d uv =
+        p.barycentric[0] * input.uvs[t[0]] + p.barycentric[1] * input.uvs[t[1]] + p.barycentric[2] * input.uvs[t[2]];
+    out[v] = image.sample(s.channel, uv);
+  }
+  return out;
+}
+
+// 0 to 1 along one axis of the input mesh's bounding box.
+IntrinsicVertexData<double> axis_ramp_map(const Evaluation& e, const std::string& name, const AxisRampSource& s) {
+  const int n = e.vertex_count();
+  const InputMesh& input = e.input();
+  IntrinsicVertexData<double> out(static_cast<size_t>(n));
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const Vec3& p : input.positions) low = std::min(low, p[s.axis]), high = std::max(high, p[s.axis]);
+  if (!(high > low))
+    e.fail(name, std::string("\"axis\": the input mesh is flat along ") + static_cast<char>('x' + s.axis) +
+                     " (no ramp along it)");
+  // Clamped: an intrinsic vertex lies on the input surface, inside its box up to rounding.
+  for (int v = 0; v < n; ++v) out[v] = std::clamp((e.vertex_position[v][s.axis] - low) / (high - low), 0.0, 1.0);
+  return out;
+}
+
+// The operands folded left to right with the operation.
+IntrinsicVertexData<double> combined_map(const Evaluation& e, const CombineSource& s) {
+  const int n = e.vertex_count();
+  IntrinsicVertexData<double> out = e.operand(s.operands.front());
+  for (size_t k = 1; k < s.operands.size(); ++k) {
+    const IntrinsicVertexData<double> in = e.operand(s.operands[k]);
+    for (int v = 0; v < n; ++v) {
+      switch (s.operation) {
+        case CombineOperation::Sum: out[v] += in[v]; break;
+        case CombineOperation::Product: out[v] *= in[v]; break;
+        case CombineOperation::Min: out[v] = std::min(out[v], in[v]); break;
+        case CombineOperation::Max: out[v] = std::max(out[v], in[v]); break;
+      }
+    }
+  }
+  return out;
+}
+
+IntrinsicVertexData<double> laplace_map(const Evaluation& e, const std::string& name, const LaplaceSource& s) {
+  std::vector<DirichletRegion> regions;
+  for (const LaplaceRegion& r : s.regions) regions.push_back(DirichletRegion{r.region, region_vertices(e, r.region), r.value});
+  return laplace_interpolation(e.surface.domain, regions, e.where + ": key 'maps': map '" + name + "'",
+                               &e.solvers->laplacian_ordering());
+}
+
+void require_finite(const Evaluation& e, const std::string& name, const IntrinsicVertexData<double>& values) {
+  for (int v = 0; v < e.vertex_count(); ++v)
+    if (!std::isfinite(values[v]))
+      e.fail(name, "value " + std::to_string(values[v]) + " at intrinsic vertex " + std::to_string(v) + " is not finite");
+}
+
 IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefinition& map) {
   const int n = e.vertex_count();
   const SurfaceDomain& domain = e.surface.domain;
@@ -160,35 +240,15 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
         if constexpr (std::is_same_v<S, ConstantSource>) {
           out.assign(static_cast<size_t>(n), s.value);
         } else if constexpr (std::is_same_v<S, PlyVertexSource>) {
-          const InputVertexData<double> on_input = ply_vertex_values(e, map.name, s);
-          for (int v = 0; v < n; ++v) {
-            const SurfacePoint& p = domain.vertex_location[v];
-            const auto& t = input.triangles[static_cast<size_t>(p.face)];
-            out[v] = p.barycentric[0] * on_input[t[0]] + p.barycentric[1] * on_input[t[1]] + p.barycentric[2] * on_input[t[2]];
-          }
+          out = ply_vertex_map(e, map.name, s);
         } else if constexpr (std::is_same_v<S, FieldsFullSource>) {
           out = fields_full_values(e, map.name, s);
         } else if constexpr (std::is_same_v<S, TextureSource>) {
-          if (input.uvs.empty())
-            e.fail(map.name, "\"texture\" needs texture coordinates (UVs), and " + input.source + " has none");
-          const MapImage image = read_map_image(s.path, s.channel, e.where + ": key 'maps': map '" + map.name + "'");
-          for (int v = 0; v < n; ++v) {
-            const SurfacePoint& p = domain.vertex_location[v];
-            const auto& t = input.triangle_uvs[static_cast<size_t>(p.face)];
-            const Eigen::Vector2d uv =
-                p.barycentric[0] * input.uvs[t[0]] + p.barycentric[1] * input.uvs[t[1]] + p.barycentric[2] * input.uvs[t[2]];
-            out[v] = image.sample(s.channel, uv);
-          }
+          out = texture_map(e, map.name, s);
         } else if constexpr (std::is_same_v<S, RegionSource>) {
           for (int v = 0; v < n; ++v) out[v] = region_value(distance_outside(s, e.vertex_position[v]), s.falloff);
         } else if constexpr (std::is_same_v<S, AxisRampSource>) {
-          double low = std::numeric_limits<double>::infinity(), high = -low;
-          for (const Vec3& p : input.positions) low = std::min(low, p[s.axis]), high = std::max(high, p[s.axis]);
-          if (!(high > low))
-            e.fail(map.name, std::string("\"axis\": the input mesh is flat along ") + static_cast<char>('x' + s.axis) +
-                                 " (no ramp along it)");
-          // Clamped: an intrinsic vertex lies on the input surface, inside its box up to rounding.
-          for (int v = 0; v < n; ++v) out[v] = std::clamp((e.vertex_position[v][s.axis] - low) / (high - low), 0.0, 1.0);
+          out = axis_ramp_map(e, map.name, s);
         } else if constexpr (std::is_same_v<S, RangeSource>) {
           pointwise(s.operand, [&](double x) { return s.low + (s.high - s.low) * x; });
         } else if constexpr (std::is_same_v<S, InvertSource>) {
@@ -202,18 +262,7 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
             return x;
           });
         } else if constexpr (std::is_same_v<S, CombineSource>) {
-          out = e.operand(s.operands.front());
-          for (size_t k = 1; k < s.operands.size(); ++k) {
-            const IntrinsicVertexData<double> in = e.operand(s.operands[k]);
-            for (int v = 0; v < n; ++v) {
-              switch (s.operation) {
-                case CombineOperation::Sum: out[v] += in[v]; break;
-                case CombineOperation::Product: out[v] *= in[v]; break;
-                case CombineOperation::Min: out[v] = std::min(out[v], in[v]); break;
-                case CombineOperation::Max: out[v] = std::max(out[v], in[v]); break;
-              }
-            }
-          }
+          out = combined_map(e, s);
         } else if constexpr (std::is_same_v<S, GeodesicDistanceSource>) {
           const SeedSurface seeds{domain, e.vertex_position, [&](const std::string& name) -> const IntrinsicVertexData<double>& {
                                     return e.done.scalar_map(name);
@@ -226,9 +275,7 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
             e.fail(map.name, error.what());
           }
         } else if constexpr (std::is_same_v<S, LaplaceSource>) {
-          std::vector<DirichletRegion> regions;
-          for (const LaplaceRegion& r : s.regions) regions.push_back(DirichletRegion{r.region, region_vertices(e, r.region), r.value});
-          out = laplace_interpolation(domain, regions, e.where + ": key 'maps': map '" + map.name + "'", &e.solvers->laplacian_ordering());
+          out = laplace_map(e, map.name, s);
         } else if constexpr (std::is_same_v<S, ElevationSource>) {
           // On the input mesh, then carried to the intrinsic vertices as a PLY vertex map is.
           const ElevationProxy proxy = elevation_proxy(input, s.time, s.steps, e.where + ": key 'maps': map '" + map.name + "'");
@@ -243,9 +290,7 @@ IntrinsicVertexData<double> evaluate_scalar(const Evaluation& e, const MapDefini
         }
       },
       map.source);
-  for (int v = 0; v < n; ++v)
-    if (!std::isfinite(out[v]))
-      e.fail(map.name, "value " + std::to_string(out[v]) + " at intrinsic vertex " + std::to_string(v) + " is not finite");
+  require_finite(e, map.name, out);
   return out;
 }
 

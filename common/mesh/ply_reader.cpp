@@ -82,25 +82,29 @@ const std::vector<double>& named_column(const std::map<std::string, std::vector<
                    ")");
 }
 
-}  // namespace
-
-const std::vector<double>& PlyFields::property(const std::string& name) const {
-  return named_column(properties, property_names, name, mesh.source, "vertex");
+// One "property" line of the header, added to the element it follows.
+void parse_property(std::stringstream& words, Element& e, const std::string& path) {
+  std::string type;
+  words >> type;
+  if (type == "list") {
+    std::string count_type, item_type, name;
+    words >> count_type >> item_type >> name;
+    if (e.has_list) throw InputError(path + ": element '" + e.name + "' has more than one list property");
+    e.has_list = true;
+    e.scalars_before_list = e.scalars.size();
+    e.list_count_type = parse_type(count_type, path);
+    e.list_item_type = parse_type(item_type, path);
+  } else {
+    std::string name;
+    words >> name;
+    e.scalars.push_back({name, parse_type(type, path)});
+  }
 }
 
-const std::vector<double>& PlyFields::face_property(const std::string& name) const {
-  return named_column(face_properties, face_property_names, name, mesh.source, "face");
-}
-
-PlyFields read_ply_fields(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t end = bytes.find("end_header\n");
-  if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos) throw InputError(path + ": not a PLY file");
-
+// The elements the header (everything before "end_header") declares, with their properties.
+std::vector<Element> parse_header(const std::string& header_text, const std::string& path) {
   std::vector<Element> elements;
-  std::stringstream header(bytes.substr(0, end));
+  std::stringstream header(header_text);
   for (std::string line; std::getline(header, line);) {
     std::stringstream words(line);
     std::string keyword;
@@ -117,108 +121,137 @@ PlyFields read_ply_fields(const std::string& path) {
       elements.push_back(e);
     } else if (keyword == "property") {
       if (elements.empty()) throw InputError(path + ": property before any element");
-      std::string type;
-      words >> type;
-      Element& e = elements.back();
-      if (type == "list") {
-        std::string count_type, item_type, name;
-        words >> count_type >> item_type >> name;
-        if (e.has_list) throw InputError(path + ": element '" + e.name + "' has more than one list property");
-        e.has_list = true;
-        e.scalars_before_list = e.scalars.size();
-        e.list_count_type = parse_type(count_type, path);
-        e.list_item_type = parse_type(item_type, path);
-      } else {
-        std::string name;
-        words >> name;
-        e.scalars.push_back({name, parse_type(type, path)});
-      }
+      parse_property(words, elements.back(), path);
     }
   }
+  return elements;
+}
+
+// The binary body being read: the file's bytes and the read position.
+struct Body {
+  const std::string& path;
+  const std::string& bytes;
+  const unsigned char* data;
+  size_t at;
+
+  void need(size_t n) const {
+    if (at + n > bytes.size()) throw InputError(path + ": file ends early (truncated body)");
+  }
+};
+
+void read_vertices(const Element& e, Body& body, PlyFields& result) {
+  const std::string& path = body.path;
+  if (e.has_list) throw InputError(path + ": list properties on vertices are not read");
+  int xyz[3] = {-1, -1, -1};
+  std::vector<std::vector<double>*> columns;
+  for (size_t p = 0; p < e.scalars.size(); ++p) {
+    const std::string& n = e.scalars[p].name;
+    if (n == "x" || n == "y" || n == "z") {
+      xyz[n[0] - 'x'] = static_cast<int>(p);
+      columns.push_back(nullptr);
+    } else {
+      result.property_names.push_back(n);
+      columns.push_back(&result.properties[n]);
+    }
+  }
+  if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) throw InputError(path + ": vertices lack x, y or z");
+  result.mesh.positions.resize(static_cast<size_t>(e.count));
+  for (auto* c : columns)
+    if (c) c->reserve(static_cast<size_t>(e.count));
+  for (long long v = 0; v < e.count; ++v) {
+    for (size_t p = 0; p < e.scalars.size(); ++p) {
+      const size_t size = type_size(e.scalars[p].type);
+      body.need(size);
+      const double value = decode(body.data + body.at, e.scalars[p].type);
+      body.at += size;
+      if (columns[p])
+        columns[p]->push_back(value);
+      else
+        result.mesh.positions[static_cast<size_t>(v)][e.scalars[p].name[0] - 'x'] = value;
+    }
+  }
+}
+
+// One face's vertex-index list, which must be a triangle of existing vertices.
+std::array<int, 3> read_triangle(const Element& e, Body& body, long long f, size_t vertex_count) {
+  const std::string& path = body.path;
+  const size_t count_size = type_size(e.list_count_type), item_size = type_size(e.list_item_type);
+  body.need(count_size);
+  const double corners = decode(body.data + body.at, e.list_count_type);
+  body.at += count_size;
+  if (corners != 3) throw InputError(path + ": face " + std::to_string(f) + " is not a triangle");
+  std::array<int, 3> t{};
+  for (int c = 0; c < 3; ++c) {
+    body.need(item_size);
+    const double index = decode(body.data + body.at, e.list_item_type);
+    body.at += item_size;
+    if (index < 0 || index >= static_cast<double>(vertex_count))
+      throw InputError(path + ": face " + std::to_string(f) + " has vertex index " +
+                       std::to_string(static_cast<long long>(index)) + " out of range");
+    t[c] = static_cast<int>(index);
+  }
+  return t;
+}
+
+void read_faces(const Element& e, Body& body, PlyFields& result) {
+  const std::string& path = body.path;
+  if (!e.has_list) throw InputError(path + ": faces must have a list property (vertex indices)");
+  // Where the list sits among the scalars: the header lists it in order, but this reader keeps
+  // scalars and the list apart, so they are read in the order the header gave them.
+  std::vector<std::vector<double>*> columns;
+  for (const ScalarProperty& p : e.scalars) {
+    if (result.face_properties.count(p.name) > 0) throw InputError(path + ": face property '" + p.name + "' appears twice");
+    result.face_property_names.push_back(p.name);
+    columns.push_back(&result.face_properties[p.name]);
+    columns.back()->reserve(static_cast<size_t>(e.count));
+  }
+  result.mesh.triangles.reserve(static_cast<size_t>(e.count));
+  auto read_scalars = [&](size_t from, size_t to) {
+    for (size_t p = from; p < to; ++p) {
+      const size_t size = type_size(e.scalars[p].type);
+      body.need(size);
+      columns[p]->push_back(decode(body.data + body.at, e.scalars[p].type));
+      body.at += size;
+    }
+  };
+  for (long long f = 0; f < e.count; ++f) {
+    read_scalars(0, e.scalars_before_list);
+    result.mesh.triangles.push_back(read_triangle(e, body, f, result.mesh.positions.size()));
+    read_scalars(e.scalars_before_list, e.scalars.size());
+  }
+}
+
+}  // namespace
+
+const std::vector<double>& PlyFields::property(const std::string& name) const {
+  return named_column(properties, property_names, name, mesh.source, "vertex");
+}
+
+const std::vector<double>& PlyFields::face_property(const std::string& name) const {
+  return named_column(face_properties, face_property_names, name, mesh.source, "face");
+}
+
+PlyFields read_ply_fields(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t end = bytes.find("end_header\n");
+  if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos) throw InputError(path + ": not a PLY file");
+  const std::vector<Element> elements = parse_header(bytes.substr(0, end), path);
 
   PlyFields result;
   result.mesh.source = path;
-  size_t at = end + std::strlen("end_header\n");
-  auto need = [&](size_t n) {
-    if (at + n > bytes.size()) throw InputError(path + ": file ends early (truncated body)");
-  };
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  Body body{path, bytes, reinterpret_cast<const unsigned char*>(bytes.data()), end + std::strlen("end_header\n")};
   for (const Element& e : elements) {
     if (e.name == "vertex") {
-      if (e.has_list) throw InputError(path + ": list properties on vertices are not read");
-      int xyz[3] = {-1, -1, -1};
-      std::vector<std::vector<double>*> columns;
-      for (size_t p = 0; p < e.scalars.size(); ++p) {
-        const std::string& n = e.scalars[p].name;
-        if (n == "x" || n == "y" || n == "z") {
-          xyz[n[0] - 'x'] = static_cast<int>(p);
-          columns.push_back(nullptr);
-        } else {
-          result.property_names.push_back(n);
-          columns.push_back(&result.properties[n]);
-        }
-      }
-      if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) throw InputError(path + ": vertices lack x, y or z");
-      result.mesh.positions.resize(static_cast<size_t>(e.count));
-      for (auto* c : columns)
-        if (c) c->reserve(static_cast<size_t>(e.count));
-      for (long long v = 0; v < e.count; ++v) {
-        for (size_t p = 0; p < e.scalars.size(); ++p) {
-          const size_t size = type_size(e.scalars[p].type);
-          need(size);
-          const double value = decode(data + at, e.scalars[p].type);
-          at += size;
-          if (columns[p])
-            columns[p]->push_back(value);
-          else
-            result.mesh.positions[static_cast<size_t>(v)][e.scalars[p].name[0] - 'x'] = value;
-        }
-      }
+      read_vertices(e, body, result);
     } else if (e.name == "face") {
-      if (!e.has_list) throw InputError(path + ": faces must have a list property (vertex indices)");
-      // Where the list sits among the scalars: the header lists it in order, but this reader keeps
-      // scalars and the list apart, so they are read in the order the header gave them.
-      std::vector<std::vector<double>*> columns;
-      for (const ScalarProperty& p : e.scalars) {
-        if (result.face_properties.count(p.name) > 0) throw InputError(path + ": face property '" + p.name + "' appears twice");
-        result.face_property_names.push_back(p.name);
-        columns.push_back(&result.face_properties[p.name]);
-        columns.back()->reserve(static_cast<size_t>(e.count));
-      }
-      result.mesh.triangles.reserve(static_cast<size_t>(e.count));
-      const size_t count_size = type_size(e.list_count_type), item_size = type_size(e.list_item_type);
-      auto read_scalars = [&](size_t from, size_t to) {
-        for (size_t p = from; p < to; ++p) {
-          const size_t size = type_size(e.scalars[p].type);
-          need(size);
-          columns[p]->push_back(decode(data + at, e.scalars[p].type));
-          at += size;
-        }
-      };
-      for (long long f = 0; f < e.count; ++f) {
-        read_scalars(0, e.scalars_before_list);
-        need(count_size);
-        const double corners = decode(data + at, e.list_count_type);
-        at += count_size;
-        if (corners != 3) throw InputError(path + ": face " + std::to_string(f) + " is not a triangle");
-        std::array<int, 3> t{};
-        for (int c = 0; c < 3; ++c) {
-          need(item_size);
-          const double index = decode(data + at, e.list_item_type);
-          at += item_size;
-          if (index < 0 || index >= static_cast<double>(result.mesh.positions.size()))
-            throw InputError(path + ": face " + std::to_string(f) + " has vertex index " +
-                             std::to_string(static_cast<long long>(index)) + " out of range");
-          t[c] = static_cast<int>(index);
-        }
-        result.mesh.triangles.push_back(t);
-        read_scalars(e.scalars_before_list, e.scalars.size());
-      }
+      read_faces(e, body, result);
     } else {
       throw InputError(path + ": element '" + e.name + "' is not read (only vertex and face)");
     }
   }
-  if (at != bytes.size()) throw InputError(path + ": unexpected bytes after the last element");
+  if (body.at != bytes.size()) throw InputError(path + ": unexpected bytes after the last element");
   result.mesh.file_vertex.resize(result.mesh.positions.size());
   for (size_t v = 0; v < result.mesh.file_vertex.size(); ++v) result.mesh.file_vertex[v] = static_cast<int>(v);
   return result;

@@ -76,11 +76,14 @@ void text(OIIO::ImageBuf& image, int x, int y, const std::string& s, int size, O
   OIIO::ImageBufAlgo::render_text(image, x, y, s, size, kFont, black, ax, ay);
 }
 
-}  // namespace
+using AX = OIIO::ImageBufAlgo::TextAlignX;
+using AY = OIIO::ImageBufAlgo::TextAlignY;
+constexpr float kWhite[3] = {1.0f, 1.0f, 1.0f}, kGrid[3] = {0.88f, 0.88f, 0.88f}, kAxis[3] = {0.2f, 0.2f, 0.2f};
 
-void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>& series, const PlotOptions& options) {
+// The axes fitted to every drawable point (error bars included) and placed inside the margins.
+void fit_axes(const std::string& path, const std::vector<PlotSeries>& series, const PlotOptions& options, Axis& ax,
+              Axis& ay) {
   const int w = options.width, h = options.height;
-  Axis ax{options.log_x}, ay{options.log_y};
   std::vector<double> xs, ys;
   for (const PlotSeries& s : series) {
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
@@ -96,65 +99,67 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
   ay.fit(ys);
   ax.pixel_from = kLeft, ax.pixel_to = w - kRight;
   ay.pixel_from = h - kBottom, ay.pixel_to = kTop;
+}
 
-  OIIO::ImageBuf image(OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT));
-  const float white[3] = {1.0f, 1.0f, 1.0f}, grid[3] = {0.88f, 0.88f, 0.88f}, axis[3] = {0.2f, 0.2f, 0.2f};
-  OIIO::ImageBufAlgo::fill(image, white);
-  using AX = OIIO::ImageBufAlgo::TextAlignX;
-  using AY = OIIO::ImageBufAlgo::TextAlignY;
-
-  // Grid and ticks.
+void draw_grid_and_ticks(OIIO::ImageBuf& image, const Axis& ax, const Axis& ay, int w, int h) {
   for (double t : ax.ticks()) {
     const int px = static_cast<int>(std::lround(ax.pixel(t)));
-    OIIO::ImageBufAlgo::render_line(image, px, kTop, px, h - kBottom, grid);
+    OIIO::ImageBufAlgo::render_line(image, px, kTop, px, h - kBottom, kGrid);
     text(image, px, h - kBottom + 20, tick_label(t), 14, AX::Center, AY::Baseline);
   }
   for (double t : ay.ticks()) {
     const int py = static_cast<int>(std::lround(ay.pixel(t)));
-    OIIO::ImageBufAlgo::render_line(image, kLeft, py, w - kRight, py, grid);
+    OIIO::ImageBufAlgo::render_line(image, kLeft, py, w - kRight, py, kGrid);
     text(image, kLeft - 6, py + 5, tick_label(t), 14, AX::Right, AY::Baseline);
   }
-  OIIO::ImageBufAlgo::render_box(image, kLeft, kTop, w - kRight, h - kBottom, axis);
+  OIIO::ImageBufAlgo::render_box(image, kLeft, kTop, w - kRight, h - kBottom, kAxis);
+}
 
-  // Series: error bars, then lines (solid or dashed), then markers.
-  for (const PlotSeries& s : series) {
-    const OIIO::cspan<float> c(s.color.data(), 3);
-    int previous_x = 0, previous_y = 0;
-    bool have_previous = false;
-    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if (!ax.drawable(s.x[i]) || !ay.drawable(s.y[i])) {
-        have_previous = false;
-        continue;
-      }
-      const int px = static_cast<int>(std::lround(ax.pixel(s.x[i])));
-      const int py = static_cast<int>(std::lround(ay.pixel(s.y[i])));
-      if (i < s.y_low.size() && i < s.y_high.size() && ay.drawable(s.y_low[i]) && ay.drawable(s.y_high[i])) {
-        const int lo = static_cast<int>(std::lround(ay.pixel(s.y_low[i])));
-        const int hi = static_cast<int>(std::lround(ay.pixel(s.y_high[i])));
-        OIIO::ImageBufAlgo::render_line(image, px, lo, px, hi, c);
-        OIIO::ImageBufAlgo::render_line(image, px - 4, lo, px + 4, lo, c);
-        OIIO::ImageBufAlgo::render_line(image, px - 4, hi, px + 4, hi, c);
-      }
-      if (have_previous) {
-        // Dashed: 10-pixel dashes with 6-pixel gaps along the segment.
-        const double length = std::hypot(px - previous_x, py - previous_y);
-        const double dash = s.dashed ? 10.0 : length, period = s.dashed ? 16.0 : length + 1.0;
-        for (double from = 0.0; from < length; from += period) {
-          const double to = std::min(length, from + dash);
-          const auto at = [&](double u, int a, int b) { return static_cast<int>(std::lround(a + (b - a) * u / length)); };
-          const int x0 = at(from, previous_x, px), y0 = at(from, previous_y, py);
-          const int x1 = at(to, previous_x, px), y1 = at(to, previous_y, py);
-          OIIO::ImageBufAlgo::render_line(image, x0, y0, x1, y1, c);
-          OIIO::ImageBufAlgo::render_line(image, x0, y0 + 1, x1, y1 + 1, c);
-        }
-      }
-      OIIO::ImageBufAlgo::render_box(image, px - 3, py - 3, px + 3, py + 3, c, true);
-      previous_x = px, previous_y = py, have_previous = true;
-    }
+// The line from the previous point to this one, solid or dashed.
+void draw_segment(OIIO::ImageBuf& image, const PlotSeries& s, int previous_x, int previous_y, int px, int py) {
+  const OIIO::cspan<float> c(s.color.data(), 3);
+  // Dashed: 10-pixel dashes with 6-pixel gaps along the segment.
+  const double length = std::hypot(px - previous_x, py - previous_y);
+  const double dash = s.dashed ? 10.0 : length, period = s.dashed ? 16.0 : length + 1.0;
+  for (double from = 0.0; from < length; from += period) {
+    const double to = std::min(length, from + dash);
+    const auto at = [&](double u, int a, int b) { return static_cast<int>(std::lround(a + (b - a) * u / length)); };
+    const int x0 = at(from, previous_x, px), y0 = at(from, previous_y, py);
+    const int x1 = at(to, previous_x, px), y1 = at(to, previous_y, py);
+    OIIO::ImageBufAlgo::render_line(image, x0, y0, x1, y1, c);
+    OIIO::ImageBufAlgo::render_line(image, x0, y0 + 1, x1, y1 + 1, c);
   }
+}
 
-  // Legend (inside the plot area, on white, in whichever top or bottom corner covers the fewest
-  // points), labels, title.
+// One series: at each point its error bar, then the line from the previous point, then its marker.
+void draw_series(OIIO::ImageBuf& image, const PlotSeries& s, const Axis& ax, const Axis& ay) {
+  const OIIO::cspan<float> c(s.color.data(), 3);
+  int previous_x = 0, previous_y = 0;
+  bool have_previous = false;
+  for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    if (!ax.drawable(s.x[i]) || !ay.drawable(s.y[i])) {
+      have_previous = false;
+      continue;
+    }
+    const int px = static_cast<int>(std::lround(ax.pixel(s.x[i])));
+    const int py = static_cast<int>(std::lround(ay.pixel(s.y[i])));
+    if (i < s.y_low.size() && i < s.y_high.size() && ay.drawable(s.y_low[i]) && ay.drawable(s.y_high[i])) {
+      const int lo = static_cast<int>(std::lround(ay.pixel(s.y_low[i])));
+      const int hi = static_cast<int>(std::lround(ay.pixel(s.y_high[i])));
+      OIIO::ImageBufAlgo::render_line(image, px, lo, px, hi, c);
+      OIIO::ImageBufAlgo::render_line(image, px - 4, lo, px + 4, lo, c);
+      OIIO::ImageBufAlgo::render_line(image, px - 4, hi, px + 4, hi, c);
+    }
+    if (have_previous) draw_segment(image, s, previous_x, previous_y, px, py);
+    OIIO::ImageBufAlgo::render_box(image, px - 3, py - 3, px + 3, py + 3, c, true);
+    previous_x = px, previous_y = py, have_previous = true;
+  }
+}
+
+// The legend (inside the plot area, on white, in whichever top or bottom corner covers the fewest
+// points).
+void draw_legend(OIIO::ImageBuf& image, const std::vector<PlotSeries>& series, const Axis& ax, const Axis& ay, int w,
+                 int h) {
   int legend_width = 0;
   for (const PlotSeries& s : series) {
     const OIIO::ROI size = OIIO::ImageBufAlgo::text_size(s.label, 14, kFont);
@@ -175,8 +180,8 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
       }
     if (fewest < 0 || covered < fewest) fewest = covered, lx = x0, ly = y0;
   }
-  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, white, true);
-  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, grid);
+  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, kWhite, true);
+  OIIO::ImageBufAlgo::render_box(image, lx, ly, lx + box_w, ly + legend_height, kGrid);
   int legend_y = ly + 18;
   for (const PlotSeries& s : series) {
     const OIIO::cspan<float> c(s.color.data(), 3);
@@ -185,16 +190,36 @@ void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>&
     text(image, lx + 38, legend_y + 1, s.label, 14, AX::Left, AY::Baseline);
     legend_y += 22;
   }
-  text(image, (kLeft + w - kRight) / 2, h - 18, options.x_label, 16, AX::Center, AY::Baseline);
-  text(image, 8, kTop - 12, options.y_label, 16, AX::Left, AY::Baseline);
-  text(image, (kLeft + w - kRight) / 2, 24, options.title, 18, AX::Center, AY::Baseline);
+}
 
+void write_png(const std::string& path, const OIIO::ImageBuf& image) {
   write_file_atomically(path, [&](const std::string& temporary) {
     OIIO::ImageBuf out;
     OIIO::ImageBufAlgo::copy(out, image, OIIO::TypeDesc::UINT8);
     if (!out.write(temporary, OIIO::TypeDesc::UINT8, "png"))
       throw InputError(path + ": cannot write PNG: " + out.geterror());
   });
+}
+
+}  // namespace
+
+void write_line_plot_png(const std::string& path, const std::vector<PlotSeries>& series, const PlotOptions& options) {
+  const int w = options.width, h = options.height;
+  Axis ax{options.log_x}, ay{options.log_y};
+  fit_axes(path, series, options, ax, ay);
+
+  OIIO::ImageBuf image(OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::fill(image, kWhite);
+  draw_grid_and_ticks(image, ax, ay, w, h);
+  // Series: error bars, then lines (solid or dashed), then markers.
+  for (const PlotSeries& s : series) draw_series(image, s, ax, ay);
+
+  // Legend, labels, title.
+  draw_legend(image, series, ax, ay, w, h);
+  text(image, (kLeft + w - kRight) / 2, h - 18, options.x_label, 16, AX::Center, AY::Baseline);
+  text(image, 8, kTop - 12, options.y_label, 16, AX::Left, AY::Baseline);
+  text(image, (kLeft + w - kRight) / 2, 24, options.title, 18, AX::Center, AY::Baseline);
+  write_png(path, image);
 }
 
 }  // namespace physarum

@@ -10,19 +10,20 @@ namespace physarum {
 
 inline Scene default_scene_parameters(int agents) {
   Scene s;
-  s.agents = agents;
+  AgentModelSpec& a = s.agent_model();
+  a.agents = agents;
   s.time_step = 0.01;
-  s.parameters[Param::sensor_distance] = 0.05;
-  s.parameters[Param::sensor_angle] = 22.5 * kDegree;
-  s.parameters[Param::move_rate] = 0.5;
-  s.parameters[Param::turn_rate] = 180.0 * kDegree;
-  s.parameters[Param::turn_frequency] = 20.0;
-  s.parameters[Param::deposit_rate] = 1.0;
-  s.parameters[Param::decay_rate] = 1.0;
-  s.parameters[Param::diffuse_rate] = 0.0002;
-  s.parameters[Param::mean_lifetime] = 1.0;
-  s.parameters[Param::activation_time] = 0.2;
-  s.integrator = Integrator::Forward;
+  a.parameters[Param::sensor_distance] = 0.05;
+  a.parameters[Param::sensor_angle] = 22.5 * kDegree;
+  a.parameters[Param::move_rate] = 0.5;
+  a.parameters[Param::turn_rate] = 180.0 * kDegree;
+  a.parameters[Param::turn_frequency] = 20.0;
+  a.parameters[Param::deposit_rate] = 1.0;
+  a.parameters[Param::decay_rate] = 1.0;
+  a.parameters[Param::diffuse_rate] = 0.0002;
+  a.parameters[Param::mean_lifetime] = 1.0;
+  a.parameters[Param::activation_time] = 0.2;
+  a.integrator = Integrator::Forward;
   s.seed = 1;
   return s;
 }

@@ -1,20 +1,19 @@
 #pragma once
-// A simulation scene: the surface, the run settings and every model parameter of Table 1 of the
-// paper, in SI units (angles in degrees in the file, radians here). Read from one flat JSON object
-// whose keys are listed in the README; every bad value is an InputError naming the key, the value and
-// the allowed range, and an unknown key is an error too.
+// A simulation scene: the surface, the maps, the run settings, the harness's settings and the model
+// it runs (the agent model of Table 1 in SI units, angles in degrees in the file and radians here, or
+// a reaction–diffusion system). Read from one flat JSON object whose keys are listed in
+// docs/scenes.md; every bad value is an InputError naming the key, the value and the allowed range,
+// and an unknown key is an error too.
 #include "common/color/color_map_json.hpp"
 #include "common/maps/map_definition.hpp"
-#include "common/model/diffusion_decay.hpp"
-#include "common/model/model_parameters.hpp"
-#include "common/scene/scene_controls.hpp"
+#include "common/scene/scene_agents.hpp"
 #include "common/scene/scene_reaction_diffusion.hpp"
-#include "common/scene/scene_species.hpp"
 
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -39,14 +38,16 @@ struct ComparisonSettings {
   int eigenpairs = 48;            // manifold harmonics computed for the bands
 };
 
+// The model a scene runs: the agent model (paper 000, "model": "physarum", the default) or a
+// reaction–diffusion system (paper 002). Each alternative is read, validated and evaluated on a
+// surface by its own files (scene_agents, scene_reaction_diffusion; common/setup/); a new model is
+// one more alternative here and one branch in load_scene.
+using SceneModel = std::variant<AgentModelSpec, ReactionDiffusionSpec>;
+
 struct Scene {
   std::string source;  // the scene file, for messages ("" when built in code)
 
-  // ---- field model ----
-  // Set when "model" is a reaction-diffusion system (common/scene/scene_reaction_diffusion.hpp); then the
-  // agent model's keys (agents, its parameters, the controls, species) are not used and may not be
-  // given. Empty: the agent model ("physarum", the default).
-  std::optional<ReactionDiffusionSpec> reaction_diffusion;
+  SceneModel model;  // default: the agent model
 
   // ---- surface ----
   std::string mesh;                        // resolved file path, or "shape:NAME"
@@ -54,19 +55,9 @@ struct Scene {
   std::optional<double> max_circumradius;  // intrinsic refinement bound, in scaled units (m)
   double min_angle_deg = 0.0;              // optional refinement angle bound
 
-  int agents = 0;  // N (with "species": the sum of the species' agents)
-  // Every model parameter of Table 1 (common/model/model_parameters.hpp), in SI units. A parameter given
-  // by a map (parameter_maps[p] set) holds NaN here until the surface exists: its values are per
-  // vertex (common/setup/scene_maps.hpp: vertex_parameters, and with_mean_parameters for one summary value).
-  ParameterValues parameters;
-  std::array<std::optional<ParameterMap>, kParamCount> parameter_maps;
-
-  // ---- maps and controls (paper Sec. 3.3) ----
+  // ---- maps (paper Sec. 3.3), for every model ----
   MapSet maps;                // the named maps ("maps"), parsed and checked, not yet evaluated
   nlohmann::json maps_given;  // "maps" as the file gave it (null when absent), for run.json
-  SceneControls controls;
-  SceneSpecies species;       // "species" and "sensing" (competing species); empty: one population
-  Integrator integrator = Integrator::Forward;  // for the pheromone PDE (Eq. 6 / 7)
 
   // ---- time ----
   double time_step = 0.0;  // s
@@ -77,7 +68,15 @@ struct Scene {
   ComparisonSettings comparison;
 
   // ---- pictures ----
-  ColorMapSettings color_map;  // how pheromone.ply and preview.png are coloured (default viridis, 0 .. 2U)
+  ColorMapSettings color_map;  // how the result file and preview.png are coloured (default viridis, 0 .. 2U)
+
+  // The agent model's part; std::logic_error on a scene of another model (callers branch on the
+  // model first: is_reaction_diffusion, or std::visit on `model`).
+  AgentModelSpec& agent_model();
+  const AgentModelSpec& agent_model() const;
+  // The reaction–diffusion system, or nullptr for a scene of another model.
+  ReactionDiffusionSpec* reaction_diffusion() { return std::get_if<ReactionDiffusionSpec>(&model); }
+  const ReactionDiffusionSpec* reaction_diffusion() const { return std::get_if<ReactionDiffusionSpec>(&model); }
 };
 
 // Parses and validates a scene file. A relative "mesh" path, and the files the maps read, are
@@ -86,22 +85,25 @@ struct Scene {
 // keys of the file before it is read, with the same checks (compare's --arm, run's --set).
 Scene load_scene(const std::string& path, const nlohmann::json& overrides = nlohmann::json::object());
 
+// The same from a JSON object built in code (the library and Python's way in): `source` names the
+// scene in messages ("" shows "scene") and relative paths resolve against its folder ("": the
+// working directory).
+Scene scene_from_json(nlohmann::json scene, const std::string& source = "",
+                      const nlohmann::json& overrides = nlohmann::json::object());
+
 // Validates a scene built in code (the same checks as load_scene): the values, and that every map a
 // parameter or control names exists in scene.maps and is of the kind needed.
 void validate_scene(const Scene& scene);
 
-// True for a reaction-diffusion scene (scene.reaction_diffusion set).
-inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion.has_value(); }
+// True for a reaction-diffusion scene.
+inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion() != nullptr; }
 
-// True when some model parameter is given by a map.
+// The agent model's agent count, 0 for a model without agents (memory estimates, run.json).
+inline int agent_count(const Scene& scene) { return is_reaction_diffusion(scene) ? 0 : scene.agent_model().agents; }
+
+// The agent model's has_parameter_maps / steady_mean_is_U (common/scene/scene_agents.hpp); false
+// for a model without agents.
 bool has_parameter_maps(const Scene& scene);
-
-// True when the pheromone's steady mean is U (Eq. 5) for this scene: U counts the deposits of N
-// agents at a uniform deposit rate and active fraction against a uniform decay, so it holds with any
-// maps on the other parameters, read-stimuli, spawn weights and a bias, but not with a mapped
-// deposit_rate, decay_rate, mean_lifetime (sinks included) or activation_time, with write-stimuli
-// (pheromone not from agents), with a terminating boundary (lifetimes cut short), or with species
-// (each layer's mean is its own species' U instead).
 bool steady_mean_is_U(const Scene& scene);
 
 }  // namespace physarum

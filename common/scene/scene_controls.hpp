@@ -6,20 +6,14 @@
 #include "common/maps/map_definition.hpp"
 #include "common/model/simulation_controls.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace physarum {
-
-// A model parameter given by a map: {"map": NAME, "range": [lo, hi]} or a bare NAME. With a range
-// the map's values 0..1 are remapped linearly to lo..hi (lo + (hi - lo) * value); without one the
-// map's values are the parameter's values in the scene file's units (degrees, m/s, ...).
-struct ParameterMap {
-  std::string map;
-  std::optional<std::array<double, 2>> range;  // {lo, hi}, file units
-};
 
 // {"map": NAME, "weight": w}: a static layer added to what sensors read (w < 0 repels).
 struct ReadStimulusSpec {
@@ -48,5 +42,13 @@ struct SceneControls {
   SpawnHeading spawn_heading = SpawnHeading::Random;
   BoundaryBehaviour boundary = BoundaryBehaviour::Reflect;
 };
+
+// Reads the controls' keys of a scene object (absent keys: no control). InputError naming the key
+// for a malformed entry; the maps named are checked by validate_controls.
+SceneControls read_controls(const nlohmann::json& scene, const std::string& source);
+
+// Every map a control names exists in `maps` with the kind it needs; weights, rates and strengths
+// are finite and in range; "spawn_heading": "bias" has a bias.
+void validate_controls(const SceneControls& controls, const MapSet& maps, const std::string& source);
 
 }  // namespace physarum

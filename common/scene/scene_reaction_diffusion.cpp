@@ -21,22 +21,14 @@ constexpr size_t kMaxMorphogens = 4;
 std::string number_text(double x) { return ValueRange::number(x); }
 
 
-double finite_number(const json& v, const std::string& source, const std::string& key) {
-  if (!v.is_number()) fail_key(source, key, v.dump() + " must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) fail_key(source, key, v.dump() + " must be finite");
-  return x;
-}
-
-std::string map_name(const json& v, const std::string& source, const std::string& key) {
-  if (!v.is_string() || v.get<std::string>().empty()) fail_key(source, key, v.dump() + " must be a map name");
-  return v.get<std::string>();
-}
-
-MapOperand number_or_map(const json& v, const std::string& source, const std::string& key) {
-  if (v.is_number()) return finite_number(v, source, key);
-  if (v.is_string() && !v.get<std::string>().empty()) return v.get<std::string>();
-  fail_key(source, key, v.dump() + " must be a number or a scalar map name");
+// "integrator": a reaction-diffusion system steps explicitly (with automatic sub-steps) or IMEX.
+Integrator read_reaction_integrator(const json& j, const std::string& source) {
+  const auto integrator = SceneReader{j, source}.string("integrator");
+  if (!integrator || *integrator == "forward") return Integrator::Forward;
+  if (*integrator == "imex") return Integrator::Imex;
+  throw InputError(source + ": key 'integrator' = \"" + *integrator +
+                   "\" is out of range (a reaction-diffusion model takes \"forward\" (explicit, automatic "
+                   "sub-steps) or \"imex\" (implicit diffusion, explicit reaction))");
 }
 
 // A name a formula can use: a letter or '_' first, then letters, digits, '_'; not a function.
@@ -64,7 +56,7 @@ MorphogenValues read_values(const json& v, const std::vector<MorphogenSpec>& mor
     const std::string entry = key + "." + it.key();
     if (std::none_of(morphogens.begin(), morphogens.end(), [&](const MorphogenSpec& m) { return m.name == it.key(); }))
       fail_key(source, entry, "no morphogen of that name (the morphogens: " + morphogen_list(morphogens) + ")");
-    values.emplace_back(it.key(), finite_number(*it, source, entry));
+    values.emplace_back(it.key(), field_number(*it, source, entry));
   }
   return values;
 }
@@ -80,22 +72,22 @@ void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_re
                           const std::string& key) {
   only_fields(entry, {"diffusion", "initial", "anisotropy", "minimum"}, source, key);
   if (const auto d = entry.find("diffusion"); d != entry.end())
-    m.diffusion = number_or_map(*d, source, key + ".diffusion");
+    m.diffusion = field_operand(*d, source, key + ".diffusion");
   else if (diffusion_required)
     fail_key(source, key, "missing \"diffusion\" (m^2/s: a number >= 0 or a scalar map name)");
-  if (const auto i = entry.find("initial"); i != entry.end()) m.initial = number_or_map(*i, source, key + ".initial");
+  if (const auto i = entry.find("initial"); i != entry.end()) m.initial = field_operand(*i, source, key + ".initial");
   if (const auto floor = entry.find("minimum"); floor != entry.end())
-    m.minimum = floor->is_null() ? -std::numeric_limits<double>::infinity() : finite_number(*floor, source, key + ".minimum");
+    m.minimum = floor->is_null() ? -std::numeric_limits<double>::infinity() : field_number(*floor, source, key + ".minimum");
   if (const auto a = entry.find("anisotropy"); a != entry.end() && !a->is_null()) {
     const std::string akey = key + ".anisotropy";
     only_fields(*a, {"direction", "ratio"}, source, akey);
     AnisotropySpec spec;
     const auto dir = a->find("direction");
     if (dir == a->end()) fail_key(source, akey, "missing \"direction\" (a vector map)");
-    spec.direction = map_name(*dir, source, akey + ".direction");
+    spec.direction = field_map_name(*dir, source, akey + ".direction");
     const auto ratio = a->find("ratio");
     if (ratio == a->end()) fail_key(source, akey, "missing \"ratio\" (rate across the direction / rate along it, > 0)");
-    spec.ratio = finite_number(*ratio, source, akey + ".ratio");
+    spec.ratio = field_number(*ratio, source, akey + ".ratio");
     m.anisotropy = spec;
   }
 }
@@ -195,7 +187,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
       const std::string key = "parameters." + it.key();
       check_identifier(it.key(), source, key);
       if (spec.morphogen_index(it.key()) >= 0) fail_key(source, key, "'" + it.key() + "' is a morphogen, not a coefficient");
-      const MapOperand value = number_or_map(*it, source, key);
+      const MapOperand value = field_operand(*it, source, key);
       auto existing = std::find_if(spec.coefficients.begin(), spec.coefficients.end(),
                                    [&](const auto& c) { return c.first == it.key(); });
       if (existing != spec.coefficients.end()) {
@@ -213,12 +205,12 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   // ---- initial state, boundary, picture ----
   if (const json* init = given("initial")) {
     only_fields(*init, {"noise", "seed_region", "spots"}, source, "initial");
-    if (const auto n = init->find("noise"); n != init->end()) spec.initial.noise = finite_number(*n, source, "initial.noise");
+    if (const auto n = init->find("noise"); n != init->end()) spec.initial.noise = field_number(*n, source, "initial.noise");
     if (const auto r = init->find("seed_region"); r != init->end() && !r->is_null()) {
       only_fields(*r, {"map", "values"}, source, "initial.seed_region");
       SeedRegionSpec seed;
       if (!r->contains("map")) fail_key(source, "initial.seed_region", "missing \"map\" (a scalar map, 0..1)");
-      seed.map = map_name(r->at("map"), source, "initial.seed_region.map");
+      seed.map = field_map_name(r->at("map"), source, "initial.seed_region.map");
       if (!r->contains("values")) fail_key(source, "initial.seed_region", "missing \"values\" ({MORPHOGEN: value})");
       seed.values = read_values(r->at("values"), spec.morphogens, source, "initial.seed_region.values");
       spec.initial.seed_region = seed;
@@ -228,11 +220,11 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
       SpotsSpec spots;
       for (const char* f : {"count", "radius", "values"})
         if (!s->contains(f)) fail_key(source, "initial.spots", std::string("missing \"") + f + "\"");
-      const double count = finite_number(s->at("count"), source, "initial.spots.count");
+      const double count = field_number(s->at("count"), source, "initial.spots.count");
       if (count < 1 || count != std::floor(count) || count > 1e7)
         fail_key(source, "initial.spots.count", number_text(count) + " must be a whole number 1..1e7");
       spots.count = static_cast<int>(count);
-      spots.radius = finite_number(s->at("radius"), source, "initial.spots.radius");
+      spots.radius = field_number(s->at("radius"), source, "initial.spots.radius");
       spots.values = read_values(s->at("values"), spec.morphogens, source, "initial.spots.values");
       spec.initial.spots = spots;
     }
@@ -241,7 +233,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
     only_fields(*d, {"map", "values"}, source, "dirichlet");
     DirichletSpec dirichlet;
     if (!d->contains("map")) fail_key(source, "dirichlet", "missing \"map\" (a scalar map: fixed where >= 0.5)");
-    dirichlet.map = map_name(d->at("map"), source, "dirichlet.map");
+    dirichlet.map = field_map_name(d->at("map"), source, "dirichlet.map");
     if (d->contains("values")) dirichlet.values = read_values(d->at("values"), spec.morphogens, source, "dirichlet.values");
     spec.dirichlet = dirichlet;
   }
@@ -251,16 +243,13 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
       fail_key(source, "preview_morphogen", p->dump() + " must be a morphogen's name (" + morphogen_list(spec.morphogens) + ")");
     spec.preview_morphogen = p->get<std::string>();
   }
+  spec.integrator = read_reaction_integrator(j, source);
   return spec;
 }
 
 void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet& maps, const std::string& source) {
   auto check_map = [&](const std::string& key, const std::string& name, MapKind kind) {
-    const MapDefinition* map = maps.find(name);
-    if (!map) fail_key(source, key, "map '" + name + "' is not defined in 'maps'");
-    if (map->kind != kind)
-      fail_key(source, key, "map '" + name + "' is a " + std::string(to_string(map->kind)) + " map, but a " +
-                            to_string(kind) + " map is needed here");
+    check_map_reference(maps, source, key, name, kind);
   };
   if (spec.morphogens.size() < kMinMorphogens || spec.morphogens.size() > kMaxMorphogens)
     fail_key(source, "morphogens", std::to_string(spec.morphogens.size()) + " morphogens; a system has 2 to 4");

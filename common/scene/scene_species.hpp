@@ -7,7 +7,10 @@
 //
 // A scene without "species" has none here and runs the single-species base model, bit for bit.
 #include "common/model/model_parameters.hpp"
-#include "common/scene/scene_controls.hpp"
+#include "common/maps/map_definition.hpp"
+#include "common/scene/scene_parameters.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <optional>
@@ -30,5 +33,14 @@ struct SceneSpecies {
 
   bool given() const { return !species.empty(); }
 };
+
+// Reads "species" and "sensing" (both absent: no species). The entries' parameter values are
+// checked like the top-level keys' (validate_species), with messages naming "species[i].KEY".
+SceneSpecies read_species(const nlohmann::json& scene, const std::string& source);
+
+// Every species' overrides in their parameter's range (numbers) or naming a scalar map of `maps`,
+// its agent count allowed and adding up to `agents` (the scene's total), and the sensing matrix
+// K x K and finite.
+void validate_species(const SceneSpecies& species, int agents, const MapSet& maps, const std::string& source);
 
 }  // namespace physarum

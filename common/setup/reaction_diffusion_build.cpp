@@ -122,8 +122,8 @@ int explicit_substeps(double time_step, double stability_limit) {
 
 ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, const PreparedSurface& surface,
                                                         const EvaluatedMaps& maps) {
-  if (!scene.reaction_diffusion) throw std::logic_error("build_reaction_diffusion_system: not a reaction-diffusion scene");
-  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
+  if (!scene.reaction_diffusion()) throw std::logic_error("build_reaction_diffusion_system: not a reaction-diffusion scene");
+  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
   const SurfaceDomain& domain = surface.domain;
   const int n = domain.vertex_count;
   const size_t count = spec.morphogens.size();

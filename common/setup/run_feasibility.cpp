@@ -27,38 +27,39 @@ namespace {
 // ---- 2. time scales ----
 
 std::vector<std::string> check_time_scales(const Scene& scene, int max_turn_decisions_per_step) {
+  const ParameterValues& p = scene.agent_model().parameters;
   std::vector<std::string> warnings, refusals;
   const double dt = scene.time_step;
   // Turn decisions: the model takes at most max_turn_decisions_per_step of them in one step and
   // drops the rest, so a longer step silently changes the model.
-  const double decisions = scene.parameters[Param::turn_frequency] * dt;
+  const double decisions = p[Param::turn_frequency] * dt;
   if (decisions > max_turn_decisions_per_step)
     refusals.push_back("time_step " + format_number(dt) + " s holds " + format_number(decisions) +
-                       " turn decisions (turn_frequency " + format_number(scene.parameters[Param::turn_frequency]) +
+                       " turn decisions (turn_frequency " + format_number(p[Param::turn_frequency]) +
                        " /s), more than the " + std::to_string(max_turn_decisions_per_step) +
                        " per step the model takes; use a time_step of at most " +
-                       format_number(max_turn_decisions_per_step / scene.parameters[Param::turn_frequency]) + " s");
+                       format_number(max_turn_decisions_per_step / p[Param::turn_frequency]) + " s");
   else if (decisions > 1.0)
     warnings.push_back("time_step " + format_number(dt) + " s is longer than the turn-decision period 1/turn_frequency = " +
-                       format_number(1.0 / scene.parameters[Param::turn_frequency]) + " s: " + format_number(decisions) +
+                       format_number(1.0 / p[Param::turn_frequency]) + " s: " + format_number(decisions) +
                        " decisions per step read the same sensors");
   // Decay: past kMaxDecayPerStep the field forgets within one step.
-  const double decay = scene.parameters[Param::decay_rate] * dt;
+  const double decay = p[Param::decay_rate] * dt;
   if (decay > kMaxDecayPerStep)
-    refusals.push_back("decay_rate * time_step = " + format_number(scene.parameters[Param::decay_rate]) + " /s * " + format_number(dt) +
+    refusals.push_back("decay_rate * time_step = " + format_number(p[Param::decay_rate]) + " /s * " + format_number(dt) +
                        " s = " + format_number(decay) + " (above " + format_number(kMaxDecayPerStep) +
                        "): the pheromone decays to e^-" + format_number(decay) +
                        " within one step, so the field means nothing; use a time_step of at most " +
-                       format_number(1.0 / scene.parameters[Param::decay_rate]) + " s (the decay time 1/decay_rate)");
+                       format_number(1.0 / p[Param::decay_rate]) + " s (the decay time 1/decay_rate)");
   else if (decay > 1.0)
     warnings.push_back("time_step " + format_number(dt) + " s is longer than the decay time 1/decay_rate = " +
-                       format_number(1.0 / scene.parameters[Param::decay_rate]) + " s: the field keeps e^-" + format_number(decay) +
+                       format_number(1.0 / p[Param::decay_rate]) + " s: the field keeps e^-" + format_number(decay) +
                        " of itself from one step to the next");
   // Sensors: an agent that moves farther than its sensor distance in one step steps past what it sensed.
-  if (scene.parameters[Param::move_rate] > 0.0 && scene.parameters[Param::sensor_distance] > 0.0 && scene.parameters[Param::move_rate] * dt > scene.parameters[Param::sensor_distance])
+  if (p[Param::move_rate] > 0.0 && p[Param::sensor_distance] > 0.0 && p[Param::move_rate] * dt > p[Param::sensor_distance])
     warnings.push_back("time_step " + format_number(dt) +
                        " s is longer than the time to cross a sensor distance, sensor_distance / move_rate = " +
-                       format_number(scene.parameters[Param::sensor_distance] / scene.parameters[Param::move_rate]) + " s: agents move past what they sensed");
+                       format_number(p[Param::sensor_distance] / p[Param::move_rate]) + " s: agents move past what they sensed");
   if (!refusals.empty()) refuse(scene.source, refusals);
   return warnings;
 }
@@ -76,6 +77,8 @@ std::string WorkEstimate::describe() const {
 
 WorkEstimate estimate_work(const Scene& scene, const SurfaceDomain& domain, double diameter, long long steps,
                            int max_turn_decisions_per_step) {
+  const AgentModelSpec& model = scene.agent_model();
+  const ParameterValues& p = model.parameters;
   WorkEstimate w;
   w.vertices = domain.vertex_count;
   w.faces = domain.face_count;
@@ -83,37 +86,38 @@ WorkEstimate estimate_work(const Scene& scene, const SurfaceDomain& domain, doub
   w.steps = steps;
   const double face_area = domain.face_count > 0 ? domain.total_area / domain.face_count : 0.0;
   w.mean_edge = std::sqrt(4.0 / std::sqrt(3.0) * face_area);
-  if (scene.integrator == Integrator::Forward && domain.vertex_count > 0) {
+  if (model.integrator == Integrator::Forward && domain.vertex_count > 0) {
     const size_t n = static_cast<size_t>(domain.vertex_count);
-    IntrinsicVertexData<double> diffuse_over_mass(n), decay(n, scene.parameters[Param::decay_rate]);
-    for (size_t i = 0; i < n; ++i) diffuse_over_mass[i] = scene.parameters[Param::diffuse_rate] / domain.vertex_mass[i];
+    IntrinsicVertexData<double> diffuse_over_mass(n), decay(n, p[Param::decay_rate]);
+    for (size_t i = 0; i < n; ++i) diffuse_over_mass[i] = p[Param::diffuse_rate] / domain.vertex_mass[i];
     const double stable = forward_euler_stable_step(domain.laplacian, diffuse_over_mass, decay);
     w.sub_steps_per_step = std::isfinite(stable) && scene.time_step > stable ? std::ceil(scene.time_step / stable) : 1.0;
   }
-  const double decisions = std::min<double>(scene.parameters[Param::turn_frequency] * scene.time_step, max_turn_decisions_per_step);
-  const double path = scene.parameters[Param::move_rate] * scene.time_step + 3.0 * scene.parameters[Param::sensor_distance] * std::max(decisions, 0.0);
+  const double decisions = std::min<double>(p[Param::turn_frequency] * scene.time_step, max_turn_decisions_per_step);
+  const double path = p[Param::move_rate] * scene.time_step + 3.0 * p[Param::sensor_distance] * std::max(decisions, 0.0);
   w.crossings_per_agent_step = w.mean_edge > 0.0 ? path / w.mean_edge : 0.0;
   const double laplacian_entries = static_cast<double>(domain.laplacian.value.size());
-  w.operations = static_cast<double>(steps) * (static_cast<double>(scene.agents) * (1.0 + w.crossings_per_agent_step) +
+  w.operations = static_cast<double>(steps) * (static_cast<double>(model.agents) * (1.0 + w.crossings_per_agent_step) +
                                                w.sub_steps_per_step * laplacian_entries);
   return w;
 }
 
 void check_work(const Scene& scene, const WorkEstimate& w) {
+  const ParameterValues& p = scene.agent_model().parameters;
   std::vector<std::string> reasons;
   const std::string diameter = "the surface's diameter (bounding-box diagonal " + format_number(w.diameter) + " m)";
-  if (scene.parameters[Param::sensor_distance] > w.diameter)
-    reasons.push_back("sensor_distance " + format_number(scene.parameters[Param::sensor_distance]) + " m exceeds " + diameter +
+  if (p[Param::sensor_distance] > w.diameter)
+    reasons.push_back("sensor_distance " + format_number(p[Param::sensor_distance]) + " m exceeds " + diameter +
                       ": sensors wrap the surface; use a smaller sensor_distance or a larger scale_to_area");
-  if (scene.parameters[Param::move_rate] * scene.time_step > w.diameter)
-    reasons.push_back("move_rate * time_step = " + format_number(scene.parameters[Param::move_rate] * scene.time_step) +
+  if (p[Param::move_rate] * scene.time_step > w.diameter)
+    reasons.push_back("move_rate * time_step = " + format_number(p[Param::move_rate] * scene.time_step) +
                       " m per step exceeds " + diameter +
                       ": agents wrap the surface every step; use a smaller time_step or move_rate, or a larger "
                       "scale_to_area");
   if (w.sub_steps_per_step > kMaxSubStepsPerStep)
     reasons.push_back("forward Euler needs " + format_number(w.sub_steps_per_step) +
                       " diffusion sub-steps per step (stability limit of diffuse_rate " +
-                      format_number(scene.parameters[Param::diffuse_rate]) + " m^2/s and decay_rate " + format_number(scene.parameters[Param::decay_rate]) +
+                      format_number(p[Param::diffuse_rate]) + " m^2/s and decay_rate " + format_number(p[Param::decay_rate]) +
                       " /s on edges of " + format_number(w.mean_edge) + " m), above " +
                       format_number(kMaxSubStepsPerStep) +
                       "; use \"integrator\": \"backward\", a smaller time_step or diffuse_rate, or a coarser mesh");

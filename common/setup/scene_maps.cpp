@@ -58,17 +58,17 @@ void fill_from_map(const Scene& scene, const ParameterSpec& p, const std::string
 
 VertexParameters vertex_parameters(const Scene& scene, const PreparedSurface& surface, const EvaluatedMaps& maps) {
   const int n = surface.domain.vertex_count;
-  VertexParameters parameters = VertexParameters::constant(scene.parameters, n);
+  VertexParameters parameters = VertexParameters::constant(scene.agent_model().parameters, n);
   for (const ParameterSpec& p : kParameterTable)
-    if (const auto& map = scene.parameter_maps[static_cast<size_t>(p.id)])
+    if (const auto& map = scene.agent_model().parameter_maps[static_cast<size_t>(p.id)])
       fill_from_map(scene, p, std::string(p.key), *map, maps, parameters[p.id]);
   return parameters;
 }
 
 SpeciesSet species_set(const Scene& scene, const PreparedSurface& surface, const EvaluatedMaps& maps,
                        const VertexParameters& parameters) {
-  const SceneSpecies& given = scene.species;
-  if (!given.given()) return SpeciesSet::single(scene.agents, parameters);
+  const SceneSpecies& given = scene.agent_model().species;
+  if (!given.given()) return SpeciesSet::single(scene.agent_model().agents, parameters);
   const int n = surface.domain.vertex_count;
   SpeciesSet set;
   for (size_t i = 0; i < given.species.size(); ++i) {
@@ -95,7 +95,7 @@ SpeciesSet species_set(const Scene& scene, const PreparedSurface& surface, const
 
 SimulationControls simulation_controls(const Scene& scene, const PreparedSurface& surface, const EvaluatedMaps& maps) {
   const int n = surface.domain.vertex_count;
-  const SceneControls& c = scene.controls;
+  const SceneControls& c = scene.agent_model().controls;
   SimulationControls controls;
   controls.read_stimulus = weighted_sum(c.read_stimuli, [](const ReadStimulusSpec& s) { return s.weight; }, maps, n);
   controls.write_rate = weighted_sum(c.write_stimuli, [](const WriteStimulusSpec& s) { return s.rate; }, maps, n);
@@ -152,11 +152,11 @@ SceneArrays scene_arrays(const Scene& scene, const PreparedSurface& surface, con
 Scene with_mean_parameters(Scene scene, const VertexParameters& parameters, const SurfaceDomain& domain) {
   const double total_mass = std::accumulate(domain.vertex_mass.begin(), domain.vertex_mass.end(), 0.0);
   for (const ParameterSpec& p : kParameterTable) {
-    if (!scene.parameter_maps[static_cast<size_t>(p.id)]) continue;
+    if (!scene.agent_model().parameter_maps[static_cast<size_t>(p.id)]) continue;
     const IntrinsicVertexData<double>& values = parameters[p.id];
     double sum = 0.0;
     for (int v = 0; v < domain.vertex_count; ++v) sum += domain.vertex_mass[v] * values[v];
-    scene.parameters[p.id] = total_mass > 0.0 ? sum / total_mass : values.front();
+    scene.agent_model().parameters[p.id] = total_mass > 0.0 ? sum / total_mass : values.front();
   }
   return scene;
 }

@@ -5,7 +5,7 @@
 //     its range; every evaluated value passes the parameter table's check), and
 //   the controls of Sec. 3.3 (SimulationControls: summed read- and write-stimuli, spawn weights, the
 //     directional bias in rad/s, the spawn heading and the boundary behaviour).
-// A scene without maps gives exactly VertexParameters::constant(scene.parameters, n) and a
+// A scene without maps gives exactly VertexParameters::constant(scene.agent_model().parameters, n) and a
 // default SimulationControls: the base model, bit for bit.
 #include "common/maps/map_evaluation.hpp"
 #include "common/scene/scene.hpp"
@@ -26,7 +26,7 @@ SimulationControls simulation_controls(const Scene& scene, const PreparedSurface
 
 // The scene's competing species (common/model/species.hpp): each species' parameters are `parameters`
 // (the top-level ones, evaluated) with its overrides applied, numbers or maps, and the sensing matrix
-// (identity when not given). A scene without "species" gives SpeciesSet::single(scene.agents,
+// (identity when not given). A scene without "species" gives SpeciesSet::single(scene.agent_model().agents,
 // parameters). InputError naming "species[i].KEY" when an override's map gives a value out of range.
 SpeciesSet species_set(const Scene& scene, const PreparedSurface& surface, const EvaluatedMaps& maps,
                        const VertexParameters& parameters);

@@ -20,8 +20,8 @@ std::vector<double> species_steady_states(const Scene& scene, const SpeciesSet& 
   std::vector<double> U;
   for (const Species& s : species.species) {
     Scene own = scene;
-    for (const ParameterSpec& p : kParameterTable) own.parameters[p.id] = area_mean(s.parameters[p.id], domain);
-    own.agents = s.agents;
+    for (const ParameterSpec& p : kParameterTable) own.agent_model().parameters[p.id] = area_mean(s.parameters[p.id], domain);
+    own.agent_model().agents = s.agents;
     U.push_back(uniform_steady_state(own, domain.total_area));
   }
   return U;

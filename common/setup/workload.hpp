@@ -19,7 +19,7 @@ const char* to_string(BackendChoice backend);
 struct Workload {
   std::string label;     // the surface as reports name it ("spot.obj", "shape:sphere")
   SurfaceSpec surface;   // how the surface is built (prepare_surface, through a SurfaceCache)
-  Scene scene;           // model parameters; scene.agents is the size
+  Scene scene;           // model parameters; scene.agent_model().agents is the size
   BackendChoice backend = BackendChoice::Reference;
 };
 

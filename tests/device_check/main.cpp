@@ -26,7 +26,7 @@
 #include "reference/diffusion_decay.hpp"
 #include "reference/agent_simulation.hpp"
 #include "rough_gray_scott.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -144,7 +144,7 @@ void throughput_line(const ComputeContext& compute, SurfaceCache& surfaces, cons
   const SimulationCounters after = sim->counters();
   const double crossings = static_cast<double>(after.face_crossings + after.sensor_face_crossings -
                                                before.face_crossings - before.sensor_face_crossings);
-  const int agents = w.scene.agents;
+  const int agents = w.scene.agent_model().agents;
   std::printf("throughput: %d faces, %d agents, %s agents per work-item: %.3f ms/step, %.3g agent-steps/s, %.1f "
               "crossings/agent-step, %.3g crossings/s\n",
               surfaces.get(w.surface).domain.face_count, agents,
@@ -199,7 +199,7 @@ void implicit_placement(const ComputeContext& compute, SurfaceCache& surfaces) {
     const Workload w = workload(shape, r, kBenchArea, 0, Integrator::Backward);
     const SurfaceDomain domain = in_device_vertex_order(surfaces.get(w.surface).domain);
     const int n = domain.vertex_count;
-    const VertexParameters params = VertexParameters::constant(sc.parameters, n);
+    const VertexParameters params = VertexParameters::constant(sc.agent_model().parameters, n);
     std::vector<double> values(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) values[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
     const DeviceVertexData<double> u0(values);

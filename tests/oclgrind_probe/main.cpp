@@ -75,19 +75,19 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
 void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
                 int agents_per_work_item, const std::string& label) {
   Scene scene;
-  scene.agents = 301;  // not a multiple of the work-group size or of 4: padded and part-filled work-items run too
+  scene.agent_model().agents = 301;  // not a multiple of the work-group size or of 4: padded and part-filled work-items run too
   scene.time_step = 0.02;
-  scene.parameters[Param::sensor_distance] = 0.3;
-  scene.parameters[Param::sensor_angle] = 0.4;
-  scene.parameters[Param::move_rate] = 10.0;  // several faces per step, and boundary hits on the square
-  scene.parameters[Param::turn_rate] = 3.0;
-  scene.parameters[Param::turn_frequency] = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
-  scene.parameters[Param::deposit_rate] = 1.0;
-  scene.parameters[Param::decay_rate] = 0.5;
-  scene.parameters[Param::diffuse_rate] = 0.01;
-  scene.parameters[Param::mean_lifetime] = 0.05;
-  scene.parameters[Param::activation_time] = 0.01;
-  scene.integrator = integrator;
+  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
+  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
+  scene.agent_model().parameters[Param::move_rate] = 10.0;  // several faces per step, and boundary hits on the square
+  scene.agent_model().parameters[Param::turn_rate] = 3.0;
+  scene.agent_model().parameters[Param::turn_frequency] = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
+  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
+  scene.agent_model().parameters[Param::decay_rate] = 0.5;
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
+  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
+  scene.agent_model().parameters[Param::activation_time] = 0.01;
+  scene.agent_model().integrator = integrator;
   OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
   options.pheromone.cg_max_iterations = 64;
@@ -115,17 +115,17 @@ void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain
                               int agents_per_work_item, const std::string& label) {
   const int n = domain.vertex_count;
   Scene scene;
-  scene.parameters[Param::sensor_distance] = 0.3;
-  scene.parameters[Param::sensor_angle] = 0.4;
-  scene.parameters[Param::move_rate] = 10.0;
-  scene.parameters[Param::turn_rate] = 3.0;
-  scene.parameters[Param::turn_frequency] = 120.0;
-  scene.parameters[Param::deposit_rate] = 1.0;
-  scene.parameters[Param::decay_rate] = 0.5;
-  scene.parameters[Param::diffuse_rate] = 0.01;
-  scene.parameters[Param::mean_lifetime] = 0.05;
-  scene.parameters[Param::activation_time] = 0.01;
-  VertexParameters params = VertexParameters::constant(scene.parameters, n);
+  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
+  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
+  scene.agent_model().parameters[Param::move_rate] = 10.0;
+  scene.agent_model().parameters[Param::turn_rate] = 3.0;
+  scene.agent_model().parameters[Param::turn_frequency] = 120.0;
+  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
+  scene.agent_model().parameters[Param::decay_rate] = 0.5;
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
+  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
+  scene.agent_model().parameters[Param::activation_time] = 0.01;
+  VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, n);
   SimulationControls controls;
   controls.read_stimulus.assign(static_cast<size_t>(n), 0.0);
   controls.write_rate.assign(static_cast<size_t>(n), 0.0);
@@ -177,20 +177,20 @@ void run_competing_species(const ComputeContext& compute, const SurfaceDomain& d
                            const std::string& label) {
   const int n = domain.vertex_count;
   Scene scene;
-  scene.parameters[Param::sensor_distance] = 0.3;
-  scene.parameters[Param::sensor_angle] = 0.4;
-  scene.parameters[Param::move_rate] = 8.0;
-  scene.parameters[Param::turn_rate] = 3.0;
-  scene.parameters[Param::turn_frequency] = 120.0;
-  scene.parameters[Param::deposit_rate] = 1.0;
-  scene.parameters[Param::decay_rate] = 0.5;
-  scene.parameters[Param::diffuse_rate] = 0.01;
-  scene.parameters[Param::mean_lifetime] = 0.05;
-  scene.parameters[Param::activation_time] = 0.01;
+  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
+  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
+  scene.agent_model().parameters[Param::move_rate] = 8.0;
+  scene.agent_model().parameters[Param::turn_rate] = 3.0;
+  scene.agent_model().parameters[Param::turn_frequency] = 120.0;
+  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
+  scene.agent_model().parameters[Param::decay_rate] = 0.5;
+  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
+  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
+  scene.agent_model().parameters[Param::activation_time] = 0.01;
   SpeciesSet species;
   const int sizes[3] = {101, 57, 143};
   for (int s = 0; s < 3; ++s) {
-    VertexParameters params = VertexParameters::constant(scene.parameters, n);
+    VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, n);
     for (int i = 0; i < n; ++i) {
       params[Param::move_rate][static_cast<size_t>(i)] = 4.0 + s + 0.1 * (i % 7);
       params[Param::decay_rate][static_cast<size_t>(i)] = 0.5 + 0.25 * s;

@@ -4,7 +4,7 @@
 #include "opencl/runtime/device_tuning.hpp"
 #include "opencl/diffusion_decay.hpp"
 #include "reference/diffusion_decay.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 #include "common/model/vertex_parameters.hpp"
 
 #include <algorithm>
@@ -45,9 +45,9 @@ Scene scene_scaled_to(const SurfaceDomain& d) {
   constexpr double kNativeFaces = 20000;  // where the default scene's lengths are used as they are
   const double scale = std::sqrt(kNativeFaces / d.face_count);  // h over the native resolution's h
   Scene s = bench_scene(d.face_count);
-  s.parameters[Param::sensor_distance] *= scale;
-  s.parameters[Param::move_rate] *= scale;
-  s.parameters[Param::diffuse_rate] *= scale * scale;
+  s.agent_model().parameters[Param::sensor_distance] *= scale;
+  s.agent_model().parameters[Param::move_rate] *= scale;
+  s.agent_model().parameters[Param::diffuse_rate] *= scale * scale;
   return s;
 }
 
@@ -86,7 +86,7 @@ Workload BenchSession::workload(const std::string& name, double max_circumradius
 
 Row BenchSession::run(const std::string& sweep, const Workload& w) {
   const double min_seconds = options_.quick ? 0.15 : 0.6;
-  const int agents = w.scene.agents;
+  const int agents = w.scene.agent_model().agents;
   const SurfaceDomain& d = surfaces_.get(w.surface).domain;
   const std::unique_ptr<SimulationBackend> sim = make_backend(w, surfaces_, &compute_);
   const StepTiming t = time_steps(*sim, min_seconds, 3, 1000);
@@ -105,7 +105,7 @@ Row BenchSession::run(const std::string& sweep, const Workload& w) {
 
 PheromoneTiming BenchSession::pheromone_step(const SurfaceDomain& d, BackendChoice backend, Integrator integrator) {
   const Scene scene = bench_scene(0);
-  const VertexParameters params = VertexParameters::constant(scene.parameters, d.vertex_count);
+  const VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, d.vertex_count);
   PheromoneTiming t;
   auto time = [&](auto step, auto finish, bool beside_triad) {
     step();

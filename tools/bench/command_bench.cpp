@@ -11,7 +11,7 @@
 // workload is timed lives in tools/bench/bench_session.hpp, the outputs in tools/bench/bench_report.hpp.
 #include "common/base/errors.hpp"
 #include "common/setup/workload.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 #include "tools/bench/bench_report.hpp"
 #include "tools/bench/bench_session.hpp"
 #include "tools/commands.hpp"
@@ -61,12 +61,12 @@ void in_cache_sweep(BenchSession& bench) {
   const std::string surface = spot_or_sphere(bench);
   for (const bool doubled : {false, true}) {
     Scene scene = bench_scene(0);
-    if (doubled) scene.parameters[Param::sensor_distance] *= 2.0, scene.parameters[Param::move_rate] *= 2.0;
+    if (doubled) scene.agent_model().parameters[Param::sensor_distance] *= 2.0, scene.agent_model().parameters[Param::move_rate] *= 2.0;
     const std::string sweep = doubled ? "in_cache_x2" : "in_cache";
     for (const int agents : quick ? std::vector<int>{100000} : std::vector<int>{100000, 1000000})
       for (const BackendChoice b : kBackends) {
         if (b == BackendChoice::Reference && agents > 100000) continue;
-        scene.agents = agents;
+        scene.agent_model().agents = agents;
         bench.run(sweep, bench.workload(surface, quick ? 0.01 : 0.005, scene, b));
       }
   }

@@ -42,9 +42,9 @@
 #include "common/output/time_lapse.hpp"
 #include "common/setup/workload.hpp"
 #include "opencl/runtime/compute_context.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 #include "tools/commands.hpp"
-#include "tools/run/feasible_surface.hpp"
+#include "api/feasible_surface.hpp"
 #include "tools/run/run_options.hpp"
 #include "tools/run/resume_point.hpp"
 #include "tools/run/run_checkpoints.hpp"
@@ -137,32 +137,20 @@ void check_run_options(const RunOptions& o) {
 int run_agents(const Scene& given_scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
   TimeLapse time_lapse(o.frames, steps);
 
-  // The maps, evaluated once (through the map cache) with the surface: the per-vertex parameters and
-  // controls the backend is built from, and what --maps-out writes. `scene` summarises each mapped
-  // parameter by its mean (U, run.json).
-  const FeasibleSurface feasible = prepare_feasible_surface(given_scene, steps, MapCache::from_environment());
-  const PreparedSurface& surface = feasible.surface;
+  // The surface, the maps (evaluated once, through the map cache) and the backend. `scene`
+  // summarises each mapped parameter by its mean (U, run.json).
+  Session session(given_scene, session_options(o, steps));
+  const Scene& scene = session.scene();
+  const PreparedSurface& surface = session.surface();
   const SurfaceDomain& domain = surface.domain;
-  const EvaluatedMaps& maps = feasible.maps;
-  if (!given_scene.maps.empty()) {
-    for (const std::string& note : feasible.maps_report.notes) std::cerr << "physarum run: " << note << "\n";
-    std::cerr << "physarum run: " << feasible.maps_report.summary() << "\n";
-  }
-  const SceneArrays arrays = scene_arrays(given_scene, surface, maps);
-  const Scene scene = with_mean_parameters(given_scene, arrays.parameters, domain);
+  const SceneArrays& arrays = *session.agent_arrays();
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
   const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
-  const ChosenBackend chosen = choose_backend(o.backend, o.device);
-  const BackendChoice choice = chosen.backend;
-  const std::optional<opencl::ComputeContext>& compute = chosen.compute;
-  if (o.backend == "auto") std::cerr << "physarum run: " << to_string(choice) << " backend (auto: " << chosen.why << ")\n";
-  const std::unique_ptr<SimulationBackend> backend =
-      make_backend(choice, compute ? &*compute : nullptr, domain, scene, arrays);  // refuses what does not fit in memory
-  SimulationBackend& simulation = *backend;
+  SimulationBackend& simulation = session.backend();
   // Written now, not with the results: a user checking the maps of a long run sees them at once.
   if (!o.maps_out.empty())
-    write_maps_ply(o.maps_out, input, maps_on_input(given_scene.maps, surface, maps, o.scene));
+    write_maps_ply(o.maps_out, input, maps_on_input(given_scene.maps, surface, session.maps(), o.scene));
   const double U = uniform_steady_state(scene, domain.total_area);
   // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
   // columns talk about), so pictures of different runs of one scene (and the frames of one run) are

@@ -4,6 +4,7 @@
 #include "common/base/errors.hpp"
 #include "common/scene/scene_overrides.hpp"
 
+#include <iostream>
 #include <filesystem>
 
 namespace physarum::cli {
@@ -66,6 +67,15 @@ std::string scene_identity_hash(const RunOptions& o, const std::string& mesh) {
   h.add("\nmesh ");
   h.add(mesh.rfind("shape:", 0) == 0 ? mesh : hex64(file_content_hash(mesh)));
   return hex64(h.digest());
+}
+
+SessionOptions session_options(const RunOptions& options, long long steps) {
+  SessionOptions s;
+  s.backend = options.backend;
+  s.device = options.device;
+  s.planned_steps = steps;
+  s.log = [](const std::string& line) { std::cerr << line << "\n"; };
+  return s;
 }
 
 }  // namespace physarum::cli

@@ -5,6 +5,8 @@
 // that changed in between.
 #include "tools/run/surface_exports.hpp"
 
+#include "api/session.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -43,5 +45,9 @@ RunOptions run_options_from_json(const nlohmann::json& j, const std::string& whe
 // the seed override and the mesh file's bytes (not for shape:NAME). A checkpoint stores it; a
 // resume whose hash differs is refused. `mesh` is the scene's resolved mesh (Scene::mesh).
 std::string scene_identity_hash(const RunOptions& o, const std::string& mesh);
+
+// The library session a run builds (api/session.hpp): the backend and device asked for, the run
+// length the feasibility checks judge, and the user's lines on stderr.
+SessionOptions session_options(const RunOptions& options, long long steps);
 
 }  // namespace physarum::cli

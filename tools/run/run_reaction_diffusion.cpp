@@ -12,7 +12,7 @@
 #include "common/setup/scene_surface.hpp"
 #include "common/output/texture_bake.hpp"
 #include "common/output/time_lapse.hpp"
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 #include "tools/run/run_loop.hpp"
 #include "tools/run/surface_exports.hpp"
 
@@ -73,37 +73,25 @@ std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexDa
 }
 
 int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
-  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion;
+  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
   TimeLapse time_lapse(o.frames, steps);
 
   // ---- everything that can reject the input, before any output exists ----
-  const PreparedSurface surface = prepare_scene_surface(scene, [](const std::string& line) { std::cerr << line << "\n"; });
-  for (const std::string& w : surface.warnings) std::cerr << "physarum: warning: " << w << "\n";
+  // The surface, the maps (through the map cache, as the agent model's: a geodesic distance or a
+  // direction field is the slow part of a flower scene's start, and a sweep runs the same maps
+  // many times) and the system's backend.
+  Session session(scene, session_options(o, steps));
+  const PreparedSurface& surface = session.surface();
   const SurfaceDomain& domain = surface.domain;
-  // Through the map cache, as the agent model's maps: a geodesic distance or a direction field is
-  // the slow part of a flower scene's start, and a sweep runs the same maps many times.
-  MapEvaluationReport maps_report;
-  const EvaluatedMaps maps = cached_evaluate_maps(map_sources_of(scene), surface, MapCache::from_environment(), &maps_report);
-  if (!scene.maps.empty()) {
-    for (const std::string& note : maps_report.notes) std::cerr << "physarum run: " << note << "\n";
-    std::cerr << "physarum run: " << maps_report.summary() << "\n";
-  }
-  ReactionDiffusionSystem system = build_reaction_diffusion_system(scene, surface, maps);
-  const int substeps = system.substeps;
-  const std::vector<std::string> morphogens = system.morphogens;
-  const int preview_layer = spec.morphogen_index(spec.preview_morphogen);
+  const std::vector<std::string>& morphogens = session.layer_names();
+  const int preview_layer = session.preview_layer();
+  const int substeps = session.substeps();
   const InputMesh& input = surface.input;
   const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
   const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
-  const ChosenBackend chosen = choose_backend(o.backend, o.device);
-  if (o.backend == "auto") std::cerr << "physarum run: " << to_string(chosen.backend) << " backend (auto: " << chosen.why << ")\n";
-  if (system.integrator == Integrator::Forward && substeps > 1)
-    std::cerr << "physarum run: " << substeps << " explicit sub-steps per step (the diffusion stability limit)\n";
-  const std::unique_ptr<SimulationBackend> backend =
-      make_reaction_diffusion_backend(chosen.backend, chosen.compute ? &*chosen.compute : nullptr, domain, std::move(system));
-  SimulationBackend& simulation = *backend;
+  SimulationBackend& simulation = session.backend();
   // Written now, not with the results: a user checking the maps of a long run sees them at once.
-  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, input, maps_on_input(scene.maps, surface, maps, o.scene));
+  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, input, maps_on_input(scene.maps, surface, session.maps(), o.scene));
 
   auto layers = [&] {
     std::vector<IntrinsicVertexData<double>> all;

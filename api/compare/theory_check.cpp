@@ -1,11 +1,11 @@
-#include "tools/compare/theory_check.hpp"
+#include "api/compare/theory_check.hpp"
 
 #include "common/harness/equivalence_test.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 constexpr const char* kMeanMetric = "mean_over_U";
@@ -92,4 +92,4 @@ std::string theory_line(const TheoryRow& r) {
   return text;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

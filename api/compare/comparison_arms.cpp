@@ -1,4 +1,4 @@
-#include "tools/compare/comparison_arms.hpp"
+#include "api/compare/comparison_arms.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/setup/agent_inputs.hpp"
@@ -6,8 +6,8 @@
 #include "common/setup/reaction_diffusion_build.hpp"
 #include "common/harness/reaction_diffusion_metrics.hpp"
 #include "common/scene/scene_overrides.hpp"
-#include "tools/backend_factory.hpp"
-#include "tools/run/feasible_surface.hpp"
+#include "api/backend_factory.hpp"
+#include "api/feasible_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <tuple>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 std::string trim(const std::string& s) {
@@ -53,7 +53,7 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
       if (surface_key(arms[j].scene) == surface_key(a.scene)) a.surface = arms[j].surface;
     std::optional<EvaluatedMaps> maps;
     if (!a.surface) {
-      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache);
+      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache, [](const std::string& line) { std::cerr << line << "\n"; });
       a.surface = std::make_shared<const PreparedSurface>(std::move(feasible.surface));
       maps = std::move(feasible.maps);
     } else {
@@ -68,12 +68,12 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
   ArmsShare share;
   share.discretisation =
-      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agents == arms[1].scene.agents);
+      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agent_model().agents == arms[1].scene.agent_model().agents);
   for (const Arm& a : arms) share.coarsest_edge_length = std::max(share.coarsest_edge_length, mean_edge_length(a.surface->domain));
   std::vector<std::shared_ptr<const ComparisonMetrics>> metrics(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
-        arms[i].scene.parameters[Param::sensor_distance] == arms[0].scene.parameters[Param::sensor_distance] &&
+        arms[i].scene.agent_model().parameters[Param::sensor_distance] == arms[0].scene.agent_model().parameters[Param::sensor_distance] &&
         arms[i].scene.comparison.spectrum_bands == arms[0].scene.comparison.spectrum_bands)
       metrics[i] = metrics[0];  // the eigenpairs and smoothers are computed once (run length, dt
                                           // and U are each arm's own: measure_seed)
@@ -123,7 +123,7 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
   for (size_t i = 0; i < arms.size(); ++i) {
     const ComparisonSettings &c = arms[i].scene.comparison, &c0 = arms[0].scene.comparison;
     if (i > 0 && arms[i].surface == arms[0].surface && c.eigenpairs == c0.eigenpairs && c.spectrum_bands == c0.spectrum_bands &&
-        arms[i].scene.reaction_diffusion->preview_morphogen == arms[0].scene.reaction_diffusion->preview_morphogen)
+        arms[i].scene.reaction_diffusion()->preview_morphogen == arms[0].scene.reaction_diffusion()->preview_morphogen)
       metrics[i] = metrics[0];  // the eigenpairs are computed once
     else
       metrics[i] = std::make_shared<const ReactionDiffusionMetrics>(*arms[i].surface, arms[i].scene, pattern_scale, share);
@@ -195,12 +195,12 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
       nlohmann::json overrides = spec.scene_overrides;
       // Fig. 10c: another agent count with the deposit rescaled so that U (Eq. 5) stays the same.
       // (A deposit rate given by a map is left as it is: its values are per vertex.)
-      if (!base.reaction_diffusion && overrides.contains("agents") && overrides["agents"].is_number_integer() &&
-          !overrides.contains("deposit_rate") && !base.parameter_maps[static_cast<size_t>(Param::deposit_rate)]) {
+      if (!is_reaction_diffusion(base) && overrides.contains("agents") && overrides["agents"].is_number_integer() &&
+          !overrides.contains("deposit_rate") && !base.agent_model().parameter_maps[static_cast<size_t>(Param::deposit_rate)]) {
         const double agents = overrides["agents"].get<double>();
         if (agents > 0)
           overrides["deposit_rate"] =
-              to_file_units(parameter_spec(Param::deposit_rate), base.parameters[Param::deposit_rate]) * base.agents / agents;
+              to_file_units(parameter_spec(Param::deposit_rate), base.agent_model().parameters[Param::deposit_rate]) * base.agent_model().agents / agents;
       }
       Arm a;
       a.label = spec.label;
@@ -213,7 +213,7 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   for (size_t i = 0; i < arms.size(); ++i)
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
 
-  if (base.reaction_diffusion) prepare_reaction_diffusion_arms(arms);
+  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms);
   else prepare_agent_model_arms(arms);
   if (arms.size() == 2 && names(arms[0].metrics) != names(arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
@@ -232,4 +232,4 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   return arms;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -5,12 +5,12 @@
 // fill a device: two simulations in flight keep it busy while the host prepares the next
 // launches), all at the same time. Every result is stored at its task's place, so what comes back
 // does not depend on which thread finished first: `--jobs 1` and `--jobs 8` give the same numbers.
-#include "tools/compare/comparison_arms.hpp"
+#include "api/compare/comparison_arms.hpp"
 
 #include <functional>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 constexpr int kDeviceStreams = 2;
 
@@ -25,4 +25,4 @@ struct SeedTask {
 std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, const std::vector<SeedTask>& tasks,
                                                 int jobs, const std::function<void(int done)>& progress = {});
 
-}  // namespace physarum::cli
+}  // namespace physarum

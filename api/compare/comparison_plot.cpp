@@ -1,11 +1,11 @@
-#include "tools/compare/comparison_plot.hpp"
+#include "api/compare/comparison_plot.hpp"
 
 #include "common/harness/equivalence_test.hpp"
 #include "common/output/line_plot.hpp"
 
 #include <cmath>
 
-namespace physarum::cli {
+namespace physarum {
 
 bool write_comparison_plot(const std::string& path, const std::vector<std::string>& metric_names,
                            const std::vector<std::vector<double>>& reference,
@@ -52,4 +52,4 @@ bool write_comparison_plot(const std::string& path, const std::vector<std::strin
   return true;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -6,14 +6,14 @@
 // above 1 with several sub-steps or a fractional activation step). It answers "does each backend
 // simulate the model?", not "do the two arms agree?": `physarum compare` reports it in its own
 // section of verdict.json and on stderr, and it never decides the comparison's verdict or exit code.
-#include "tools/compare/comparison_arms.hpp"
+#include "api/compare/comparison_arms.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 struct TheoryRow {
   std::string label;          // the arm's
@@ -37,4 +37,4 @@ std::vector<TheoryRow> check_against_theory(const std::vector<const Arm*>& arms,
 nlohmann::ordered_json theory_json(const std::vector<TheoryRow>& rows);
 std::string theory_line(const TheoryRow& row);
 
-}  // namespace physarum::cli
+}  // namespace physarum

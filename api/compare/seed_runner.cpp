@@ -1,4 +1,4 @@
-#include "tools/compare/seed_runner.hpp"
+#include "api/compare/seed_runner.hpp"
 
 #include "common/base/errors.hpp"
 
@@ -8,7 +8,7 @@
 #include <optional>
 #include <thread>
 
-namespace physarum::cli {
+namespace physarum {
 
 std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, const std::vector<SeedTask>& tasks,
                                                 int jobs, const std::function<void(int done)>& progress) {
@@ -65,4 +65,4 @@ std::vector<std::vector<double>> run_seed_tasks(const std::vector<Arm>& arms, co
   return results;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // False, writing nothing, when no band power can be drawn (no band metric, or none finite and > 0 on
 // the logarithmic axis): a comparison's verdict never depends on its picture.
@@ -13,4 +13,4 @@ bool write_comparison_plot(const std::string& path, const std::vector<std::strin
                            const std::vector<std::vector<double>>& reference,
                            const std::vector<std::vector<double>>& opencl);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,36 +1,5 @@
-// `physarum compare SCENE.json [--arm K=V[,K=V...] --arm K=V[,...]] [--max-seeds N] [--jobs N]
-//                              [--device SPEC] [--fault NAME] [--out DIR]
-//                              [--reference-stats FILE] [--reference-seeds N] [--store-reference FILE --seeds N]`:
-// the differential harness. Runs independent seeds of two arms (by default the OpenCL backend and
-// the reference on one scene; with --arm, one scene under two settings or discretisations,
-// tools/compare/comparison_arms.hpp), time-averages dimensionless pattern metrics per seed after a burn-in
-// (common/harness/comparison_metrics.hpp) and decides, metric by metric, whether the arms agree within the
-// scene's declared margins.
-//
-// Seeds run in batches of kBatch per arm, on every core and device at once (tools/compare/seed_runner.hpp);
-// after each batch a group-sequential test (common/harness/sequential_equivalence.hpp: O'Brien-Fleming alpha
-// spending over the looks, Sidak over the metrics) says, for each metric still open, equivalent (its
-// confidence interval lies inside the margin), different (it lies entirely outside) or undecided.
-// The run stops as soon as one metric is different or all are equivalent, and at --max-seeds it
-// says inconclusive, naming the metrics that lack power and the seeds per arm that would settle
-// them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
-// statistics, 2 on usage errors.
-//
-// Apart from that verdict, each arm whose continuous mean is Eq. 5's U is checked against the
-// steady mean of the time-discrete model it runs (tools/compare/theory_check.hpp): its own section of
-// verdict.json ("theory") and a line on stderr, never part of the verdict or the exit code.
-//
-// Reaction-diffusion scenes (model gray-scott, turing, ...): the same test on their own metric set
-// (common/harness/reaction_diffusion_metrics.hpp: each morphogen's mean and variance / mean^2, coverage of
-// the preview morphogen above fractions of its range, band shares of its spectrum), each seed a
-// system built with that seed, run for the scene's steps: by default the first half is the burn-in
-// and the second half is averaged (compare_burn_in / compare_duration override). Their planted
-// faults are rd-swap-diffusion and rd-no-feed; stored reference statistics are refused.
-//
-// Stored reference statistics: `--store-reference FILE --seeds 100` runs only the reference and
-// writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
-// runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
-// (a two-sided t test per metric at the Sidak level, see drift_p_value; drift is an error, exit 1).
+// The differential harness (`physarum compare`, api/comparison.hpp): arms, seeds in batches, the
+// group-sequential test, the theory check, the verdict and its folder.
 #include "common/base/atomic_write.hpp"
 #include "common/harness/comparison_metrics.hpp"
 #include "common/harness/equivalence_test.hpp"
@@ -39,11 +8,11 @@
 #include "common/scene/scene_json.hpp"
 #include "common/harness/sequential_equivalence.hpp"
 #include "opencl/planted_faults.hpp"
-#include "tools/commands.hpp"
-#include "tools/compare/comparison_arms.hpp"
-#include "tools/compare/comparison_plot.hpp"
-#include "tools/compare/seed_runner.hpp"
-#include "tools/compare/theory_check.hpp"
+#include "api/comparison.hpp"
+#include "api/compare/comparison_arms.hpp"
+#include "api/compare/comparison_plot.hpp"
+#include "api/compare/seed_runner.hpp"
+#include "api/compare/theory_check.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -61,21 +30,9 @@
 #include <vector>
 #include <unistd.h>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
-struct CompareOptions {
-  std::string scene;
-  std::string device;
-  std::vector<std::string> arms;
-  std::optional<int> max_seeds;
-  int jobs = 0;  // 0: the cores
-  std::string fault;
-  std::string out;
-  std::string reference_stats;
-  int reference_seeds = 3;
-  std::string store_reference;
-};
 
 constexpr int kStoredSeeds = 100;  // --store-reference without --seeds
 
@@ -247,7 +204,7 @@ int exit_code(Verdict v) {
 }
 
 // What this harness cannot do, refused before anything runs.
-void refuse_what_cannot_be_compared(const CompareOptions& o) {
+void refuse_what_cannot_be_compared(const ComparisonRequest& o) {
   if (o.max_seeds && *o.max_seeds < 2) throw UsageError("--max-seeds (--seeds) must be >= 2");
   if (o.reference_seeds < 2) throw UsageError("--reference-seeds must be >= 2");
   if (o.jobs < 0) throw UsageError("--jobs must be >= 1");
@@ -256,7 +213,7 @@ void refuse_what_cannot_be_compared(const CompareOptions& o) {
   if (!o.reference_stats.empty() && !o.arms.empty())
     throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
   const Scene scene = load_scene(o.scene);
-  const bool rd = scene.reaction_diffusion.has_value();
+  const bool rd = is_reaction_diffusion(scene);
   if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
     throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
                      "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
@@ -271,9 +228,9 @@ void refuse_what_cannot_be_compared(const CompareOptions& o) {
   // a model without F (turing, ...) runs unchanged.
   if (rd && o.fault == "rd-no-feed") {
     bool has_feed = false;
-    for (const auto& [name, value] : scene.reaction_diffusion->coefficients) has_feed = has_feed || name == "F";
+    for (const auto& [name, value] : scene.reaction_diffusion()->coefficients) has_feed = has_feed || name == "F";
     if (!has_feed)
-      throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion->model +
+      throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion()->model +
                        ") has no feed coefficient F (it would change nothing)");
   }
 }
@@ -288,7 +245,7 @@ struct SequentialRun {
   Verdict verdict = Verdict::Continue;
 };
 
-SequentialRun run_sequential_test(const CompareOptions& o, const std::vector<Arm>& arms, int jobs) {
+SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<Arm>& arms, int jobs) {
   const Arm &A = arms[0], &B = arms[1];
   SequentialRun r;
   r.names = metric_names(A.metrics);
@@ -355,11 +312,11 @@ nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
                                 {"backend", to_string(arm.backend)},
                                 {"device", arm.compute ? arm.compute->device.describe() : "host"},
                                 {"faces", arm.surface->domain.face_count},
-                                {"agents", arm.scene.agents},
+                                {"agents", agent_count(arm.scene)},
                                 {"time_step", arm.scene.time_step}};
     if (arm.reaction_diffusion()) {
       // The run length is the scene's, not the agent model's compare defaults, so the report says it.
-      const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion;
+      const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion();
       a.erase("agents");
       a["model"] = rd.model;
       a["integrator"] = integrator_name(rd.integrator);
@@ -370,7 +327,7 @@ nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
   return list;
 }
 
-nlohmann::ordered_json verdict_report(const CompareOptions& o, const std::vector<Arm>& arms, const SequentialRun& r,
+nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vector<Arm>& arms, const SequentialRun& r,
                                       const std::vector<TheoryRow>& theory, int jobs, double seconds, bool& drift) {
   const Arm &A = arms[0], &B = arms[1];
   const bool stored = !o.reference_stats.empty();
@@ -439,7 +396,9 @@ void write_compare_folder(const std::string& folder, const std::string& verdict_
   }
 }
 
-int run_compare(const CompareOptions& o) {
+}  // namespace
+
+int run_comparison(const ComparisonRequest& o) {
   refuse_what_cannot_be_compared(o);
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
@@ -478,38 +437,4 @@ int run_compare(const CompareOptions& o) {
   return exit_code(r.verdict);
 }
 
-}  // namespace
-
-Command add_compare_command(CLI::App& parent) {
-  auto options = std::make_shared<CompareOptions>();
-  CLI::App* app = parent.add_subcommand(
-      "compare",
-      "Differential harness: do two arms (the backends, or two --arm settings) simulate the same thing?\n"
-      "Differential harness: decide whether two arms (the OpenCL backend and the reference, or one scene under two "
-      "--arm settings) simulate the same thing (prints a JSON verdict; exit 0 equivalent, 3 different, "
-      "4 inconclusive, 1 bad input, 2 usage error)");
-  app->add_option("scene", options->scene, "Scene file (JSON); compare_* keys set the run length and margins")
-      ->required();
-  app->add_option("--arm", options->arms,
-                  "An arm as scene overrides, key=value[,key=value...] (plus backend=reference|opencl, "
-                  "device=SPEC); give it twice. Default: OpenCL against the reference");
-  app->add_option("--max-seeds,--seeds", options->max_seeds,
-                  "Seeds per arm at most (default: compare_seeds of the scene, else 64); the sequential test stops "
-                  "earlier when it can. With --store-reference: the seeds stored (default 100)");
-  app->add_option("--jobs", options->jobs, "Worker threads for reference seeds (default: the cores)");
-  app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
-  std::string faults;
-  for (const opencl::PlantedFault& f : opencl::planted_faults()) faults += std::string("\n  ") + f.name + ": " + f.what;
-  app->add_option("--fault", options->fault, "Plant a deliberate bug in the OpenCL kernels:" + faults);
-  app->add_option("--out", options->out, "Folder for verdict.json, seed_metrics.csv and spectra.png");
-  app->add_option("--reference-stats", options->reference_stats,
-                  "Stored per-seed reference metrics to use instead of running the reference arm");
-  app->add_option("--reference-seeds", options->reference_seeds,
-                  "Fresh reference seeds run against --reference-stats to detect drift")
-      ->capture_default_str();
-  app->add_option("--store-reference", options->store_reference,
-                  "Run only the reference (--seeds of them) and store its per-seed metrics in this file");
-  return Command{app, [options] { return run_compare(*options); }};
-}
-
-}  // namespace physarum::cli
+}  // namespace physarum

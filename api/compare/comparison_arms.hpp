@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // One --arm: scene keys to override, and the arm's backend and device.
 struct ArmSpec {
@@ -48,7 +48,7 @@ constexpr std::uint32_t kSecondArmSeedOffset = 100000;
 // measured. The agent model and reaction-diffusion systems differ only in that last part (their
 // metric sets, common/harness/comparison_metrics.hpp and common/harness/reaction_diffusion_metrics.hpp, and how a
 // fresh simulation is built), so it is a function of the arm; the seed numbering, the threads that
-// run the seeds (tools/compare/seed_runner.hpp) and the verdict (tools/compare/command_compare.cpp) are shared.
+// run the seeds (api/compare/seed_runner.hpp) and the verdict (api/compare/comparison.cpp) are shared.
 struct Arm {
   std::string label;
   // The arm's scene. Agent model: a parameter given by a map holds its mean over the surface
@@ -69,7 +69,7 @@ struct Arm {
   // and returns its time-averaged metrics. Safe to call from several threads at once.
   std::function<std::vector<double>(const Arm& arm, const Scene& seeded, const opencl::ComputeContext* compute)> measure;
 
-  bool reaction_diffusion() const { return scene.reaction_diffusion.has_value(); }
+  bool reaction_diffusion() const { return is_reaction_diffusion(scene); }
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
   // Runs seed `index` from a fresh simulation and returns its time-averaged metrics; an OpenCL arm
   // runs it on `stream` (a queue of its context) when given, else on its context's own queue.
@@ -94,4 +94,4 @@ struct ArmsRequest {
 // agent-count study does (Fig. 10c). Throws InputError when the arms' metric sets differ.
 std::vector<Arm> make_arms(const ArmsRequest& request);
 
-}  // namespace physarum::cli
+}  // namespace physarum

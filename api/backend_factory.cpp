@@ -1,4 +1,4 @@
-#include "tools/backend_factory.hpp"
+#include "api/backend_factory.hpp"
 
 #include "common/setup/agent_inputs.hpp"
 #include "common/base/errors.hpp"
@@ -73,7 +73,7 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
     throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
                      "(make_backend with a PreparedSurface, or make_reaction_diffusion_backend), not the agent arrays");
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
-  const MemoryNeed need = estimate_memory(backend, domain, scene.agents);
+  const MemoryNeed need = estimate_memory(backend, domain, scene.agent_model().agents);
   if (backend == BackendChoice::Reference) {
     check_memory(scene.source, need, available_host_memory_bytes());
     if (competing_species)
