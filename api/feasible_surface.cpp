@@ -19,7 +19,7 @@ FeasibleSurface prepare_feasible_surface(const Scene& given, long long steps, co
   };
   // Without parameter maps the time scales are known before the surface: checked first, as a bad
   // time step is cheaper to refuse than a refinement is to wait for.
-  const bool agents = !is_reaction_diffusion(given);  // a reaction's time scales are its system's (substeps)
+  const bool agents = is_agent_model(given);  // another model's time scales are its own (a reaction's: substeps)
   const bool mapped = has_parameter_maps(given);
   auto check_scales = [&](const Scene& scene) {
     for (const std::string& w : check_time_scales(scene, kMaxTurnDecisionsPerStep)) say("physarum: warning: " + w);

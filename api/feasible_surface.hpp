@@ -19,7 +19,7 @@ struct FeasibleSurface {
   MapEvaluationReport maps_report;
 };
 
-// A reaction–diffusion scene gets its surface and maps only (its time scales are its system's).
+// A scene of another model than the agents gets its surface and maps only (its time scales are its own).
 // A scene with parameter maps is checked with each mapped parameter's mean over the surface
 // (with_mean_parameters), so its time-scale checks come after the surface is built.
 // Lines for the user (warnings, the surface's progress, the work estimate) go to `note` (none: quiet).

@@ -1,6 +1,7 @@
 #include "api/session.hpp"
 
 #include "common/base/content_hash.hpp"
+#include "common/base/overloaded.hpp"
 #include "common/maps/map_cache.hpp"
 #include "common/run/checkpoint.hpp"
 #include "common/scene/scene_json.hpp"
@@ -81,8 +82,9 @@ Session::Session(const Scene& scene, const SessionOptions& options) : parts_(std
   p.chosen = choose_backend(options.backend, options.device);
   if (options.backend == "auto" && options.log)
     options.log("physarum: " + std::string(to_string(p.chosen.backend)) + " backend (auto: " + p.chosen.why + ")");
-  if (is_reaction_diffusion(scene)) build_reaction_diffusion_backend(p, scene, options);
-  else build_agent_backend(p, scene, options);
+  std::visit(overloaded{[&](const AgentModelSpec&) { build_agent_backend(p, scene, options); },
+                        [&](const ReactionDiffusionSpec&) { build_reaction_diffusion_backend(p, scene, options); }},
+             scene.model);
   p.scene_hash = scene_identity(p.scene, p.feasible.surface);
 }
 

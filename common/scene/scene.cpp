@@ -1,6 +1,7 @@
 #include "common/scene/scene.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/base/overloaded.hpp"
 #include "common/scene/scene_fields.hpp"
 #include "common/scene/scene_keys.hpp"
 #include "common/scene/scene_overrides.hpp"
@@ -198,18 +199,17 @@ void validate_scene(const Scene& scene) {
   if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
   if (scene.steps && scene.sim_time)
     throw InputError(scene_where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
-  if (const ReactionDiffusionSpec* system = scene.reaction_diffusion())
-    validate_reaction_diffusion(*system, scene.maps, s);
-  else
-    validate_agent_model(scene.agent_model(), scene.maps, s);
+  std::visit(overloaded{[&](const AgentModelSpec& agents) { validate_agent_model(agents, scene.maps, s); },
+                        [&](const ReactionDiffusionSpec& system) { validate_reaction_diffusion(system, scene.maps, s); }},
+             scene.model);
 }
 
 bool has_parameter_maps(const Scene& scene) {
-  return !is_reaction_diffusion(scene) && has_parameter_maps(scene.agent_model());
+  return is_agent_model(scene) && has_parameter_maps(scene.agent_model());
 }
 
 bool steady_mean_is_U(const Scene& scene) {
-  return !is_reaction_diffusion(scene) && steady_mean_is_U(scene.agent_model());
+  return is_agent_model(scene) && steady_mean_is_U(scene.agent_model());
 }
 
 }  // namespace physarum

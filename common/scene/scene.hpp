@@ -95,11 +95,13 @@ Scene scene_from_json(nlohmann::json scene, const std::string& source = "",
 // parameter or control names exists in scene.maps and is of the kind needed.
 void validate_scene(const Scene& scene);
 
-// True for a reaction-diffusion scene.
+// Which model a scene runs (the places that must handle every model std::visit scene.model with
+// common/base/overloaded.hpp instead, so a new model does not compile until each says what it does).
+inline bool is_agent_model(const Scene& scene) { return std::holds_alternative<AgentModelSpec>(scene.model); }
 inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion() != nullptr; }
 
 // The agent model's agent count, 0 for a model without agents (memory estimates, run.json).
-inline int agent_count(const Scene& scene) { return is_reaction_diffusion(scene) ? 0 : scene.agent_model().agents; }
+inline int agent_count(const Scene& scene) { return is_agent_model(scene) ? scene.agent_model().agents : 0; }
 
 // The agent model's has_parameter_maps / steady_mean_is_U (common/scene/scene_agents.hpp); false
 // for a model without agents.

@@ -26,6 +26,7 @@
 #include "common/run/checkpoint.hpp"
 #include "common/color/color_map_json.hpp"
 #include "common/base/errors.hpp"
+#include "common/base/overloaded.hpp"
 #include "common/simulation/field_statistics.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 #include "common/mesh/input_mesh.hpp"
@@ -222,7 +223,9 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   if (o.seed) scene.seed = *o.seed;
   if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, scene);
-  return is_reaction_diffusion(scene) ? run_reaction_diffusion(scene, o, steps, resume) : run_agents(scene, o, steps, resume);
+  return std::visit(overloaded{[&](const AgentModelSpec&) { return run_agents(scene, o, steps, resume); },
+                               [&](const ReactionDiffusionSpec&) { return run_reaction_diffusion(scene, o, steps, resume); }},
+                    scene.model);
 }
 
 int run_run(const RunOptions& given) {
