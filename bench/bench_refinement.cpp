@@ -25,15 +25,6 @@ const InputMesh* shared_mesh(const std::string& name) {
   return &cache.emplace(name, load_mesh(path.string())).first->second;
 }
 
-double bounding_box_diagonal(const InputMesh& mesh) {
-  Eigen::Vector3d lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const auto& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
-
 void BM_FlipToDelaunay(benchmark::State& state, const char* name) {
   const InputMesh* mesh = shared_mesh(name);
   if (!mesh) {

@@ -163,6 +163,29 @@ TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
   EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
 }
 
+// A partial sweep is still collected (rows and grey cells for what is not done), and the command
+// fails, naming the jobs that never ran and those that started and did not finish.
+TEST(SweepFailures, CollectOfAPartialSweepWritesItAndExitsOneListingWhatIsMissing) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  ASSERT_EQ(run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=100,200,300" + kRunOptions +
+                         " --out " + quoted(dir.path / "s"))
+                .exit_code,
+            0);
+  ASSERT_EQ(run_physarum("sweep " + quoted(dir.path / "s") + " --job 0").exit_code, 0);
+  fs::create_directories(dir.path / "s" / "run_0002");  // started, stopped before run.json
+  const CommandResult r = run_physarum("sweep --collect " + quoted(dir.path / "s") + " --thumbnail 20");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("failed or unfinished jobs (folder without run.json; logs in "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/logs/): 2\n"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("jobs never run: 1\n"), std::string::npos) << r.err;
+  const std::vector<std::string> rows = lines_of(dir.path / "s" / "sweep.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_NE(rows[1].find(",done,"), std::string::npos) << rows[1];
+  EXPECT_NE(rows[2].find(",missing"), std::string::npos) << rows[2];
+  EXPECT_NE(rows[3].find(",failed"), std::string::npos) << rows[3];
+}
+
 TEST(SweepFailures, ABadVariantIsRefusedBeforeAnyJobExists) {
   TempDir dir;
   std::ofstream(dir.path / "scene.json") << kScene;

@@ -33,6 +33,14 @@ CsrMatrix random_csr(unsigned seed) {
   return m;
 }
 
+// n entries uniform in [-1, 1), the vector a product test multiplies.
+std::vector<double> random_vector(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<double> x(static_cast<size_t>(n));
+  for (double& v : x) v = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+  return x;
+}
+
 int row_length(const CsrMatrix& m, int row) { return m.row_start[row + 1] - m.row_start[row]; }
 
 // y = A x read the way pheromone_forward_substep and pheromone_forward_overflow read it: every row
@@ -92,9 +100,7 @@ TEST(HybridMatrix, HoldsEveryEntryInItsRowsSlotOrOverflowInOrder) {
 
 TEST(HybridMatrix, ProductEqualsCsrProduct) {
   const CsrMatrix csr = random_csr(9);
-  std::mt19937 rng(2);
-  std::vector<double> x(static_cast<size_t>(csr.cols));
-  for (double& v : x) v = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+  const std::vector<double> x = random_vector(csr.cols, 2);
   std::vector<double> expected;
   csr.multiply(x, expected);
   for (const int stride : {csr.rows, 64}) {
@@ -114,9 +120,7 @@ TEST(HybridMatrix, RefusesAStrideShorterThanTheMatrix) {
 // product, and exactly the rows longer than the width spill.
 TEST(HybridMatrix, AnyWidthGivesTheSameProduct) {
   const CsrMatrix csr = random_csr(9);
-  std::mt19937 rng(3);
-  std::vector<double> x(static_cast<size_t>(csr.cols));
-  for (double& v : x) v = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+  const std::vector<double> x = random_vector(csr.cols, 3);
   std::vector<double> expected;
   csr.multiply(x, expected);
   for (const int width : {1, 3, 6, W + 5}) {

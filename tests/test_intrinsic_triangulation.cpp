@@ -174,15 +174,6 @@ double input_area(const InputMesh& mesh) {
   return area;
 }
 
-double bounding_box_diagonal(const InputMesh& mesh) {
-  Eigen::Vector3d lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const auto& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
-
 int euler_characteristic(const IntrinsicTriangulation& tri) {
   const IntrinsicMesh m = tri.snapshot();
   int boundary_halfedges = 0;

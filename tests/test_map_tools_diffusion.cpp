@@ -7,6 +7,7 @@
 #include "common/setup/scene_maps.hpp"
 #include "common/map_tools/surface_diffusion.hpp"
 #include "map_tool_meshes.hpp"
+#include "mass_integral.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -20,13 +21,8 @@ namespace {
 
 using nlohmann::json;
 using testing::evaluate_json;
+using testing::mass_integral;
 using testing::surface_from;
-
-double mass_integral(const SurfaceDomain& d, const IntrinsicVertexData<double>& u) {
-  double sum = 0.0;
-  for (int v = 0; v < d.vertex_count; ++v) sum += d.vertex_mass[v] * u[v];
-  return sum;
-}
 
 // A sharp-edged seed and a ramp times it, blurred in one and in several steps, step by step: the
 // integral of m u stays (the columns of L sum to zero), and every step is a weighted average of the

@@ -12,13 +12,15 @@
 #include "opencl/diffusion_decay.hpp"
 #include "opencl/hybrid_matrix.hpp"
 #include "opencl/runtime/queued_host_task.hpp"
+#include "mass_integral.hpp"
+#include "pheromone_rates.hpp"
+#include "random_vertex_values.hpp"
 #include "reference_field.hpp"
 #include "delaunay_domain.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 namespace physarum::opencl {
 namespace {
@@ -30,6 +32,8 @@ IntrinsicVertexData<double> as_domain(const DeviceVertexData<double>& v) { retur
 
 
 using testing::delaunay_domain;
+using testing::random_values;
+using testing::uniform_rates;
 
 // The real surface: the built-in sphere, intrinsic Delaunay (non-negative cotan weights).
 const SurfaceDomain& sphere_domain() {
@@ -53,21 +57,6 @@ const SurfaceDomain& skinny_sphere_domain() {
 const ComputeContext& compute() {
   static const ComputeContext c = make_compute_context("");
   return c;
-}
-
-IntrinsicVertexData<double> random_values(int n, unsigned seed, double lo, double hi) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(lo, hi);
-  IntrinsicVertexData<double> v(static_cast<size_t>(n));
-  for (double& x : v) x = uniform(rng);
-  return v;
-}
-
-VertexParameters uniform_rates(int n, double diffuse, double decay) {
-  VertexParameters p;
-  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
-  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
-  return p;
 }
 
 // Rates that differ per vertex, so a kernel that indexes a rate array wrongly (or reads one value
@@ -306,9 +295,7 @@ TEST(OpenCLDiffusionDecay, DiffusionAloneConservesTheTotalAmount) {
     EXPECT_NEAR(before / host_before, 1.0, 1e-6) << "device sum of m u";
     for (int s = 0; s < 20; ++s) device.step();
     const IntrinsicVertexData<double> u = as_domain(device.concentration());
-    double after = 0;
-    for (int i = 0; i < d.vertex_count; ++i) after += d.vertex_mass[i] * u[i];
-    EXPECT_NEAR(after / host_before, 1.0, 2e-5);
+    EXPECT_NEAR(testing::mass_integral(d, u) / host_before, 1.0, 2e-5);
     EXPECT_NEAR(device.total_amount() / host_before, 1.0, 2e-5);
     // ... and it did diffuse: the spread of the random start shrank a lot.
     const auto [lo, hi] = std::minmax_element(u.begin(), u.end());

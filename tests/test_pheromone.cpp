@@ -1,6 +1,9 @@
 // The reference pheromone PDE (paper Eq. 1, 6, 7): conservation, exact decay factors, the stability
 // bound and its sub-steps, the backward-Euler recursion and an analytic diffusion eigenmode.
+#include "mass_integral.hpp"
+#include "pheromone_rates.hpp"
 #include "pheromone_test_meshes.hpp"
+#include "random_vertex_values.hpp"
 #include "reference_field.hpp"
 
 #include "common/base/errors.hpp"
@@ -10,7 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 namespace physarum {
 namespace {
@@ -18,27 +20,9 @@ namespace {
 using testing::make_domain;
 using testing::make_icosphere;
 using testing::make_square_grid;
-
-VertexParameters rates(int n, double diffuse, double decay) {
-  VertexParameters p;
-  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
-  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
-  return p;
-}
-
-IntrinsicVertexData<double> random_field(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  IntrinsicVertexData<double> u(static_cast<size_t>(n));
-  for (double& x : u) x = uniform(rng);
-  return u;
-}
-
-double mass_total(const SurfaceDomain& d, const IntrinsicVertexData<double>& u) {
-  double s = 0;
-  for (int i = 0; i < d.vertex_count; ++i) s += d.vertex_mass[i] * u[i];
-  return s;
-}
+using testing::mass_integral;
+using testing::random_values;
+using testing::uniform_rates;
 
 // Diffusion alone (r_dec = 0) only moves pheromone: 1^T L = 0 makes sum_i m_i u_i invariant.
 TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
@@ -46,11 +30,11 @@ TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
   // so a scheme that forgot M^-1 would not conserve the mass-weighted total.
   const SurfaceDomain domain = make_domain(make_square_grid(16));
   for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
-    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 0.0), integrator, 0.01);
-    field.set_concentration(random_field(domain.vertex_count, 7));
-    const double before = mass_total(domain, field.concentration());
+    testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.01, 0.0), integrator, 0.01);
+    field.set_concentration(random_values(domain.vertex_count, 7, 0.0, 1.0));
+    const double before = mass_integral(domain, field.concentration());
     for (int s = 0; s < 300; ++s) field.step();
-    EXPECT_NEAR(mass_total(domain, field.concentration()) / before, 1.0, 1e-6);
+    EXPECT_NEAR(mass_integral(domain, field.concentration()) / before, 1.0, 1e-6);
     EXPECT_NEAR(field.total_amount() / before, 1.0, 1e-6);
     // ... and it really diffused: the field is much smoother than the random start.
     const auto [lo, hi] = std::minmax_element(field.concentration().begin(), field.concentration().end());
@@ -62,9 +46,9 @@ TEST(Pheromone, DiffusionAloneConservesTotalAmount) {
 TEST(Pheromone, DecayAloneScalesEveryVertexExactly) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.7, dt = 0.05;
-  const IntrinsicVertexData<double> start = random_field(domain.vertex_count, 3);
+  const IntrinsicVertexData<double> start = random_values(domain.vertex_count, 3, 0.0, 1.0);
   for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
-    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
+    testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.0, r), integrator, dt);
     EXPECT_EQ(field.sub_steps(), 1);
     field.set_concentration(start);
     field.step();
@@ -78,7 +62,7 @@ TEST(Pheromone, DecayAloneApproachesExponential) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
   const double r = 1.3, dt = 1e-4, t_end = 1.0;
   for (Integrator integrator : {Integrator::Forward, Integrator::Backward}) {
-    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.0, r), integrator, dt);
+    testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.0, r), integrator, dt);
     field.fill(2.0);
     const int steps = static_cast<int>(std::lround(t_end / dt));
     for (int s = 0; s < steps; ++s) field.step();
@@ -93,7 +77,7 @@ TEST(Pheromone, ConstantFieldFollowsScalarRecursion) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double r = 0.4, dt = 0.1, c0 = 3.0;
   for (Integrator integrator : {Integrator::Backward, Integrator::Forward}) {
-    testing::ReferenceField field(domain, rates(domain.vertex_count, 0.05, r), integrator, dt);
+    testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.05, r), integrator, dt);
     field.fill(c0);
     const int steps = 25;
     for (int s = 0; s < steps; ++s) field.step();
@@ -120,7 +104,7 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
   };
   const double expected = std::exp(-(2.0 * r_dif + r_dec) * t_end);
   for (auto [integrator, dt] : {std::pair{Integrator::Forward, 1e-3}, std::pair{Integrator::Backward, 1e-3}}) {
-    testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), integrator, dt);
+    testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, r_dif, r_dec), integrator, dt);
     field.set_concentration(z);
     const int steps = static_cast<int>(std::lround(t_end / dt));
     for (int s = 0; s < steps; ++s) field.step();
@@ -139,7 +123,7 @@ TEST(Pheromone, SphericalHarmonicDecaysAtAnalyticRate) {
 TEST(Pheromone, StableTimeStepRespectsTrueSpectralRadius) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.02, r_dec = 0.5;
-  testing::ReferenceField field(domain, rates(domain.vertex_count, r_dif, r_dec), Integrator::Forward, 1.0);
+  testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, r_dif, r_dec), Integrator::Forward, 1.0);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = domain.laplacian.to_eigen();
   Eigen::VectorXd inv_m(domain.vertex_count);
   for (int i = 0; i < domain.vertex_count; ++i) inv_m[i] = 1.0 / domain.vertex_mass[i];
@@ -160,7 +144,7 @@ TEST(Pheromone, StableTimeStepRespectsTrueSpectralRadius) {
 TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
   const SurfaceDomain domain = make_domain(make_icosphere(3));
   const double r_dif = 0.05, r_dec = 0.2;
-  const VertexParameters p = rates(domain.vertex_count, r_dif, r_dec);
+  const VertexParameters p = uniform_rates(domain.vertex_count, r_dif, r_dec);
   const double limit = testing::ReferenceField(domain, p, Integrator::Forward, 1.0).stable_time_step();
   const double dt = 10.0 * limit;
   testing::ReferenceField field(domain, p, Integrator::Forward, dt);
@@ -188,12 +172,12 @@ TEST(Pheromone, SubStepsAboveLimitKeepFieldNonNegative) {
 // Below the bound, exactly one plain Euler step is taken: compare with Eq. 6 evaluated by hand.
 TEST(Pheromone, NoSubStepsBelowLimit) {
   const SurfaceDomain domain = make_domain(make_square_grid(8));
-  const VertexParameters p = rates(domain.vertex_count, 0.01, 0.3);
+  const VertexParameters p = uniform_rates(domain.vertex_count, 0.01, 0.3);
   const double limit = testing::ReferenceField(domain, p, Integrator::Forward, 1.0).stable_time_step();
   const double dt = 0.95 * limit;
   testing::ReferenceField field(domain, p, Integrator::Forward, dt);
   EXPECT_EQ(field.sub_steps(), 1);
-  const IntrinsicVertexData<double> u0 = random_field(domain.vertex_count, 11);
+  const IntrinsicVertexData<double> u0 = random_values(domain.vertex_count, 11, 0.0, 1.0);
   field.set_concentration(u0);
   field.step();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = domain.laplacian.to_eigen();
@@ -211,13 +195,13 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
   const InputMesh grid = make_square_grid(6);
   const SurfaceDomain domain = make_domain(grid);
   const int n = domain.vertex_count;
-  VertexParameters p = rates(n, 0.0, 0.0);
+  VertexParameters p = uniform_rates(n, 0.0, 0.0);
   for (int i = 0; i < n; ++i) {
     p[Param::diffuse_rate][i] = 0.001 + 0.01 * grid.positions[i].x();
     p[Param::decay_rate][i] = 0.2 + grid.positions[i].y();
   }
   const double dt = 0.5;
-  const IntrinsicVertexData<double> u0 = random_field(n, 5);
+  const IntrinsicVertexData<double> u0 = random_values(n, 5, 0.0, 1.0);
   const Eigen::MatrixXd L = Eigen::MatrixXd(domain.laplacian.to_eigen());
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), Rdif = M, Rdec = M;
   for (int i = 0; i < n; ++i) {
@@ -244,7 +228,7 @@ TEST(Pheromone, VaryingRatesSolveEquationsSixAndSeven) {
 // A deposit is an amount: it raises the mass-weighted total by exactly that amount.
 TEST(Pheromone, DepositsAddAmountOverVertexMass) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.01, 1.0), Integrator::Forward, 0.01);
+  testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.01, 1.0), Integrator::Forward, 0.01);
   field.add_deposit(17, 0.25);
   EXPECT_DOUBLE_EQ(field.concentration()[17], 0.25 / domain.vertex_mass[17]);
   EXPECT_NEAR(field.total_amount(), 0.25, 1e-15);
@@ -262,7 +246,7 @@ TEST(Pheromone, DepositsAddAmountOverVertexMass) {
 TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
   const SurfaceDomain domain = make_domain(make_icosphere(2));
   const double agents = 200, deposit_rate = 0.5, r_dec = 2.0, dt = 0.05;
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.001, r_dec), Integrator::Backward, dt);
+  testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.001, r_dec), Integrator::Backward, dt);
   IntrinsicVertexData<double> amounts(static_cast<size_t>(domain.vertex_count));
   double area = 0;
   for (double m : domain.vertex_mass) area += m;
@@ -277,11 +261,12 @@ TEST(Pheromone, UniformDepositsSettleAtAnalyticSteadyState) {
 
 TEST(Pheromone, RejectsMismatchedSizesAndBadTimeStep) {
   const SurfaceDomain domain = make_domain(make_icosphere(1));
-  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::Forward, 0.1),
+  EXPECT_THROW(
+      testing::ReferenceField(domain, uniform_rates(domain.vertex_count - 1, 0.1, 0.1), Integrator::Forward, 0.1),
+      InputError);
+  EXPECT_THROW(testing::ReferenceField(domain, uniform_rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.0),
                InputError);
-  EXPECT_THROW(testing::ReferenceField(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.0),
-               InputError);
-  testing::ReferenceField field(domain, rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.1);
+  testing::ReferenceField field(domain, uniform_rates(domain.vertex_count, 0.1, 0.1), Integrator::Forward, 0.1);
   EXPECT_THROW(field.set_concentration(IntrinsicVertexData<double>(2, 0.0)), InputError);
 }
 

@@ -20,6 +20,7 @@
 #include "common/simulation/simulation_state.hpp"
 #include "delaunay_domain.hpp"
 #include "opencl/reaction_diffusion.hpp"
+#include "random_vertex_values.hpp"
 #include "rough_gray_scott.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +29,6 @@
 
 #include <cmath>
 #include <functional>
-#include <random>
 
 namespace physarum::opencl {
 namespace {
@@ -45,13 +45,7 @@ const SurfaceDomain& domain_of(const std::string& spec) {
   return found->second;
 }
 
-IntrinsicVertexData<double> random_values(int n, unsigned seed, double lo, double hi) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(lo, hi);
-  IntrinsicVertexData<double> v(static_cast<size_t>(n));
-  for (double& x : v) x = uniform(rng);
-  return v;
-}
+using testing::random_values;
 
 CsrMatrix scaled(const CsrMatrix& L, double factor) {
   CsrMatrix K = L;

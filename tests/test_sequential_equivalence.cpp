@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <random>
 #include <vector>
@@ -234,19 +235,27 @@ constexpr int kComparisons = 2000;
 constexpr double kAlpha = 0.05;
 const double kMonteCarloError = std::sqrt(kAlpha * (1.0 - kAlpha) / kComparisons);
 
+// Runs kComparisons comparisons (batches of 4 seeds up to 40, RNG seeded with `seed`) whose wrong
+// verdict is `wrong`, prints how often it came out, and expects that rate within alpha plus three
+// Monte Carlo errors.
+void expect_false_rate_within_alpha(const char* what, Verdict wrong, std::uint64_t seed,
+                                    const std::vector<double>& shift, const std::vector<double>& sd,
+                                    const std::vector<double>& margins) {
+  std::mt19937_64 rng(seed);
+  int wrong_count = 0;
+  for (int i = 0; i < kComparisons; ++i)
+    if (run_comparison(rng, kAlpha, 4, 40, shift, sd, margins) == wrong) ++wrong_count;
+  const double rate = static_cast<double>(wrong_count) / kComparisons;
+  std::printf("%s: %.4f (alpha %.2f, Monte Carlo error %.4f)\n", what, rate, kAlpha, kMonteCarloError);
+  EXPECT_LE(rate, kAlpha + 3.0 * kMonteCarloError);
+}
+
 TEST(SequentialEquivalence, MonteCarloFalseDifferentRateUnderTheNull) {
   // True difference 0 in all 3 metrics and a margin small against the spread (0.05 sd): the null
   // |delta| <= margin of the Different verdict holds, and the data come close to its boundary from
   // both sides, where a false Different is most likely.
-  std::mt19937_64 rng(20261124);
-  int different = 0;
-  for (int i = 0; i < kComparisons; ++i)
-    if (run_comparison(rng, kAlpha, 4, 40, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.05, 0.05, 0.05}) == Verdict::Different)
-      ++different;
-  const double rate = static_cast<double>(different) / kComparisons;
-  std::printf("false Different rate under the null: %.4f (alpha %.2f, Monte Carlo error %.4f)\n", rate, kAlpha,
-              kMonteCarloError);
-  EXPECT_LE(rate, kAlpha + 3.0 * kMonteCarloError);
+  expect_false_rate_within_alpha("false Different rate under the null", Verdict::Different, 20261124,
+                                 {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.05, 0.05, 0.05});
 }
 
 TEST(SequentialEquivalence, MonteCarloFalseEquivalentRateAtTheMargin) {
@@ -254,14 +263,8 @@ TEST(SequentialEquivalence, MonteCarloFalseEquivalentRateAtTheMargin) {
   // false Equivalent needs the first one wrong. sd 1 and margin 1: at 40 seeds se = 0.22, and the
   // interval's half width at the last look's level (t about 2.3) is half the margin, so equivalence
   // is within reach of the data and the test is not passed by an impossible decision.
-  std::mt19937_64 rng(4242);
-  int equivalent = 0;
-  for (int i = 0; i < kComparisons; ++i)
-    if (run_comparison(rng, kAlpha, 4, 40, {1.0, 0.0}, {1.0, 0.1}, {1.0, 1.0}) == Verdict::Equivalent) ++equivalent;
-  const double rate = static_cast<double>(equivalent) / kComparisons;
-  std::printf("false Equivalent rate at the margin: %.4f (alpha %.2f, Monte Carlo error %.4f)\n", rate, kAlpha,
-              kMonteCarloError);
-  EXPECT_LE(rate, kAlpha + 3.0 * kMonteCarloError);
+  expect_false_rate_within_alpha("false Equivalent rate at the margin", Verdict::Equivalent, 4242, {1.0, 0.0},
+                                 {1.0, 0.1}, {1.0, 1.0});
 }
 
 TEST(SequentialEquivalence, MonteCarloEqualArmsStopEarly) {

@@ -13,6 +13,7 @@
 #include "opencl/agent_simulation.hpp"
 #include "reference/agent_simulation.hpp"
 #include "loaded_scene.hpp"
+#include "species_steady_means.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -21,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numeric>
 
 namespace physarum {
 namespace {
@@ -140,29 +140,13 @@ TEST(SpeciesOpenCL, PlantedFaultSpeciesMatrixTransposedIsCaughtInOneStep) {
 }
 
 TEST(SpeciesOpenCL, EachLayersSteadyMeanIsItsOwnSpeciesU) {
-  // U_i = N_i r_dep,i / (r_dec,i A) (Eq. 5, no activation time): deposits go only into the own layer.
   json j = square_scene();
-  j["species"] = {{{"agents", 400}, {"deposit_rate", 1.0}, {"decay_rate", 2.0}},
-                  {{"agents", 150}, {"deposit_rate", 3.0}, {"decay_rate", 1.0}, {"diffuse_rate", 0.0005}}};
-  j["sensing"] = {{1.0, -0.5}, {-0.5, 1.0}};
+  testing::add_two_unequal_species(j);
   const Loaded l = load(j);
   const SurfaceDomain& domain = l.surface.domain;
-  const double area = std::accumulate(domain.vertex_mass.begin(), domain.vertex_mass.end(), 0.0);
   OpenCLAgentSimulation sim(compute(), domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
-  ASSERT_EQ(sim.dynamic_layer_count(), 2);
-  const double U0 = uniform_steady_state(400, 1.0, 2.0, area, 0.0, 1.0);
-  const double U1 = uniform_steady_state(150, 3.0, 1.0, area, 0.0, 1.0);
-  double sum0 = 0.0, sum1 = 0.0;
-  int samples = 0;
-  for (int s = 0; s < 500; ++s) {  // 10 s: 10 decay times of the slower layer
-    sim.step();
-    if (s < 300) continue;
-    sum0 += sim.field_statistics(U0, 0).mean;
-    sum1 += sim.field_statistics(U1, 1).mean;
-    ++samples;
-  }
-  EXPECT_NEAR(sum0 / samples / U0, 1.0, 0.01);
-  EXPECT_NEAR(sum1 / samples / U1, 1.0, 0.01);
+  testing::expect_each_layer_at_its_species_u(
+      sim, domain, [&](int layer, double U) { return sim.field_statistics(U, layer).mean; });
 }
 
 // Standing agents that decide every step; layer 1 a ramp, layer 0 zero; m = [[0, 1], [0, 0]]:

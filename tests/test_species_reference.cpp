@@ -12,6 +12,7 @@
 #include "common/setup/scene_surface.hpp"
 #include "reference/agent_simulation.hpp"
 #include "loaded_scene.hpp"
+#include "species_steady_means.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <numeric>
 
 namespace physarum {
 namespace {
@@ -66,30 +66,15 @@ double weighted_correlation(const IntrinsicVertexData<double>& x, const Intrinsi
 }
 
 TEST(SpeciesReference, EachLayersSteadyMeanIsItsOwnSpeciesU) {
-  // Different counts, deposit and decay rates: U_i = N_i r_dep,i / (r_dec,i A) (no activation time).
   json j = square_scene(0);
   j.erase("agents");
-  j["species"] = {{{"agents", 400}, {"deposit_rate", 1.0}, {"decay_rate", 2.0}},
-                  {{"agents", 150}, {"deposit_rate", 3.0}, {"decay_rate", 1.0}, {"diffuse_rate", 0.0005}}};
-  j["sensing"] = {{1.0, -0.5}, {-0.5, 1.0}};  // any matrix: sensing steers, it does not change the amounts
+  testing::add_two_unequal_species(j);
   const Loaded l = load(j);
   const SurfaceDomain& domain = l.surface.domain;
-  const double area = std::accumulate(domain.vertex_mass.begin(), domain.vertex_mass.end(), 0.0);
   ReferenceAgentSimulation sim(domain, l.arrays.species, l.arrays.controls, simulation_settings(l.scene));
-  ASSERT_EQ(sim.dynamic_layer_count(), 2);
-  const double U0 = uniform_steady_state(400, 1.0, 2.0, area, 0.0, 1.0);
-  const double U1 = uniform_steady_state(150, 3.0, 1.0, area, 0.0, 1.0);
-  double sum0 = 0.0, sum1 = 0.0;
-  int samples = 0;
-  for (int s = 0; s < 500; ++s) {  // 10 s: 10 decay times of the slower layer
-    sim.step();
-    if (s < 300) continue;
-    sum0 += area_weighted_mean(sim.field(0), domain.vertex_mass);
-    sum1 += area_weighted_mean(sim.field(1), domain.vertex_mass);
-    ++samples;
-  }
-  EXPECT_NEAR(sum0 / samples / U0, 1.0, 0.01);
-  EXPECT_NEAR(sum1 / samples / U1, 1.0, 0.01);
+  testing::expect_each_layer_at_its_species_u(sim, domain, [&](int layer, double) {
+    return area_weighted_mean(sim.field(layer), domain.vertex_mass);
+  });
 }
 
 // The mass-weighted correlation of the two layers, time-averaged over the last 2 s of 5 s.

@@ -1,5 +1,7 @@
 #include "common/color/isomap_color_map.hpp"
 
+#include "common/base/image_budget.hpp"
+
 #include "common/base/errors.hpp"
 
 #include <Eigen/Dense>
@@ -228,6 +230,7 @@ ExemplarPixels read_exemplar_image(const std::string& path) {
   const OIIO::ImageSpec spec = in->spec();
   const int w = spec.width, h = spec.height, channels = spec.nchannels;
   if (w < 1 || h < 1 || channels < 1) throw InputError(path + ": the image is empty");
+  check_image_budget(w, h, path, "colour-map exemplar");
   std::vector<std::uint8_t> data(static_cast<size_t>(w) * h * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, data.data()))
     throw InputError(path + ": cannot read the image: " + in->geterror());

@@ -84,6 +84,15 @@ void IntrinsicTriangulation::trace_on_input(int source_vertex, double normalized
   arrival_angle_in_face = direction_angle(walk.direction) - direction_angle(walk.corners[1] - walk.corners[0]);
 }
 
+void IntrinsicTriangulation::resize_halfedge_slots(int faces) {
+  const size_t new_size = 3 * static_cast<size_t>(faces);
+  tail_.resize(new_size);
+  twin_.resize(new_size);
+  length_.resize(new_size);
+  signpost_.resize(new_size);
+  in_edge_queue_.resize(new_size, 0);
+}
+
 int IntrinsicTriangulation::insert_in_face(int g, const Corners& corners, const Eigen::Vector2d& point,
                                            const Eigen::Vector2d& arrival_direction, int source_vertex,
                                            double source_angle, double distance) {
@@ -95,12 +104,7 @@ int IntrinsicTriangulation::insert_in_face(int g, const Corners& corners, const 
 
   const int m = vertex_count();
   const int n1 = face_count(), n2 = n1 + 1;
-  const size_t new_size = 3 * static_cast<size_t>(n2 + 1);
-  tail_.resize(new_size);
-  twin_.resize(new_size);
-  length_.resize(new_size);
-  signpost_.resize(new_size);
-  in_edge_queue_.resize(new_size, 0);
+  resize_halfedge_slots(n2 + 1);
 
   int u[3];
   int tw[3];
@@ -119,19 +123,13 @@ int IntrinsicTriangulation::insert_in_face(int g, const Corners& corners, const 
     sp_from_m[k] = geometry::wrap_angle(alpha[k] - alpha[0]);
   }
   const int face_of[3] = {g, n1, n2};
-  const auto set = [&](int x, int from, double l, double s, int t) {
-    tail_[x] = from;
-    length_[x] = l;
-    signpost_[x] = s;
-    twin_[x] = t;
-  };
   // Face k = (u_k, u_{k+1}, m) keeps the old edge k in slot 0.
   for (int k = 0; k < 3; ++k) {
     const int f = face_of[k], fn = face_of[(k + 1) % 3], fp = face_of[(k + 2) % 3];
     const int k1 = (k + 1) % 3;
-    set(3 * f + 0, u[k], len[k], sp[k], tw[k]);
-    set(3 * f + 1, u[k1], r[k1], sp_to_m[k1], 3 * fn + 2);
-    set(3 * f + 2, m, r[k], sp_from_m[k], 3 * fp + 1);
+    set_halfedge(3 * f + 0, u[k], len[k], sp[k], tw[k]);
+    set_halfedge(3 * f + 1, u[k1], r[k1], sp_to_m[k1], 3 * fn + 2);
+    set_halfedge(3 * f + 2, m, r[k], sp_from_m[k], 3 * fp + 1);
   }
   const int old_slots[3] = {3 * g + 0, 3 * g + 1, 3 * g + 2};
   const int new_slots[3] = {3 * g + 0, 3 * n1 + 0, 3 * n2 + 0};
@@ -168,12 +166,7 @@ int IntrinsicTriangulation::split_boundary_edge(int h) {
 
   const int m = vertex_count();
   const int n = face_count();
-  const size_t new_size = 3 * static_cast<size_t>(n + 1);
-  tail_.resize(new_size);
-  twin_.resize(new_size);
-  length_.resize(new_size);
-  signpost_.resize(new_size);
-  in_edge_queue_.resize(new_size, 0);
+  resize_halfedge_slots(n + 1);
 
   const double sp_ab = signpost_[h], sp_bc = signpost_[h_bc], sp_ca = signpost_[h_ca];
   const int twin_bc = twin_[h_bc], twin_ca = twin_[h_ca];
@@ -184,19 +177,13 @@ int IntrinsicTriangulation::split_boundary_edge(int h) {
   outgoing_.push_back(3 * n + 0);
   const double sp_cm = geometry::wrap_angle(sp_ca + vertex_scale(c) * geometry::corner_angle(l_ca, r, 0.5 * l));
 
-  const auto set = [&](int x, int from, double len, double sp, int tw) {
-    tail_[x] = from;
-    length_[x] = len;
-    signpost_[x] = sp;
-    twin_[x] = tw;
-  };
   // f = (a, m, c), n = (m, b, c)
-  set(3 * f + 0, a, 0.5 * l, sp_ab, -1);
-  set(3 * f + 1, m, r, sp_mc, 3 * n + 2);
-  set(3 * f + 2, c, l_ca, sp_ca, twin_ca);
-  set(3 * n + 0, m, 0.5 * l, 0.0, -1);
-  set(3 * n + 1, b, l_bc, sp_bc, twin_bc);
-  set(3 * n + 2, c, r, sp_cm, 3 * f + 1);
+  set_halfedge(3 * f + 0, a, 0.5 * l, sp_ab, -1);
+  set_halfedge(3 * f + 1, m, r, sp_mc, 3 * n + 2);
+  set_halfedge(3 * f + 2, c, l_ca, sp_ca, twin_ca);
+  set_halfedge(3 * n + 0, m, 0.5 * l, 0.0, -1);
+  set_halfedge(3 * n + 1, b, l_bc, sp_bc, twin_bc);
+  set_halfedge(3 * n + 2, c, r, sp_cm, 3 * f + 1);
   const int old_slots[3] = {h, h_bc, h_ca};
   const int new_slots[3] = {3 * f + 0, 3 * n + 1, 3 * f + 2};
   remap_after_rewrite(old_slots, new_slots, 3, 3);

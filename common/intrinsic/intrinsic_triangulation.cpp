@@ -382,18 +382,12 @@ bool IntrinsicTriangulation::flip_edge(int h) {
 
   // New faces: f = (c, a, d), g = (d, b, c); the diagonal is 3f+2 (d->c) / 3g+2 (c->d).
   const int twin_bc = twin_[h_bc], twin_ca = twin_[h_ca], twin_ad = twin_[h_ad], twin_db = twin_[h_db];
-  const auto set = [&](int x, int from, double len, double sp, int tw) {
-    tail_[x] = from;
-    length_[x] = len;
-    signpost_[x] = sp;
-    twin_[x] = tw;
-  };
-  set(3 * f + 0, c, l_ca, sp_ca, twin_ca);
-  set(3 * f + 1, a, l_ad, sp_ad, twin_ad);
-  set(3 * f + 2, d, l_cd, sp_dc, 3 * g + 2);
-  set(3 * g + 0, d, l_db, sp_db, twin_db);
-  set(3 * g + 1, b, l_bc, sp_bc, twin_bc);
-  set(3 * g + 2, c, l_cd, sp_cd, 3 * f + 2);
+  set_halfedge(3 * f + 0, c, l_ca, sp_ca, twin_ca);
+  set_halfedge(3 * f + 1, a, l_ad, sp_ad, twin_ad);
+  set_halfedge(3 * f + 2, d, l_cd, sp_dc, 3 * g + 2);
+  set_halfedge(3 * g + 0, d, l_db, sp_db, twin_db);
+  set_halfedge(3 * g + 1, b, l_bc, sp_bc, twin_bc);
+  set_halfedge(3 * g + 2, c, l_cd, sp_cd, 3 * f + 2);
   // The flipped edge itself is interior, so it is never a boundary vertex's reference halfedge; a
   // vertex that used it as its entry point gets its other edge in the new faces.
   const int old_slots[6] = {h_ca, h_ad, h_db, h_bc, h, t};

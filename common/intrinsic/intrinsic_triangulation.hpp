@@ -140,6 +140,15 @@ class IntrinsicTriangulation {
   double vertex_scale(int v) const;     // normalized angle per radian at v
 
   // ---- mutations ----
+  // Writes halfedge slot h: its tail vertex, intrinsic length, signpost at the tail and twin.
+  void set_halfedge(int h, int tail, double length, double signpost, int twin) {
+    tail_[h] = tail;
+    length_[h] = length;
+    signpost_[h] = signpost;
+    twin_[h] = twin;
+  }
+  // Resizes the per-halfedge arrays to the slots of `faces` faces; new slots start off the edge queue.
+  void resize_halfedge_slots(int faces);
   bool edge_is_delaunay(int h, double tolerance) const;
   // Edges whose cotan weight is above -kDelaunayTolerance count as Delaunay when flipping and
   // refining (cotangents are dimensionless, so an absolute tolerance is scale-free). Flipping a

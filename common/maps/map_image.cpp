@@ -1,5 +1,7 @@
 #include "common/maps/map_image.hpp"
 
+#include "common/base/image_budget.hpp"
+
 #include "common/base/errors.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -53,6 +55,7 @@ MapImage read_map_image(const std::string& path, TextureChannel channel, const s
   image.channels = spec.nchannels;
   if (image.width < 1 || image.height < 1 || image.channels < 1)
     throw InputError(what + ": the image " + path + " is empty");
+  check_image_budget(image.width, image.height, path, what);
   if (channel == TextureChannel::Alpha && image.channels != 2 && image.channels != 4)
     throw InputError(what + ": channel \"a\": the image " + path + " has " + std::to_string(image.channels) +
                      " channel(s) and no alpha");

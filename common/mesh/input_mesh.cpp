@@ -20,6 +20,16 @@ int find_root(std::vector<int>& parent, int x) {
 
 }  // namespace
 
+double bounding_box_diagonal(const InputMesh& mesh) {
+  if (mesh.positions.empty()) return 0.0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
 InputMeshStatistics compute_statistics(const InputMesh& mesh) {
   InputMeshStatistics s;
   const int n = mesh.vertex_count();
@@ -76,12 +86,7 @@ InputMeshStatistics compute_statistics(const InputMesh& mesh) {
     s.genus += static_cast<int>((2 - euler - c.boundary_loops) / 2);
   }
 
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  if (n > 0) s.bounding_box_diagonal = (hi - lo).norm();
+  s.bounding_box_diagonal = bounding_box_diagonal(mesh);
   for (const auto& t : mesh.triangles)
     s.area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).norm();
   return s;

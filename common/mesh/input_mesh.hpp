@@ -50,4 +50,8 @@ struct InputMeshStatistics {
 
 InputMeshStatistics compute_statistics(const InputMesh& mesh);
 
+// Length of the diagonal of the axis-aligned box around the mesh's positions (0 without vertices):
+// the scale that relative refinement sizes are given against.
+double bounding_box_diagonal(const InputMesh& mesh);
+
 }  // namespace physarum

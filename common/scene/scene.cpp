@@ -28,7 +28,10 @@ json parse_scene_text(const std::string& text, const std::string& path) {
   std::string duplicate;
   int depth = 0;
   auto callback = [&](int /*callback_depth*/, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) ++depth;
+    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) {
+      // Refused while parsing: a hostile file is stopped at the limit, not after it is all read.
+      if (++depth > kMaxSceneNesting) fail_nesting(path);
+    }
     if (event == json::parse_event_t::object_end || event == json::parse_event_t::array_end) --depth;
     if (event == json::parse_event_t::key && depth == 1 && duplicate.empty()) {
       const std::string key = parsed.get<std::string>();
@@ -153,6 +156,7 @@ Scene scene_from_json(nlohmann::json j, const std::string& source, const nlohman
   if (!j.is_object())
     throw InputError(path + ": a scene must be one JSON object ({...}), found " + std::string(j.type_name()));
   apply_scene_overrides(j, overrides, path);
+  check_scene_nesting(j, path);
   refuse_unknown_keys(j, path);
   const std::filesystem::path folder = std::filesystem::path(source).parent_path();
   const SceneReader read{j, path};

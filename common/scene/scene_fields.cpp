@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace physarum {
 namespace {
@@ -18,6 +20,24 @@ const SceneKey& spec_of(std::string_view name) {
 }
 
 }  // namespace
+
+void fail_nesting(const std::string& where) {
+  throw InputError(where + ": nested deeper than " + std::to_string(kMaxSceneNesting) +
+                   " levels of objects and arrays (a scene allows at most " + std::to_string(kMaxSceneNesting) +
+                   "; is a map definition nested by mistake?)");
+}
+
+void check_scene_nesting(const json& value, const std::string& where) {
+  // Depth-first with an explicit stack: a recursive walk would itself be what a deep value breaks.
+  std::vector<std::pair<const json*, int>> todo = {{&value, 1}};
+  while (!todo.empty()) {
+    const auto [node, depth] = todo.back();
+    todo.pop_back();
+    if (!node->is_structured()) continue;
+    if (depth > kMaxSceneNesting) fail_nesting(where);
+    for (const json& child : *node) todo.emplace_back(&child, depth + 1);
+  }
+}
 
 std::string scene_where(const std::string& source) { return source.empty() ? std::string("scene") : source; }
 

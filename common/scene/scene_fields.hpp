@@ -16,6 +16,16 @@
 
 namespace physarum {
 
+// Scenes nest objects and arrays at most this deep. Real scenes nest a few levels (a map inside a
+// map inside "maps"); a definition nested thousands deep would cost time and memory quadratic in its
+// depth (inline maps are hoisted with names that grow with it) before any error could be given.
+constexpr int kMaxSceneNesting = 64;
+
+// InputError "WHERE: nested deeper than 64 levels ..." when `value` does; it never descends further
+// than that, so any depth is refused at once.
+void check_scene_nesting(const nlohmann::json& value, const std::string& where);
+[[noreturn]] void fail_nesting(const std::string& where);
+
 // The scene's name in messages: its file, or "scene" for a scene built in code.
 std::string scene_where(const std::string& source);
 

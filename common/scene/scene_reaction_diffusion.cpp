@@ -106,139 +106,166 @@ const std::vector<std::string>& reaction_diffusion_keys() {
   return keys;
 }
 
-std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, const std::string& source) {
-  auto given = [&](const char* key) {
-    const auto it = j.find(key);
-    return it != j.end() && !it->is_null() ? &*it : nullptr;
-  };
+namespace {
+
+// A key of the scene object, nullptr when absent or null.
+const json* given_key(const json& j, const char* key) {
+  const auto it = j.find(key);
+  return it != j.end() && !it->is_null() ? &*it : nullptr;
+}
+
+// "model" (and "reaction", which implies "custom"); "physarum" for the agent model, whose scenes
+// may not carry the reaction-diffusion keys.
+std::string read_model_name(const json& j, const std::string& source) {
   std::string model = "physarum";
-  if (const json* m = given("model")) {
+  if (const json* m = given_key(j, "model")) {
     if (!m->is_string()) fail_key(source, "model", m->dump() + " must be a string");
     model = m->get<std::string>();
   }
-  const json* reaction = given("reaction");
+  const json* reaction = given_key(j, "reaction");
   if (model == "physarum" && reaction) model = "custom";
   if (model == "physarum") {
     for (const std::string& key : reaction_diffusion_keys())
-      if (key != "model" && given(key.c_str()))
+      if (key != "model" && given_key(j, key.c_str()))
         fail_key(source, key, "belongs to a reaction-diffusion model, and this scene's \"model\" is \"physarum\" "
                           "(the default; set \"model\" to one of " + reaction_model_names() + ", or give \"reaction\")");
-    return std::nullopt;
-  }
-
-  ReactionDiffusionSpec spec;
-  spec.model = model;
-  const ReactionModel* named = find_reaction_model(model);
-  if (model == "custom") {
+  } else if (model == "custom") {
     if (!reaction) fail_key(source, "model", "\"custom\" needs \"reaction\": {MORPHOGEN: FORMULA, ...}");
-  } else if (!named) {
+  } else if (!find_reaction_model(model)) {
     fail_key(source, "model", "\"" + model + "\" is not a model (physarum, " + reaction_model_names() + ", or custom)");
   } else if (reaction) {
     fail_key(source, "reaction", "custom kinetics, and \"model\" names the built-in \"" + model +
                                  "\" (leave \"model\" out or set it to \"custom\")");
   }
+  return model;
+}
 
-  // ---- the morphogens and their kinetics ----
-  const json* morphogens = given("morphogens");
+// A named model's morphogens, kinetics and default coefficients.
+void take_named_model(const ReactionModel& named, ReactionDiffusionSpec& spec) {
+  for (size_t i = 0; i < named.morphogens.size(); ++i) {
+    MorphogenSpec m;
+    m.name = named.morphogens[i];
+    m.diffusion = named.diffusion[i];
+    m.initial = named.initial[i];
+    m.minimum = named.minimum[i];
+    spec.morphogens.push_back(m);
+  }
+  spec.reaction = named.reaction;
+  for (const auto& [name, value] : named.coefficients) spec.coefficients.emplace_back(name, value);
+}
+
+// "reaction": custom kinetics, one formula per morphogen (which then each need a "morphogens" entry).
+void read_custom_kinetics(const json& reaction, const json* morphogens, ReactionDiffusionSpec& spec,
+                          const std::string& source) {
+  if (!reaction.is_object()) fail_key(source, "reaction", reaction.dump() + " must be an object {MORPHOGEN: FORMULA, ...}");
+  if (reaction.size() < kMinMorphogens || reaction.size() > kMaxMorphogens)
+    fail_key(source, "reaction", "has " + std::to_string(reaction.size()) + " morphogens; a system has 2 to 4");
+  for (auto it = reaction.begin(); it != reaction.end(); ++it) {
+    const std::string key = "reaction." + it.key();
+    check_identifier(it.key(), source, key);
+    if (!it->is_string()) fail_key(source, key, it->dump() + " must be a formula (a string)");
+    MorphogenSpec m;
+    m.name = it.key();
+    spec.morphogens.push_back(m);
+    spec.reaction.push_back(it->get<std::string>());
+  }
+  if (!morphogens) fail_key(source, "morphogens", "missing: custom kinetics need each morphogen's \"diffusion\"");
+  for (const MorphogenSpec& m : spec.morphogens)
+    if (!morphogens->contains(m.name))
+      fail_key(source, "morphogens", "missing an entry for \"" + m.name + "\" (its \"diffusion\" is required)");
+}
+
+// "morphogens": each entry overrides (named model) or gives (custom) one morphogen's settings.
+void read_morphogens(const json& morphogens, bool named, ReactionDiffusionSpec& spec, const std::string& source) {
+  for (auto it = morphogens.begin(); it != morphogens.end(); ++it) {
+    const int index = spec.morphogen_index(it.key());
+    if (index < 0)
+      fail_key(source, "morphogens." + it.key(), "no morphogen of that name (the morphogens: " +
+                                                 morphogen_list(spec.morphogens) + ")");
+    read_morphogen_entry(*it, spec.morphogens[static_cast<size_t>(index)], !named, source, "morphogens." + it.key());
+  }
+}
+
+// "parameters": a named model's coefficients replaced (no new ones), a custom model's given.
+void read_coefficients(const json& p, const ReactionModel* named, ReactionDiffusionSpec& spec, const std::string& source) {
+  if (!p.is_object()) fail_key(source, "parameters", p.dump() + " must be an object {NAME: number or map, ...}");
+  for (auto it = p.begin(); it != p.end(); ++it) {
+    const std::string key = "parameters." + it.key();
+    check_identifier(it.key(), source, key);
+    if (spec.morphogen_index(it.key()) >= 0) fail_key(source, key, "'" + it.key() + "' is a morphogen, not a coefficient");
+    const MapOperand value = field_operand(*it, source, key);
+    auto existing = std::find_if(spec.coefficients.begin(), spec.coefficients.end(),
+                                 [&](const auto& c) { return c.first == it.key(); });
+    if (existing != spec.coefficients.end()) {
+      existing->second = value;
+    } else if (named) {
+      std::string known;
+      for (const auto& c : named->coefficients) known += (known.empty() ? "" : ", ") + c.first;
+      fail_key(source, key, "\"" + spec.model + "\" has no coefficient '" + it.key() + "' (it has " + known + ")");
+    } else {
+      spec.coefficients.emplace_back(it.key(), value);
+    }
+  }
+}
+
+// "initial": noise, a seeded region, spots.
+ReactionInitialSpec read_initial(const json& init, const std::vector<MorphogenSpec>& morphogens, const std::string& source) {
+  ReactionInitialSpec initial;
+  only_fields(init, {"noise", "seed_region", "spots"}, source, "initial");
+  if (const auto n = init.find("noise"); n != init.end()) initial.noise = field_number(*n, source, "initial.noise");
+  if (const auto r = init.find("seed_region"); r != init.end() && !r->is_null()) {
+    only_fields(*r, {"map", "values"}, source, "initial.seed_region");
+    SeedRegionSpec seed;
+    if (!r->contains("map")) fail_key(source, "initial.seed_region", "missing \"map\" (a scalar map, 0..1)");
+    seed.map = field_map_name(r->at("map"), source, "initial.seed_region.map");
+    if (!r->contains("values")) fail_key(source, "initial.seed_region", "missing \"values\" ({MORPHOGEN: value})");
+    seed.values = read_values(r->at("values"), morphogens, source, "initial.seed_region.values");
+    initial.seed_region = seed;
+  }
+  if (const auto s = init.find("spots"); s != init.end() && !s->is_null()) {
+    only_fields(*s, {"count", "radius", "values"}, source, "initial.spots");
+    SpotsSpec spots;
+    for (const char* f : {"count", "radius", "values"})
+      if (!s->contains(f)) fail_key(source, "initial.spots", std::string("missing \"") + f + "\"");
+    const double count = field_number(s->at("count"), source, "initial.spots.count");
+    if (count < 1 || count != std::floor(count) || count > 1e7)
+      fail_key(source, "initial.spots.count", number_text(count) + " must be a whole number 1..1e7");
+    spots.count = static_cast<int>(count);
+    spots.radius = field_number(s->at("radius"), source, "initial.spots.radius");
+    spots.values = read_values(s->at("values"), morphogens, source, "initial.spots.values");
+    initial.spots = spots;
+  }
+  return initial;
+}
+
+DirichletSpec read_dirichlet(const json& d, const std::vector<MorphogenSpec>& morphogens, const std::string& source) {
+  only_fields(d, {"map", "values"}, source, "dirichlet");
+  DirichletSpec dirichlet;
+  if (!d.contains("map")) fail_key(source, "dirichlet", "missing \"map\" (a scalar map: fixed where >= 0.5)");
+  dirichlet.map = field_map_name(d.at("map"), source, "dirichlet.map");
+  if (d.contains("values")) dirichlet.values = read_values(d.at("values"), morphogens, source, "dirichlet.values");
+  return dirichlet;
+}
+
+}  // namespace
+
+std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, const std::string& source) {
+  const std::string model = read_model_name(j, source);
+  if (model == "physarum") return std::nullopt;
+  ReactionDiffusionSpec spec;
+  spec.model = model;
+  const ReactionModel* named = find_reaction_model(model);
+  const json* morphogens = given_key(j, "morphogens");
   if (morphogens && !morphogens->is_object())
     fail_key(source, "morphogens", morphogens->dump() + " must be an object {NAME: {\"diffusion\", \"initial\", \"anisotropy\", \"minimum\"}}");
-  if (named) {
-    for (size_t i = 0; i < named->morphogens.size(); ++i) {
-      MorphogenSpec m;
-      m.name = named->morphogens[i];
-      m.diffusion = named->diffusion[i];
-      m.initial = named->initial[i];
-      m.minimum = named->minimum[i];
-      spec.morphogens.push_back(m);
-    }
-    spec.reaction = named->reaction;
-    for (const auto& [name, value] : named->coefficients) spec.coefficients.emplace_back(name, value);
-  } else {
-    if (!reaction->is_object()) fail_key(source, "reaction", reaction->dump() + " must be an object {MORPHOGEN: FORMULA, ...}");
-    if (reaction->size() < kMinMorphogens || reaction->size() > kMaxMorphogens)
-      fail_key(source, "reaction", "has " + std::to_string(reaction->size()) + " morphogens; a system has 2 to 4");
-    for (auto it = reaction->begin(); it != reaction->end(); ++it) {
-      const std::string key = "reaction." + it.key();
-      check_identifier(it.key(), source, key);
-      if (!it->is_string()) fail_key(source, key, it->dump() + " must be a formula (a string)");
-      MorphogenSpec m;
-      m.name = it.key();
-      spec.morphogens.push_back(m);
-      spec.reaction.push_back(it->get<std::string>());
-    }
-    if (!morphogens) fail_key(source, "morphogens", "missing: custom kinetics need each morphogen's \"diffusion\"");
-    for (const MorphogenSpec& m : spec.morphogens)
-      if (!morphogens->contains(m.name))
-        fail_key(source, "morphogens", "missing an entry for \"" + m.name + "\" (its \"diffusion\" is required)");
-  }
-  if (morphogens)
-    for (auto it = morphogens->begin(); it != morphogens->end(); ++it) {
-      const int index = spec.morphogen_index(it.key());
-      if (index < 0)
-        fail_key(source, "morphogens." + it.key(), "no morphogen of that name (the morphogens: " +
-                                                   morphogen_list(spec.morphogens) + ")");
-      read_morphogen_entry(*it, spec.morphogens[static_cast<size_t>(index)], !named, source, "morphogens." + it.key());
-    }
-
-  // ---- coefficients ----
-  if (const json* p = given("parameters")) {
-    if (!p->is_object()) fail_key(source, "parameters", p->dump() + " must be an object {NAME: number or map, ...}");
-    for (auto it = p->begin(); it != p->end(); ++it) {
-      const std::string key = "parameters." + it.key();
-      check_identifier(it.key(), source, key);
-      if (spec.morphogen_index(it.key()) >= 0) fail_key(source, key, "'" + it.key() + "' is a morphogen, not a coefficient");
-      const MapOperand value = field_operand(*it, source, key);
-      auto existing = std::find_if(spec.coefficients.begin(), spec.coefficients.end(),
-                                   [&](const auto& c) { return c.first == it.key(); });
-      if (existing != spec.coefficients.end()) {
-        existing->second = value;
-      } else if (named) {
-        std::string known;
-        for (const auto& c : named->coefficients) known += (known.empty() ? "" : ", ") + c.first;
-        fail_key(source, key, "\"" + model + "\" has no coefficient '" + it.key() + "' (it has " + known + ")");
-      } else {
-        spec.coefficients.emplace_back(it.key(), value);
-      }
-    }
-  }
-
-  // ---- initial state, boundary, picture ----
-  if (const json* init = given("initial")) {
-    only_fields(*init, {"noise", "seed_region", "spots"}, source, "initial");
-    if (const auto n = init->find("noise"); n != init->end()) spec.initial.noise = field_number(*n, source, "initial.noise");
-    if (const auto r = init->find("seed_region"); r != init->end() && !r->is_null()) {
-      only_fields(*r, {"map", "values"}, source, "initial.seed_region");
-      SeedRegionSpec seed;
-      if (!r->contains("map")) fail_key(source, "initial.seed_region", "missing \"map\" (a scalar map, 0..1)");
-      seed.map = field_map_name(r->at("map"), source, "initial.seed_region.map");
-      if (!r->contains("values")) fail_key(source, "initial.seed_region", "missing \"values\" ({MORPHOGEN: value})");
-      seed.values = read_values(r->at("values"), spec.morphogens, source, "initial.seed_region.values");
-      spec.initial.seed_region = seed;
-    }
-    if (const auto s = init->find("spots"); s != init->end() && !s->is_null()) {
-      only_fields(*s, {"count", "radius", "values"}, source, "initial.spots");
-      SpotsSpec spots;
-      for (const char* f : {"count", "radius", "values"})
-        if (!s->contains(f)) fail_key(source, "initial.spots", std::string("missing \"") + f + "\"");
-      const double count = field_number(s->at("count"), source, "initial.spots.count");
-      if (count < 1 || count != std::floor(count) || count > 1e7)
-        fail_key(source, "initial.spots.count", number_text(count) + " must be a whole number 1..1e7");
-      spots.count = static_cast<int>(count);
-      spots.radius = field_number(s->at("radius"), source, "initial.spots.radius");
-      spots.values = read_values(s->at("values"), spec.morphogens, source, "initial.spots.values");
-      spec.initial.spots = spots;
-    }
-  }
-  if (const json* d = given("dirichlet")) {
-    only_fields(*d, {"map", "values"}, source, "dirichlet");
-    DirichletSpec dirichlet;
-    if (!d->contains("map")) fail_key(source, "dirichlet", "missing \"map\" (a scalar map: fixed where >= 0.5)");
-    dirichlet.map = field_map_name(d->at("map"), source, "dirichlet.map");
-    if (d->contains("values")) dirichlet.values = read_values(d->at("values"), spec.morphogens, source, "dirichlet.values");
-    spec.dirichlet = dirichlet;
-  }
+  if (named) take_named_model(*named, spec);
+  else read_custom_kinetics(*given_key(j, "reaction"), morphogens, spec, source);
+  if (morphogens) read_morphogens(*morphogens, named != nullptr, spec, source);
+  if (const json* p = given_key(j, "parameters")) read_coefficients(*p, named, spec, source);
+  if (const json* init = given_key(j, "initial")) spec.initial = read_initial(*init, spec.morphogens, source);
+  if (const json* d = given_key(j, "dirichlet")) spec.dirichlet = read_dirichlet(*d, spec.morphogens, source);
   spec.preview_morphogen = spec.morphogens[1].name;
-  if (const json* p = given("preview_morphogen")) {
+  if (const json* p = given_key(j, "preview_morphogen")) {
     if (!p->is_string() || spec.morphogen_index(p->get<std::string>()) < 0)
       fail_key(source, "preview_morphogen", p->dump() + " must be a morphogen's name (" + morphogen_list(spec.morphogens) + ")");
     spec.preview_morphogen = p->get<std::string>();

@@ -17,6 +17,7 @@
 #include "opencl/agent_simulation.hpp"
 #include "opencl/runtime/program_cache.hpp"
 #include "opencl/reaction_diffusion.hpp"
+#include "pheromone_rates.hpp"
 #include "pheromone_test_meshes.hpp"
 #include "probe_checks.hpp"
 
@@ -29,18 +30,35 @@ namespace physarum::opencl {
 namespace {
 
 using testing::check;
-
-VertexParameters rates(int n, double diffuse, double decay) {
-  VertexParameters p;
-  p[Param::diffuse_rate].assign(static_cast<size_t>(n), diffuse);
-  p[Param::decay_rate].assign(static_cast<size_t>(n), decay);
-  return p;
-}
+using testing::uniform_rates;
 
 DeviceVertexData<double> ramp(int n) {
   DeviceVertexData<double> u(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) u[static_cast<size_t>(i)] = 0.1 + 0.9 * ((i * 37) % 101) / 100.0;
   return u;
+}
+
+// The agent parameters every agent run below shares; only the speed differs between runs. With
+// the runs' time step of 0.02 s, turn_frequency 120 is 2.4 decisions per step: the first sensed
+// ahead of the step, the rest inside it; the short lifetime makes agents respawn within the run.
+void set_agent_parameters(ParameterValues& p, double move_rate) {
+  p[Param::sensor_distance] = 0.3;
+  p[Param::sensor_angle] = 0.4;
+  p[Param::move_rate] = move_rate;
+  p[Param::turn_rate] = 3.0;
+  p[Param::turn_frequency] = 120.0;
+  p[Param::deposit_rate] = 1.0;
+  p[Param::decay_rate] = 0.5;
+  p[Param::diffuse_rate] = 0.01;
+  p[Param::mean_lifetime] = 0.05;
+  p[Param::activation_time] = 0.01;
+}
+
+// One check that no kernel wrote into a canary region, naming the damaged buffers when one did.
+void check_canaries_intact(const std::vector<std::string>& damaged, const std::string& label) {
+  std::string names;
+  for (const auto& name : damaged) names += " " + name;
+  check(damaged.empty(), label + ": canaries intact" + names);
 }
 
 void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, const VertexParameters& params,
@@ -61,10 +79,7 @@ void run_pheromone(const ComputeContext& compute, const SurfaceDomain& domain, c
   check(finite, label + ": field and statistics finite (mean " + std::to_string(stats.mean) + ", " +
                     std::to_string(field.sub_steps()) + " sub-steps, " +
                     std::to_string(field.last_solve().iterations) + " CG iterations)");
-  const std::vector<std::string> damaged = field.damaged_canaries();
-  std::string names;
-  for (const auto& n : damaged) names += " " + n;
-  check(damaged.empty(), label + ": canaries intact" + names);
+  check_canaries_intact(field.damaged_canaries(), label);
 }
 
 // A few hundred agents for a few steps: initialise_agents, agent_step (sensing, steering, moving,
@@ -77,16 +92,8 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
   Scene scene;
   scene.agent_model().agents = 301;  // not a multiple of the work-group size or of 4: padded and part-filled work-items run too
   scene.time_step = 0.02;
-  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
-  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
-  scene.agent_model().parameters[Param::move_rate] = 10.0;  // several faces per step, and boundary hits on the square
-  scene.agent_model().parameters[Param::turn_rate] = 3.0;
-  scene.agent_model().parameters[Param::turn_frequency] = 120.0;  // 2.4 decisions per step: the first sensed ahead of the step, the rest inside it
-  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
-  scene.agent_model().parameters[Param::decay_rate] = 0.5;
-  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
-  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
-  scene.agent_model().parameters[Param::activation_time] = 0.01;
+  // move_rate 10: several faces per step, and boundary hits on the square
+  set_agent_parameters(scene.agent_model().parameters, 10.0);
   scene.agent_model().integrator = integrator;
   OpenCLBackendOptions options;
   options.agents_per_work_item = agents_per_work_item;
@@ -100,10 +107,7 @@ void run_agents(const ComputeContext& compute, const SurfaceDomain& domain, Inte
         label + ": agents moved (" + std::to_string(c.face_crossings) + " crossings, " +
             std::to_string(c.boundary_hits) + " boundary hits, " + std::to_string(c.respawns) + " respawns), mean " +
             std::to_string(stats.mean));
-  const std::vector<std::string> damaged = sim.damaged_canaries();
-  std::string names;
-  for (const auto& n : damaged) names += " " + n;
-  check(damaged.empty(), label + ": canaries intact" + names);
+  check_canaries_intact(sim.damaged_canaries(), label);
 }
 
 // The same agents with every control of Sec. 3.3 switched on (common/model/simulation_controls.hpp), so
@@ -115,16 +119,7 @@ void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain
                               int agents_per_work_item, const std::string& label) {
   const int n = domain.vertex_count;
   Scene scene;
-  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
-  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
-  scene.agent_model().parameters[Param::move_rate] = 10.0;
-  scene.agent_model().parameters[Param::turn_rate] = 3.0;
-  scene.agent_model().parameters[Param::turn_frequency] = 120.0;
-  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
-  scene.agent_model().parameters[Param::decay_rate] = 0.5;
-  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
-  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
-  scene.agent_model().parameters[Param::activation_time] = 0.01;
+  set_agent_parameters(scene.agent_model().parameters, 10.0);
   VertexParameters params = VertexParameters::constant(scene.agent_model().parameters, n);
   SimulationControls controls;
   controls.read_stimulus.assign(static_cast<size_t>(n), 0.0);
@@ -163,10 +158,7 @@ void run_agents_with_controls(const ComputeContext& compute, const SurfaceDomain
   check(std::isfinite(stats.mean) && stats.mean > 0.0 && c.respawns > 0,
         label + ": agents moved with controls (" + std::to_string(c.respawns) + " respawns), mean " +
             std::to_string(stats.mean));
-  const std::vector<std::string> damaged = sim.damaged_canaries();
-  std::string names;
-  for (const auto& d : damaged) names += " " + d;
-  check(damaged.empty(), label + ": canaries intact" + names);
+  check_canaries_intact(sim.damaged_canaries(), label);
 }
 
 // Three competing species (kernels/species.cl: -DPHYSARUM_SPECIES=3) of uneven sizes with their own
@@ -177,16 +169,7 @@ void run_competing_species(const ComputeContext& compute, const SurfaceDomain& d
                            const std::string& label) {
   const int n = domain.vertex_count;
   Scene scene;
-  scene.agent_model().parameters[Param::sensor_distance] = 0.3;
-  scene.agent_model().parameters[Param::sensor_angle] = 0.4;
-  scene.agent_model().parameters[Param::move_rate] = 8.0;
-  scene.agent_model().parameters[Param::turn_rate] = 3.0;
-  scene.agent_model().parameters[Param::turn_frequency] = 120.0;
-  scene.agent_model().parameters[Param::deposit_rate] = 1.0;
-  scene.agent_model().parameters[Param::decay_rate] = 0.5;
-  scene.agent_model().parameters[Param::diffuse_rate] = 0.01;
-  scene.agent_model().parameters[Param::mean_lifetime] = 0.05;
-  scene.agent_model().parameters[Param::activation_time] = 0.01;
+  set_agent_parameters(scene.agent_model().parameters, 8.0);
   SpeciesSet species;
   const int sizes[3] = {101, 57, 143};
   for (int s = 0; s < 3; ++s) {
@@ -220,10 +203,7 @@ void run_competing_species(const ComputeContext& compute, const SurfaceDomain& d
     check(std::isfinite(stats.mean) && stats.mean > 0.0,
           label + ": layer " + std::to_string(layer) + " mean " + std::to_string(stats.mean));
   }
-  const std::vector<std::string> damaged = sim.damaged_canaries();
-  std::string names;
-  for (const auto& d : damaged) names += " " + d;
-  check(damaged.empty(), label + ": canaries intact" + names);
+  check_canaries_intact(sim.damaged_canaries(), label);
 }
 
 void run_philox(const ComputeContext& compute) {
@@ -315,19 +295,19 @@ int run(int argc, char** argv) {
   // padded work-items and their guards are exercised.
   const SurfaceDomain domain = testing::make_domain(testing::make_icosphere(2));
   const int n = domain.vertex_count;
-  VertexParameters mixed = rates(n, 0.02, 0.5);
+  VertexParameters mixed = uniform_rates(n, 0.02, 0.5);
   for (int i = 0; i < n; ++i) mixed[Param::diffuse_rate][static_cast<size_t>(i)] = (i % 5 == 0) ? 0.0 : 0.01 + 0.0001 * i;
-  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::Forward, 3.0, "forward Euler, sub-steps");
+  run_pheromone(compute, domain, uniform_rates(n, 0.02, 0.5), Integrator::Forward, 3.0, "forward Euler, sub-steps");
   // The icosphere's rows all fit the ELL width; the prism's two cap centres (16 neighbours) do not,
   // so its forward step runs the overflow kernel too.
   const SurfaceDomain prism = testing::delaunay_domain("shape:octagonal-prism");
   check(to_hybrid(prism.laplacian, prism.vertex_count).overflow_rows() > 0,
         "the prism has rows longer than the ELL width (" + std::to_string(PHYSARUM_ELL_WIDTH) + ")");
-  run_pheromone(compute, prism, rates(prism.vertex_count, 0.02, 0.5), Integrator::Forward, 3.0,
+  run_pheromone(compute, prism, uniform_rates(prism.vertex_count, 0.02, 0.5), Integrator::Forward, 3.0,
                 "forward Euler, rows past the ELL width");
-  run_pheromone(compute, domain, rates(n, 0.02, 0.5), Integrator::Backward, 0.3, "backward Euler, uniform");
+  run_pheromone(compute, domain, uniform_rates(n, 0.02, 0.5), Integrator::Backward, 0.3, "backward Euler, uniform");
   run_pheromone(compute, domain, mixed, Integrator::Backward, 0.3, "backward Euler, varying and zero diffusion");
-  run_pheromone(compute, domain, rates(n, 0.0, 0.5), Integrator::Backward, 0.3, "backward Euler, no diffusion");
+  run_pheromone(compute, domain, uniform_rates(n, 0.0, 0.5), Integrator::Backward, 0.3, "backward Euler, no diffusion");
   run_reaction_diffusion(compute, domain, Integrator::Forward, "reaction-diffusion, explicit, held vertices");
   run_reaction_diffusion(compute, prism, Integrator::Forward, "reaction-diffusion, explicit, rows past the ELL width");
   run_reaction_diffusion(compute, prism, Integrator::Forward,

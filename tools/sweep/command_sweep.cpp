@@ -137,7 +137,17 @@ int run_sweep(const SweepOptions& o) {
     std::cout << "physarum sweep: collected " << c.rows << " runs (" << c.missing << " missing) into " << o.collect
               << "/sweep.csv and " << o.collect << "/contact_sheet.png (" << c.layout.rows << " x " << c.layout.columns
               << " cells of " << c.layout.seeds << " seeds, " << c.layout.width() << " x " << c.layout.height() << " px)\n";
-    return 0;
+    // A partial sweep is collected (its sheet is worth a look) but is not a success.
+    auto list = [](const std::vector<int>& jobs) {
+      std::string s;
+      for (const int i : jobs) s += " " + std::to_string(i);
+      return s;
+    };
+    if (!c.failed_jobs.empty())
+      std::cerr << "physarum sweep: failed or unfinished jobs (folder without run.json; logs in " << o.collect
+                << "/logs/):" << list(c.failed_jobs) << "\n";
+    if (!c.missing_jobs.empty()) std::cerr << "physarum sweep: jobs never run:" << list(c.missing_jobs) << "\n";
+    return c.missing > 0 ? 1 : 0;
   }
   if (o.target.empty()) throw UsageError("give a scene file to plan a sweep, a sweep folder, or --collect DIR");
   const bool planning = !o.vary.empty() || !o.csv.empty();
@@ -196,7 +206,8 @@ Command add_sweep_command(CLI::App& parent) {
       "--emit parallel: DIR/jobs.txt); --collect DIR gathers DIR/sweep.csv and DIR/contact_sheet.png. Example: "
       "physarum sweep tools/scenes/default.json --vary turn_rate=90,180,360 --vary sensor_angle=22.5,45 --seeds 2 "
       "--steps 300 --out sweep --run && physarum sweep --collect sweep");
-  app->footer("Exit codes: 0 success, 1 bad input or a failed job (the others still run), 2 usage error.");
+  app->footer("Exit codes: 0 success, 1 bad input, a failed job (the others still run) or --collect with runs missing "
+              "or failed, 2 usage error.");
   app->add_option("target", options->target,
                   "A scene file (plans a sweep into --out) or an existing sweep folder (--run, --emit, --job)");
   app->add_option("--vary", options->vary,

@@ -109,6 +109,15 @@ ContactSheet contact_sheet_for(const SweepPlan& plan, const std::vector<SweepJob
   return sheet;
 }
 
+namespace {
+
+const char* job_status(const SweepJob& job) {
+  if (job.finished()) return "done";
+  return fs::exists(job.out) ? "failed" : "missing";
+}
+
+}  // namespace
+
 SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
   const SweepPlan plan = read_sweep_plan(folder);
   const std::vector<SweepJob> jobs = read_sweep_jobs(folder);
@@ -121,6 +130,7 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
     const fs::path out(jobs[i].out);
     if (!jobs[i].finished()) {
       ++result.missing;
+      (fs::exists(out) ? result.failed_jobs : result.missing_jobs).push_back(jobs[i].index);
       continue;
     }
     std::ifstream in(out / "run.json");
@@ -149,7 +159,7 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
     const SweepJob& job = jobs[i];
     csv += std::to_string(job.index);
     for (const std::string& k : varied) csv += "," + csv_field(job.overrides.contains(k) ? value_text(job.overrides[k]) : "");
-    csv += "," + std::to_string(job.seed) + "," + csv_field(job.out) + "," + (job.finished() ? "done" : "missing");
+    csv += "," + std::to_string(job.seed) + "," + csv_field(job.out) + "," + job_status(job);
     for (const std::string& k : run_keys) csv += "," + csv_field(run_values[i].count(k) ? run_values[i][k] : "");
     for (const std::string& k : stats_keys) csv += "," + csv_field(stats_values[i].count(k) ? stats_values[i][k] : "");
     csv += "\n";

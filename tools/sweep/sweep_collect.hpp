@@ -1,7 +1,8 @@
 #pragma once
 // `physarum sweep --collect DIR`: gathers a sweep's finished runs (tools/sweep/sweep_plan.hpp) into
 //   DIR/sweep.csv          one row per job, in job order: index, the varied keys' values, seed, out,
-//                          status (done | missing), every scalar of the run's run.json (columns in
+//                          status (done; failed: its folder exists without run.json, a run that
+//                          stopped, failed or is still running; missing: never started), every scalar of the run's run.json (columns in
 //                          the order first met), and the run's final stats.csv row as final_<column>;
 //   DIR/contact_sheet.png  the previews laid out by the varied keys (tools/sweep/contact_sheet.hpp): with
 //                          one key its values are the columns of one row; with two the first key's
@@ -9,17 +10,21 @@
 //                          half of the keys (combined, "k1=v1, k2=v2") make the rows and the rest the
 //                          columns; rows of a CSV of variants are the sheet's rows. The seeds of a
 //                          variant stand side by side in its cell.
-// Missing runs stay rows (status missing) and grey cells, so a partial sweep can be looked at.
+// Missing and failed runs stay rows and grey cells, so a partial sweep can be looked at; the command
+// then exits 1 and lists them.
 #include "tools/sweep/contact_sheet.hpp"
 #include "tools/sweep/sweep_plan.hpp"
 
 #include <string>
+#include <vector>
 
 namespace physarum::cli {
 
 struct SweepCollection {
   int rows = 0;     // rows of sweep.csv (= jobs)
-  int missing = 0;  // jobs without run.json
+  int missing = 0;  // jobs without run.json (failed_jobs and missing_jobs together)
+  std::vector<int> failed_jobs;   // started (their folder exists) and not finished
+  std::vector<int> missing_jobs;  // never started
   ContactSheetLayout layout;
 };
 

@@ -204,6 +204,22 @@ void read_variant_csv(const std::string& path, std::vector<std::string>& keys, s
   if (rows.empty()) throw InputError(path + ": no variants after the header line");
 }
 
+// Refuses a sweep of more than kMaxSweepJobs jobs before anything is expanded: its size is the
+// product of the value counts (or the CSV's rows) times the seeds, computed in floating point so a
+// product past any integer type is still a number to show.
+void check_sweep_size(const SweepPlan& plan, int seeds) {
+  double jobs = seeds;
+  if (!plan.csv_keys.empty()) jobs *= static_cast<double>(plan.csv_rows.size());
+  for (const SweepAxis& a : plan.axes) jobs *= static_cast<double>(a.values.size());
+  if (jobs > static_cast<double>(kMaxSweepJobs)) {
+    std::ostringstream count;
+    count.precision(15);
+    count << jobs;
+    throw UsageError("a sweep of " + count.str() + " jobs (the values of every --vary multiplied, times --seeds) is more "
+                     "than the " + std::to_string(kMaxSweepJobs) + " one sweep plans; split it into several sweeps");
+  }
+}
+
 SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::string>& vary, const std::string& csv,
                           int seeds, const std::vector<std::string>& run_options, const std::string& folder) {
   if (seeds < 1) throw UsageError("--seeds " + std::to_string(seeds) + " must be >= 1");
@@ -222,6 +238,7 @@ SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::strin
     for (const std::string& key : plan.csv_keys)
       if (!seen.insert(key).second) throw InputError(csv + ": key '" + key + "' is a column twice");
   }
+  check_sweep_size(plan, seeds);
   const std::uint32_t first = scene_seed(plan.scene);
   for (int k = 0; k < seeds; ++k) plan.seeds.push_back(first + static_cast<std::uint32_t>(k));
   return plan;

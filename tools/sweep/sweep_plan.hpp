@@ -67,9 +67,13 @@ SweepAxis parse_vary(const std::string& text);
 // skipped. InputError naming the file and line on a row with the wrong number of fields.
 void read_variant_csv(const std::string& path, std::vector<std::string>& keys, std::vector<std::vector<nlohmann::json>>& rows);
 
+// The most jobs one sweep plans (each is a folder and a line of jobs.jsonl; more belongs in several
+// sweeps). Checked before the grid is expanded, so a huge --vary is refused at once.
+constexpr int kMaxSweepJobs = 100000;
+
 // Builds the plan. `seeds` runs per variant, seeded scene_seed, scene_seed + 1, ... where
 // scene_seed is the scene file's "seed" (1 when absent). UsageError when a key is varied twice,
-// seeds < 1, or there is nothing to run.
+// seeds < 1, there is nothing to run, or the grid has more than kMaxSweepJobs jobs.
 SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::string>& vary, const std::string& csv,
                           int seeds, const std::vector<std::string>& run_options, const std::string& folder);
 
