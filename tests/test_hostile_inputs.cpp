@@ -135,7 +135,7 @@ TEST(HostileInputs, ASweepOfAHundredMillionJobsIsRefusedBeforeItIsExpanded) {
   const auto start = std::chrono::steady_clock::now();
   const testing::CommandResult r =
       testing::run_physarum("sweep " + testing::quoted(std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/default.json") +
-                            " --vary agents=" + values(99) + " --vary steps=" + values(999) + " --vary seed=" +
+                            " --vary agents=" + values(99) + " --vary turn_rate=" + values(999) + " --vary seed=" +
                             values(1000) + " --out " + testing::quoted(dir.path / "sweep"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("a sweep of 98901000 jobs"), std::string::npos) << r.err;
