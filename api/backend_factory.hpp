@@ -1,8 +1,8 @@
 #pragma once
-// Choosing and building a simulation backend, in one place for the command line (run, compare,
-// bench), the benchmark suites (bench/) and the device check. It links both backends, so it cannot
-// live in common/ (which neither backend's code may reach into); it is its own small library,
-// physarum_backends (CMakeLists.txt), so that bench/ and tests/ link it without the tools' commands.
+// Choosing and building a simulation backend, in one place for the library's session
+// (api/session.hpp), the harness, the command line, the benchmark suites and the device check. It
+// links both backends, so it lives in api/ (physarum_api), above common/ (which neither backend's
+// code may reach into).
 // Before anything is allocated it estimates the memory the agents and the surface need on the host
 // and on the device and refuses (InputError) what does not fit.
 #include "common/reaction_diffusion/reaction_diffusion_system.hpp"

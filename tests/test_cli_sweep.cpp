@@ -1,8 +1,10 @@
 // `physarum sweep` as a user runs it: a 3 x 2 grid x 2 seeds plans 12 jobs with the right values,
 // --run runs each exactly once (a second --run skips them all), the Slurm script is valid bash and
-// runs its task 0 when SLURM_ARRAY_TASK_ID=0 is set by hand, GNU parallel's file holds one runnable
-// `physarum run` per line, a failing job is reported without stopping the others, and --collect
+// runs its task 0 when SLURM_ARRAY_TASK_ID=0 is set by hand, GNU parallel's file holds one job per
+// line (`physarum sweep DIR --job I`), a job stopped after a checkpoint resumes from it to the
+// uninterrupted run's bytes, a failing job is reported without stopping the others, and --collect
 // gives one CSV row per job and a contact sheet of the grid's size.
+#include "killed_run.hpp"
 #include "test_support.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -132,16 +134,17 @@ TEST_F(SweepCommand, SlurmScriptIsValidAndRunsItsTaskZero) {
   EXPECT_NE(shell("env -u SLURM_ARRAY_TASK_ID bash " + quoted(fresh / "sweep.slurm") + " >/dev/null 2>&1"), 0);
 }
 
-TEST_F(SweepCommand, ParallelFileHoldsOneRunnableRunPerLine) {
+TEST_F(SweepCommand, ParallelFileHoldsOneJobPerLineThatSkipsAFinishedRun) {
   const std::vector<std::string> lines = lines_of(sweep() / "jobs.txt");
   ASSERT_EQ(lines.size(), 12u);
-  for (const std::string& line : lines) EXPECT_NE(line.find(" run "), std::string::npos) << line;
-  // Line 5 run by hand (as GNU parallel would) into a folder of its own writes a run there.
-  const fs::path elsewhere = dir_->path / "by_hand";
-  std::string line = lines[5];
-  line = line.substr(0, line.rfind("--out ")) + "--out " + quoted(elsewhere);
-  EXPECT_EQ(shell(line + " >/dev/null 2>&1"), 0) << line;
-  EXPECT_TRUE(fs::exists(elsewhere / "run.json"));
+  for (size_t i = 0; i < lines.size(); ++i)
+    EXPECT_NE(lines[i].find(" sweep "), std::string::npos) << lines[i];
+  EXPECT_EQ(lines[5].substr(lines[5].size() - 8), " --job 5") << lines[5];
+  // Line 5 run by hand (as GNU parallel would) after the sweep ran: the finished run is skipped.
+  EXPECT_EQ(shell(lines[5] + " > " + quoted(dir_->path / "line5.txt") + " 2>&1"), 0) << lines[5];
+  std::stringstream said;
+  said << std::ifstream(dir_->path / "line5.txt").rdbuf();
+  EXPECT_NE(said.str().find("job 5 finished before"), std::string::npos) << said.str();
 }
 
 TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
@@ -161,6 +164,38 @@ TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
   ASSERT_TRUE(in);
   EXPECT_EQ(in->spec().width, (13 * 9 + 16) + 2 * (2 * 40 + 8) + 8);
   EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
+}
+
+// A job stopped the hard way after its first checkpoint (as a preempted or cancelled Slurm task is)
+// continues from that checkpoint when it is run again, through --job as through --run, and ends with
+// the bytes of the same job run without a stop.
+TEST(SweepResume, AStoppedJobResumesFromItsCheckpointToTheUninterruptedBytes) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  auto plan = [&](const std::string& name) {
+    return run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=300,400 --steps 1500 "
+                        "--backend reference --texture-size 16 --checkpoint-every 0.05 --out " + quoted(dir.path / name));
+  };
+  ASSERT_EQ(plan("straight").exit_code, 0);
+  ASSERT_EQ(plan("stopped").exit_code, 0);
+  ASSERT_EQ(run_physarum("sweep " + quoted(dir.path / "straight") + " --run --jobs 2").exit_code, 0);
+  for (const int job : {0, 1}) {
+    const fs::path out = dir.path / "stopped" / ("run_000" + std::to_string(job));
+    ASSERT_TRUE(run_and_kill({"sweep", (dir.path / "stopped").string(), "--job", std::to_string(job)},
+                             out / "checkpoint.bin", 11 + static_cast<unsigned>(job)))
+        << "job " << job << " finished before it could be stopped: make the runs longer";
+    ASSERT_FALSE(fs::exists(out / "run.json"));
+    ASSERT_TRUE(fs::exists(out / "checkpoint.bin"));
+  }
+  const CommandResult by_job = run_physarum("sweep " + quoted(dir.path / "stopped") + " --job 0");
+  EXPECT_EQ(by_job.exit_code, 0) << by_job.err;
+  EXPECT_NE(by_job.out.find("job 0 resumes from"), std::string::npos) << by_job.out;
+  EXPECT_NE(by_job.err.find("resuming"), std::string::npos) << by_job.err;
+  EXPECT_EQ(run_physarum("sweep " + quoted(dir.path / "stopped") + " --run --jobs 1").exit_code, 0);
+  for (const char* run : {"run_0000", "run_0001"})
+    for (const char* file : {"pheromone.ply", "stats.csv"})
+      EXPECT_EQ(bytes_of(dir.path / "stopped" / run / file), bytes_of(dir.path / "straight" / run / file))
+          << run << "/" << file << " differs from the uninterrupted run's";
 }
 
 // A partial sweep is still collected (rows and grey cells for what is not done), and the command

@@ -5,8 +5,9 @@
 // Planning writes DIR/sweep.json and DIR/jobs.jsonl (tools/sweep/sweep_plan.hpp); --run executes the jobs
 // here on a pool of processes (tools/sweep/sweep_pool.hpp), skipping finished ones, so running it again
 // resumes; --emit writes the same list for a cluster: DIR/sweep.slurm, a Slurm array job whose task i
-// runs job i (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`), or DIR/jobs.txt, one `physarum run`
-// command per line for GNU parallel. The runs share nothing but their output folders. --collect
+// runs job i (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`), or DIR/jobs.txt, one
+// `physarum sweep DIR --job I` per line for GNU parallel. Every way of running a job skips a finished
+// run and resumes a stopped one from its checkpoint. The runs share nothing but their output folders. --collect
 // writes DIR/sweep.csv and DIR/contact_sheet.png (tools/sweep/sweep_collect.hpp).
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
@@ -84,15 +85,13 @@ void write_slurm_script(const SweepPlan& plan, const std::vector<SweepJob>& jobs
   fs::permissions(dir / "sweep.slurm", fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
 }
 
-// One `physarum run` per line, for `parallel --joblog DIR/parallel.log --resume < DIR/jobs.txt`.
+// One job per line, for `parallel < DIR/jobs.txt`: each line is `physarum sweep DIR --job I`, so a
+// line skips a finished run and resumes a stopped one exactly as a Slurm task does.
 void write_parallel_file(const SweepPlan& plan, const std::vector<SweepJob>& jobs) {
   std::string text;
   const std::string exe = this_executable();
-  for (const SweepJob& job : jobs) {
-    std::vector<std::string> words{exe};
-    words.insert(words.end(), job.args.begin(), job.args.end());
-    text += shell_command(words) + "\n";
-  }
+  for (const SweepJob& job : jobs)
+    text += shell_command({exe, "sweep", plan.folder, "--job", std::to_string(job.index)}) + "\n";
   write_text_file_atomically((fs::path(plan.folder) / "jobs.txt").string(), text);
 }
 
@@ -119,9 +118,11 @@ int run_job(const std::string& folder, int index) {
     std::cout << "physarum sweep: job " << index << " finished before (" << job.out << "/run.json): skipped\n";
     return 0;
   }
+  if (job.resumes()) std::cout << "physarum sweep: job " << index << " resumes from " << job.out << "/checkpoint.bin\n";
   // The job becomes the run itself: its exit code and signals are the scheduler's to see.
   std::vector<std::string> words{this_executable()};
-  words.insert(words.end(), job.args.begin(), job.args.end());
+  const std::vector<std::string> args = job.run_args();
+  words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
@@ -177,8 +178,7 @@ int run_sweep(const SweepOptions& o) {
       std::cout << "physarum sweep: wrote " << plan.folder << "/sweep.slurm (sbatch it)\n";
     } else {
       write_parallel_file(plan, jobs);
-      std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (parallel --joblog " << plan.folder
-                << "/parallel.log --resume < " << plan.folder << "/jobs.txt)\n";
+      std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (parallel < " << plan.folder << "/jobs.txt)\n";
     }
   }
   if (!o.run) return 0;

@@ -100,6 +100,13 @@ std::uint32_t scene_seed(const std::string& scene) {
 
 bool SweepJob::finished() const { return fs::exists(fs::path(out) / "run.json"); }
 
+bool SweepJob::resumes() const { return !finished() && fs::exists(fs::path(out) / "checkpoint.bin"); }
+
+std::vector<std::string> SweepJob::run_args() const {
+  if (resumes()) return {"run", "--resume", out};
+  return args;
+}
+
 int SweepPlan::variant_count() const {
   if (!csv_keys.empty()) return static_cast<int>(csv_rows.size());
   int n = 1;

@@ -34,6 +34,10 @@ struct SweepJob {
   std::vector<std::string> args;  // `physarum run` arguments (without the program)
 
   bool finished() const;  // out/run.json exists (a run writes it last)
+  // What running the job means now: `run --resume OUT` when a stopped run left out/checkpoint.bin
+  // (preempted, cancelled, killed: it continues bit for bit), else `args`.
+  std::vector<std::string> run_args() const;
+  bool resumes() const;  // not finished, and out/checkpoint.bin exists
 };
 
 struct SweepPlan {

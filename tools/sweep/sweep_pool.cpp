@@ -140,8 +140,9 @@ SweepPoolReport run_sweep_jobs(const std::string& folder, const std::vector<Swee
       int worker = 0;
       while (busy[static_cast<std::size_t>(worker)]) ++worker;
       const SweepJob& job = *pending[next++];
-      std::vector<std::string> args = job.args;
-      if (!devices.empty() && uses_opencl(args)) {
+      std::vector<std::string> args = job.run_args();
+      // A resumed run keeps its checkpoint's device (another one would be refused as another run).
+      if (!devices.empty() && !job.resumes() && uses_opencl(args)) {
         args.push_back("--device");
         args.push_back(std::to_string(devices[static_cast<std::size_t>(worker) % devices.size()]));
       }
