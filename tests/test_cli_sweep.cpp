@@ -15,6 +15,7 @@
 #include <fstream>
 #include <algorithm>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -164,6 +165,69 @@ TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
   ASSERT_TRUE(in);
   EXPECT_EQ(in->spec().width, (13 * 9 + 16) + 2 * (2 * 40 + 8) + 8);
   EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
+}
+
+// 2,500 jobs with --max-array 1000: three arrays (1000, 1000, 500 tasks) whose tasks, offset by
+// their part, name every job exactly once; each script is valid bash, and part 2's task 0 runs job
+// 2000. The site options land in every script: #SBATCH lines, the GPU request, the prologue before
+// the job.
+TEST(SweepSlurm, ArraysPastTheLimitAreSplitAndCoverEveryJobOnce) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  // What a site's prologue does (a real one would `module load`, which this machine has not).
+  std::ofstream(dir.path / "prologue.sh") << "export OMP_NUM_THREADS=1\necho \"prologue ran\"\n";
+  std::string agents;
+  for (int a = 100; a < 150; ++a) {
+    if (a > 100) agents += ',';
+    agents += std::to_string(a);
+  }
+  const CommandResult plan = run_physarum(
+      "sweep " + quoted(dir.path / "scene.json") + " --vary agents=" + agents + " --seeds 50" + kRunOptions + " --out " +
+      quoted(dir.path / "s") + " --emit slurm --max-array 1000 --sbatch --time=00:10:00 --sbatch --mem=1G --gpu" +
+      " --prologue " + quoted(dir.path / "prologue.sh"));
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "sweep.slurm")) << "more jobs than one array takes: parts only";
+  std::vector<int> covered(2500, 0);
+  const std::regex array(R"re(#SBATCH --array=0-(\d+)\n)re"), job(R"re("\$\(\((\d+) \+ task\)\)")re");
+  for (int part = 0; part < 3; ++part) {
+    const fs::path script = dir.path / "s" / ("sweep_" + std::to_string(part) + ".slurm");
+    ASSERT_TRUE(fs::exists(script)) << script;
+    EXPECT_EQ(shell("bash -n " + quoted(script)), 0) << script;
+    std::stringstream text;
+    text << std::ifstream(script).rdbuf();
+    const std::string s = text.str();
+    std::smatch a, j;
+    ASSERT_TRUE(std::regex_search(s, a, array)) << s;
+    ASSERT_TRUE(std::regex_search(s, j, job)) << s;
+    const int last_task = std::stoi(a[1].str()), first_job = std::stoi(j[1].str());
+    EXPECT_LE(last_task, 999) << "array indices stay under --max-array";
+    for (int task = 0; task <= last_task; ++task) ++covered.at(static_cast<size_t>(first_job + task));
+    for (const char* line : {"#SBATCH --time=00:10:00\n", "#SBATCH --mem=1G\n", "#SBATCH --gres=gpu:1\n"})
+      EXPECT_NE(s.find(line), std::string::npos) << line << " missing from " << script;
+    const size_t prologue = s.find("export OMP_NUM_THREADS=1\necho \"prologue ran\"\n");
+    ASSERT_NE(prologue, std::string::npos) << s;
+    EXPECT_LT(prologue, s.find("exec ")) << "the prologue runs before the job";
+  }
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "sweep_3.slurm"));
+  EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), 2500) << "every job in exactly one array task";
+  EXPECT_EQ(shell("SLURM_ARRAY_TASK_ID=0 bash " + quoted(dir.path / "s" / "sweep_2.slurm") + " > " +
+                  quoted(dir.path / "task.txt") + " 2>&1"),
+            0);
+  std::stringstream task;
+  task << std::ifstream(dir.path / "task.txt").rdbuf();
+  EXPECT_EQ(task.str().rfind("prologue ran\n", 0), 0u) << task.str();
+  EXPECT_TRUE(fs::exists(dir.path / "s" / "run_2000" / "run.json"));
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "run_0000"));
+}
+
+TEST(SweepSlurm, SiteOptionsWithoutSlurmAreAUsageError) {
+  TempDir dir;
+  std::ofstream(dir.path / "scene.json") << kScene;
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "scene.json") + " --vary agents=100,200" +
+                                       kRunOptions + " --out " + quoted(dir.path / "s") + " --max-array 5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("give them with --emit slurm"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s"));
 }
 
 // A job stopped the hard way after its first checkpoint (as a preempted or cancelled Slurm task is)

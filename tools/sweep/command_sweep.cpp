@@ -14,10 +14,13 @@
 #include "opencl/runtime/device_selection.hpp"
 #include "tools/commands.hpp"
 #include "tools/sweep/sweep_collect.hpp"
+#include "tools/sweep/slurm_script.hpp"
 #include "tools/sweep/sweep_plan.hpp"
 #include "tools/sweep/sweep_pool.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -49,6 +52,7 @@ struct SweepOptions {
   std::optional<double> checkpoint_every;
   std::optional<int> texture_size;
   std::string texture_format;
+  SlurmOptions slurm;  // --emit slurm's
 };
 
 std::vector<std::string> run_options(const SweepOptions& o) {
@@ -61,28 +65,6 @@ std::vector<std::string> run_options(const SweepOptions& o) {
   if (o.texture_size) args.insert(args.end(), {"--texture-size", std::to_string(*o.texture_size)});
   if (!o.texture_format.empty()) args.insert(args.end(), {"--texture-format", o.texture_format});
   return args;
-}
-
-// A Slurm array job: task i runs job i; resubmitting skips the finished runs.
-void write_slurm_script(const SweepPlan& plan, const std::vector<SweepJob>& jobs) {
-  const fs::path dir(plan.folder);
-  std::string s;
-  s += "#!/bin/bash\n";
-  s += "# physarum sweep: " + std::to_string(jobs.size()) + " runs of " + plan.scene + "\n";
-  s += "# as a Slurm array job. Task i runs line i (0-based) of " + (dir / "jobs.jsonl").string() + ";\n";
-  s += "# a finished run (run.json present) is skipped, so submitting again resumes. Submit with\n";
-  s += "#   sbatch " + (dir / "sweep.slurm").string() + "\n";
-  s += "# and gather the results with: physarum sweep --collect " + plan.folder + "\n";
-  s += "#SBATCH --job-name=physarum-sweep\n";
-  s += "#SBATCH --array=0-" + std::to_string(jobs.size() - 1) + "\n";
-  s += "#SBATCH --ntasks=1\n";
-  s += "#SBATCH --cpus-per-task=1\n";
-  s += "#SBATCH --output=" + (dir / "logs" / "slurm-%A_%a.out").string() + "\n";
-  s += "set -euo pipefail\n";
-  s += "exec " + shell_command({this_executable(), "sweep", plan.folder, "--job"}) +
-       " \"${SLURM_ARRAY_TASK_ID:?is not set: submit with sbatch, or set it by hand to run one task}\"\n";
-  write_text_file_atomically((dir / "sweep.slurm").string(), s);
-  fs::permissions(dir / "sweep.slurm", fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
 }
 
 // One job per line, for `parallel < DIR/jobs.txt`: each line is `physarum sweep DIR --job I`, so a
@@ -151,6 +133,11 @@ int run_sweep(const SweepOptions& o) {
     return c.missing > 0 ? 1 : 0;
   }
   if (o.target.empty()) throw UsageError("give a scene file to plan a sweep, a sweep folder, or --collect DIR");
+  const bool slurm_options = o.slurm.max_array || !o.slurm.sbatch.empty() || !o.slurm.prologue.empty() || o.slurm.gpu;
+  if (slurm_options && std::find(o.emit.begin(), o.emit.end(), "slurm") == o.emit.end())
+    throw UsageError("--max-array, --sbatch, --prologue and --gpu shape the Slurm scripts: give them with --emit slurm");
+  if (!o.slurm.prologue.empty() && !std::ifstream(o.slurm.prologue))
+    throw UsageError("--prologue " + o.slurm.prologue + ": cannot read the file");
   const bool planning = !o.vary.empty() || !o.csv.empty();
   if (o.job) {
     if (planning || o.run || !o.emit.empty()) throw UsageError("--job I runs one job of an existing sweep folder and nothing else");
@@ -174,8 +161,8 @@ int run_sweep(const SweepOptions& o) {
             << " seeds) in " << plan.folder << "/jobs.jsonl\n";
   for (const std::string& e : o.emit) {
     if (e == "slurm") {
-      write_slurm_script(plan, jobs);
-      std::cout << "physarum sweep: wrote " << plan.folder << "/sweep.slurm (sbatch it)\n";
+      const std::vector<std::string> scripts = write_slurm_scripts(plan, static_cast<int>(jobs.size()), o.slurm);
+      for (const std::string& script : scripts) std::cout << "physarum sweep: wrote " << script << " (sbatch it)\n";
     } else {
       write_parallel_file(plan, jobs);
       std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (parallel < " << plan.folder << "/jobs.txt)\n";
@@ -221,6 +208,15 @@ Command add_sweep_command(CLI::App& parent) {
   app->add_option("--jobs", options->jobs, "Processes in parallel for --run (default: the cores)")->capture_default_str();
   app->add_option("--emit", options->emit, "Write the jobs for a cluster: slurm (DIR/sweep.slurm), parallel (DIR/jobs.txt)")
       ->check(CLI::IsMember({"slurm", "parallel"}));
+  app->add_option("--max-array", options->slurm.max_array,
+                  "With --emit slurm: tasks per array at most (default: the site's MaxArraySize from scontrol, else "
+                  "1001); more jobs are written as sweep_0.slurm, sweep_1.slurm, ...");
+  app->add_option("--sbatch", options->slurm.sbatch,
+                  "With --emit slurm: an extra #SBATCH line, e.g. --sbatch \"--time=01:00:00\" (repeatable: --mem, "
+                  "--partition, --account, ...)");
+  app->add_option("--prologue", options->slurm.prologue,
+                  "With --emit slurm: a file whose lines run before each job (module load, environment)");
+  app->add_flag("--gpu", options->slurm.gpu, "With --emit slurm: ask for one GPU per task (--gres=gpu:1)");
   app->add_option("--collect", options->collect, "Gather DIR's runs into DIR/sweep.csv and DIR/contact_sheet.png");
   app->add_option("--job", options->job, "Run job I of the sweep folder (what each Slurm array task does)");
   app->add_option("--thumbnail", options->thumbnail, "Side of a contact-sheet thumbnail, in pixels")->capture_default_str();
