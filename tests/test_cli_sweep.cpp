@@ -141,8 +141,10 @@ TEST_F(SweepCommand, ParallelFileHoldsOneJobPerLineThatSkipsAFinishedRun) {
   for (size_t i = 0; i < lines.size(); ++i)
     EXPECT_NE(lines[i].find(" sweep "), std::string::npos) << lines[i];
   EXPECT_EQ(lines[5].substr(lines[5].size() - 8), " --job 5") << lines[5];
-  // Line 5 run by hand (as GNU parallel would) after the sweep ran: the finished run is skipped.
-  EXPECT_EQ(shell(lines[5] + " > " + quoted(dir_->path / "line5.txt") + " 2>&1"), 0) << lines[5];
+  // Line 5 run by hand in the folder (as GNU parallel would) after the sweep ran: the finished run is
+  // skipped.
+  EXPECT_EQ(shell("cd " + quoted(sweep()) + " && " + lines[5] + " > " + quoted(dir_->path / "line5.txt") + " 2>&1"), 0)
+      << lines[5];
   std::stringstream said;
   said << std::ifstream(dir_->path / "line5.txt").rdbuf();
   EXPECT_NE(said.str().find("job 5 finished before"), std::string::npos) << said.str();
@@ -206,7 +208,7 @@ TEST(SweepSlurm, ArraysPastTheLimitAreSplitAndCoverEveryJobOnce) {
       EXPECT_NE(s.find(line), std::string::npos) << line << " missing from " << script;
     const size_t prologue = s.find("export OMP_NUM_THREADS=1\necho \"prologue ran\"\n");
     ASSERT_NE(prologue, std::string::npos) << s;
-    EXPECT_LT(prologue, s.find("exec ")) << "the prologue runs before the job";
+    EXPECT_LT(prologue, s.find("exec \"$physarum\"")) << "the prologue runs before the job";
   }
   EXPECT_FALSE(fs::exists(dir.path / "s" / "sweep_3.slurm"));
   EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), 2500) << "every job in exactly one array task";
@@ -251,15 +253,19 @@ TEST(SweepResume, AStoppedJobResumesFromItsCheckpointToTheUninterruptedBytes) {
     ASSERT_FALSE(fs::exists(out / "run.json"));
     ASSERT_TRUE(fs::exists(out / "checkpoint.bin"));
   }
-  const CommandResult by_job = run_physarum("sweep " + quoted(dir.path / "stopped") + " --job 0");
+  // Moved after the stop (the checkpoints name the old place), as a requeued task may find it.
+  fs::rename(dir.path / "stopped", dir.path / "moved");
+  const CommandResult by_job = run_physarum("sweep " + quoted(dir.path / "moved") + " --job 0");
   EXPECT_EQ(by_job.exit_code, 0) << by_job.err;
-  EXPECT_NE(by_job.out.find("job 0 resumes from"), std::string::npos) << by_job.out;
-  EXPECT_NE(by_job.err.find("resuming"), std::string::npos) << by_job.err;
-  EXPECT_EQ(run_physarum("sweep " + quoted(dir.path / "stopped") + " --run --jobs 1").exit_code, 0);
+  EXPECT_NE(by_job.out.find("job 0 resumes from its checkpoint"), std::string::npos) << by_job.out;
+  const std::string log = bytes_of(dir.path / "moved" / "logs" / "run_0000.log");
+  EXPECT_NE(log.find("resuming"), std::string::npos) << log;
+  EXPECT_EQ(run_physarum("sweep " + quoted(dir.path / "moved") + " --run --jobs 1").exit_code, 0);
   for (const char* run : {"run_0000", "run_0001"})
     for (const char* file : {"pheromone.ply", "stats.csv"})
-      EXPECT_EQ(bytes_of(dir.path / "stopped" / run / file), bytes_of(dir.path / "straight" / run / file))
+      EXPECT_EQ(bytes_of(dir.path / "moved" / run / file), bytes_of(dir.path / "straight" / run / file))
           << run << "/" << file << " differs from the uninterrupted run's";
+  EXPECT_FALSE(fs::exists(dir.path / "stopped")) << "nothing was written to the old place";
 }
 
 // A partial sweep is still collected (rows and grey cells for what is not done), and the command

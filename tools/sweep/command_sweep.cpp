@@ -2,13 +2,15 @@
 //  [run options] [--run [--jobs J]] [--emit slurm|parallel]`, `physarum sweep DIR --run | --emit ... |
 //  --job I`, and `physarum sweep --collect DIR`: parameter studies as ensembles of independent runs.
 //
-// Planning writes DIR/sweep.json and DIR/jobs.jsonl (tools/sweep/sweep_plan.hpp); --run executes the jobs
-// here on a pool of processes (tools/sweep/sweep_pool.hpp), skipping finished ones, so running it again
-// resumes; --emit writes the same list for a cluster: DIR/sweep.slurm, a Slurm array job whose task i
-// runs job i (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`), or DIR/jobs.txt, one
-// `physarum sweep DIR --job I` per line for GNU parallel. Every way of running a job skips a finished
-// run and resumes a stopped one from its checkpoint. The runs share nothing but their output folders. --collect
-// writes DIR/sweep.csv and DIR/contact_sheet.png (tools/sweep/sweep_collect.hpp).
+// Planning writes DIR/sweep.json, DIR/jobs.jsonl and the frozen inputs DIR/inputs (tools/sweep/sweep_plan.hpp,
+// tools/sweep/frozen_inputs.hpp); --run executes the jobs here on a pool of processes
+// (tools/sweep/sweep_pool.hpp), skipping finished ones, so running it again resumes; --emit writes the
+// same list for a cluster: DIR/sweep.slurm, a Slurm array job whose task i runs job i
+// (`physarum sweep DIR --job $SLURM_ARRAY_TASK_ID`, tools/sweep/slurm_script.hpp), or DIR/jobs.txt, one
+// `physarum sweep . --job I` per line for GNU parallel run in DIR. Every way of running a job checks the
+// frozen inputs, skips a finished run, resumes a stopped one from its checkpoint and writes the run's
+// output to DIR/logs/run_NNNN.log. The runs share nothing but their output folders. --collect writes
+// DIR/sweep.csv and DIR/contact_sheet.png (tools/sweep/sweep_collect.hpp).
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
 #include "opencl/runtime/device_selection.hpp"
@@ -67,13 +69,13 @@ std::vector<std::string> run_options(const SweepOptions& o) {
   return args;
 }
 
-// One job per line, for `parallel < DIR/jobs.txt`: each line is `physarum sweep DIR --job I`, so a
-// line skips a finished run and resumes a stopped one exactly as a Slurm task does.
+// One job per line, for `cd DIR && parallel < jobs.txt`: each line is `physarum sweep . --job I`, so a
+// line skips a finished run and resumes a stopped one exactly as a Slurm task does, and the file
+// names no folder: moved or copied with it, it runs the jobs of the copy it is run in.
 void write_parallel_file(const SweepPlan& plan, const std::vector<SweepJob>& jobs) {
   std::string text;
   const std::string exe = this_executable();
-  for (const SweepJob& job : jobs)
-    text += shell_command({exe, "sweep", plan.folder, "--job", std::to_string(job.index)}) + "\n";
+  for (const SweepJob& job : jobs) text += shell_command({exe, "sweep", ".", "--job", std::to_string(job.index)}) + "\n";
   write_text_file_atomically((fs::path(plan.folder) / "jobs.txt").string(), text);
 }
 
@@ -91,16 +93,20 @@ std::vector<int> devices_to_spread() {
   }
 }
 
-int run_job(const std::string& folder, int index) {
-  const std::vector<SweepJob> jobs = read_sweep_jobs(folder);
+// One job, in the sweep folder wherever it is now, its output into DIR/logs/run_NNNN.log.
+int run_job(const std::string& target, int index) {
+  const SweepPlan plan = read_sweep_plan(target);
+  const std::vector<SweepJob> jobs = read_sweep_jobs(plan.folder);
   if (index < 0 || index >= static_cast<int>(jobs.size()))
-    throw UsageError("--job " + std::to_string(index) + ": " + folder + " has jobs 0.." + std::to_string(jobs.size() - 1));
+    throw UsageError("--job " + std::to_string(index) + ": " + plan.folder + " has jobs 0.." + std::to_string(jobs.size() - 1));
   const SweepJob& job = jobs[static_cast<std::size_t>(index)];
   if (job.finished()) {
     std::cout << "physarum sweep: job " << index << " finished before (" << job.out << "/run.json): skipped\n";
     return 0;
   }
-  if (job.resumes()) std::cout << "physarum sweep: job " << index << " resumes from " << job.out << "/checkpoint.bin\n";
+  check_frozen_inputs(plan.inputs, plan.folder);
+  std::cout << "physarum sweep: job " << index << (job.resumes() ? " resumes from its checkpoint" : " starts") << " in "
+            << job.out << "; its log: " << job_log_path(plan.folder, index) << "\n";
   // The job becomes the run itself: its exit code and signals are the scheduler's to see.
   std::vector<std::string> words{this_executable()};
   const std::vector<std::string> args = job.run_args();
@@ -109,6 +115,9 @@ int run_job(const std::string& folder, int index) {
   for (std::string& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
   std::cout.flush();
+  const int log = open_job_log(plan.folder, job);
+  if (::dup2(log, STDOUT_FILENO) < 0 || ::dup2(log, STDERR_FILENO) < 0 || ::chdir(plan.folder.c_str()) != 0)
+    throw InputError("physarum sweep: cannot start job " + std::to_string(index) + " in " + plan.folder);
   ::execv(words[0].c_str(), argv.data());
   throw InputError("physarum sweep: cannot run " + words[0] + " for job " + std::to_string(index));
 }
@@ -165,10 +174,12 @@ int run_sweep(const SweepOptions& o) {
       for (const std::string& script : scripts) std::cout << "physarum sweep: wrote " << script << " (sbatch it)\n";
     } else {
       write_parallel_file(plan, jobs);
-      std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (parallel < " << plan.folder << "/jobs.txt)\n";
+      std::cout << "physarum sweep: wrote " << plan.folder << "/jobs.txt (cd " << shell_command({plan.folder})
+                << " && parallel < jobs.txt)\n";
     }
   }
   if (!o.run) return 0;
+  check_frozen_inputs(plan.inputs, plan.folder);
   const SweepPoolReport r = run_sweep_jobs(plan.folder, jobs, o.jobs, devices_to_spread());
   std::cout << "physarum sweep: ran " << r.ran << ", skipped " << r.skipped << " finished, " << r.failed.size()
             << " failed, in " << r.seconds << " s with " << o.jobs << " workers\n";

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -103,7 +104,7 @@ bool SweepJob::finished() const { return fs::exists(fs::path(out) / "run.json");
 bool SweepJob::resumes() const { return !finished() && fs::exists(fs::path(out) / "checkpoint.bin"); }
 
 std::vector<std::string> SweepJob::run_args() const {
-  if (resumes()) return {"run", "--resume", out};
+  if (resumes()) return {"run", args.at(1), "--resume", out};
   return args;
 }
 
@@ -150,16 +151,16 @@ std::vector<SweepJob> SweepPlan::jobs() const {
       char name[32];
       std::snprintf(name, sizeof name, "run_%04d", job.index);
       job.out = (fs::path(folder) / name).string();
-      job.args = {"run", scene};
+      job.args = {"run", inputs.scene};
       for (auto it = job.overrides.begin(); it != job.overrides.end(); ++it) {
         job.args.push_back("--set");
-        job.args.push_back(set_text(it.key(), it.value()));
+        job.args.push_back(set_text(it.key(), inputs.rename(it.value())));
       }
       job.args.push_back("--seed");
       job.args.push_back(std::to_string(seed));
       for (const std::string& option : run_options) job.args.push_back(option);
       job.args.push_back("--out");
-      job.args.push_back(job.out);
+      job.args.push_back(name);
       jobs.push_back(std::move(job));
     }
   }
@@ -232,7 +233,7 @@ SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::strin
   if (seeds < 1) throw UsageError("--seeds " + std::to_string(seeds) + " must be >= 1");
   if (!vary.empty() && !csv.empty()) throw UsageError("--vary and --csv do not go together: give the grid or the rows");
   SweepPlan plan;
-  plan.scene = absolute(scene);
+  plan.scene_source = absolute(scene);
   plan.folder = absolute(folder);
   plan.run_options = run_options;
   std::set<std::string> seen;
@@ -246,16 +247,24 @@ SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::strin
       if (!seen.insert(key).second) throw InputError(csv + ": key '" + key + "' is a column twice");
   }
   check_sweep_size(plan, seeds);
-  const std::uint32_t first = scene_seed(plan.scene);
+  const std::uint32_t first = scene_seed(plan.scene_source);
   for (int k = 0; k < seeds; ++k) plan.seeds.push_back(first + static_cast<std::uint32_t>(k));
+  plan.inputs = plan_frozen_inputs(plan.scene_source, variant_values(plan));
   return plan;
+}
+
+std::vector<nlohmann::json> variant_values(const SweepPlan& plan) {
+  std::vector<nlohmann::json> values;
+  for (const SweepAxis& a : plan.axes) values.insert(values.end(), a.values.begin(), a.values.end());
+  for (const auto& row : plan.csv_rows) values.insert(values.end(), row.begin(), row.end());
+  return values;
 }
 
 void check_sweep_variants(const SweepPlan& plan) {
   for (int v = 0; v < plan.variant_count(); ++v) {
     const nlohmann::ordered_json overrides = plan.variant(v);
     try {
-      load_scene(plan.scene, nlohmann::json(overrides));
+      load_scene(plan.scene_source, nlohmann::json(overrides));
     } catch (const InputError& e) {
       throw InputError("variant " + std::to_string(v) + " " + overrides.dump() + ": " + e.what());
     }
@@ -266,7 +275,7 @@ namespace {
 
 nlohmann::ordered_json plan_json(const SweepPlan& plan) {
   nlohmann::ordered_json j;
-  j["scene"] = plan.scene;
+  j["scene"] = plan.inputs.scene;
   j["axes"] = nlohmann::ordered_json::array();
   for (const SweepAxis& a : plan.axes) j["axes"].push_back({{"key", a.key}, {"values", a.values}});
   j["csv_keys"] = plan.csv_keys;
@@ -274,7 +283,21 @@ nlohmann::ordered_json plan_json(const SweepPlan& plan) {
   j["seeds"] = plan.seeds;
   j["run_options"] = plan.run_options;
   j["jobs"] = plan.variant_count() * static_cast<int>(plan.seeds.size());
+  j["inputs"] = plan.inputs.to_json();
   return j;
+}
+
+// Why a folder's sweep is not the one being planned: the inputs that differ by name, else the plan.
+std::string how_it_differs(const SweepPlan& there, const SweepPlan& planned) {
+  std::map<std::string, std::string> hash_of;  // source -> hash, as planned now
+  for (const FrozenFile& f : planned.inputs.files) hash_of[f.source] = f.hash;
+  std::string changed;
+  for (const FrozenFile& f : there.inputs.files) {
+    const auto it = hash_of.find(f.source);
+    if (it != hash_of.end() && it->second != f.hash) changed += (changed.empty() ? "" : ", ") + f.source;
+  }
+  if (!changed.empty()) return "changed since it was planned there: " + changed;
+  return "its sweep.json or jobs.jsonl differ from this one's";
 }
 
 std::string slurp(const fs::path& path) {
@@ -295,18 +318,19 @@ void write_sweep_plan(const SweepPlan& plan) {
     line["index"] = job.index;
     line["overrides"] = job.overrides;
     line["seed"] = job.seed;
-    line["out"] = job.out;
+    line["out"] = fs::path(job.out).filename().string();
     line["args"] = job.args;
     jobs_text += line.dump() + "\n";
   }
   if (fs::exists(dir / "sweep.json")) {
     if (slurp(dir / "sweep.json") != plan_text || slurp(dir / "jobs.jsonl") != jobs_text)
-      throw InputError(plan.folder + " already holds another sweep (its sweep.json or jobs.jsonl differ from this "
-                       "one's); choose another --out, or remove it");
+      throw InputError(plan.folder + " already holds another sweep (" + how_it_differs(read_sweep_plan(plan.folder), plan) +
+                       "); choose another --out, or remove it");
     return;  // the same sweep: keep it, its finished runs are skipped
   }
   create_output_folder(plan.folder);
   create_output_folder((dir / "logs").string());
+  write_frozen_inputs(plan.inputs, plan.folder);
   write_text_file_atomically((dir / "jobs.jsonl").string(), jobs_text);
   // Last: a folder with sweep.json is a complete plan.
   write_text_file_atomically((dir / "sweep.json").string(), plan_text);
@@ -319,7 +343,9 @@ SweepPlan read_sweep_plan(const std::string& folder) {
   try {
     const nlohmann::json j = nlohmann::json::parse(file);
     SweepPlan plan;
-    plan.scene = j.at("scene").get<std::string>();
+    // A sweep planned before inputs were frozen names its scene absolutely and has nothing to check.
+    if (j.contains("inputs")) plan.inputs = FrozenInputs::from_json(j.at("inputs"), path.string());
+    else plan.inputs.scene = j.at("scene").get<std::string>();
     for (const nlohmann::json& a : j.at("axes"))
       plan.axes.push_back({a.at("key").get<std::string>(), a.at("values").get<std::vector<nlohmann::json>>()});
     plan.csv_keys = j.at("csv_keys").get<std::vector<std::string>>();
@@ -349,7 +375,7 @@ std::vector<SweepJob> read_sweep_jobs(const std::string& folder) {
       job.index = j.at("index").get<int>();
       job.overrides = j.at("overrides");
       job.seed = j.at("seed").get<std::uint32_t>();
-      job.out = j.at("out").get<std::string>();
+      job.out = (fs::path(absolute(folder)) / j.at("out").get<std::string>()).lexically_normal().string();
       job.args = j.at("args").get<std::vector<std::string>>();
       if (job.index != static_cast<int>(jobs.size()))
         throw InputError(path.string() + ":" + std::to_string(number) + ": job index " + std::to_string(job.index) +

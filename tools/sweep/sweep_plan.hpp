@@ -5,13 +5,19 @@
 // own output folder. Written to the sweep folder DIR as
 //
 //   DIR/sweep.json   what was asked: the scene, the varied keys and their values (or the CSV rows),
-//                    the seeds and the options every run gets; `--collect` lays its sheet out by it
+//                    the seeds, the options every run gets and the frozen inputs with their hashes;
+//                    `--collect` lays its sheet out by it
 //   DIR/jobs.jsonl   one JSON object per line, line i = job i: {"index", "overrides", "seed", "out",
-//                    "args"}, args being the complete `physarum run` argument list (paths absolute),
-//                    so a line is all a worker, a Slurm task or a GNU parallel slot needs.
+//                    "args"}, args being the complete `physarum run` argument list
+//   DIR/inputs/      the scene and the files it reads, frozen (tools/sweep/frozen_inputs.hpp)
+//
+// Every path in them is relative to DIR and every job runs with DIR as its working directory, so the
+// folder can be moved or copied and run in its new place.
 //
 // Jobs are ordered variant by variant, the first varied key slowest, the seeds innermost: job
 // index = variant * seeds + seed_index.
+#include "tools/sweep/frozen_inputs.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -30,18 +36,20 @@ struct SweepJob {
   int index = 0;
   nlohmann::ordered_json overrides = nlohmann::ordered_json::object();  // the variant: KEY -> value
   std::uint32_t seed = 1;
-  std::string out;                // absolute
-  std::vector<std::string> args;  // `physarum run` arguments (without the program)
+  std::string out;                // absolute (jobs.jsonl holds it relative to the sweep folder)
+  std::vector<std::string> args;  // `physarum run` arguments (without the program), paths relative to the folder
 
   bool finished() const;  // out/run.json exists (a run writes it last)
-  // What running the job means now: `run --resume OUT` when a stopped run left out/checkpoint.bin
-  // (preempted, cancelled, killed: it continues bit for bit), else `args`.
+  // What running the job means now (run in the sweep folder): `run SCENE --resume OUT` when a stopped
+  // run left out/checkpoint.bin (preempted, cancelled, killed: it continues bit for bit; the scene
+  // given because the folder may have moved since the checkpoint was written), else `args`.
   std::vector<std::string> run_args() const;
   bool resumes() const;  // not finished, and out/checkpoint.bin exists
 };
 
 struct SweepPlan {
-  std::string scene;  // absolute
+  std::string scene_source;  // the scene file planned from (absolute); only for planning
+  FrozenInputs inputs;       // the frozen scene and the files it reads
   // Grid mode: the varied keys, every combination of their values is a variant. CSV mode (csv_keys
   // not empty): each row of `csv_rows` is a variant, one value per csv_keys entry.
   std::vector<SweepAxis> axes;
@@ -81,16 +89,20 @@ constexpr int kMaxSweepJobs = 100000;
 SweepPlan make_sweep_plan(const std::string& scene, const std::vector<std::string>& vary, const std::string& csv,
                           int seeds, const std::vector<std::string>& run_options, const std::string& folder);
 
+// Every value of every --vary or CSV column (the strings among them may name files to freeze).
+std::vector<nlohmann::json> variant_values(const SweepPlan& plan);
+
 // Reads every variant as a scene (load_scene with its overrides), so a misspelt key or a value out of
 // range is refused before any job exists, naming the variant. Cheap: no surface is built.
 void check_sweep_variants(const SweepPlan& plan);
 
-// Writes DIR/sweep.json and DIR/jobs.jsonl (and creates DIR/logs). A folder that already holds a
+// Writes DIR/inputs, DIR/jobs.jsonl and DIR/sweep.json (and creates DIR/logs). A folder that already holds a
 // sweep keeps it when it is the same one (so re-running the command resumes) and is refused with
 // InputError when it is another.
 void write_sweep_plan(const SweepPlan& plan);
 
-// Reads DIR/sweep.json back (InputError naming the file when DIR holds no sweep).
+// Reads DIR/sweep.json back (InputError naming the file when DIR holds no sweep). DIR is where the
+// folder is now, wherever it was planned.
 SweepPlan read_sweep_plan(const std::string& folder);
 
 // Reads DIR/jobs.jsonl, the jobs as workers see them (InputError naming the file and line on a

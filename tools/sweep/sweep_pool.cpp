@@ -3,6 +3,7 @@
 #include "common/base/errors.hpp"
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -20,12 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string log_path(const std::string& folder, int index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "run_%04d.log", index);
-  return (fs::path(folder) / "logs" / name).string();
-}
-
 // The last `lines` lines of a file (a failed job's message is at the end of its log).
 std::string tail_of(const std::string& path, int lines) {
   std::ifstream file(path);
@@ -40,9 +35,9 @@ std::string tail_of(const std::string& path, int lines) {
   return text;
 }
 
-// Starts `exe args...` with stdout and stderr into `log`. Between fork and exec only
-// async-signal-safe calls (open, dup2, execv, _exit): the parent may hold OpenCL's threads.
-pid_t start_job(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+// Starts `exe args...` in `folder` with stdout and stderr into the open `log`. Between fork and exec
+// only async-signal-safe calls (dup2, chdir, execv, _exit): the parent may hold OpenCL's threads.
+pid_t start_job(const std::string& exe, const std::vector<std::string>& args, int log, const std::string& folder) {
   std::vector<std::string> words{exe};
   words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -51,12 +46,9 @@ pid_t start_job(const std::string& exe, const std::vector<std::string>& args, co
   const pid_t pid = ::fork();
   if (pid < 0) throw InputError(std::string("physarum sweep: cannot start a job: fork: ") + std::strerror(errno));
   if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, STDOUT_FILENO);
-      ::dup2(fd, STDERR_FILENO);
-      ::close(fd);
-    }
+    ::dup2(log, STDOUT_FILENO);
+    ::dup2(log, STDERR_FILENO);
+    if (::chdir(folder.c_str()) != 0) _exit(126);
     ::execv(exe.c_str(), argv.data());
     _exit(127);
   }
@@ -103,6 +95,30 @@ class SweepProgress {
 
 }  // namespace
 
+std::string job_log_path(const std::string& folder, int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "run_%04d.log", index);
+  return (fs::path(folder) / "logs" / name).string();
+}
+
+int open_job_log(const std::string& folder, const SweepJob& job) {
+  const std::string path = job_log_path(folder, job.index);
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(path + ": cannot open the job's log: " + std::strerror(errno));
+  const std::time_t now = std::time(nullptr);
+  char when[64];
+  std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S %Z", std::localtime(&now));
+  const std::string line = std::string("---- physarum sweep: job ") + std::to_string(job.index) +
+                           (job.resumes() ? " resumes from its checkpoint" : " starts") + ", " + when + " ----\n";
+  if (::write(fd, line.data(), line.size()) < 0) {
+    ::close(fd);
+    throw InputError(path + ": cannot write the job's log: " + std::strerror(errno));
+  }
+  return fd;
+}
+
 std::string this_executable() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -146,7 +162,9 @@ SweepPoolReport run_sweep_jobs(const std::string& folder, const std::vector<Swee
         args.push_back("--device");
         args.push_back(std::to_string(devices[static_cast<std::size_t>(worker) % devices.size()]));
       }
-      const pid_t pid = start_job(exe, args, log_path(folder, job.index));
+      const int log = open_job_log(folder, job);
+      const pid_t pid = start_job(exe, args, log, folder);
+      ::close(log);
       busy[static_cast<std::size_t>(worker)] = true;
       running[pid] = Running{&job, worker, Clock::now()};
     }
@@ -171,8 +189,8 @@ SweepPoolReport run_sweep_jobs(const std::string& folder, const std::vector<Swee
                               : WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
                                                   : "stopped";
       std::fprintf(stderr, "\nphysarum sweep: job %d (%s) failed (%s); its log %s ends:\n%s", r.job->index,
-                   fs::path(r.job->out).filename().c_str(), how.c_str(), log_path(folder, r.job->index).c_str(),
-                   tail_of(log_path(folder, r.job->index), 3).c_str());
+                   fs::path(r.job->out).filename().c_str(), how.c_str(), job_log_path(folder, r.job->index).c_str(),
+                   tail_of(job_log_path(folder, r.job->index), 3).c_str());
     }
     progress.finished(*r.job, ok, seconds, static_cast<int>(report.failed.size()));
   }
