@@ -44,11 +44,6 @@ std::vector<std::string> lines_of(const fs::path& p) {
   return lines;
 }
 
-int shell(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 class SweepCommand : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -32,11 +32,6 @@ const char* kScene = R"({
 })";
 const char* kRunOptions = " --steps 4 --backend reference --texture-size 16";
 
-int shell(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 class SweepFolder : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -32,15 +32,14 @@ struct CommandResult {
   std::string err;  // standard error
 };
 
-// Runs `physarum ARGS` through the shell (ARGS is shell-quoted by the caller) and captures both
-// streams and the exit code.
-inline CommandResult run_physarum(const std::string& args) {
+// Runs a shell command line and captures both streams and the exit code (-1 when it did not exit).
+inline CommandResult run_command(const std::string& command) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("physarum_cmd_" + std::to_string(::getpid()) + "_" +
-                                     std::to_string(reinterpret_cast<uintptr_t>(&args)));
+                                     std::to_string(reinterpret_cast<uintptr_t>(&command)));
   std::filesystem::create_directories(dir);
   const std::string out_file = (dir / "out").string(), err_file = (dir / "err").string();
-  const std::string cmd = std::string("'") + PHYSARUM_EXE + "' " + args + " >'" + out_file + "' 2>'" + err_file + "'";
+  const std::string cmd = "{ " + command + "\n} >'" + out_file + "' 2>'" + err_file + "'";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -58,6 +57,17 @@ inline CommandResult run_physarum(const std::string& args) {
   r.err = slurp(err_file);
   std::filesystem::remove_all(dir);
   return r;
+}
+
+// Runs `physarum ARGS` through the shell (ARGS is shell-quoted by the caller).
+inline CommandResult run_physarum(const std::string& args) {
+  return run_command(std::string("'") + PHYSARUM_EXE + "' " + args);
+}
+
+// A shell command's exit code (-1 when it did not exit), its output left where the command sends it.
+inline int shell(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // A path single-quoted for run_physarum's shell command line (paths with spaces stay one argument).

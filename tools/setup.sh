@@ -4,8 +4,10 @@
 #   bash tools/setup.sh           the program only (the README's first command)
 #   bash tools/setup.sh --tests   also the Python environment .venv that the independent reader test
 #                                 uses (tests/read_exports.py: trimesh, numpy, pillow at pinned
-#                                 versions) and every target: the test program, the benchmarks, the
-#                                 device check (the README's second command, CI)
+#                                 versions), the schedulers the sweep tests use (Slurm, munge, GNU
+#                                 parallel; no daemon is started or configured system-wide) and every
+#                                 target: the test program, the benchmarks, the device check (the
+#                                 README's second command, CI)
 # Safe to run again: packages already present are not reinstalled, a .venv that already holds the
 # pinned versions is kept, and the build is incremental.
 set -euo pipefail
@@ -25,6 +27,11 @@ packages=(
   librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core libboost-math-dev
   libtinygltf-dev libsuitesparse-dev libopenblas0-pthread libxxhash-dev libmuparser-dev python3-venv
 )
+
+# Only the tests use these: the schedulers the sweep tests submit to (a private Slurm the tests start
+# and stop themselves, GNU parallel).
+test_packages=(slurm-wlm munge parallel)
+if $with_tests; then packages+=("${test_packages[@]}"); fi
 
 missing=()
 for p in "${packages[@]}"; do

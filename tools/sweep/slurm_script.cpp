@@ -58,7 +58,7 @@ std::string array_script(const SweepPlan& plan, const fs::path& script, int firs
   s += "# is the folder of the script that was submitted, which scontrol names.\n";
   s += "script=${BASH_SOURCE[0]}\n";
   s += "if [[ -n ${SLURM_JOB_ID:-} ]]; then\n";
-  s += "  script=$(scontrol show job \"$SLURM_JOB_ID\" 2>/dev/null | sed -n 's/^ *Command=//p' | head -n 1) || true\n";
+  s += "  script=$(scontrol show job \"${SLURM_ARRAY_JOB_ID:-$SLURM_JOB_ID}_$task\" 2>/dev/null | sed -n 's/^ *Command=//p' | head -n 1) || true\n";
   s += "  if [[ -n $script && $script != /* ]]; then script=\"${SLURM_SUBMIT_DIR:-.}/$script\"; fi\n";
   s += "fi\n";
   s += "folder=$(dirname \"$script\")\n";
@@ -81,21 +81,25 @@ std::string array_script(const SweepPlan& plan, const fs::path& script, int firs
 
 }  // namespace
 
-int site_max_array_size() {
+std::optional<int> site_max_array_size() {
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen("scontrol show config 2>/dev/null", "r"), ::pclose);
-  if (!pipe) return kSlurmDefaultMaxArraySize;
+  if (!pipe) return std::nullopt;
   std::string text;
   char buffer[4096];
   for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0;) text.append(buffer, n);
   std::smatch m;
   static const std::regex line(R"(MaxArraySize\s*=\s*(\d+))");
   if (std::regex_search(text, m, line)) return std::max(1, std::stoi(m[1].str()));
-  return kSlurmDefaultMaxArraySize;
+  return std::nullopt;
 }
 
 std::vector<std::string> write_slurm_scripts(const SweepPlan& plan, int job_count, const SlurmOptions& options) {
-  const int max_array = options.max_array ? *options.max_array : site_max_array_size();
+  const std::optional<int> site = site_max_array_size();
+  const int max_array = options.max_array.value_or(site.value_or(kSlurmDefaultMaxArraySize));
   if (max_array < 1) throw UsageError("--max-array " + std::to_string(max_array) + " must be >= 1");
+  if (site && max_array > *site)
+    throw UsageError("--max-array " + std::to_string(max_array) + " is past this site's MaxArraySize " +
+                     std::to_string(*site) + " (scontrol show config): sbatch would refuse the arrays; leave it out to use the site's");
   const std::string prologue = options.prologue.empty() ? std::string() : read_prologue(options.prologue);
   const int parts = (job_count + max_array - 1) / max_array;
   std::vector<std::string> scripts;

@@ -22,13 +22,14 @@ struct SlurmOptions {
 // Slurm's default MaxArraySize: array indices 0..1000.
 constexpr int kSlurmDefaultMaxArraySize = 1001;
 
-// The site's MaxArraySize from `scontrol show config`, kSlurmDefaultMaxArraySize when scontrol is
-// absent or does not say.
-int site_max_array_size();
+// The site's MaxArraySize from `scontrol show config`; nullopt when scontrol is absent or does not
+// say (planning away from the cluster).
+std::optional<int> site_max_array_size();
 
 // Writes DIR/sweep.slurm (the sweep in one array) or DIR/sweep_0.slurm, DIR/sweep_1.slurm, ...
-// (arrays of at most max_array tasks); returns their paths. UsageError on max_array < 1 or a
-// prologue that cannot be read.
+// (arrays of at most max_array tasks, by default the site's MaxArraySize, else Slurm's default);
+// returns their paths. UsageError on max_array < 1, a max_array past the site's MaxArraySize (sbatch
+// would refuse every full array), or a prologue that cannot be read.
 std::vector<std::string> write_slurm_scripts(const SweepPlan& plan, int job_count, const SlurmOptions& options);
 
 }  // namespace physarum::cli
