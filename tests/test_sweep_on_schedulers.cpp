@@ -9,6 +9,7 @@
 // them) the tests skip and say why.
 #include "killed_run.hpp"
 #include "test_support.hpp"
+#include "tiny_sweep_scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,13 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-const char* kScene = R"({
-  "mesh": "shape:sphere", "scale_to_area": 1.0, "agents": 200, "time_step": 0.01,
-  "sensor_distance": 0.05, "sensor_angle": 22.5, "move_rate": 0.5, "turn_rate": 180.0,
-  "turn_frequency": 20.0, "deposit_rate": 1.0, "decay_rate": 1.0, "diffuse_rate": 0.0002,
-  "mean_lifetime": 1.0, "activation_time": 0.2, "integrator": "forward", "seed": 3
-})";
-const char* kRunOptions = " --steps 4 --backend reference --texture-size 16";
+const char* kScene = kTinySweepScene;
+const char* kRunOptions = kTinySweepRunOptions;
 // The private site's array limit, not Slurm's default (1001), so that reading it from scontrol shows.
 constexpr int kSiteMaxArraySize = 1200;
 
