@@ -1,7 +1,8 @@
 // A sweep folder is self-contained (tools/sweep/frozen_inputs.hpp): planned in one place, moved or
 // copied, it runs where it is now, through --run, a Slurm script run by hand and a GNU parallel line,
 // and its runs give the bytes of the same runs made straight from the original files; an input
-// changed after planning is refused, naming the file.
+// changed after planning (the scene, the mesh, a colour map, an image a map reads) is refused,
+// naming the file.
 #include "killed_run.hpp"
 #include "test_support.hpp"
 
@@ -127,6 +128,23 @@ TEST_F(SweepFolder, AnInputChangedAfterPlanningIsRefusedNamingIt) {
   EXPECT_NE(r.err.find("changed since it was planned there: " + (dir_.path / "scenes" / "meshes" / "octahedron.obj").string()),
             std::string::npos)
       << r.err;
+}
+
+// The shipped sign scene reads an image (sign/sign.png, two texture maps) and a vertex field: the
+// image edited in the frozen folder after planning, a job refuses it by name before running.
+TEST(SweepFolderImages, AnEditedImageAMapReadsIsRefusedNamingIt) {
+  TempDir dir;
+  const fs::path scene = fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "scenes" / "sign.json";
+  ASSERT_EQ(run_physarum("sweep " + quoted(scene) + " --vary agents=1000,2000" + kRunOptions + " --out " + quoted(dir.path / "s"))
+                .exit_code,
+            0);
+  ASSERT_TRUE(fs::exists(dir.path / "s" / "inputs" / "files" / "sign.png"));
+  EXPECT_EQ(bytes_of(dir.path / "s" / "inputs" / "files" / "sign.png"), bytes_of(scene.parent_path() / "sign" / "sign.png"));
+  std::ofstream(dir.path / "s" / "inputs" / "files" / "sign.png", std::ios::app | std::ios::binary) << '\0';
+  const CommandResult r = run_physarum("sweep " + quoted(dir.path / "s") + " --job 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("inputs/files/sign.png: changed since the sweep was planned"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "s" / "run_0000"));
 }
 
 }  // namespace
