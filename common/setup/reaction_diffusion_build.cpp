@@ -1,6 +1,7 @@
 #include "common/setup/reaction_diffusion_build.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/reaction_diffusion/reaction_at_start.hpp"
 #include "common/scene/scene_fields.hpp"
 #include "common/base/random_streams.hpp"
 
@@ -201,6 +202,13 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
   if (spec.dirichlet)
     for (size_t v = 0; v < static_cast<size_t>(n); ++v)
       if (held(v)) set_value(spec.dirichlet->values, v, 1.0);
+
+  std::vector<std::string> where;
+  for (const MorphogenSpec& m : spec.morphogens)
+    where.push_back(scene_where(scene.source) +
+                    (spec.model == "custom" ? ": key 'reaction." + m.name + "'"
+                                            : ": key 'model' (\"" + spec.model + "\"), the reaction of '" + m.name + "'"));
+  check_reactions_finite_at_start(system, where);
 
   // ---- time ----
   system.integrator = spec.integrator;
