@@ -3,7 +3,7 @@
  * right-hand side of the IMEX step. float32 throughout: not every device has fp64.
  *
  * The host prepends a generated prelude (opencl/reaction_diffusion.cpp) that defines
- *   RD_MORPHOGENS         the number of morphogens, 2..4
+ *   RD_MORPHOGENS         the number of morphogens, 2..8
  *   RD_LOAD_COEFFICIENTS  statements reading the coefficients that vary per vertex into locals
  *                         rd_c0, rd_c1, ... (uniform ones are float literals inside the formulas)
  *   RD_REACTIONS          statements rd_r[m] = R_m(rd_u[0..], coefficients), one per morphogen:
@@ -46,7 +46,8 @@
 #define RD_NEIGHBOUR(m, j) u_in[(size_t)(m) * stride + (j)]
 #endif
 
-/* The morphogens of a vertex as one vector (rd_vector; a float3 for three, a float4 for four):
+/* The morphogens of a vertex as one vector (rd_vector; a float3 for three, a float4 for four, a
+ * float8 for five to eight):
  * RD_VECTOR_OF(a) from a private array, RD_VECTOR_TO(a, v) back into one, RD_GATHER(p, j) the values
  * at vertex j of the blocks p[0..]. */
 #if RD_MORPHOGENS == 2
@@ -59,11 +60,28 @@ typedef float3 rd_vector;
 #define RD_VECTOR_OF(a) ((float3)((a)[0], (a)[1], (a)[2]))
 #define RD_GATHER(p, j) ((float3)((p)[0][j], (p)[1][j], (p)[2][j]))
 #define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z)
-#else
+#elif RD_MORPHOGENS == 4
 typedef float4 rd_vector;
 #define RD_VECTOR_OF(a) ((float4)((a)[0], (a)[1], (a)[2], (a)[3]))
 #define RD_GATHER(p, j) ((float4)((p)[0][j], (p)[1][j], (p)[2][j], (p)[3][j]))
 #define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z, (a)[3] = (v).w)
+#elif RD_MORPHOGENS <= 8
+/* Five to eight (Meinhardt's stripe system has five): a float8 whose lanes past the last morphogen
+ * repeat it. They are computed and never kept: RD_VECTOR_TO writes the lanes from the last to the
+ * first, so each morphogen's own lane is written last. */
+typedef float8 rd_vector;
+#define RD_LANE(k) ((k) < RD_MORPHOGENS ? (k) : RD_MORPHOGENS - 1)
+#define RD_VECTOR_OF(a)                                                                              \
+  ((float8)((a)[RD_LANE(0)], (a)[RD_LANE(1)], (a)[RD_LANE(2)], (a)[RD_LANE(3)], (a)[RD_LANE(4)], \
+            (a)[RD_LANE(5)], (a)[RD_LANE(6)], (a)[RD_LANE(7)]))
+#define RD_GATHER(p, j)                                                                                      \
+  ((float8)((p)[RD_LANE(0)][j], (p)[RD_LANE(1)][j], (p)[RD_LANE(2)][j], (p)[RD_LANE(3)][j], (p)[RD_LANE(4)][j], \
+            (p)[RD_LANE(5)][j], (p)[RD_LANE(6)][j], (p)[RD_LANE(7)][j]))
+#define RD_VECTOR_TO(a, v)                                                                          \
+  ((a)[RD_LANE(7)] = (v).s7, (a)[RD_LANE(6)] = (v).s6, (a)[RD_LANE(5)] = (v).s5, (a)[4] = (v).s4, \
+   (a)[3] = (v).s3, (a)[2] = (v).s2, (a)[1] = (v).s1, (a)[0] = (v).s0)
+#else
+#error "reaction_diffusion.cl: RD_MORPHOGENS is 2 to 8"
 #endif
 
 /* One forward Euler sub-step of every morphogen at row i:

@@ -219,28 +219,37 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithUnrelatedStiffnesses) {
   expect_explicit_step_matches(domain, s);
 }
 
-// Three and four morphogens (custom kinetics): the device sums every morphogen's diffusion of a slot
-// as one short vector (a float3 or float4 for these counts, a float2 for two), so each count is its
-// own code path. Gray-Scott's u and v plus linear kinetics coupling the extra morphogens to them
+// Three to eight morphogens (custom kinetics): the device sums every morphogen's diffusion of a slot
+// as one short vector (a float3 or float4 for these counts, a float2 for two, a float8 with repeated
+// lanes for five to eight), so each vector width is its own code path. Gray-Scott's u and v plus linear kinetics coupling the extra morphogens to them
 // (w' = 0.5 u - w, x' = v w - 0.3 x), each diffusing at its own rate (proportional stiffnesses: the
 // shared-weights path; and with x's weights perturbed: each morphogen's own weights).
-TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeAndFourMorphogens) {
+TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeToEightMorphogens) {
   const SurfaceDomain& domain = domain_of(GetParam());
   const int n = domain.vertex_count;
   const double D_v = 1e-3;
   const double h = 0.8 * stable_step(domain, 2.0 * D_v);
-  for (const int count : {3, 4})
+  // Past x, each further morphogen decays towards a fifth of the one before it (y' = 0.2 x - 0.4 y,
+  // ...) and diffuses at a rate of its own.
+  const std::vector<std::string> more = {"y", "z", "p", "q"};
+  for (const int count : {3, 4, 5, 8})
     for (const bool own_weights : {false, true}) {
       ReactionDiffusionSystem s = gray_scott(domain, D_v, Integrator::Forward, 3 * h, 3);
       s.morphogens.push_back("w");
       s.reaction.push_back("0.5*u - w");
       s.stiffness.push_back(scaled(domain.laplacian, 1.5 * D_v));
       s.initial.push_back(random_values(n, 14, 0.0, 1.0));
-      if (count == 4) {
+      if (count >= 4) {
         s.morphogens.push_back("x");
         s.reaction.push_back("v*w - 0.3*x");
         s.stiffness.push_back(scaled(domain.laplacian, 0.5 * D_v));
         s.initial.push_back(random_values(n, 15, 0.0, 1.0));
+      }
+      for (int m = 4; m < count; ++m) {
+        s.morphogens.push_back(more[static_cast<size_t>(m - 4)]);
+        s.reaction.push_back("0.2*" + s.morphogens[static_cast<size_t>(m - 1)] + " - 0.4*" + s.morphogens.back());
+        s.stiffness.push_back(scaled(domain.laplacian, (0.3 + 0.2 * m) * D_v));
+        s.initial.push_back(random_values(n, 16 + static_cast<unsigned>(m), 0.0, 1.0));
       }
       if (own_weights)
         for (size_t e = 0; e < s.stiffness.back().value.size(); ++e)
@@ -248,7 +257,8 @@ TEST_P(ExplicitStep, MatchesTheDoubleLoopWithThreeAndFourMorphogens) {
       const auto u = explicit_reference(s, [&](const std::vector<IntrinsicVertexData<double>>& v, size_t i) {
         const auto gs = gray_scott_reaction(v[0][i], v[1][i], s.coefficients[0][i], s.coefficients[1][i]);
         std::vector<double> r = {gs[0], gs[1], 0.5 * v[0][i] - v[2][i]};
-        if (count == 4) r.push_back(v[1][i] * v[2][i] - 0.3 * v[3][i]);
+        if (count >= 4) r.push_back(v[1][i] * v[2][i] - 0.3 * v[3][i]);
+        for (int m = 4; m < count; ++m) r.push_back(0.2 * v[static_cast<size_t>(m - 1)][i] - 0.4 * v[static_cast<size_t>(m)][i]);
         return r;
       });
       OpenCLReactionDiffusion rd(compute(), domain, s);

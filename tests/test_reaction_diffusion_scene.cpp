@@ -130,8 +130,10 @@ TEST(ReactionDiffusionScene, BadValuesAreRefusedNamingTheKey) {
   };
   const std::vector<Case> cases = {
       {base({{"model", "gray-scott"}, {"morphogens", {{"u", {{"diffusion", -1e-5}}}}}}), "morphogens.u.diffusion"},
-      {base({{"reaction", {{"u", "-u"}}}, {"morphogens", {{"u", {{"diffusion", 1.0}}}}}}), "2 to 4"},
-      {base({{"reaction", {{"a", "b"}, {"b", "c"}, {"c", "d"}, {"d", "e"}, {"e", "a"}}}}), "2 to 4"},
+      {base({{"reaction", {{"u", "-u"}}}, {"morphogens", {{"u", {{"diffusion", 1.0}}}}}}), "2 to 8"},
+      {base({{"reaction", {{"a", "b"}, {"b", "c"}, {"c", "d"}, {"d", "e"}, {"e", "f"}, {"f", "g"}, {"g", "h"},
+                           {"h", "i"}, {"i", "a"}}}}),
+       "has 9 morphogens; a system has 2 to 8"},
       {base({{"maps", {{"east", {{"direction", {1, 0, 0}}}}}},
              {"model", "turing"},
              {"morphogens", {{"v", {{"anisotropy", {{"direction", "east"}, {"ratio", 0.0}}}}}}}}),

@@ -21,8 +21,9 @@ bool is_identifier(const std::string& s) {
 void check_reaction_diffusion_system(const ReactionDiffusionSystem& s, int n, const std::string& who) {
   const size_t un = static_cast<size_t>(n);
   const size_t count = s.morphogens.size();
-  if (count < 2 || count > 4)
-    throw InputError(who + ": " + std::to_string(count) + " morphogens (2 to 4 are supported)");
+  if (count < 2 || count > kMaxMorphogens)
+    throw InputError(who + ": " + std::to_string(count) + " morphogens (2 to " + std::to_string(kMaxMorphogens) +
+                     " are supported)");
   if (s.reaction.size() != count)
     throw InputError(who + ": " + std::to_string(s.reaction.size()) + " reaction formulas for " +
                      std::to_string(count) + " morphogens");

@@ -27,9 +27,13 @@
 namespace physarum {
 
 
+// The most morphogens a system has: both backends take any count up to it (the OpenCL step sums them
+// as one vector of at most eight lanes); Meinhardt's stripe system (004, appendix 8.3) has five.
+inline constexpr int kMaxMorphogens = 8;
+
 struct ReactionDiffusionSystem {
   // ---- the kinetics ----
-  // The morphogen names (2 to 4), in layer order: field layer m is morphogen m.
+  // The morphogen names (2 to kMaxMorphogens), in layer order: field layer m is morphogen m.
   std::vector<std::string> morphogens;
   // One formula per morphogen: R_m in muparser syntax, over the morphogen names and the coefficient
   // names (numbers; + - * / ^; unary minus; parentheses; the functions exp, log (natural), sqrt, abs,
@@ -64,7 +68,7 @@ struct ReactionDiffusionSystem {
   int substeps = 1;
 };
 
-// The checks both backends make before they take a system for `vertex_count` vertices: 2 to 4
+// The checks both backends make before they take a system for `vertex_count` vertices: 2 to 8
 // morphogens with usable, distinct names (letters, digits, '_'), one formula, stiffness (n x n, the
 // pattern of the first, finite), initial state and floor (finite or -infinity) per morphogen,
 // finite coefficient arrays and masses > 0 of one value per vertex, a time step > 0, sub-steps >= 1

@@ -56,7 +56,7 @@ std::vector<SceneKey> build_keys() {
               "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x or SCALAR_MAP, \"anisotropy\": {\"direction\": VECTOR_MAP, "
               "\"ratio\": r > 0}, \"minimum\": x or null}, ...}"),
       setting("reaction", K::Object, false, {}, "", "the model's",
-              "custom kinetics: one formula per morphogen (2 to 4; layer order = alphabetical), over the "
+              "custom kinetics: one formula per morphogen (2 to 8; layer order = alphabetical), over the "
               "morphogens and parameters; + - * / ^, exp log sqrt abs min max sin cos tanh",
               "{\"u\": \"-u*v^2 + F*(1-u)\", \"v\": \"u*v^2 - (F+k)*v\"}"),
       setting("initial", K::Object, false, {}, "", "uniform",

@@ -16,7 +16,6 @@ namespace {
 using nlohmann::json;
 
 constexpr size_t kMinMorphogens = 2;
-constexpr size_t kMaxMorphogens = 4;
 
 std::string number_text(double x) { return ValueRange::number(x); }
 
@@ -158,8 +157,8 @@ void take_named_model(const ReactionModel& named, ReactionDiffusionSpec& spec) {
 void read_custom_kinetics(const json& reaction, const json* morphogens, ReactionDiffusionSpec& spec,
                           const std::string& source) {
   if (!reaction.is_object()) fail_key(source, "reaction", reaction.dump() + " must be an object {MORPHOGEN: FORMULA, ...}");
-  if (reaction.size() < kMinMorphogens || reaction.size() > kMaxMorphogens)
-    fail_key(source, "reaction", "has " + std::to_string(reaction.size()) + " morphogens; a system has 2 to 4");
+  if (reaction.size() < kMinMorphogens || reaction.size() > static_cast<size_t>(kMaxMorphogens))
+    fail_key(source, "reaction", "has " + std::to_string(reaction.size()) + " morphogens; a system has 2 to " + std::to_string(kMaxMorphogens));
   for (auto it = reaction.begin(); it != reaction.end(); ++it) {
     const std::string key = "reaction." + it.key();
     check_identifier(it.key(), source, key);
@@ -278,8 +277,8 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
   auto check_map = [&](const std::string& key, const std::string& name, MapKind kind) {
     check_map_reference(maps, source, key, name, kind);
   };
-  if (spec.morphogens.size() < kMinMorphogens || spec.morphogens.size() > kMaxMorphogens)
-    fail_key(source, "morphogens", std::to_string(spec.morphogens.size()) + " morphogens; a system has 2 to 4");
+  if (spec.morphogens.size() < kMinMorphogens || spec.morphogens.size() > static_cast<size_t>(kMaxMorphogens))
+    fail_key(source, "morphogens", std::to_string(spec.morphogens.size()) + " morphogens; a system has 2 to " + std::to_string(kMaxMorphogens));
   if (spec.reaction.size() != spec.morphogens.size())
     fail_key(source, "reaction", "one formula per morphogen is needed");
   for (const MorphogenSpec& m : spec.morphogens) {

@@ -9,7 +9,7 @@
 //            or "custom" (implied by "reaction"); "physarum" (the default) is the agent model.
 //   "parameters": {"F": 0.04, "k": "kmap"}        coefficients: numbers or scalar map names; a named
 //                                                  model's defaults fill the rest
-//   "reaction": {"u": "-u*v^2 + F*(1-u)", ...}    custom kinetics, 2..4 morphogens; the layer order is
+//   "reaction": {"u": "-u*v^2 + F*(1-u)", ...}    custom kinetics, 2..8 morphogens; the layer order is
 //                                                  the ALPHABETICAL order of the names (a JSON object has
 //                                                  no order of its own)
 //   "morphogens": {"u": {"diffusion": 2e-5 | MAP, "initial": 1.0 | MAP,
@@ -94,7 +94,7 @@ struct ReactionDiffusionSpec {
 const std::vector<std::string>& reaction_diffusion_keys();
 
 // nullopt for the agent model ("model" absent or "physarum", and no "reaction"); InputError naming
-// the key for anything wrong: an unknown model or field, 1 or more than 4 morphogens, a formula with
+// the key for anything wrong: an unknown model or field, 1 or more than 8 morphogens, a formula with
 // an unknown name (and its position), negative diffusion, ratio <= 0, a value for a morphogen the
 // model does not have, an RD key in a physarum scene. Map names are checked by
 // validate_reaction_diffusion (the maps are read separately).

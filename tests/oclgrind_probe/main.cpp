@@ -241,9 +241,11 @@ void run_fault_demo(const ComputeContext& compute) {
 
 // Gray-Scott with F varying per vertex (a coefficient buffer), every fifth vertex held (the
 // Dirichlet paths), two explicit sub-steps (the double buffer both ways; shared or per-morphogen
-// weights) or two IMEX steps with the device's conjugate gradients.
+// weights) or two IMEX steps with the device's conjugate gradients. With `morphogens` > 2, linear
+// morphogens w, x, ... follow u (w' = 0.5 u - w, x' = 0.2 w - 0.4 x, ...): five or more take the
+// kernel's eight-lane vector path.
 void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& domain, Integrator integrator,
-                            const std::string& label, bool proportional_stiffness = true) {
+                            const std::string& label, bool proportional_stiffness = true, int morphogens = 2) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
   ReactionDiffusionSystem s;
@@ -264,9 +266,19 @@ void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& 
     for (double& v : K.value) v *= D;
     s.stiffness.push_back(K);
   }
+  const std::vector<std::string> extra = {"w", "x", "y", "z", "p", "q"};
+  for (int m = 2; m < morphogens; ++m) {
+    const std::string& name = extra[static_cast<size_t>(m - 2)];
+    s.morphogens.push_back(name);
+    s.reaction.push_back(m == 2 ? "0.5*u - w" : "0.2*" + extra[static_cast<size_t>(m - 3)] + " - 0.4*" + name);
+    s.initial.emplace_back(un, 0.1 * m);
+    CsrMatrix K = s.stiffness[0];  // a copy first: push_back may move the vector it reads from
+    for (double& v : K.value) v *= 0.3 + 0.1 * m;
+    s.stiffness.push_back(std::move(K));
+  }
   // Not multiples of one another (as anisotropy makes them): each morphogen's own weights.
   if (!proportional_stiffness)
-    for (size_t e = 0; e < s.stiffness[1].value.size(); ++e) s.stiffness[1].value[e] *= 1.0 + 0.5 * ((e * 7) % 3);
+    for (size_t e = 0; e < s.stiffness.back().value.size(); ++e) s.stiffness.back().value[e] *= 1.0 + 0.5 * ((e * 7) % 3);
   s.mass = domain.vertex_mass;
   s.integrator = integrator;
   s.time_step = integrator == Integrator::Forward ? 0.2 : 1.0;
@@ -277,7 +289,7 @@ void run_reaction_diffusion(const ComputeContext& compute, const SurfaceDomain& 
   OpenCLReactionDiffusion rd(compute, domain, s, options);
   rd.run(2);
   bool finite = true;
-  for (int m = 0; m < 2; ++m)
+  for (int m = 0; m < morphogens; ++m)
     for (double x : rd.field_values(m)) finite = finite && std::isfinite(x);
   const FieldStatistics stats = rd.field_statistics(0.5, 1);
   check(finite && std::isfinite(stats.mean), label + ": morphogens finite (mean v " + std::to_string(stats.mean) + ")");
@@ -313,6 +325,8 @@ int run(int argc, char** argv) {
   run_reaction_diffusion(compute, prism, Integrator::Forward,
                          "reaction-diffusion, explicit, rows past the ELL width, own weights per morphogen", false);
   run_reaction_diffusion(compute, domain, Integrator::Imex, "reaction-diffusion, IMEX by device CG");
+  run_reaction_diffusion(compute, prism, Integrator::Forward,
+                         "reaction-diffusion, explicit, five morphogens (eight lanes), own weights", false, 5);
   const SurfaceDomain square = testing::make_domain(testing::make_square_grid(8));
   for (int grouping : {1, 4}) {
     const std::string lanes = ", " + std::to_string(grouping) + " agent(s) per work-item";
