@@ -134,6 +134,8 @@ TEST(ReactionDiffusionScene, BadValuesAreRefusedNamingTheKey) {
       {base({{"reaction", {{"a", "b"}, {"b", "c"}, {"c", "d"}, {"d", "e"}, {"e", "f"}, {"f", "g"}, {"g", "h"},
                            {"h", "i"}, {"i", "a"}}}}),
        "has 9 morphogens; a system has 2 to 8"},
+      {base({{"reaction", {{"u", "-u"}, {"x", "u - x"}}}, {"morphogens", {{"u", {{"diffusion", 1.0}}}, {"x", {{"diffusion", 1.0}}}}}}),
+       "key 'reaction.x': 'x' is a vertex property of the PLY files a run writes"},
       {base({{"maps", {{"east", {{"direction", {1, 0, 0}}}}}},
              {"model", "turing"},
              {"morphogens", {{"v", {{"anisotropy", {{"direction", "east"}, {"ratio", 0.0}}}}}}}}),

@@ -41,6 +41,16 @@ void check_identifier(const std::string& name, const std::string& source, const 
     fail_key(source, key, "'" + name + "' is the name of a function");
 }
 
+// A morphogen is written as a vertex property of the run's PLY files (common/output/ply_writer.cpp),
+// which cannot take the names of the vertices' own properties: refused here, before the run, and
+// not when the finished run is written.
+void check_writable_morphogen(const std::string& name, const std::string& source, const std::string& key) {
+  for (const char* taken : {"x", "y", "z", "red", "green", "blue"})
+    if (name == taken)
+      fail_key(source, key, "'" + name + "' is a vertex property of the PLY files a run writes (x, y, z, red, green, "
+                            "blue): give the morphogen another name");
+}
+
 std::string morphogen_list(const std::vector<MorphogenSpec>& morphogens) {
   std::string list;
   for (const MorphogenSpec& m : morphogens) list += (list.empty() ? "" : ", ") + m.name;
@@ -162,6 +172,7 @@ void read_custom_kinetics(const json& reaction, const json* morphogens, Reaction
   for (auto it = reaction.begin(); it != reaction.end(); ++it) {
     const std::string key = "reaction." + it.key();
     check_identifier(it.key(), source, key);
+    check_writable_morphogen(it.key(), source, key);
     if (!it->is_string()) fail_key(source, key, it->dump() + " must be a formula (a string)");
     MorphogenSpec m;
     m.name = it.key();
