@@ -8,6 +8,7 @@
 //                       fraction of the device's measured STREAM-triad bandwidth (opencl/memory_bandwidth):
 //                       the step is bandwidth-bound, so this is its roofline fraction.
 //   BM_RdExplicitStepReference  the same step on the reference backend.
+//   BM_RdExplicitStepFiveMorphogens(Reference)  the same with five morphogens (the float8 path).
 //   BM_RdImexStep       one IMEX step (dt = 10x the explicit stability bound) with the device's
 //                       conjugate gradients (warm-started) or the host factorization, against
 //   BM_RdImexHostOnly   the same step done entirely on the host in double (right-hand side and
@@ -23,6 +24,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 namespace physarum::bench {
 namespace {
@@ -37,6 +41,29 @@ using testing::stable_step;
 double triad_bandwidth() {
   static opencl::DeviceTriad triad(compute());
   return triad.bytes_per_second(3);
+}
+
+// Times explicit steps of `s` on the device, with the counters: vertices, bytes the step must move
+// per second and that as a fraction of the triad bandwidth measured right after.
+void time_explicit_steps(benchmark::State& state, const SurfaceDomain& domain, const ReactionDiffusionSystem& s) {
+  opencl::OpenCLReactionDiffusion rd(compute(), domain, s);
+  rd.run(2);
+  rd.finish();
+  for (auto _ : state) {
+    rd.step();
+    rd.finish();
+  }
+  const double bytes = rd.bytes_per_sub_step();
+  const double bandwidth = triad_bandwidth();  // right after the timing (see triad_bandwidth)
+  state.counters["vertices"] = domain.vertex_count;
+  state.counters["bytes_per_step"] = bytes;
+  state.counters["bytes_per_s"] =
+      benchmark::Counter(bytes * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["triad_bytes_per_s"] = bandwidth;
+  state.SetLabel(compute().device.type);
+  // bytes_per_s / triad_bytes_per_s: the roofline fraction (a rate counter divides by the time).
+  state.counters["bound_fraction"] = benchmark::Counter(bytes * static_cast<double>(state.iterations()) / bandwidth,
+                                                        benchmark::Counter::kIsRate);
 }
 
 void BM_RdExplicitStep(benchmark::State& state) {
@@ -63,30 +90,53 @@ void BM_RdExplicitStep(benchmark::State& state) {
       if (diagonal >= 0) K.value[diagonal] = -off_diagonal;
     }
   }
-  opencl::OpenCLReactionDiffusion rd(compute(), domain, s);
-  rd.run(2);
-  rd.finish();
-  for (auto _ : state) {
-    rd.step();
-    rd.finish();
-  }
-  const double bytes = rd.bytes_per_sub_step();
-  const double bandwidth = triad_bandwidth();  // right after the timing (see triad_bandwidth)
-  state.counters["vertices"] = domain.vertex_count;
-  state.counters["bytes_per_step"] = bytes;
-  state.counters["bytes_per_s"] =
-      benchmark::Counter(bytes * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["triad_bytes_per_s"] = bandwidth;
-  state.SetLabel(compute().device.type);
-  // bytes_per_s / triad_bytes_per_s: the roofline fraction (a rate counter divides by the time).
-  state.counters["bound_fraction"] = benchmark::Counter(bytes * static_cast<double>(state.iterations()) / bandwidth,
-                                                        benchmark::Counter::kIsRate);
+  time_explicit_steps(state, domain, s);
 }
 // Args: {cells per side, own weights per morphogen (0: shared, the isotropic case)}.
 BENCHMARK(BM_RdExplicitStep)
     ->ArgsProduct({{100, 316, 1000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// Gray-Scott plus linear morphogens up to `count` (w' = 0.5 u - w, then each 0.2 x the one before
+// minus 0.4 x itself), each diffusing at its own fraction of u's rate: five morphogens, the size of
+// Meinhardt's stripe system (004, appendix 8.3), take the kernel's eight-lane path.
+ReactionDiffusionSystem with_linear_morphogens(ReactionDiffusionSystem s, int count) {
+  const std::vector<std::string> names = {"w", "s", "t", "p", "q", "r"};
+  for (int m = 2; m < count; ++m) {
+    const std::string& name = names[static_cast<size_t>(m - 2)];
+    s.reaction.push_back(m == 2 ? "0.5*u - w" : "0.2*" + names[static_cast<size_t>(m - 3)] + " - 0.4*" + name);
+    s.morphogens.push_back(name);
+    CsrMatrix K = s.stiffness[0];
+    for (double& v : K.value) v *= 0.4 + 0.1 * m;
+    s.stiffness.push_back(std::move(K));
+    IntrinsicVertexData<double> initial = s.initial[0];
+    for (double& v : initial) v *= 0.5;
+    s.initial.push_back(std::move(initial));
+    if (!s.minimum.empty()) s.minimum.push_back(-std::numeric_limits<double>::infinity());
+  }
+  return s;
+}
+
+// One explicit sub-step of five morphogens (shared weights), with BM_RdExplicitStep's counters.
+void BM_RdExplicitStepFiveMorphogens(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  const ReactionDiffusionSystem s =
+      with_linear_morphogens(rough_gray_scott(domain, Integrator::Forward, 0.5 * stable_step(domain, 2e-5)), 5);
+  time_explicit_steps(state, domain, s);
+}
+BENCHMARK(BM_RdExplicitStepFiveMorphogens)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_RdExplicitStepFiveMorphogensReference(benchmark::State& state) {
+  const SurfaceDomain& domain = grid_domain(static_cast<int>(state.range(0)));
+  ReferenceReactionDiffusion rd(
+      with_linear_morphogens(rough_gray_scott(domain, Integrator::Forward, 0.5 * stable_step(domain, 2e-5)), 5));
+  rd.step();
+  for (auto _ : state) rd.step();
+  state.SetLabel("reference");
+  state.counters["vertices"] = domain.vertex_count;
+}
+BENCHMARK(BM_RdExplicitStepFiveMorphogensReference)->Arg(100)->Arg(316)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The same explicit step on the reference backend (reference/reaction_diffusion.hpp: double, the
 // kinetics through the formula evaluator): the denominator of the OpenCL >= 5x target.
