@@ -77,7 +77,7 @@ int label_groups(const Picture& p, std::uint8_t kind, bool diagonal, std::vector
 struct Mark {
   MarkMoments drawn;      // the mark's own pixels
   MarkMoments enclosed;   // background it encloses (an outline's inside)
-  int pixels = 0;
+  std::vector<int> cells; // its pixels (row-major indices)
   bool red = false;
 };
 
@@ -87,13 +87,13 @@ double ellipse_perimeter(double a, double b) {
   return M_PI * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
 }
 
-SketchStroke stroke_of(const MarkMoments& m, const Picture& p, const std::vector<int>& label, int id, double side) {
+SketchStroke stroke_of(const Mark& mark, const Picture& p, double side) {
+  const MarkMoments& m = mark.drawn;
   const MarkMoments::Ellipse e = m.ellipse();
   const double t = e.orientation * M_PI / 180.0;
   const Eigen::Vector2d d(std::cos(t), std::sin(t));
   double lo = 0.0, hi = 0.0;
-  for (int i = 0; i < static_cast<int>(label.size()); ++i) {
-    if (label[static_cast<size_t>(i)] != id) continue;
+  for (const int i : mark.cells) {
     const Eigen::Vector2d q((i % p.width + 0.5) * side, (p.height - i / p.width - 0.5) * side);
     const double s = (q - e.center).dot(d);
     lo = std::min(lo, s);
@@ -122,7 +122,7 @@ Sketch sketch_from_image(const std::string& path) {
                    : red[static_cast<size_t>(i)] ? dark_count + red[static_cast<size_t>(i)] - 1 : -1;
     if (id < 0) continue;
     marks[static_cast<size_t>(id)].drawn.add_cell(cell(i), side);
-    ++marks[static_cast<size_t>(id)].pixels;
+    marks[static_cast<size_t>(id)].cells.push_back(i);
     marks[static_cast<size_t>(id)].red = id >= dark_count;
   }
   // Background groups that do not reach the border are enclosed: they belong to the dark mark
@@ -149,21 +149,18 @@ Sketch sketch_from_image(const std::string& path) {
   Sketch sketch;
   sketch.source = path;
   sketch.window = Eigen::Vector2d(1.0, static_cast<double>(p.height) / p.width);
-  for (size_t k = 0; k < marks.size(); ++k) {
-    const Mark& mark = marks[k];
+  for (const Mark& mark : marks) {
     MarkMoments all = mark.drawn;
     all.add(mark.enclosed);
     const MarkMoments::Ellipse e = all.ellipse();
-    if (mark.pixels < kMinMarkPixels)
+    if (static_cast<int>(mark.cells.size()) < kMinMarkPixels)
       throw InputError(path + ": the mark at (" + std::to_string(e.center.x()) + ", " + std::to_string(e.center.y()) +
-                       ") is " + std::to_string(mark.pixels) + " pixels; a mark needs " + std::to_string(kMinMarkPixels) +
+                       ") is " + std::to_string(mark.cells.size()) + " pixels; a mark needs " + std::to_string(kMinMarkPixels) +
                        " or more (about 5 x 4) to be measured: draw it larger, or remove it");
     const double fill = all.area() / (M_PI * e.major * e.minor);
     const bool stroke = mark.red || e.minor < kStrokeAspect * e.major || fill < kStrokeFill;
     if (stroke) {
-      const std::vector<int>& labels = mark.red ? red : dark;
-      const int id = mark.red ? static_cast<int>(k) - dark_count + 1 : static_cast<int>(k) + 1;
-      sketch.strokes.push_back(stroke_of(mark.drawn, p, labels, id, side));
+      sketch.strokes.push_back(stroke_of(mark, p, side));
       continue;
     }
     SketchSpot spot{e.center, e.major, e.minor, e.orientation};
