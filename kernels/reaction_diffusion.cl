@@ -158,6 +158,11 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
 #endif
   }
   RD_VECTOR_TO(diffusion, sum);
+#if defined(PHYSARUM_FAULT_RD_LANE_MIXUP) && RD_MORPHOGENS >= 5
+  /* The planted fault rd-lane-mixup: the last morphogen takes the diffusion sum of the one before
+   * it, a mix-up of the wide vector's lanes. */
+  diffusion[RD_MORPHOGENS - 1] = diffusion[RD_MORPHOGENS - 2];
+#endif
 #ifdef RD_SHARED_WEIGHTS
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) diffusion[m] *= rd_scale[RD_STIFFNESS_OF(m)];

@@ -24,6 +24,9 @@ const std::vector<PlantedFault>& planted_faults() {
        "reaction-diffusion: the first two morphogens diffuse with each other's stiffness (D_u and D_v exchanged)"},
       {"rd-no-feed", "PHYSARUM_FAULT_RD_NO_FEED",
        "reaction-diffusion: the feed term F (1 - u) dropped (coefficient F read as 0 in the first formula)"},
+      {"rd-lane-mixup", "PHYSARUM_FAULT_RD_LANE_MIXUP",
+       "reaction-diffusion with five or more morphogens: the last one diffuses by the one before it's sum (a lane "
+       "mix-up of the wide vector)"},
   };
   return faults;
 }

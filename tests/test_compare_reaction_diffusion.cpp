@@ -1,10 +1,11 @@
 // The differential harness on reaction-diffusion scenes (issue 21): its metric set on fields with
 // known answers, and `physarum compare` judging the OpenCL backend against the reference on a
-// Gray-Scott scene and a Turing scene (equivalent), while the planted faults rd-no-feed and
-// rd-swap-diffusion are rejected; plus what it refuses.
+// Gray-Scott scene, a Turing scene and Meinhardt's five-morphogen stripes (equivalent), while the
+// planted faults rd-no-feed, rd-swap-diffusion and rd-lane-mixup are rejected; plus what it refuses.
 //
 // The scenes (tools/scenes/compare/gray_scott_square.json: 1,089 vertices, 1,000 steps;
-// turing_sphere.json: 2,562 vertices, 100 steps) take a few hundredths of a second per seed, so
+// turing_sphere.json: 2,562 vertices, 100 steps; meinhardt_stripes_square.json: 0.09 m^2 at the
+// model's 1 cm cells, 600 steps, about 0.2 s a seed) take a few hundredths of a second per seed, so
 // the sequential test's 24 seeds per arm cost seconds: Gray-Scott grows from 60 seeded spots on a
 // flat square (radial spectrum), Turk's Turing model from noise on a sphere (manifold harmonics;
 // stopped while the growth is still linear: unclamped, Turk's model diverges once v goes negative,
@@ -214,6 +215,12 @@ TEST(CompareReactionDiffusion, TuringBackendsAreEquivalent) { expect_equivalent(
 TEST(CompareReactionDiffusion, TuringWithSwappedDiffusionIsRejected) {
   expect_rejected("turing_sphere", "rd-swap-diffusion");
 }
+// Meinhardt's five-morphogen stripes (004, appendix 8.3): the OpenCL step's wide vector against the
+// reference, and a mix-up of its lanes (the last morphogen diffusing by the one before it's sum).
+TEST(CompareReactionDiffusion, MeinhardtStripesBackendsAreEquivalent) { expect_equivalent("meinhardt_stripes_square"); }
+TEST(CompareReactionDiffusion, MeinhardtStripesWithALaneMixupIsRejected) {
+  expect_rejected("meinhardt_stripes_square", "rd-lane-mixup");
+}
 
 // Labelled `validation` (about 12 s here): the harness between two integrators of one scene. IMEX's
 // backward-Euler diffusion and the explicit sub-steps differ by O(dt) in each mode's rate, far below
@@ -239,6 +246,11 @@ TEST(CompareReactionDiffusion, RefusesWhatItCannotDo) {
   const Verdict no_feed = compare("turing_sphere", "--fault rd-no-feed");
   EXPECT_EQ(no_feed.run.exit_code, 2) << no_feed.run.err;
   EXPECT_NE(no_feed.run.err.find("no feed coefficient F"), std::string::npos) << no_feed.run.err;
+  // ... nor rd-lane-mixup with fewer than five morphogens,
+  const Verdict mixup = compare("gray_scott_square", "--fault rd-lane-mixup");
+  EXPECT_EQ(mixup.run.exit_code, 2) << mixup.run.err;
+  EXPECT_NE(mixup.run.err.find("has 2 morphogens; the fault is in the step of five or more"), std::string::npos)
+      << mixup.run.err;
   // ... and a reaction-diffusion fault nothing in an agent-model scene.
   const Verdict rd_fault = compare("square", "--fault rd-no-feed");
   EXPECT_EQ(rd_fault.run.exit_code, 2) << rd_fault.run.err;

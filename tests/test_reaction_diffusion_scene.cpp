@@ -74,6 +74,34 @@ TEST(ReactionDiffusionScene, NamedModelFormulasHaveTheirUniformSteadyStates) {
   EXPECT_NEAR(value("gray-scott", 0, {0.5, 0.25}), -0.01125, 1e-15);
   // Activator-substrate at (a, s) = (0, 1): rho_s0 - mu_s = 0 for Fig. 20's values.
   EXPECT_NEAR(value("activator-substrate", 1, {0.0, 1.0}), 0.0, 1e-15);
+  // The appendix of 004 with beta at its mean. Turk's spots: a b = 16 and a b - b = 12 give (4, 4).
+  EXPECT_NEAR(value("turing-spots", 0, {4.0, 4.0}), 0.0, 1e-15);
+  EXPECT_NEAR(value("turing-spots", 1, {4.0, 4.0}), 0.0, 1e-15);
+  // Meinhardt's spots, p3 = 0: b p2 = 0.01 a^2 and 0.01 a^2 / b = a p1, so a = p2 / p1 = 4/3 and
+  // b = 0.01 (16/9) / 0.04 = 4/9.
+  EXPECT_NEAR(value("meinhardt-spots", 0, {4.0 / 3.0, 4.0 / 9.0}), 0.0, 1e-15);
+  EXPECT_NEAR(value("meinhardt-spots", 1, {4.0 / 3.0, 4.0 / 9.0}), 0.0, 1e-15);
+  // Meinhardt's stripes: d = a, e = b, a + b = k_c / k_ab = 1.5 and c = 0.01 a b / k_ab; on the
+  // family, not only at its symmetric point (a, b) = (0.75, 0.75).
+  for (const double a : {0.75, 0.5, 1.2}) {
+    const double b = 1.5 - a, c = 0.01 * a * b / 0.04;
+    for (int m = 0; m < 5; ++m) EXPECT_NEAR(value("meinhardt-stripes", m, {a, b, c, a, b}), 0.0, 1e-15) << a << " " << m;
+  }
+  // ... and off it the stripe system moves: a above its partner's level is driven further up.
+  EXPECT_GT(value("meinhardt-stripes", 0, {0.8, 0.75, 0.140625, 0.75, 0.75}), 0.0);
+}
+
+TEST(ReactionDiffusionScene, TheAppendixModelsCarryTheirBetaNoiseUnlessTheSceneSetsIt) {
+  const Scene stripes = scene_from_json(base({{"model", "meinhardt-stripes"}}));
+  ASSERT_EQ(stripes.reaction_diffusion()->parameter_noise.size(), 1u);
+  EXPECT_EQ(stripes.reaction_diffusion()->parameter_noise[0], (std::pair<std::string, double>{"beta", 0.1}));
+  EXPECT_EQ(stripes.reaction_diffusion()->morphogens.size(), 5u);
+  const Scene quiet = scene_from_json(base({{"model", "turing-spots"}, {"parameter_noise", {{"beta", 0.0}}}}));
+  EXPECT_EQ(quiet.reaction_diffusion()->parameter_noise[0].second, 0.0);
+  // A model without a default noise takes one for any of its coefficients.
+  const Scene gray = scene_from_json(base({{"model", "gray-scott"}, {"parameter_noise", {{"k", 0.001}}}}));
+  ASSERT_EQ(gray.reaction_diffusion()->parameter_noise.size(), 1u);
+  EXPECT_EQ(gray.reaction_diffusion()->parameter_noise[0].first, "k");
 }
 
 TEST(ReactionDiffusionScene, FileOverridesTheModelsValues) {
@@ -150,6 +178,10 @@ TEST(ReactionDiffusionScene, BadValuesAreRefusedNamingTheKey) {
       {base({{"model", "gray-scott"}, {"dirichlet", {{"map", "nomap"}}}}), "dirichlet.map"},
       {base({{"model", "gray-scott"}, {"preview_morphogen", "w"}}), "preview_morphogen"},
       {base({{"model", "gray-scott"}, {"initial", {{"noise", -0.1}}}}), "initial.noise"},
+      {base({{"model", "meinhardt-spots"}, {"parameter_noise", {{"gamma", 0.1}}}}),
+       "key 'parameter_noise.gamma': no coefficient of that name (the coefficients: s, p1, p2, p3, beta)"},
+      {base({{"model", "meinhardt-spots"}, {"parameter_noise", {{"beta", -0.1}}}}), "parameter_noise.beta"},
+      {base({{"model", "meinhardt-spots"}, {"parameter_noise", 0.1}}), "parameter_noise"},
       {base({{"model", "gray-scott"}, {"initial", {{"spots", {{"count", 3}, {"radius", 0.0}, {"values", json::object()}}}}}}),
        "initial.spots.radius"},
   };

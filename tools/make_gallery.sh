@@ -3,7 +3,8 @@
 # under docs/gallery/ (SCENE.png); for spot (needs ../shared/meshes) also its baked texture and a
 # re-colouring with the colour map extracted from the shipped exemplar image; the flat sign and disk
 # of the control scenes are shown face-on (physarum render's front view), spot_scale from the side.
-# The map-tool scenes sea_fan and ginkgo (flat fans) are shown face-on too.
+# The map-tool scenes sea_fan and ginkgo (flat fans) are shown face-on too, and so are the three
+# systems of the appendix of 004 (turing_spots, meinhardt_spots, meinhardt_stripes: flat squares).
 # Reaction-diffusion: fandisk_gray_scott (needs ../shared/meshes) and petal_stripes keep their
 # preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
@@ -14,7 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 physarum=${PHYSARUM:-./build/physarum}
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
@@ -37,7 +38,8 @@ for scene in "${scenes[@]}"; do
     continue
   fi
   "$physarum" run "tools/scenes/$scene.json" --backend opencl --texture-size 1024 --out "$work/$scene" > /dev/null
-  if [ "$scene" = sign ] || [ "$scene" = branching ] || [ "$scene" = sea_fan ] || [ "$scene" = ginkgo ]; then
+  if [ "$scene" = sign ] || [ "$scene" = branching ] || [ "$scene" = sea_fan ] || [ "$scene" = ginkgo ] ||
+     [ "$scene" = turing_spots ] || [ "$scene" = meinhardt_spots ] || [ "$scene" = meinhardt_stripes ]; then
     "$physarum" render "$work/$scene" --views 3 --out "$work/$scene/views" > /dev/null
     cp "$work/$scene/views/view_front.png" "docs/gallery/$scene.png"
   elif [ "$scene" = spot_scale ]; then

@@ -233,6 +233,11 @@ void refuse_what_cannot_be_compared(const ComparisonRequest& o) {
       throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion()->model +
                        ") has no feed coefficient F (it would change nothing)");
   }
+  // rd-lane-mixup is a fault of the wide vector that only five or more morphogens use.
+  if (rd && o.fault == "rd-lane-mixup" && scene.reaction_diffusion()->morphogens.size() < 5)
+    throw UsageError("--fault rd-lane-mixup: " + o.scene + " has " +
+                     std::to_string(scene.reaction_diffusion()->morphogens.size()) +
+                     " morphogens; the fault is in the step of five or more (it would change nothing)");
 }
 
 // The seeds of both arms (the second stored, or run here batch by batch beside the first) and the

@@ -35,6 +35,7 @@ enum class RandomPurpose : std::uint32_t {
   // stream is the intrinsic vertex (noise) or the spot (spot centres), not an agent.
   ReactionNoise = 8,       // block = morphogen: first uniform, the vertex's noise draw
   ReactionSpot = 9,        // block 0: first uniform, the spot centre's place in the mass distribution
+  ReactionParameterNoise = 10,  // block = coefficient: first uniform, the vertex's draw ("parameter_noise")
 };
 
 inline PhiloxWords agent_random_words(std::uint32_t seed, std::uint32_t agent, std::uint32_t step, RandomPurpose purpose,

@@ -116,6 +116,9 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
   }
   nlohmann::json spots = nlohmann::json::array();
   std::vector<double> areas, aspects, widths, direction_angles, spacings;
+  // Spots clear of the surface's boundary: whole spots, whose area a cut one does not bias (what a
+  // sketch's ellipses are compared with, common/sketch/).
+  std::vector<double> interior_spot_areas;
   std::complex<double> axial(0.0, 0.0);  // mean of exp(2i theta): orientations are lines, not arrows
   int spot_count = 0, stripe_count = 0;
   double covered = 0.0;
@@ -125,6 +128,7 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
     covered += r.area;
     (r.is_stripe ? stripe_count : spot_count) += 1;
     areas.push_back(r.area);
+    if (!r.is_stripe && !r.touches_boundary) interior_spot_areas.push_back(r.area);
     if (std::isfinite(s.aspect_ratio)) aspects.push_back(s.aspect_ratio);
     if (r.stripe_width) widths.push_back(*r.stripe_width);
     if (r.direction_angle_deg) direction_angles.push_back(*r.direction_angle_deg);
@@ -165,6 +169,7 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
                          {"field_min", a.field_min},
                          {"field_max", a.field_max},
                          {"area", statistics_json(areas)},
+                         {"interior_spot_area", statistics_json(interior_spot_areas)},
                          {"aspect_ratio", statistics_json(aspects)},
                          {"orientation", {{"mean_deg", mean_orientation}, {"order", std::abs(axial)}}}};
   if (!direction_angles.empty()) summary["direction_angle_deg"] = statistics_json(direction_angles);
@@ -181,7 +186,8 @@ nlohmann::json pattern_analysis_json(const PatternAnalysis& a, const std::string
       {"min_area", a.min_area},
       {"dropped_regions", a.dropped_regions},
       {"spots", spots},
-      {"spacing", {{"mean", number_or_null(spacing.mean)}, {"std", number_or_null(spacing.std)}, {"count", spacings.size()}, {"pairs", pairs}}},
+      {"spacing", {{"mean", number_or_null(spacing.mean)}, {"std", number_or_null(spacing.std)},
+                   {"median", statistics_json(spacings)["median"]}, {"count", spacings.size()}, {"pairs", pairs}}},
       {"stripe_width", {{"mean", number_or_null(width.mean)}, {"std", number_or_null(width.std)}, {"count", widths.size()}}},
       {"summary", summary}};
 }

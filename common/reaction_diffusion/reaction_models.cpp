@@ -9,6 +9,8 @@ const std::vector<ReactionModel>& reaction_models() {
   // The defaults are the papers' own values, so a scene naming only the model reproduces a published
   // setting: Pearson's spot regime for Gray-Scott, and the figures of Ringham et al. (2021, `002_…`)
   // for the three flower models.
+  // Turk's and Meinhardt's random factor: beta varies by +-0.1 from cell to cell.
+  const std::vector<std::pair<std::string, double>> beta_noise = {{"beta", 0.1}};
   static const std::vector<ReactionModel> models = {
       {"gray-scott",
        {"u", "v"},
@@ -49,6 +51,45 @@ const std::vector<ReactionModel>& reaction_models() {
        {0.0, 1.0},
        {kNone, kNone},
        "Eq. 22 of `002_…` (Gierer-Meinhardt activator-substrate), Fig. 20's Phalaenopsis parameters"},
+      // The three systems of the appendix of `004_…` (Phan & Grimm), in Turk's grid units taken as a
+      // 1 cm cell and a 1 s time unit: a grid diffusion rate D is D x 1e-4 m^2/s here, so the patterns
+      // have the sizes Turk's and Ready's grids give on a patch of 1 cm cells. The appendix's
+      // "speed" multiplies the reaction and the diffusion alike: it is the time step.
+      {"turing-spots",
+       {"a", "b"},
+       {"ka*(16 - a*b)", "ka*(a*b - b - beta)"},
+       {{"ka", 0.0625}, {"beta", 12.0}},
+       {0.5e-4, 0.125e-4},
+       // The uniform steady state for beta = 12: a b = 16, b = a b - beta = 4.
+       {4.0, 4.0},
+       {kNone, 0.0},  // b >= 0, as Turk clamps it (see "turing")
+       "appendix 8.1 of `004_…` (Turk 1991's Turing spots), s = 1/16, D_a = 1/2, D_b = 1/8 per cell, beta = 12 +- 0.1",
+       beta_noise},
+      {"meinhardt-spots",
+       {"a", "b"},
+       {"s*(0.01*a^2*beta/b - a*p1 + p3)", "s*(0.01*a^2*beta - b*p2 + p3)"},
+       {{"s", 0.2}, {"p1", 0.03}, {"p2", 0.04}, {"p3", 0.0}, {"beta", 1.0}},
+       {0.01e-4, 0.2e-4},
+       // The uniform steady state for beta = 1, p3 = 0: b = 0.01 a^2 / p2 and then a = p2 / p1.
+       {0.04 / 0.03, 0.01 * (0.04 / 0.03) * (0.04 / 0.03) / 0.04},
+       {kNone, kNone},
+       "appendix 8.2 of `004_…` (Meinhardt 1982's spots, Turk's values), s = 0.2, p1 = 0.03, p2 = 0.04, p3 = 0, "
+       "D_a = 0.01, D_b = 0.2 per cell, beta = 1 +- 0.1",
+       beta_noise},
+      {"meinhardt-stripes",
+       {"a", "b", "c", "d", "e"},
+       {"0.01*a^2*e*beta/c - a*k_ab", "0.01*b^2*d/c - b*k_ab", "0.01*a^2*e*beta + 0.01*b^2*d - c*k_c",
+        "(a - d)*k_de", "(b - e)*k_de"},
+       {{"k_ab", 0.04}, {"k_c", 0.06}, {"k_de", 0.04}, {"beta", 1.0}},
+       // c does not diffuse (the appendix gives it no diffusion term).
+       {0.005e-4, 0.005e-4, 0.0, 0.4e-4, 0.4e-4},
+       // The symmetric uniform steady state for beta = 1: d = a, e = b, c = 0.01 a b / k_ab and
+       // a + b = k_c / k_ab; a = b = k_c / (2 k_ab) = 0.75, c = 0.01 a^2 / k_ab = 0.140625.
+       {0.75, 0.75, 0.140625, 0.75, 0.75},
+       {kNone, kNone, kNone, kNone, kNone},
+       "appendix 8.3 of `004_…` (Meinhardt 1982's five-morphogen stripes, Turk's values), k_ab = 0.04, "
+       "k_c = 0.06, k_de = 0.04, D_a = D_b = 0.005, D_d = D_e = 0.4 per cell, beta = 1 +- 0.1",
+       beta_noise},
   };
   return models;
 }

@@ -21,13 +21,18 @@ struct ReactionModel {
   std::vector<double> initial;          // default uniform initial value per morphogen
   std::vector<double> minimum;          // default floor per morphogen (-infinity: none)
   std::string source;                   // where the equations and defaults come from
+  // Default per-vertex noise of coefficients (name, amplitude a: each vertex's value gets a uniform
+  // draw from [-a, a], fixed for the run): Turk's and Meinhardt's random factor beta, which the
+  // patterns of `004_…` grow from. Empty for the models that start from noisy initial values instead.
+  std::vector<std::pair<std::string, double>> parameter_noise;
 };
 
-// gray-scott, gierer-meinhardt, turing, activator-substrate.
+// gray-scott, gierer-meinhardt, turing, activator-substrate, and the three systems of the appendix of
+// `004_…`: turing-spots, meinhardt-spots, meinhardt-stripes.
 const std::vector<ReactionModel>& reaction_models();
 // nullptr when `name` is no named model.
 const ReactionModel* find_reaction_model(std::string_view name);
-// "gray-scott, gierer-meinhardt, turing, activator-substrate" (for messages).
+// "gray-scott, gierer-meinhardt, ..." (for messages).
 std::string reaction_model_names();
 
 }  // namespace physarum

@@ -45,10 +45,16 @@ std::vector<SceneKey> build_keys() {
       setting("model", K::String, false, {}, "", "\"physarum\"",
               "the field model: the agent model, a named reaction-diffusion model (common/reaction_diffusion/reaction_models.cpp) "
               "or custom kinetics (\"reaction\"); a reaction-diffusion scene takes none of the agent keys",
-              "\"physarum\", \"gray-scott\", \"gierer-meinhardt\", \"turing\", \"activator-substrate\", \"custom\""),
+              "\"physarum\", \"gray-scott\", \"gierer-meinhardt\", \"turing\", \"activator-substrate\", \"turing-spots\", "
+              "\"meinhardt-spots\", \"meinhardt-stripes\", \"custom\""),
       setting("parameters", K::Object, false, {}, "", "the model's",
               "reaction-diffusion coefficients (F, k, rho, ...): numbers or scalar map names",
               "{\"NAME\": number or SCALAR_MAP, ...}"),
+      setting("parameter_noise", K::Object, false, {}, "", "the model's (beta: 0.1 for turing-spots, meinhardt-spots, "
+              "meinhardt-stripes; none for the others)",
+              "reaction-diffusion: per-vertex noise of a coefficient, fixed for the run: its value + a uniform draw from "
+              "[-a, a] (the random factor beta of Turk's and Meinhardt's systems, `004_…`)",
+              "{\"NAME\": a >= 0, ...}"),
       setting("morphogens", K::Object, false, {}, "m^2/s", "the model's",
               "per morphogen: diffusion rate (along the anisotropy direction; across = ratio x it), initial value "
               "(a number, or a scalar map such as an earlier run's field: a cascade), floor the value is raised to after "

@@ -110,8 +110,8 @@ int ReactionDiffusionSpec::morphogen_index(const std::string& name) const {
 }
 
 const std::vector<std::string>& reaction_diffusion_keys() {
-  static const std::vector<std::string> keys = {"model",   "parameters", "morphogens",       "initial",
-                                                "reaction", "dirichlet", "preview_morphogen"};
+  static const std::vector<std::string> keys = {"model",     "parameters", "parameter_noise",  "morphogens",
+                                                "initial",   "reaction",   "dirichlet",        "preview_morphogen"};
   return keys;
 }
 
@@ -161,6 +161,7 @@ void take_named_model(const ReactionModel& named, ReactionDiffusionSpec& spec) {
   }
   spec.reaction = named.reaction;
   for (const auto& [name, value] : named.coefficients) spec.coefficients.emplace_back(name, value);
+  spec.parameter_noise = named.parameter_noise;
 }
 
 // "reaction": custom kinetics, one formula per morphogen (which then each need a "morphogens" entry).
@@ -218,6 +219,24 @@ void read_coefficients(const json& p, const ReactionModel* named, ReactionDiffus
   }
 }
 
+// "parameter_noise": {COEFFICIENT: amplitude}, replacing a named model's default for that coefficient.
+void read_parameter_noise(const json& p, ReactionDiffusionSpec& spec, const std::string& source) {
+  if (!p.is_object()) fail_key(source, "parameter_noise", p.dump() + " must be an object {COEFFICIENT: amplitude >= 0, ...}");
+  for (auto it = p.begin(); it != p.end(); ++it) {
+    const std::string key = "parameter_noise." + it.key();
+    if (std::none_of(spec.coefficients.begin(), spec.coefficients.end(), [&](const auto& c) { return c.first == it.key(); })) {
+      std::string known;
+      for (const auto& c : spec.coefficients) known += (known.empty() ? "" : ", ") + c.first;
+      fail_key(source, key, "no coefficient of that name (the coefficients: " + known + ")");
+    }
+    const double amplitude = field_number(*it, source, key);
+    auto existing = std::find_if(spec.parameter_noise.begin(), spec.parameter_noise.end(),
+                                 [&](const auto& n) { return n.first == it.key(); });
+    if (existing != spec.parameter_noise.end()) existing->second = amplitude;
+    else spec.parameter_noise.emplace_back(it.key(), amplitude);
+  }
+}
+
 // "initial": noise, a seeded region, spots.
 ReactionInitialSpec read_initial(const json& init, const std::vector<MorphogenSpec>& morphogens, const std::string& source) {
   ReactionInitialSpec initial;
@@ -272,6 +291,7 @@ std::optional<ReactionDiffusionSpec> read_reaction_diffusion(const json& j, cons
   else read_custom_kinetics(*given_key(j, "reaction"), morphogens, spec, source);
   if (morphogens) read_morphogens(*morphogens, named != nullptr, spec, source);
   if (const json* p = given_key(j, "parameters")) read_coefficients(*p, named, spec, source);
+  if (const json* p = given_key(j, "parameter_noise")) read_parameter_noise(*p, spec, source);
   if (const json* init = given_key(j, "initial")) spec.initial = read_initial(*init, spec.morphogens, source);
   if (const json* d = given_key(j, "dirichlet")) spec.dirichlet = read_dirichlet(*d, spec.morphogens, source);
   spec.preview_morphogen = spec.morphogens[1].name;
@@ -309,6 +329,9 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
   }
   for (const auto& [name, value] : spec.coefficients)
     if (const auto* map = std::get_if<std::string>(&value)) check_map("parameters." + name, *map, MapKind::Scalar);
+  for (const auto& [name, amplitude] : spec.parameter_noise)
+    if (!(amplitude >= 0.0) || !std::isfinite(amplitude))
+      fail_key(source, "parameter_noise." + name, number_text(amplitude) + " must be >= 0");
   const std::vector<std::string> names = formula_names(spec);
   for (size_t m = 0; m < spec.reaction.size(); ++m)
     ReactionFormula(spec.reaction[m], names, scene_where(source) + ": key 'reaction." + spec.morphogens[m].name + "'");
@@ -339,6 +362,9 @@ nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec
   oj parameters = oj::object();
   for (const auto& [name, value] : spec.coefficients) parameters[name] = operand(value);
   j["parameters"] = parameters;
+  oj noise = oj::object();
+  for (const auto& [name, amplitude] : spec.parameter_noise) noise[name] = amplitude;
+  j["parameter_noise"] = noise;
   oj morphogens = oj::object();
   for (size_t m = 0; m < spec.morphogens.size(); ++m) {
     const MorphogenSpec& g = spec.morphogens[m];

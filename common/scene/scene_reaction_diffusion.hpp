@@ -5,10 +5,14 @@
 // "model", "parameters", "morphogens", "initial", "reaction", "dirichlet", "preview_morphogen");
 // common/setup/reaction_diffusion_build.hpp turns it into a ReactionDiffusionSystem once the surface exists.
 //
-//   "model": "gray-scott" | "gierer-meinhardt" | "turing" | "activator-substrate" (common/reaction_diffusion/reaction_models.hpp),
+//   "model": "gray-scott" | "gierer-meinhardt" | "turing" | "activator-substrate" | "turing-spots" |
+//            "meinhardt-spots" | "meinhardt-stripes" (common/reaction_diffusion/reaction_models.hpp),
 //            or "custom" (implied by "reaction"); "physarum" (the default) is the agent model.
 //   "parameters": {"F": 0.04, "k": "kmap"}        coefficients: numbers or scalar map names; a named
 //                                                  model's defaults fill the rest
+//   "parameter_noise": {"beta": 0.1}              a coefficient's value at each vertex + a uniform draw
+//                                                  from [-a, a], fixed for the run (Turk's random factor
+//                                                  beta); the 004 models have their beta noise by default
 //   "reaction": {"u": "-u*v^2 + F*(1-u)", ...}    custom kinetics, 2..8 morphogens; the layer order is
 //                                                  the ALPHABETICAL order of the names (a JSON object has
 //                                                  no order of its own)
@@ -82,6 +86,8 @@ struct ReactionDiffusionSpec {
   std::vector<MorphogenSpec> morphogens;  // layer order
   std::vector<std::string> reaction;      // R_m per morphogen, muparser syntax
   std::vector<std::pair<std::string, MapOperand>> coefficients;  // every coefficient name, in order
+  // Coefficients with per-vertex noise: name, amplitude a >= 0 (uniform in [-a, a], fixed for the run).
+  std::vector<std::pair<std::string, double>> parameter_noise;
   ReactionInitialSpec initial;
   std::optional<DirichletSpec> dirichlet;
   Integrator integrator = Integrator::Forward;

@@ -121,6 +121,26 @@ int explicit_substeps(double time_step, double stability_limit) {
   return std::max(1, static_cast<int>(n));
 }
 
+namespace {
+
+// "parameter_noise": each listed coefficient's value at vertex v gets a + a uniform draw from [-a, a],
+// from the vertex's own stream, so the draws do not depend on the order of the coefficients' keys.
+void add_parameter_noise(const ReactionDiffusionSpec& spec, std::uint32_t seed, ReactionDiffusionSystem& system) {
+  for (const auto& [name, amplitude] : spec.parameter_noise) {
+    if (amplitude == 0.0) continue;
+    const auto c = std::find(system.coefficient_names.begin(), system.coefficient_names.end(), name);
+    const auto index = static_cast<std::uint32_t>(c - system.coefficient_names.begin());
+    IntrinsicVertexData<double>& values = system.coefficients[index];
+    for (size_t v = 0; v < values.size(); ++v)
+      values[v] += amplitude * (2.0 * first_uniform(random_words(seed, static_cast<std::uint32_t>(v), 0,
+                                                                 static_cast<std::uint32_t>(RandomPurpose::ReactionParameterNoise),
+                                                                 index)) -
+                                1.0);
+  }
+}
+
+}  // namespace
+
 ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, const PreparedSurface& surface,
                                                         const EvaluatedMaps& maps) {
   if (!scene.reaction_diffusion()) throw std::logic_error("build_reaction_diffusion_system: not a reaction-diffusion scene");
@@ -135,6 +155,7 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
     system.coefficient_names.push_back(name);
     system.coefficients.push_back(per_vertex(value, maps, n, scene, "parameters." + name, false));
   }
+  add_parameter_noise(spec, scene.seed, system);
   system.mass = domain.vertex_mass;
   for (const MorphogenSpec& m : spec.morphogens) {
     const IntrinsicVertexData<double> rate = per_vertex(m.diffusion, maps, n, scene, "morphogens." + m.name + ".diffusion", true);

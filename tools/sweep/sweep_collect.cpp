@@ -60,6 +60,21 @@ std::pair<std::vector<std::string>, std::vector<std::string>> final_stats(const 
   return {split_csv_line(header), split_csv_line(last)};
 }
 
+// The scalars of a run's analysis.json (`physarum analyze RUN`), nested objects flattened with '_'
+// (summary.area.median -> summary_area_median); lists (the spots themselves) are left out.
+void flatten_scalars(const nlohmann::ordered_json& j, const std::string& prefix, std::vector<std::string>& keys,
+                     std::map<std::string, std::string>& values) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix + it.key();
+    if (it.value().is_object()) {
+      flatten_scalars(it.value(), key + "_", keys, values);
+    } else if (!it.value().is_array()) {
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+      values[key] = it.value().is_null() ? "" : value_text(it.value());
+    }
+  }
+}
+
 }  // namespace
 
 ContactSheet contact_sheet_for(const SweepPlan& plan, const std::vector<SweepJob>& jobs, int thumbnail) {
@@ -124,8 +139,9 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
   SweepCollection result;
 
   // Every run's scalars, and the union of their keys in the order first met.
-  std::vector<std::string> run_keys, stats_keys;
-  std::vector<std::map<std::string, std::string>> run_values(jobs.size()), stats_values(jobs.size());
+  std::vector<std::string> run_keys, stats_keys, analysis_keys;
+  std::vector<std::map<std::string, std::string>> run_values(jobs.size()), stats_values(jobs.size()),
+      analysis_values(jobs.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fs::path out(jobs[i].out);
     if (!jobs[i].finished()) {
@@ -146,6 +162,12 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
       if (std::find(stats_keys.begin(), stats_keys.end(), header[c]) == stats_keys.end()) stats_keys.push_back(header[c]);
       stats_values[i][header[c]] = last[c];
     }
+    if (std::ifstream a(out / "analysis.json"); a) {
+      const nlohmann::ordered_json analysis = nlohmann::ordered_json::parse(a, nullptr, false);
+      if (analysis.is_discarded() || !analysis.is_object())
+        throw InputError((out / "analysis.json").string() + ": not a JSON object");
+      flatten_scalars(analysis, "", analysis_keys, analysis_values[i]);
+    }
   }
 
   const std::vector<std::string> varied = plan.varied_keys();
@@ -154,6 +176,7 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
   csv += ",seed,out,status";
   for (const std::string& k : run_keys) csv += "," + csv_field(k);
   for (const std::string& k : stats_keys) csv += "," + csv_field("final_" + k);
+  for (const std::string& k : analysis_keys) csv += "," + csv_field("analysis_" + k);
   csv += "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const SweepJob& job = jobs[i];
@@ -162,6 +185,7 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
     csv += "," + std::to_string(job.seed) + "," + csv_field(job.out) + "," + job_status(job);
     for (const std::string& k : run_keys) csv += "," + csv_field(run_values[i].count(k) ? run_values[i][k] : "");
     for (const std::string& k : stats_keys) csv += "," + csv_field(stats_values[i].count(k) ? stats_values[i][k] : "");
+    for (const std::string& k : analysis_keys) csv += "," + csv_field(analysis_values[i].count(k) ? analysis_values[i][k] : "");
     csv += "\n";
   }
   write_text_file_atomically((fs::path(folder) / "sweep.csv").string(), csv);

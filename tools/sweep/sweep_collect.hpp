@@ -3,7 +3,9 @@
 //   DIR/sweep.csv          one row per job, in job order: index, the varied keys' values, seed, out,
 //                          status (done; failed: its folder exists without run.json, a run that
 //                          stopped, failed or is still running; missing: never started), every scalar of the run's run.json (columns in
-//                          the order first met), and the run's final stats.csv row as final_<column>;
+//                          the order first met), the run's final stats.csv row as final_<column>, and
+//                          where `physarum analyze RUN` has written RUN/analysis.json its scalars as
+//                          analysis_<key> (nested keys joined by '_': analysis_summary_area_median);
 //   DIR/contact_sheet.png  the previews laid out by the varied keys (tools/sweep/contact_sheet.hpp): with
 //                          one key its values are the columns of one row; with two the first key's
 //                          values are the rows and the second's the columns; with more, the first
