@@ -24,5 +24,6 @@ Command add_color_map_command(CLI::App& parent);
 Command add_map_command(CLI::App& parent);
 Command add_analyze_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);
+Command add_sketch_command(CLI::App& parent);
 
 }  // namespace physarum::cli

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   commands.push_back(physarum::cli::add_map_command(app));
   commands.push_back(physarum::cli::add_analyze_command(app));
   commands.push_back(physarum::cli::add_sweep_command(app));
+  commands.push_back(physarum::cli::add_sketch_command(app));
 
   try {
     app.parse(argc, argv);

@@ -246,6 +246,8 @@ int run_run(const RunOptions& given) {
 
 }  // namespace
 
+int run_scene(const RunOptions& options) { return run_simulation(options, std::nullopt); }
+
 Command add_run_command(CLI::App& parent) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* app = parent.add_subcommand(

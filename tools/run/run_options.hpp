@@ -50,4 +50,8 @@ std::string scene_identity_hash(const RunOptions& o, const std::string& mesh);
 // length the feasibility checks judge, and the user's lines on stderr.
 SessionOptions session_options(const RunOptions& options, long long steps);
 
+// `physarum run` of options.scene into options.out, as the command does (tools/run/command_run.cpp):
+// checks, the run, every output file. For the commands that generate a scene and run it (sketch).
+int run_scene(const RunOptions& options);
+
 }  // namespace physarum::cli

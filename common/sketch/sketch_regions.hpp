@@ -1,0 +1,43 @@
+#pragma once
+// A sketch's attributes per region (004, Sec. 5.1): the window divided into n x n regions, each
+// region's attributes those of the marks whose centres lie in it (medians; orientations averaged as
+// axes), blended linearly between the regions' centres so that sizes and orientations change
+// smoothly over the pattern (the paper's Figs. 2, 3). A region without marks takes the attributes
+// of the nearest region that has some.
+#include "common/sketch/sketch_attributes.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace physarum {
+
+struct RegionAttributes {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  // window units
+  int spots = 0;            // the marks measured in this region (0: filled from `filled_from`)
+  int filled_from = -1;     // the region whose attributes it took, or -1
+  double area = 0.0;        // window units^2, median
+  double aspect = 1.0;      // minor / major, median
+  double orientation = 0.0; // degrees in [0, 180), the axial mean
+  double spacing = 0.0;     // window units, the median length of the Delaunay edges inside the region (0: none)
+};
+
+struct SketchRegions {
+  int n = 1;
+  Eigen::Vector2d window = Eigen::Vector2d::Ones();
+  std::vector<RegionAttributes> regions;  // row by row from the bottom-left: index = row * n + column
+
+  // The region a window point lies in (points on the window's edge or outside it: the nearest).
+  int region_of(const Eigen::Vector2d& p) const;
+  // A per-region value at a window point, bilinear between the regions' centres (constant beyond
+  // the outer centres): the paper's linear interpolation between neighbouring regions.
+  double blend(const std::vector<double>& per_region, const Eigen::Vector2d& p) const;
+};
+
+// The regions of a sketch's spots. InputError when n < 1 or the sketch has no spot.
+SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attributes, int n);
+
+// The axial mean of orientations (degrees, lines not arrows: doubled angles averaged), in [0, 180).
+double axial_mean_degrees(const std::vector<double>& degrees);
+
+}  // namespace physarum

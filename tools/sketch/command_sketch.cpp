@@ -1,0 +1,197 @@
+// `physarum sketch SKETCH`: from drawn spots to a reaction-diffusion texture with the same sizes
+// (004, Phan & Grimm), which checks its own result. The sketch (a PNG or the JSON form,
+// common/sketch/sketch.hpp) is measured and divided into regions (common/sketch/sketch_regions.hpp),
+// each region's spot area goes through the model's inverse map to a reaction rate
+// (tools/sketch/sketch_plan.hpp), the generated scene is written and run as `physarum run` runs it,
+// and the grown spots are measured per region against the sketch (tools/sketch/sketch_report.hpp);
+// --refine K corrects each missed region's rate by its miss (the area goes as 1 / rate) and runs
+// again, up to K times.
+#include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/mesh/ply_reader.hpp"
+#include "common/output/ply_writer.hpp"
+#include "common/pattern/pattern_analysis.hpp"
+#include "common/sketch/sketch_image.hpp"
+#include "tools/commands.hpp"
+#include "tools/run/run_options.hpp"
+#include "tools/sketch/sketch_picture.hpp"
+#include "tools/sketch/sketch_plan.hpp"
+#include "tools/sketch/sketch_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace physarum::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SketchOptions {
+  std::string sketch;
+  std::string mesh = "shape:square";
+  std::string model = "turing-spots";
+  int regions = 2;
+  double area = 1.0;
+  double max_circumradius = kTrainingCircumradius;
+  int refine = 0;
+  std::uint32_t seed = 1;
+  std::string backend = "auto";
+  std::string device;
+  std::string out = "sketch";
+};
+
+Sketch read_sketch(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".json") return sketch_from_image(path);
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the sketch");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded()) throw InputError(path + ": not valid JSON");
+  return sketch_from_json(j, path);
+}
+
+// A mesh file named relative to the working directory, as the scene in DIR must name it.
+std::string mesh_for_scene(const std::string& mesh) {
+  if (mesh.rfind("shape:", 0) == 0) return mesh;
+  return fs::absolute(mesh).lexically_normal().string();
+}
+
+nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes& attributes, const SketchRegions& regions,
+                                   const SketchPlan& plan) {
+  nlohmann::ordered_json j;
+  j["source"] = sketch.source;
+  j["window"] = {sketch.window.x(), sketch.window.y()};
+  const nlohmann::ordered_json marks = sketch_attributes_json(attributes);
+  for (auto it = marks.begin(); it != marks.end(); ++it) j[it.key()] = it.value();
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const RegionAttributes& r : regions.regions)
+    list.push_back({{"center", {r.center.x(), r.center.y()}},
+                    {"spots", r.spots},
+                    {"filled_from", r.filled_from >= 0 ? nlohmann::ordered_json(r.filled_from) : nlohmann::ordered_json(nullptr)},
+                    {"area", r.area},
+                    {"aspect", r.aspect},
+                    {"orientation", r.orientation},
+                    {"spacing", r.spacing}});
+  j["regions"] = list;
+  j["inverse_map"] = {{"model", plan.model->name},
+                      {"coefficient", plan.model->rate_key},
+                      {"trained_area", {plan.trained_smallest, plan.trained_largest}},
+                      {"cross_validated_error", plan.cross_validated_error},
+                      {"diffusion_factor", plan.kappa},
+                      {"rates", plan.rate}};
+  return j;
+}
+
+// Runs the scene once with `rates` and measures the result per region.
+std::vector<RegionMeasure> grow_and_measure(const SketchOptions& o, const SketchPlan& plan, const SketchRegions& regions,
+                                            const SketchPatch& patch, const InputMesh& mesh) {
+  const fs::path out(o.out);
+  const InputVertexData<double> rates = rate_map(regions, patch, mesh, plan.rate);
+  write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}}, {},
+                   "the reaction rate the sketch asks for, per input vertex");
+  const nlohmann::ordered_json scene =
+      sketch_scene_json(plan, mesh_for_scene(o.mesh), o.area, o.max_circumradius, o.seed, "sketch_maps.ply");
+  write_text_file_atomically((out / "scene.json").string(), scene.dump(2) + "\n");
+  RunOptions run;
+  run.scene = (out / "scene.json").string();
+  run.out = o.out;
+  run.backend = o.backend;
+  run.device = o.device;
+  if (const int code = run_scene(run); code != 0) throw InputError("sketch: the generated run failed (exit " + std::to_string(code) + ")");
+  const PlyFields ply = read_ply_fields((out / "fields_full.ply").string());
+  const PatternAnalysis analysis = analyze_pattern(ply.mesh, InputVertexData<double>(ply.property(plan.model->field)), {});
+  return measure_regions(analysis, regions, patch);
+}
+
+int run_sketch(const SketchOptions& o) {
+  if (o.regions < 1 || o.regions > 16) throw UsageError("--regions " + std::to_string(o.regions) + ": 1 to 16 per side");
+  if (o.refine < 0) throw UsageError("--refine must be >= 0");
+  // ---- everything that can refuse the input, before any output exists ----
+  const SketchModel& model = sketch_model(o.model);
+  const Sketch sketch = read_sketch(o.sketch);
+  const SketchAttributes attributes = measure_sketch(sketch);
+  const SketchRegions regions = sketch_regions(sketch, attributes, o.regions);
+  const InputMesh mesh = load_mesh(o.mesh);
+  const SketchPatch patch = sketch_patch(sketch, mesh, o.area);
+  SketchPlan plan = plan_sketch(regions, patch, model, o.max_circumradius);
+
+  create_output_folder(o.out);
+  write_rgb_png((fs::path(o.out) / "sketch.png").string(), draw_sketch(sketch));
+  nlohmann::ordered_json iterations = nlohmann::ordered_json::array();
+  std::vector<RegionMeasure> measures;
+  for (int iteration = 0;; ++iteration) {
+    measures = grow_and_measure(o, plan, regions, patch, mesh);
+    std::vector<double> misses;
+    bool all_pass = true;
+    for (size_t k = 0; k < measures.size(); ++k) {
+      misses.push_back(area_miss(measures[k], plan.wanted_area[k]));
+      all_pass = all_pass && std::abs(misses.back()) <= kAreaTolerance;
+    }
+    iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {"area_misses", misses}});
+    if (all_pass || iteration == o.refine) break;
+    // Spots' areas go as 1 / rate (the scaling of the equations): a region whose spots came out
+    // (1 + miss) times too big needs (1 + miss) times the rate. Regions without spots keep theirs.
+    for (size_t k = 0; k < measures.size(); ++k)
+      if (std::isfinite(misses[k])) plan.rate[k] *= 1.0 + misses[k];
+    plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
+  }
+
+  nlohmann::ordered_json report;
+  report["regions"] = nlohmann::ordered_json::array();
+  int passed = 0;
+  for (size_t k = 0; k < regions.regions.size(); ++k) {
+    const RegionAttributes& r = regions.regions[k];
+    report["regions"].push_back(
+        region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures[k], patch));
+    passed += report["regions"].back()["verdict"]["area"] == "pass";
+  }
+  report["iterations"] = iterations;
+  write_text_file_atomically((fs::path(o.out) / "sketch.json").string(), sketch_json(sketch, attributes, regions, plan).dump(2) + "\n");
+  write_text_file_atomically((fs::path(o.out) / "report.json").string(), report.dump(2) + "\n");
+  std::cout << "physarum sketch: " << model.name << ", " << regions.regions.size() << " regions, " << iterations.size()
+            << " run(s); spot area within " << kAreaTolerance * 100 << " % of the sketch in " << passed << " of "
+            << regions.regions.size() << " regions; wrote " << o.out << "/{sketch.png, sketch.json, scene.json, report.json, sketch_maps.ply} "
+            << "beside the run's files\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_sketch_command(CLI::App& parent) {
+  auto options = std::make_shared<SketchOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "sketch",
+      "Grow a reaction-diffusion texture whose spots have the sizes of drawn ones, and check it\n"
+      "Sketch a pattern (paper 004): SKETCH is a PNG (dark marks on a light background; filled or outlined "
+      "blobs are spots, long thin or red marks strokes) or a JSON sketch of ellipses and strokes. Its window "
+      "maps onto the mesh's x/y extent; the window is divided into --regions x --regions regions, each region's "
+      "spot area goes through the model's inverse map (learned from tools/sketch/make_training_data.sh's runs) "
+      "to a reaction rate, blended over the surface. Writes DIR/scene.json (the generated scene, runnable with "
+      "physarum run), DIR/sketch_maps.ply (its rate map), DIR/sketch.png (the marks as measured), the run's files, DIR/sketch.json (every mark's "
+      "attributes, the regions, the map) and DIR/report.json (per region the sketched and the generated area, "
+      "aspect, orientation and spacing, with a verdict). Spot shape and orientation, strokes, "
+      "meinhardt-stripes, --layer2 and --colors are not built yet. Example: physarum sketch "
+      "tools/sketch/examples/four_sizes.json --out sketch");
+  app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();
+  app->add_option("--mesh", options->mesh, "The surface (a mesh file or shape:NAME); default shape:square");
+  app->add_option("--model", options->model, "turing-spots (default) or meinhardt-spots");
+  app->add_option("--regions", options->regions, "Regions per side of the window (default 2: the paper's four)");
+  app->add_option("--area", options->area, "The surface's area in m^2 (scale_to_area; default 1)");
+  app->add_option("--max-circumradius", options->max_circumradius,
+                  "The mesh resolution in m (default 0.007, the training's: about the models' 1 cm cell)");
+  app->add_option("--refine", options->refine, "Correct missed regions' rates and run again, up to K times (default 0)");
+  app->add_option("--seed", options->seed, "The run's seed (default 1)");
+  app->add_option("--backend", options->backend, "auto, reference or opencl")->check(CLI::IsMember({"auto", "reference", "opencl"}));
+  app->add_option("--device", options->device, "The OpenCL device (default: $PHYSARUM_DEVICE, else the first)");
+  app->add_option("--out", options->out, "Output folder (default sketch)");
+  app->footer("Exit codes: 0 success (report.json says how well each region matched), 1 bad input (a bad sketch, "
+              "spots too small for the mesh or outside what the training covers: nothing is run), 2 usage error.");
+  return {app, [options] { return run_sketch(*options); }};
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,49 @@
+#include "tools/sketch/sketch_picture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace physarum::cli {
+namespace {
+
+bool inside_ellipse(const SketchSpot& s, const Eigen::Vector2d& p) {
+  const double a = s.orientation * M_PI / 180.0;
+  const Eigen::Vector2d d = p - s.center;
+  const double u = d.x() * std::cos(a) + d.y() * std::sin(a), v = -d.x() * std::sin(a) + d.y() * std::cos(a);
+  return (u * u) / (s.major * s.major) + (v * v) / (s.minor * s.minor) <= 1.0;
+}
+
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+// A stroke's drawn half-width: its measured width, or its class as a share of the window (the
+// widths sketch_image reads back as that class: 1 % of the window's shorter side per class).
+double half_width(const SketchStroke& s, const Eigen::Vector2d& window) {
+  return 0.5 * (s.width > 0.0 ? s.width : 0.01 * s.width_class * window.minCoeff());
+}
+
+}  // namespace
+
+RgbImage draw_sketch(const Sketch& sketch, int size) {
+  const double unit = size / sketch.window.maxCoeff();  // pixels per window unit
+  RgbImage image;
+  image.width = std::max(1, static_cast<int>(std::lround(sketch.window.x() * unit)));
+  image.height = std::max(1, static_cast<int>(std::lround(sketch.window.y() * unit)));
+  image.pixels.assign(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3, 255);
+  for (int row = 0; row < image.height; ++row)
+    for (int column = 0; column < image.width; ++column) {
+      // The top row is the window's largest y.
+      const Eigen::Vector2d p((column + 0.5) / unit, (image.height - row - 0.5) / unit);
+      bool ink = std::any_of(sketch.spots.begin(), sketch.spots.end(), [&](const SketchSpot& s) { return inside_ellipse(s, p); });
+      for (const SketchStroke& s : sketch.strokes)
+        for (size_t k = 0; !ink && k + 1 < s.points.size(); ++k)
+          ink = distance_to_segment(p, s.points[k], s.points[k + 1]) <= half_width(s, sketch.window);
+      if (ink) std::fill_n(image.pixels.begin() + (static_cast<ptrdiff_t>(row) * image.width + column) * 3, 3, 0);
+    }
+  return image;
+}
+
+}  // namespace physarum::cli

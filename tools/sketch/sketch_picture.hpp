@@ -1,0 +1,13 @@
+#pragma once
+// The sketch as a picture (DIR/sketch.png of `physarum sketch`): its ellipses filled and strokes drawn
+// in black on white, the window's aspect kept, so the gallery and the user see what was measured
+// beside what grew. A JSON sketch has no picture of its own; a PNG sketch is redrawn from its marks.
+#include "common/output/preview_image.hpp"
+#include "common/sketch/sketch.hpp"
+
+namespace physarum::cli {
+
+// `size` pixels along the window's longer side.
+RgbImage draw_sketch(const Sketch& sketch, int size = 512);
+
+}  // namespace physarum::cli

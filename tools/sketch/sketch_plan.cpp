@@ -1,0 +1,91 @@
+#include "tools/sketch/sketch_plan.hpp"
+
+#include "common/base/errors.hpp"
+#include "common/base/value_range.hpp"
+#include "common/reaction_diffusion/reaction_models.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace physarum::cli {
+namespace {
+
+std::string number(double x) { return ValueRange::number(x); }
+
+}  // namespace
+
+SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+                       double max_circumradius) {
+  SketchPlan plan;
+  plan.model = &model;
+  const std::vector<TrainingRun> runs = training_runs(model);
+  std::vector<double> rates, areas;
+  for (const TrainingRun& r : runs) rates.push_back(r.rate), areas.push_back(r.spot_area);
+  const RateMap map(rates, areas, "spot area");
+  plan.trained_smallest = map.smallest();
+  plan.trained_largest = map.largest();
+  plan.cross_validated_error = map.cross_validated_error();
+
+  for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(patch.area_in_metres(r.area));
+  const auto [lo, hi] = std::minmax_element(plan.wanted_area.begin(), plan.wanted_area.end());
+  // The smallest trained spot covers as many mesh cells as a spot of `floor` does on this mesh.
+  const double ratio = max_circumradius / kTrainingCircumradius;
+  const double floor = map.smallest() * ratio * ratio;
+  if (*lo < floor) {
+    const size_t region = static_cast<size_t>(lo - plan.wanted_area.begin());
+    throw InputError("sketch: region " + std::to_string(region) + "'s spots (" + number(*lo) +
+                     " m^2) are smaller than a mesh of max_circumradius " + number(max_circumradius) +
+                     " m resolves: the smallest is " + number(floor) + " m^2 (" +
+                     number(floor / patch.area_in_metres(1.0)) +
+                     " in window units^2); draw bigger spots, give a larger --area or a smaller --max-circumradius");
+  }
+  const std::optional<double> kappa = scale_for_range(map, *lo, *hi, 1.0);
+  if (!kappa) {
+    const double span = map.largest() / map.smallest();
+    throw InputError("sketch: the sketched spot areas span " + number(*lo) + " to " + number(*hi) + " m^2 (a factor " +
+                     number(*hi / *lo) + "); the training of " + model.name + " spans a factor " + number(span) +
+                     ": draw sizes within that factor of each other (with these largest spots, the smallest "
+                     "reachable area is " + number(*hi / span) + " m^2)");
+  }
+  plan.kappa = *kappa;
+  for (const double a : plan.wanted_area) {
+    // Clamped into the range: scale_for_range centres it, rounding may leave an end a hair outside.
+    const double trained = std::clamp(a / plan.kappa, map.smallest(), map.largest());
+    plan.rate.push_back(*map.rate_for(trained));
+  }
+  const double slowest = *std::min_element(plan.rate.begin(), plan.rate.end());
+  plan.steps = static_cast<long long>(std::ceil(model.rate_time / slowest));
+  return plan;
+}
+
+InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                                 const std::vector<double>& rates) {
+  std::vector<double> log_rate;
+  for (const double r : rates) log_rate.push_back(std::log(r));
+  InputVertexData<double> map(mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    map[v] = std::exp(regions.blend(log_rate, patch.window_point(mesh.positions[v])));
+  return map;
+}
+
+nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
+                                         double max_circumradius, std::uint32_t seed, const std::string& map_file) {
+  const ReactionModel& model = *find_reaction_model(plan.model->name);
+  nlohmann::ordered_json morphogens = nlohmann::ordered_json::object();
+  for (size_t m = 0; m < model.morphogens.size(); ++m)
+    morphogens[model.morphogens[m]] = {{"diffusion", model.diffusion[m] * plan.kappa}};
+  return {{"mesh", mesh},
+          {"scale_to_area", area},
+          {"max_circumradius", max_circumradius},
+          {"model", plan.model->name},
+          {"maps", {{"sketch_rate", {{"ply", map_file}, {"property", "rate"}}}}},
+          {"parameters", {{plan.model->rate_key, "sketch_rate"}}},
+          {"morphogens", morphogens},
+          {"preview_morphogen", plan.model->field},
+          {"time_step", 1.0},
+          {"integrator", "forward"},
+          {"seed", seed},
+          {"steps", plan.steps}};
+}
+
+}  // namespace physarum::cli

@@ -1,0 +1,51 @@
+#pragma once
+// From a sketch's regions to the scene that grows them (004, Secs. 5.1-5.2): each region's sketched
+// spot area through the model's inverse map (common/sketch/inverse_map.hpp) to a reaction rate,
+// the rates blended over the surface as a map (in logs: the rate is a scale), every diffusion rate
+// multiplied by kappa when the sketched sizes lie outside the trained ones, and a run long enough
+// for the slowest region's spots to form.
+#include "common/base/element_data.hpp"
+#include "common/mesh/input_mesh.hpp"
+#include "common/sketch/inverse_map.hpp"
+#include "common/sketch/sketch_regions.hpp"
+#include "tools/sketch/sketch_models.hpp"
+#include "tools/sketch/sketch_patch.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace physarum::cli {
+
+// The max_circumradius of the training scenes (tools/sketch/training/*.json): what a trained spot's
+// size is in mesh cells.
+inline constexpr double kTrainingCircumradius = 0.007;
+
+struct SketchPlan {
+  const SketchModel* model = nullptr;
+  std::vector<double> wanted_area;  // m^2 per region
+  std::vector<double> rate;         // per region
+  double kappa = 1.0;               // every diffusion rate x kappa
+  double trained_smallest = 0.0, trained_largest = 0.0;  // m^2, the map's range (before kappa)
+  double cross_validated_error = 0.0;                    // of the rate, relative
+  long long steps = 0;
+};
+
+// InputError, before anything runs, when a region asks for spots smaller than the mesh resolves
+// (the smallest trained spot in cells, on a mesh of `max_circumradius`; the message says the
+// smallest size) or when the sketched sizes span more than the training does (it says the span and
+// the nearest reachable size).
+SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+                       double max_circumradius);
+
+// The rate at each input vertex: the regions' rates blended at the vertex's window point, in logs.
+InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                                 const std::vector<double>& rates);
+
+// The generated scene (runnable with `physarum run`): the model, its rate from the map "sketch_rate"
+// of `map_file` (relative to the scene's folder), diffusion x kappa, the plan's steps.
+nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
+                                         double max_circumradius, std::uint32_t seed, const std::string& map_file);
+
+}  // namespace physarum::cli

@@ -1,0 +1,88 @@
+#include "tools/sketch/sketch_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace physarum::cli {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+const char* within(double miss, double tolerance) { return std::abs(miss) <= tolerance ? "pass" : "miss"; }
+
+}  // namespace
+
+std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, const SketchRegions& regions,
+                                           const SketchPatch& patch) {
+  const size_t n = regions.regions.size();
+  std::vector<std::vector<double>> area(n), aspect(n), orientation(n), spacing(n);
+  std::vector<int> region_of(analysis.regions.size(), -1);
+  const double area_scale = patch.scale * patch.scale;
+  for (size_t i = 0; i < analysis.regions.size(); ++i) {
+    const AnalysedRegion& r = analysis.regions[i];
+    if (r.is_stripe || r.touches_boundary) continue;
+    const int k = regions.region_of(patch.window_point(r.shape.centre));
+    region_of[i] = k;
+    area[static_cast<size_t>(k)].push_back(r.area * area_scale);
+    aspect[static_cast<size_t>(k)].push_back(1.0 / r.shape.aspect_ratio);
+    // The major axis in the window's frame (x and y scaled as the window maps onto the patch).
+    const Eigen::Vector2d axis = r.shape.major_axis.head<2>().cwiseQuotient(patch.high - patch.low).cwiseProduct(patch.window);
+    orientation[static_cast<size_t>(k)].push_back(std::fmod(std::atan2(axis.y(), axis.x()) * 180.0 / M_PI + 180.0, 180.0));
+  }
+  for (const SpotPair& p : analysis.pairs) {
+    const int a = region_of[static_cast<size_t>(p.a)], b = region_of[static_cast<size_t>(p.b)];
+    if (a >= 0 && a == b) spacing[static_cast<size_t>(a)].push_back(p.distance * patch.scale);
+  }
+  std::vector<RegionMeasure> measures(n);
+  for (size_t k = 0; k < n; ++k) {
+    measures[k].spots = static_cast<int>(area[k].size());
+    measures[k].area = median(area[k]);
+    measures[k].aspect = median(aspect[k]);
+    measures[k].orientation = axial_mean_degrees(orientation[k]);
+    measures[k].spacing = median(spacing[k]);
+  }
+  return measures;
+}
+
+double area_miss(const RegionMeasure& generated, double sketched_area) {
+  return generated.spots > 0 ? generated.area / sketched_area - 1.0 : std::numeric_limits<double>::infinity();
+}
+
+nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
+                                     const RegionMeasure& generated, const SketchPatch& patch) {
+  const Eigen::Vector2d m = patch.metres_per_unit();
+  nlohmann::ordered_json verdict;
+  if (generated.spots == 0) {
+    verdict = {{"area", "no spots"}, {"spacing", "no spots"}};
+  } else {
+    verdict["area"] = within(area_miss(generated, sketched_area_m2), kAreaTolerance);
+    verdict["spacing"] = sketched_spacing_m > 0.0 && generated.spacing > 0.0
+                             ? within(generated.spacing / sketched_spacing_m - 1.0, kSpacingTolerance)
+                             : "not measured";
+  }
+  verdict["aspect"] = "not controlled";
+  verdict["orientation"] = "not controlled";
+  auto spacing_or_null = [](double s) { return s > 0.0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json(nullptr); };
+  return {{"center", {patch.low.x() * patch.scale + sketched.center.x() * m.x(), patch.low.y() * patch.scale + sketched.center.y() * m.y()}},
+          {"sketched_spots", sketched.spots},
+          {"sketched",
+           {{"area", sketched_area_m2},
+            {"aspect", sketched.aspect},
+            {"orientation", sketched.orientation},
+            {"spacing", spacing_or_null(sketched_spacing_m)}}},
+          {"generated",
+           {{"spots", generated.spots},
+            {"area", generated.spots ? nlohmann::ordered_json(generated.area) : nlohmann::ordered_json(nullptr)},
+            {"aspect", generated.spots ? nlohmann::ordered_json(generated.aspect) : nlohmann::ordered_json(nullptr)},
+            {"orientation", generated.spots ? nlohmann::ordered_json(generated.orientation) : nlohmann::ordered_json(nullptr)},
+            {"spacing", spacing_or_null(generated.spacing)}}},
+          {"verdict", verdict}};
+}
+
+}  // namespace physarum::cli
