@@ -159,6 +159,24 @@ TEST_F(SweepCommand, CollectGivesARowPerJobAndASheetOfTheGridsSize) {
   EXPECT_EQ(in->spec().height, 48 + 3 * (40 + 8) + 8);
 }
 
+// A run measured with `physarum analyze` adds its analysis.json's scalars (nested keys joined by '_',
+// lists left out) as analysis_ columns; the runs not measured leave them empty.
+TEST_F(SweepCommand, CollectTakesTheScalarsOfEachRunsAnalysis) {
+  const fs::path analysis = run_json(0).parent_path() / "analysis.json";
+  std::ofstream(analysis) << R"({"spot_count": 7, "spots": [{"area": 1.0}], "summary": {"interior_spot_area": {"median": 0.25, "max": null}}})";
+  const CommandResult r = run_physarum("sweep --collect " + quoted(sweep()) + " --thumbnail 20");
+  fs::remove(analysis);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> rows = lines_of(sweep() / "sweep.csv");
+  ASSERT_EQ(rows.size(), 13u);
+  EXPECT_EQ(rows[0].find(",analysis_spots"), std::string::npos) << rows[0];
+  const std::string columns = ",analysis_spot_count,analysis_summary_interior_spot_area_median,analysis_summary_interior_spot_area_max";
+  ASSERT_GE(rows[0].size(), columns.size());
+  EXPECT_EQ(rows[0].substr(rows[0].size() - columns.size()), columns) << rows[0];
+  EXPECT_EQ(rows[1].substr(rows[1].size() - 8), ",7,0.25,") << rows[1];
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 3), ",,,") << rows[2];
+}
+
 // 2,500 jobs with --max-array 1000: three arrays (1000, 1000, 500 tasks) whose tasks, offset by
 // their part, name every job exactly once; each script is valid bash, and part 2's task 0 runs job
 // 2000. The site options land in every script: #SBATCH lines, the GPU request, the prologue before

@@ -294,6 +294,24 @@ TEST(PatternAnalysis, HistogramCountsEveryValueInSturgesBins) {
   EXPECT_DOUBLE_EQ(same.edges.back(), 2.1);
 }
 
+// The summary's interior_spot_area leaves out a spot cut by the boundary (its area is a piece of a
+// spot's): three bumps of radius 0.1, one centred on the square's edge, give three areas but two
+// interior ones, each pi 0.01. The spacing's median is that of the neighbouring pairs' distances.
+TEST(PatternAnalysis, InteriorSpotAreasLeaveOutSpotsCutByTheBoundary) {
+  const InputMesh mesh = square_grid(64);
+  const Bumps bumps{{{0.3, 0.3, 0}, {0.7, 0.7, 0}, {0.0, 0.6, 0}}, 0.05};
+  const PatternAnalysis a = analyse(mesh, sample(mesh, bumps), bumps.level_of_radius(0.1));
+  const nlohmann::json j = pattern_analysis_json(a, "v");
+  EXPECT_EQ(j["summary"]["area"]["count"], 3);
+  EXPECT_EQ(j["summary"]["interior_spot_area"]["count"], 2);
+  EXPECT_NEAR(j["summary"]["interior_spot_area"]["median"].get<double>(), M_PI * 0.01, 0.02 * M_PI * 0.01);
+  std::vector<double> d;
+  for (const SpotPair& p : a.pairs) d.push_back(p.distance);
+  std::sort(d.begin(), d.end());
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_EQ(j["spacing"]["median"].get<double>(), d[1]);
+}
+
 // ---- the command on a run folder ----
 TEST(PatternAnalysisCli, AnalyzesARunFolderAndWritesJsonAndHistograms) {
   TempDir dir;
