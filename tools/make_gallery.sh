@@ -8,14 +8,15 @@
 # Reaction-diffusion: fandisk_gray_scott (needs ../shared/meshes) and petal_stripes keep their
 # preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
-# (about 2 minutes on two cores).
+# (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png
+# and keeps the sketch as measured beside the grown pattern (face-on).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 physarum=${PHYSARUM:-./build/physarum}
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes sketch)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
@@ -27,6 +28,14 @@ for scene in "${scenes[@]}"; do
     cp "$work/cascade_first/preview.png" docs/gallery/cascade_first.png
     cp "$work/cascade_second/preview.png" docs/gallery/cascade_second.png
     echo "docs/gallery/cascade_first.png docs/gallery/cascade_second.png"
+    continue
+  fi
+  if [ "$scene" = sketch ]; then
+    "$physarum" sketch tools/sketch/examples/four_sizes.png --backend opencl --out "$work/sketch" > /dev/null
+    "$physarum" render "$work/sketch" --views 3 --out "$work/sketch/views" > /dev/null
+    cp "$work/sketch/sketch.png" docs/gallery/sketch_input.png
+    cp "$work/sketch/views/view_front.png" docs/gallery/sketch_result.png
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png"
     continue
   fi
   if [ "$scene" = pearson_map ]; then
