@@ -66,6 +66,38 @@ TEST(CliSketch, FourSketchedSpotSizesGrowInTheirRegions) {
   EXPECT_EQ(scene["maps"]["sketch_rate"]["ply"], "sketch_maps.ply");
 }
 
+// Ellipses of aspect 0.5 along 30 degrees below and 120 above (the paper's Fig. 3 in character):
+// the spots grow elongated along the sketched axes, within 15 degrees and 0.15 in aspect, at the
+// sketched area. The orientations cross in the middle, where the direction map turns abruptly (the
+// stability limit's Lanczos stalls there and the Gershgorin bound takes over: about 18 s here).
+TEST(CliSketch, OrientedEllipsesGrowOrientedSpots) {
+  TempDir dir;
+  json marks = json::array();
+  for (int q = 0; q < 4; ++q)
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j)
+        marks.push_back({{"ellipse",
+                          {{"center", {0.25 + 0.5 * (q % 2) + 0.12 * i, 0.25 + 0.5 * (q / 2) + 0.12 * j}},
+                           {"radii", {0.03, 0.015}},
+                           {"angle", q < 2 ? 30.0 : 120.0}}}});
+  const fs::path out = dir.path / "out";
+  const CommandResult r =
+      run_physarum("sketch " + quoted(write(dir, "oriented.json", {{"window", {1.0, 1.0}}, {"marks", marks}})) + " --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(std::ifstream(out / "report.json"));
+  for (int q = 0; q < 4; ++q) {
+    const json& g = report["regions"][static_cast<size_t>(q)]["generated"];
+    ASSERT_GE(g["spots"].get<int>(), 10) << q;
+    const double want = q < 2 ? 30.0 : 120.0;
+    const double d = std::fmod(std::abs(g["orientation"].get<double>() - want), 180.0);
+    EXPECT_LE(std::min(d, 180.0 - d), 15.0) << q;
+    EXPECT_NEAR(g["aspect"].get<double>(), 0.5, 0.15) << q;
+    EXPECT_NEAR(g["area"].get<double>() / (M_PI * 0.03 * 0.015), 1.0, 0.25) << q;
+  }
+  const json scene = json::parse(std::ifstream(out / "scene.json"));
+  EXPECT_DOUBLE_EQ(scene["morphogens"]["a"]["anisotropy"]["ratio"].get<double>(), 0.25);  // aspect^2
+}
+
 TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
   TempDir dir;
   struct Case {

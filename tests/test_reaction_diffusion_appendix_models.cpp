@@ -62,11 +62,12 @@ TEST(AppendixModels, BetaNoiseIsUniformOverItsRangeAndFixedByTheSeed) {
     EXPECT_GT(high, mean + 0.096) << model;
     EXPECT_NEAR(sum / n, mean, 4 * 0.1 / std::sqrt(3 * n)) << model;
     // The other coefficients stay uniform.
-    for (size_t c = 0; c < rd.system.coefficients.size(); ++c)
-      if (rd.system.coefficient_names[c] != "beta")
-        EXPECT_EQ(*std::min_element(rd.system.coefficients[c].begin(), rd.system.coefficients[c].end()),
-                  *std::max_element(rd.system.coefficients[c].begin(), rd.system.coefficients[c].end()))
-            << model << " " << rd.system.coefficient_names[c];
+    for (size_t c = 0; c < rd.system.coefficients.size(); ++c) {
+      if (rd.system.coefficient_names[c] == "beta") continue;
+      EXPECT_EQ(*std::min_element(rd.system.coefficients[c].begin(), rd.system.coefficients[c].end()),
+                *std::max_element(rd.system.coefficients[c].begin(), rd.system.coefficients[c].end()))
+          << model << " " << rd.system.coefficient_names[c];
+    }
     // The same seed draws the same noise, another seed other noise; amplitude 0 none at all.
     EXPECT_EQ(coefficient(load_rd_system(square(model)), "beta").values(), beta.values()) << model;
     EXPECT_NE(coefficient(load_rd_system(square(model, {{"seed", 6}})), "beta").values(), beta.values()) << model;

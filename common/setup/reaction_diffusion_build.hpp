@@ -44,7 +44,9 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
 CsrMatrix diffusion_stiffness(const SurfaceDomain& domain, const IntrinsicVertexData<double>& rate,
                               const IntrinsicFaceData<std::array<double, 2>>* direction = nullptr, double ratio = 1.0);
 
-// lambda_max of M^-1 K (K symmetric positive semi-definite, M the diagonal lumped mass).
+// lambda_max of M^-1 K (K symmetric positive semi-definite, M the diagonal lumped mass), by Lanczos;
+// where that does not converge in 1000 restarts, Gershgorin's upper bound on it (never below it, so
+// a step chosen from it is still stable).
 double largest_diffusion_eigenvalue(const CsrMatrix& stiffness, const IntrinsicVertexData<double>& mass);
 
 // 2 / max over morphogens of lambda_max(M^-1 K_m): the largest forward-Euler step that keeps pure

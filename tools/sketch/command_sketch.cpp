@@ -83,6 +83,8 @@ nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes&
                       {"trained_area", {plan.trained_smallest, plan.trained_largest}},
                       {"cross_validated_error", plan.cross_validated_error},
                       {"diffusion_factor", plan.kappa},
+                      {"aspect", plan.aspect},
+                      {"anisotropy_ratio", plan.ratio},
                       {"rates", plan.rate}};
   return j;
 }
@@ -92,8 +94,14 @@ std::vector<RegionMeasure> grow_and_measure(const SketchOptions& o, const Sketch
                                             const SketchPatch& patch, const InputMesh& mesh) {
   const fs::path out(o.out);
   const InputVertexData<double> rates = rate_map(regions, patch, mesh, plan.rate);
-  write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}}, {},
-                   "the reaction rate the sketch asks for, per input vertex");
+  // The direction map's components per face (the map source reads NAME_x, NAME_y, NAME_z).
+  std::vector<std::vector<double>> direction(3);
+  for (const Eigen::Vector3d& d : direction_map(regions, patch, mesh))
+    for (int k = 0; k < 3; ++k) direction[static_cast<size_t>(k)].push_back(d[k]);
+  write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}},
+                   {PlyFaceField{"direction_x", direction[0]}, PlyFaceField{"direction_y", direction[1]},
+                    PlyFaceField{"direction_z", direction[2]}},
+                   {}, "the sketch's reaction rate per input vertex and spot direction per face");
   const nlohmann::ordered_json scene =
       sketch_scene_json(plan, mesh_for_scene(o.mesh), o.area, o.max_circumradius, o.seed, "sketch_maps.ply");
   write_text_file_atomically((out / "scene.json").string(), scene.dump(2) + "\n");
@@ -147,7 +155,7 @@ int run_sketch(const SketchOptions& o) {
   for (size_t k = 0; k < regions.regions.size(); ++k) {
     const RegionAttributes& r = regions.regions[k];
     report["regions"].push_back(
-        region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures[k], patch));
+        region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures[k], patch, plan.ratio < 1.0));
     passed += report["regions"].back()["verdict"]["area"] == "pass";
   }
   report["iterations"] = iterations;
@@ -174,7 +182,8 @@ Command add_sketch_command(CLI::App& parent) {
       "to a reaction rate, blended over the surface. Writes DIR/scene.json (the generated scene, runnable with "
       "physarum run), DIR/sketch_maps.ply (its rate map), DIR/sketch.png (the marks as measured), the run's files, DIR/sketch.json (every mark's "
       "attributes, the regions, the map) and DIR/report.json (per region the sketched and the generated area, "
-      "aspect, orientation and spacing, with a verdict). Spot shape and orientation, strokes, "
+      "aspect, orientation and spacing, with a verdict). Elongated spots: both morphogens diffuse aspect^2 as fast "
+      "across the sketched orientations (blended between regions) as along them. Strokes, "
       "meinhardt-stripes, --layer2 and --colors are not built yet. Example: physarum sketch "
       "tools/sketch/examples/four_sizes.json --out sketch");
   app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();

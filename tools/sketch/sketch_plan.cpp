@@ -12,6 +12,19 @@ namespace {
 
 std::string number(double x) { return ValueRange::number(x); }
 
+// The regions' median aspect, refused below kThinnestAspect.
+double median_aspect(const SketchRegions& regions) {
+  std::vector<double> aspects;
+  for (const RegionAttributes& r : regions.regions) aspects.push_back(r.aspect);
+  std::sort(aspects.begin(), aspects.end());
+  const double aspect = aspects[aspects.size() / 2];
+  if (aspect < kThinnestAspect)
+    throw InputError("sketch: the spots' aspect (minor / major radius, the regions' median) is " + number(aspect) +
+                     "; the thinnest a spot can be grown is " + number(kThinnestAspect) + " (an anisotropy of 1 : " +
+                     number(1.0 / (kThinnestAspect * kThinnestAspect)) + ")");
+  return aspect;
+}
+
 }  // namespace
 
 SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
@@ -25,6 +38,11 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
   plan.trained_smallest = map.smallest();
   plan.trained_largest = map.largest();
   plan.cross_validated_error = map.cross_validated_error();
+  plan.aspect = median_aspect(regions);
+  plan.ratio = plan.aspect < kRoundAspect ? plan.aspect * plan.aspect : 1.0;
+  // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
+  // is asked for the isotropic one.
+  const double squeeze = std::sqrt(plan.ratio);
 
   for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(patch.area_in_metres(r.area));
   const auto [lo, hi] = std::minmax_element(plan.wanted_area.begin(), plan.wanted_area.end());
@@ -35,11 +53,10 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
     const size_t region = static_cast<size_t>(lo - plan.wanted_area.begin());
     throw InputError("sketch: region " + std::to_string(region) + "'s spots (" + number(*lo) +
                      " m^2) are smaller than a mesh of max_circumradius " + number(max_circumradius) +
-                     " m resolves: the smallest is " + number(floor) + " m^2 (" +
-                     number(floor / patch.area_in_metres(1.0)) +
+                     " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / patch.area_in_metres(1.0)) +
                      " in window units^2); draw bigger spots, give a larger --area or a smaller --max-circumradius");
   }
-  const std::optional<double> kappa = scale_for_range(map, *lo, *hi, 1.0);
+  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, 1.0);
   if (!kappa) {
     const double span = map.largest() / map.smallest();
     throw InputError("sketch: the sketched spot areas span " + number(*lo) + " to " + number(*hi) + " m^2 (a factor " +
@@ -50,7 +67,7 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
   plan.kappa = *kappa;
   for (const double a : plan.wanted_area) {
     // Clamped into the range: scale_for_range centres it, rounding may leave an end a hair outside.
-    const double trained = std::clamp(a / plan.kappa, map.smallest(), map.largest());
+    const double trained = std::clamp(a / squeeze / plan.kappa, map.smallest(), map.largest());
     plan.rate.push_back(*map.rate_for(trained));
   }
   const double slowest = *std::min_element(plan.rate.begin(), plan.rate.end());
@@ -68,17 +85,41 @@ InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch
   return map;
 }
 
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh) {
+  std::vector<double> c, s;
+  for (const RegionAttributes& r : regions.regions) {
+    c.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
+    s.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
+  }
+  const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
+  std::vector<Eigen::Vector3d> directions;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d centroid = (mesh.positions[static_cast<size_t>(t[0])] + mesh.positions[static_cast<size_t>(t[1])] +
+                                      mesh.positions[static_cast<size_t>(t[2])]) / 3.0;
+    const Eigen::Vector2d w = patch.window_point(centroid);
+    const double angle = 0.5 * std::atan2(regions.blend(s, w), regions.blend(c, w));
+    const Eigen::Vector2d d = Eigen::Vector2d(std::cos(angle), std::sin(angle)).cwiseProduct(stretch).normalized();
+    directions.emplace_back(d.x(), d.y(), 0.0);
+  }
+  return directions;
+}
+
 nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
                                          double max_circumradius, std::uint32_t seed, const std::string& map_file) {
   const ReactionModel& model = *find_reaction_model(plan.model->name);
   nlohmann::ordered_json morphogens = nlohmann::ordered_json::object();
-  for (size_t m = 0; m < model.morphogens.size(); ++m)
-    morphogens[model.morphogens[m]] = {{"diffusion", model.diffusion[m] * plan.kappa}};
+  nlohmann::ordered_json maps = {{"sketch_rate", {{"ply", map_file}, {"property", "rate"}}}};
+  if (plan.ratio < 1.0) maps["sketch_direction"] = {{"ply", map_file}, {"face_property", "direction"}};
+  for (size_t m = 0; m < model.morphogens.size(); ++m) {
+    nlohmann::ordered_json entry = {{"diffusion", model.diffusion[m] * plan.kappa}};
+    if (plan.ratio < 1.0) entry["anisotropy"] = {{"direction", "sketch_direction"}, {"ratio", plan.ratio}};
+    morphogens[model.morphogens[m]] = entry;
+  }
   return {{"mesh", mesh},
           {"scale_to_area", area},
           {"max_circumradius", max_circumradius},
           {"model", plan.model->name},
-          {"maps", {{"sketch_rate", {{"ply", map_file}, {"property", "rate"}}}}},
+          {"maps", maps},
           {"parameters", {{plan.model->rate_key, "sketch_rate"}}},
           {"morphogens", morphogens},
           {"preview_morphogen", plan.model->field},

@@ -4,6 +4,15 @@
 // the rates blended over the surface as a map (in logs: the rate is a scale), every diffusion rate
 // multiplied by kappa when the sketched sizes lie outside the trained ones, and a run long enough
 // for the slowest region's spots to form.
+//
+// Elongated spots: both morphogens diffuse r times slower across a direction field than along it.
+// That is the isotropic system seen through a stretch (x across = sqrt(r) x'), so its spots are the
+// isotropic ones squeezed across the direction: aspect (minor / major) sqrt(r), area sqrt(r) times
+// the isotropic area, the major axis along the direction. The equations give this map exactly,
+// where the paper learns it (LWR from aspect and axis to four grid coefficients): r = aspect^2, the
+// size map asked for area / aspect, and the direction field the regions' orientations blended (as
+// axes). The anisotropy ratio is one number for the surface (a scene's "ratio" is), so the regions'
+// median aspect sets it; orientations vary per region.
 #include "common/base/element_data.hpp"
 #include "common/mesh/input_mesh.hpp"
 #include "common/sketch/inverse_map.hpp"
@@ -27,15 +36,22 @@ struct SketchPlan {
   std::vector<double> wanted_area;  // m^2 per region
   std::vector<double> rate;         // per region
   double kappa = 1.0;               // every diffusion rate x kappa
+  double aspect = 1.0;              // the spots' minor / major radius asked for (the regions' median)
+  double ratio = 1.0;               // the anisotropy ratio, aspect^2 (1: isotropic, no direction map)
   double trained_smallest = 0.0, trained_largest = 0.0;  // m^2, the map's range (before kappa)
   double cross_validated_error = 0.0;                    // of the rate, relative
   long long steps = 0;
 };
 
+// Spots rounder than this are grown isotropic; thinner than kThinnestAspect are refused (the
+// anisotropy would exceed 1 : 10, beyond what a spot a few cells wide resolves).
+inline constexpr double kRoundAspect = 0.9;
+inline constexpr double kThinnestAspect = 0.3;
+
 // InputError, before anything runs, when a region asks for spots smaller than the mesh resolves
 // (the smallest trained spot in cells, on a mesh of `max_circumradius`; the message says the
-// smallest size) or when the sketched sizes span more than the training does (it says the span and
-// the nearest reachable size).
+// smallest size), when the sketched sizes span more than the training does (it says the span and
+// the nearest reachable size), or when the spots are thinner than kThinnestAspect.
 SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
                        double max_circumradius);
 
@@ -43,8 +59,15 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
 InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                                  const std::vector<double>& rates);
 
+// The direction per input face (a unit vector in the input's x/y plane): the regions' orientations
+// blended at the face's centroid as axes (doubled angles), turned from the window's frame into the
+// input's (the window's axes are scaled onto the patch's).
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh);
+
 // The generated scene (runnable with `physarum run`): the model, its rate from the map "sketch_rate"
-// of `map_file` (relative to the scene's folder), diffusion x kappa, the plan's steps.
+// of `map_file` (relative to the scene's folder), diffusion x kappa, anisotropy along the map
+// "sketch_direction" (face property "direction" of the same file) when plan.ratio < 1, the plan's
+// steps.
 nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
                                          double max_circumradius, std::uint32_t seed, const std::string& map_file);
 

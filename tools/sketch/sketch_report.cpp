@@ -54,20 +54,28 @@ double area_miss(const RegionMeasure& generated, double sketched_area) {
   return generated.spots > 0 ? generated.area / sketched_area - 1.0 : std::numeric_limits<double>::infinity();
 }
 
+double axis_difference(double a, double b) {
+  const double d = std::fmod(std::abs(a - b), 180.0);
+  return std::min(d, 180.0 - d);
+}
+
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchPatch& patch) {
+                                     const RegionMeasure& generated, const SketchPatch& patch, bool shaped) {
   const Eigen::Vector2d m = patch.metres_per_unit();
   nlohmann::ordered_json verdict;
   if (generated.spots == 0) {
-    verdict = {{"area", "no spots"}, {"spacing", "no spots"}};
+    verdict = {{"area", "no spots"}, {"spacing", "no spots"}, {"aspect", "no spots"}, {"orientation", "no spots"}};
   } else {
     verdict["area"] = within(area_miss(generated, sketched_area_m2), kAreaTolerance);
     verdict["spacing"] = sketched_spacing_m > 0.0 && generated.spacing > 0.0
                              ? within(generated.spacing / sketched_spacing_m - 1.0, kSpacingTolerance)
                              : "not measured";
+    verdict["aspect"] = shaped ? within(generated.aspect - sketched.aspect, kAspectTolerance) : "not controlled";
+    verdict["orientation"] = !shaped                                ? "not controlled"
+                             : sketched.aspect > kOrientedAspect ? "round: not judged"
+                                                                  : within(axis_difference(generated.orientation, sketched.orientation),
+                                                                           kOrientationTolerance);
   }
-  verdict["aspect"] = "not controlled";
-  verdict["orientation"] = "not controlled";
   auto spacing_or_null = [](double s) { return s > 0.0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json(nullptr); };
   return {{"center", {patch.low.x() * patch.scale + sketched.center.x() * m.x(), patch.low.y() * patch.scale + sketched.center.y() * m.y()}},
           {"sketched_spots", sketched.spots},

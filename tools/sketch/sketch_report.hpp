@@ -18,6 +18,11 @@ namespace physarum::cli {
 // issue's round trip asks 25 % of the median area).
 inline constexpr double kAreaTolerance = 0.25;
 inline constexpr double kSpacingTolerance = 0.25;
+// ... the aspect within this absolute difference, and the orientation within this many degrees where
+// the sketched spots are elongated (aspect <= kOrientedAspect; rounder ones have no orientation to judge).
+inline constexpr double kAspectTolerance = 0.15;
+inline constexpr double kOrientationTolerance = 15.0;
+inline constexpr double kOrientedAspect = 0.6;
 
 struct RegionMeasure {
   int spots = 0;             // whole spots whose centres lie in the region
@@ -36,9 +41,12 @@ std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, cons
 double area_miss(const RegionMeasure& generated, double sketched_area);
 
 // One region's report entry: {"center", "sketched": {...}, "generated": {...}, "verdict": {...}},
-// lengths in metres. Aspect and orientation are reported, and judged "not controlled": the inverse
-// map sets the spots' size; their shape needs the anisotropy map, which is not built yet.
+// lengths in metres. `shaped`: the plan grew elongated spots (an anisotropy); without it the
+// aspect and orientation are reported and judged "not controlled" (round spots asked for).
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchPatch& patch);
+                                     const RegionMeasure& generated, const SketchPatch& patch, bool shaped);
+
+// The difference of two axes' angles in degrees, in [0, 90].
+double axis_difference(double a, double b);
 
 }  // namespace physarum::cli
