@@ -2,10 +2,7 @@
 // their per-vertex beta noise ("parameter_noise") against its stated distribution, the uniform
 // steady state of Meinhardt's five-morphogen stripe system on both backends, and the OpenCL step of
 // five morphogens (the wide-vector path) following the reference while its planted fault does not.
-#include "api/backend_factory.hpp"
-#include "opencl/planted_faults.hpp"
-#include "opencl/runtime/compute_context.hpp"
-#include "reaction_diffusion_scene.hpp"
+#include "reaction_diffusion_backend_pair.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,20 +13,9 @@ namespace physarum {
 namespace {
 
 using nlohmann::json;
+using testing::largest_difference;
+using testing::rd_backend;
 using testing::load_rd_system;
-
-const opencl::ComputeContext& compute() {
-  static const opencl::ComputeContext c = opencl::make_compute_context("");
-  return c;
-}
-
-std::unique_ptr<SimulationBackend> backend(const testing::LoadedReactionDiffusion& rd, BackendChoice choice,
-                                           const std::string& fault = "") {
-  opencl::OpenCLBackendOptions options;
-  if (!fault.empty()) options.build_options = opencl::fault_build_option(fault);
-  return make_reaction_diffusion_backend(choice, choice == BackendChoice::OpenCL ? &compute() : nullptr,
-                                         rd.surface.domain, rd.system, options);
-}
 
 // A square patch of 1 cm cells' scale (the models' units: common/reaction_diffusion/reaction_models.cpp).
 json square(const std::string& model, json extra = json::object()) {
@@ -83,7 +69,7 @@ TEST(AppendixModels, TheStripeSystemsUniformSteadyStateHoldsOnBothBackends) {
   const auto rd = load_rd_system(square("meinhardt-stripes", {{"parameter_noise", {{"beta", 0.0}}}}));
   const std::vector<double> state = {0.75, 0.75, 0.140625, 0.75, 0.75};
   for (const BackendChoice choice : {BackendChoice::Reference, BackendChoice::OpenCL}) {
-    auto b = backend(rd, choice);
+    auto b = rd_backend(rd, choice);
     b->run(2000);
     for (int m = 0; m < 5; ++m) {
       double worst = 0.0;
@@ -93,23 +79,15 @@ TEST(AppendixModels, TheStripeSystemsUniformSteadyStateHoldsOnBothBackends) {
   }
 }
 
-double largest_difference(const SimulationBackend& a, const SimulationBackend& b) {
-  double worst = 0.0;
-  for (int m = 0; m < a.dynamic_layer_count(); ++m) {
-    const auto x = a.field_values(m), y = b.field_values(m);
-    for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
-  }
-  return worst;
-}
 
 // The stripe system from its beta noise plus a small initial noise: the state moves, the OpenCL
 // step (five morphogens: the wide vector) stays on the reference within float rounding, and the
 // planted lane mix-up moves far off it.
 TEST(AppendixModels, TheFiveMorphogenStepFollowsTheReferenceAndItsFaultDoesNot) {
   const auto rd = load_rd_system(square("meinhardt-stripes", {{"initial", {{"noise", 0.05}}}}));
-  auto reference = backend(rd, BackendChoice::Reference);
-  auto device = backend(rd, BackendChoice::OpenCL);
-  auto mixed = backend(rd, BackendChoice::OpenCL, "rd-lane-mixup");
+  auto reference = rd_backend(rd, BackendChoice::Reference);
+  auto device = rd_backend(rd, BackendChoice::OpenCL);
+  auto mixed = rd_backend(rd, BackendChoice::OpenCL, "rd-lane-mixup");
   const auto a0 = reference->field_values(0);
   for (auto* b : {reference.get(), device.get(), mixed.get()}) b->run(200);
   double moved = 0.0;

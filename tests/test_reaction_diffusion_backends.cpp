@@ -4,10 +4,7 @@
 // integrators; each planted fault moves it far outside that; and a saved state restored into a fresh
 // backend continues bit for bit (the checkpoint/resume contract of common/simulation/simulation_backend.hpp).
 #include "common/simulation/simulation_state.hpp"
-#include "opencl/runtime/compute_context.hpp"
-#include "opencl/planted_faults.hpp"
-#include "reaction_diffusion_scene.hpp"
-#include "api/backend_factory.hpp"
+#include "reaction_diffusion_backend_pair.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,11 +15,8 @@ namespace physarum {
 namespace {
 
 using nlohmann::json;
-
-const opencl::ComputeContext& compute() {
-  static const opencl::ComputeContext c = opencl::make_compute_context("");
-  return c;
-}
+using testing::largest_difference;
+using testing::rd_backend;
 
 // Gray-Scott spots on the sphere, from noise and a few seeded spots: the pattern grows (the state
 // moves by O(1) in 200 steps), so the comparison is not of a state sitting still.
@@ -34,30 +28,13 @@ json gray_scott(const std::string& integrator) {
     "time_step": 1.0, "seed": 3, "integrator": ")" + integrator + R"("})");
 }
 
-std::unique_ptr<SimulationBackend> backend(const testing::LoadedReactionDiffusion& rd, BackendChoice choice,
-                                           const std::string& fault = "") {
-  opencl::OpenCLBackendOptions options;
-  if (!fault.empty()) options.build_options = opencl::fault_build_option(fault);
-  return make_reaction_diffusion_backend(choice, choice == BackendChoice::OpenCL ? &compute() : nullptr,
-                                         rd.surface.domain, rd.system, options);
-}
-
-double largest_difference(const SimulationBackend& a, const SimulationBackend& b) {
-  double worst = 0.0;
-  for (int m = 0; m < a.dynamic_layer_count(); ++m) {
-    const auto x = a.field_values(m), y = b.field_values(m);
-    for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
-  }
-  return worst;
-}
-
 TEST(ReactionDiffusionBackends, OpenCLFollowsTheReferenceAndFaultsDoNot) {
   for (const std::string integrator : {"forward", "imex"}) {
     const testing::LoadedReactionDiffusion rd = testing::load_rd_system(gray_scott(integrator));
-    auto reference = backend(rd, BackendChoice::Reference);
-    auto device = backend(rd, BackendChoice::OpenCL);
-    auto swapped = backend(rd, BackendChoice::OpenCL, "rd-swap-diffusion");
-    auto no_feed = backend(rd, BackendChoice::OpenCL, "rd-no-feed");
+    auto reference = rd_backend(rd, BackendChoice::Reference);
+    auto device = rd_backend(rd, BackendChoice::OpenCL);
+    auto swapped = rd_backend(rd, BackendChoice::OpenCL, "rd-swap-diffusion");
+    auto no_feed = rd_backend(rd, BackendChoice::OpenCL, "rd-no-feed");
     const auto v0 = reference->field_values(1);
     for (auto* b : {reference.get(), device.get(), swapped.get(), no_feed.get()}) b->run(200);
     // How far the pattern itself moved: the scale the tolerance is set against.
@@ -77,12 +54,12 @@ TEST(ReactionDiffusionBackends, OpenCLFollowsTheReferenceAndFaultsDoNot) {
 TEST(ReactionDiffusionBackends, ARestoredStateContinuesBitForBit) {
   for (const BackendChoice choice : {BackendChoice::Reference, BackendChoice::OpenCL}) {
     const testing::LoadedReactionDiffusion rd = testing::load_rd_system(gray_scott("forward"));
-    auto whole = backend(rd, choice);
+    auto whole = rd_backend(rd, choice);
     whole->run(30);
-    auto first = backend(rd, choice);
+    auto first = rd_backend(rd, choice);
     first->run(12);
     const SimulationState saved = first->save_state();
-    auto resumed = backend(rd, choice);
+    auto resumed = rd_backend(rd, choice);
     resumed->restore_state(saved);
     EXPECT_EQ(resumed->steps_taken(), 12);
     resumed->run(18);

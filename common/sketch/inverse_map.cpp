@@ -1,6 +1,7 @@
 #include "common/sketch/inverse_map.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/sketch/median.hpp"
 
 // Boost 1.74's pchip.hpp calls isnan unqualified: <math.h> declares it in the global namespace.
 #include <math.h>
@@ -23,11 +24,6 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // A monotone cubic through (log attribute, log rate): the pooled points, ascending in attribute.
 double interpolate(const std::vector<double>& attribute, const std::vector<double>& rate, double at) {

@@ -1,6 +1,7 @@
 #include "common/sketch/sketch_regions.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/sketch/median.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,16 +9,6 @@
 #include <limits>
 
 namespace physarum {
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
 
 double axial_mean_degrees(const std::vector<double>& degrees) {
   std::complex<double> sum(0.0, 0.0);

@@ -3,6 +3,7 @@
 #include "common/base/errors.hpp"
 #include "common/base/value_range.hpp"
 #include "common/reaction_diffusion/reaction_models.hpp"
+#include "common/sketch/median.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,8 +17,7 @@ std::string number(double x) { return ValueRange::number(x); }
 double median_aspect(const SketchRegions& regions) {
   std::vector<double> aspects;
   for (const RegionAttributes& r : regions.regions) aspects.push_back(r.aspect);
-  std::sort(aspects.begin(), aspects.end());
-  const double aspect = aspects[aspects.size() / 2];
+  const double aspect = median(aspects);
   if (aspect < kThinnestAspect)
     throw InputError("sketch: the spots' aspect (minor / major radius, the regions' median) is " + number(aspect) +
                      "; the thinnest a spot can be grown is " + number(kThinnestAspect) + " (an anisotropy of 1 : " +

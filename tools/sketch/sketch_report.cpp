@@ -1,18 +1,13 @@
 #include "tools/sketch/sketch_report.hpp"
 
+#include "common/sketch/median.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace physarum::cli {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 const char* within(double miss, double tolerance) { return std::abs(miss) <= tolerance ? "pass" : "miss"; }
 
