@@ -19,7 +19,8 @@ const std::vector<ReactionModel>& reaction_models() {
        {2e-5, 1e-5},
        {1.0, 0.0},
        {kNone, kNone},
-       "Pearson 1993 (Science 261), the spot regime F = 0.04, k = 0.06; (1, 0) is the trivial uniform state"},
+       "Pearson 1993 (Science 261), the spot regime F = 0.04, k = 0.06; (1, 0) is the trivial uniform state",
+       {}},
       {"gierer-meinhardt",
        {"a", "h"},
        {"rho_a*a^2/(h + kappa) + rho_a0 - mu_a*a", "rho_h*a^2 + rho_h0 - mu_h*h"},
@@ -30,7 +31,8 @@ const std::vector<ReactionModel>& reaction_models() {
        // rho_a0) / mu_a = 1.85, h = rho_h a^2 / mu_h = 2.14).
        {1.85, 2.14},
        {kNone, kNone},
-       "Eq. 19 of `002_…` (activator-inhibitor with saturation kappa), Fig. 14's Digitalis parameters"},
+       "Eq. 19 of `002_…` (activator-inhibitor with saturation kappa), Fig. 14's Digitalis parameters",
+       {}},
       {"turing",
        {"u", "v"},
        {"rho*(alpha - u*v)", "rho*(u*v - v - beta)"},
@@ -42,7 +44,8 @@ const std::vector<ReactionModel>& reaction_models() {
        // reaction-diffusion"): Eq. 20 alone pulls v below zero where it is small (its rate at v = 0
        // is -rho*beta), and from there the pattern's troughs run away without bound.
        {kNone, 0.0},
-       "Eq. 20 of `002_…` (Turing 1952 in Turk's form), Fig. 16's Kohleria parameters with alpha = 16"},
+       "Eq. 20 of `002_…` (Turing 1952 in Turk's form), Fig. 16's Kohleria parameters with alpha = 16",
+       {}},
       {"activator-substrate",
        {"a", "s"},
        {"rho*s*a^2 + rho_a0 - mu_a*a", "-rho*s*a^2 + rho_s0 - mu_s*s"},
@@ -50,7 +53,8 @@ const std::vector<ReactionModel>& reaction_models() {
        {0.25, 0.5},
        {0.0, 1.0},
        {kNone, kNone},
-       "Eq. 22 of `002_…` (Gierer-Meinhardt activator-substrate), Fig. 20's Phalaenopsis parameters"},
+       "Eq. 22 of `002_…` (Gierer-Meinhardt activator-substrate), Fig. 20's Phalaenopsis parameters",
+       {}},
       // The three systems of the appendix of `004_…` (Phan & Grimm), in Turk's grid units taken as a
       // 1 cm cell and a 1 s time unit: a grid diffusion rate D is D x 1e-4 m^2/s here, so the patterns
       // have the sizes Turk's and Ready's grids give on a patch of 1 cm cells. The appendix's

@@ -24,7 +24,6 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-
 // A monotone cubic through (log attribute, log rate): the pooled points, ascending in attribute.
 double interpolate(const std::vector<double>& attribute, const std::vector<double>& rate, double at) {
   std::vector<double> x, y;

@@ -80,7 +80,7 @@ nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes&
   j["regions"] = list;
   j["inverse_map"] = {{"model", plan.model->name},
                       {"coefficient", plan.model->rate_key},
-                      {"trained_area", {plan.trained_smallest, plan.trained_largest}},
+                      {"trained_area_m2", {plan.trained_smallest, plan.trained_largest}},
                       {"cross_validated_error", plan.cross_validated_error},
                       {"diffusion_factor", plan.kappa},
                       {"aspect", plan.aspect},

@@ -71,20 +71,28 @@ nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sk
                                                                   : within(axis_difference(generated.orientation, sketched.orientation),
                                                                            kOrientationTolerance);
   }
-  auto spacing_or_null = [](double s) { return s > 0.0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json(nullptr); };
-  return {{"center", {patch.low.x() * patch.scale + sketched.center.x() * m.x(), patch.low.y() * patch.scale + sketched.center.y() * m.y()}},
+  // Lengths in the input mesh's units, as `physarum analyze` reports them (../shared/DESIGN.md).
+  const double s = patch.scale;
+  auto length_or_null = [s](double metres) {
+    return metres > 0.0 ? nlohmann::ordered_json(metres / s) : nlohmann::ordered_json(nullptr);
+  };
+  auto area_or_null = [s](bool any, double m2) { return any ? nlohmann::ordered_json(m2 / (s * s)) : nlohmann::ordered_json(nullptr); };
+  auto or_null = [](bool any, double x) { return any ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
+  const Eigen::Vector2d center = patch.low + sketched.center.cwiseProduct(m) / s;
+  const bool any = generated.spots > 0;
+  return {{"center", {center.x(), center.y()}},
           {"sketched_spots", sketched.spots},
           {"sketched",
-           {{"area", sketched_area_m2},
+           {{"area", sketched_area_m2 / (s * s)},
             {"aspect", sketched.aspect},
             {"orientation", sketched.orientation},
-            {"spacing", spacing_or_null(sketched_spacing_m)}}},
+            {"spacing", length_or_null(sketched_spacing_m)}}},
           {"generated",
            {{"spots", generated.spots},
-            {"area", generated.spots ? nlohmann::ordered_json(generated.area) : nlohmann::ordered_json(nullptr)},
-            {"aspect", generated.spots ? nlohmann::ordered_json(generated.aspect) : nlohmann::ordered_json(nullptr)},
-            {"orientation", generated.spots ? nlohmann::ordered_json(generated.orientation) : nlohmann::ordered_json(nullptr)},
-            {"spacing", spacing_or_null(generated.spacing)}}},
+            {"area", area_or_null(any, generated.area)},
+            {"aspect", or_null(any, generated.aspect)},
+            {"orientation", or_null(any, generated.orientation)},
+            {"spacing", length_or_null(generated.spacing)}}},
           {"verdict", verdict}};
 }
 

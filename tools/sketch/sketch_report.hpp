@@ -41,7 +41,8 @@ std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, cons
 double area_miss(const RegionMeasure& generated, double sketched_area);
 
 // One region's report entry: {"center", "sketched": {...}, "generated": {...}, "verdict": {...}},
-// lengths in metres. `shaped`: the plan grew elongated spots (an anisotropy); without it the
+// lengths and the centre in the input mesh's units (as `physarum analyze` reports them; metres when
+// the mesh is not rescaled); the arguments in metres. `shaped`: the plan grew elongated spots (an anisotropy); without it the
 // aspect and orientation are reported and judged "not controlled" (round spots asked for).
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
                                      const RegionMeasure& generated, const SketchPatch& patch, bool shaped);

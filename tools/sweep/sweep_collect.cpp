@@ -42,6 +42,12 @@ std::vector<std::string> combination_labels(const std::vector<SweepAxis>& axes, 
   return labels;
 }
 
+// ",FIELD" appended piece by piece ("," + std::string trips a GCC 12 -Wrestrict false positive).
+void append_field(std::string& csv, const std::string& value) {
+  csv += ',';
+  csv += csv_field(value);
+}
+
 std::vector<std::string> split_csv_line(const std::string& line) {
   std::vector<std::string> fields;
   std::stringstream s(line);
@@ -172,20 +178,22 @@ SweepCollection collect_sweep(const std::string& folder, int thumbnail) {
 
   const std::vector<std::string> varied = plan.varied_keys();
   std::string csv = "index";
-  for (const std::string& k : varied) csv += "," + csv_field(k);
+  for (const std::string& k : varied) append_field(csv, k);
   csv += ",seed,out,status";
-  for (const std::string& k : run_keys) csv += "," + csv_field(k);
-  for (const std::string& k : stats_keys) csv += "," + csv_field("final_" + k);
-  for (const std::string& k : analysis_keys) csv += "," + csv_field("analysis_" + k);
+  for (const std::string& k : run_keys) append_field(csv, k);
+  for (const std::string& k : stats_keys) append_field(csv, std::string("final_") + k);
+  for (const std::string& k : analysis_keys) append_field(csv, std::string("analysis_") + k);
   csv += "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const SweepJob& job = jobs[i];
     csv += std::to_string(job.index);
-    for (const std::string& k : varied) csv += "," + csv_field(job.overrides.contains(k) ? value_text(job.overrides[k]) : "");
-    csv += "," + std::to_string(job.seed) + "," + csv_field(job.out) + "," + job_status(job);
-    for (const std::string& k : run_keys) csv += "," + csv_field(run_values[i].count(k) ? run_values[i][k] : "");
-    for (const std::string& k : stats_keys) csv += "," + csv_field(stats_values[i].count(k) ? stats_values[i][k] : "");
-    for (const std::string& k : analysis_keys) csv += "," + csv_field(analysis_values[i].count(k) ? analysis_values[i][k] : "");
+    for (const std::string& k : varied) append_field(csv, job.overrides.contains(k) ? value_text(job.overrides[k]) : "");
+    append_field(csv, std::to_string(job.seed));
+    append_field(csv, job.out);
+    append_field(csv, job_status(job));
+    for (const std::string& k : run_keys) append_field(csv, run_values[i].count(k) ? run_values[i][k] : "");
+    for (const std::string& k : stats_keys) append_field(csv, stats_values[i].count(k) ? stats_values[i][k] : "");
+    for (const std::string& k : analysis_keys) append_field(csv, analysis_values[i].count(k) ? analysis_values[i][k] : "");
     csv += "\n";
   }
   write_text_file_atomically((fs::path(folder) / "sweep.csv").string(), csv);
