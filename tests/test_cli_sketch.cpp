@@ -98,7 +98,7 @@ TEST(CliSketch, OrientedEllipsesGrowOrientedSpots) {
   EXPECT_DOUBLE_EQ(scene["morphogens"]["a"]["anisotropy"]["ratio"].get<double>(), 0.25);  // aspect^2
 }
 
-// Labelled `validation` (about 4 minutes here): --refine on a sketch that misses. At --area 4 the
+// Labelled `validation` (4 to 8 minutes here): --refine on a sketch that misses. At --area 4 the
 // four sizes lie beyond the trained ones and the diffusion is scaled (kappa 4.5); the smallest
 // spots, now resolved by more cells than in training, come out about a third too big. One refined
 // run brings every region within 25 %: the rate multiplied by generated / sketched area.
