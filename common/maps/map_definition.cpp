@@ -98,6 +98,24 @@ struct MapContext {
   }
 };
 
+// {"points": [[A, B], ...], "radius": r}: each entry a segment from point A to point B.
+SegmentsRegion segments_region(const json& shape, const MapContext& c) {
+  SegmentsRegion s;
+  s.radius = c.number(shape, "radius");
+  if (!(s.radius >= 0.0)) c.fail("segments \"radius\" must be >= 0");
+  const auto points = shape.find("points");
+  if (points == shape.end() || !points->is_array() || points->empty())
+    c.fail("segments \"points\" must be a non-empty list of [[x, y, z], [x, y, z]] pairs");
+  for (size_t i = 0; i < points->size(); ++i) {
+    const json& pair = (*points)[i];
+    if (!pair.is_array() || pair.size() != 2)
+      c.fail("segments \"points\"[" + std::to_string(i) + "] = " + pair.dump() + " must be a pair [[x, y, z], [x, y, z]]");
+    const json ends = {{"from", pair[0]}, {"to", pair[1]}};
+    s.segments.emplace_back(c.point(ends, "from"), c.point(ends, "to"));
+  }
+  return s;
+}
+
 RegionSource region_source(const json& object, const MapContext& c, std::string_view key) {
   RegionSource r;
   if (auto falloff = c.optional_number(object, "falloff")) {
@@ -116,6 +134,9 @@ RegionSource region_source(const json& object, const MapContext& c, std::string_
     BoxRegion b{c.point(shape, "min"), c.point(shape, "max")};
     if ((b.min.array() > b.max.array()).any()) c.fail("box \"min\" must not exceed \"max\" on any axis");
     r.region = b;
+  } else if (key == "segments") {
+    c.only(shape, {"points", "radius"});
+    r.region = segments_region(shape, c);
   } else {
     c.only(shape, {"point", "normal"});
     HalfSpaceRegion h{c.point(shape, "point"), c.point(shape, "normal")};
@@ -216,6 +237,11 @@ const std::vector<SourceKind>& source_kinds() {
        [](const json& o, const MapContext& c) -> MapSource {
          c.only(o, {"half_space", "falloff"});
          return region_source(o, c, "half_space");
+       }},
+      {"segments", MapKind::Scalar,
+       [](const json& o, const MapContext& c) -> MapSource {
+         c.only(o, {"segments", "falloff"});
+         return region_source(o, c, "segments");
        }},
       {"axis", MapKind::Scalar,
        [](const json& o, const MapContext& c) -> MapSource {

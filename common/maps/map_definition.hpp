@@ -18,6 +18,7 @@
 //     {"sphere": {"center": [x,y,z], "radius": r}, "falloff": w}     regions: 1 inside, 0 outside,
 //     {"box": {"min": [x,y,z], "max": [x,y,z]}, "falloff": w}        smooth over w outside when
 //     {"half_space": {"point": [x,y,z], "normal": [x,y,z]}, "falloff": w}   falloff is given
+//     {"segments": {"points": [[[x,y,z], [x,y,z]], ...], "radius": r}, "falloff": w}  within r of a segment
 //     {"axis": "x|y|z"}                           0..1 along that axis of the input's bounding box
 //   arithmetic (an OPERAND is a scalar map's name or a number)
 //     {"map": OPERAND, "range": [lo, hi]}         lo + (hi - lo) * value
@@ -97,8 +98,13 @@ struct HalfSpaceRegion {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit length
 };
+// Thick polylines: the points within `radius` of any segment (a sketch's initiator cells, 004 Sec. 5.4).
+struct SegmentsRegion {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  double radius = 0.0;
+};
 struct RegionSource {
-  std::variant<SphereRegion, BoxRegion, HalfSpaceRegion> region;
+  std::variant<SphereRegion, BoxRegion, HalfSpaceRegion, SegmentsRegion> region;
   double falloff = 0.0;  // 0: a sharp edge; w > 0: 1 - smoothstep(d / w) at distance d outside
 };
 struct AxisRampSource {

@@ -62,6 +62,16 @@ double distance_outside(const RegionSource& r, const Vec3& x) {
   if (const auto* s = std::get_if<SphereRegion>(&r.region)) return (x - s->center).norm() - s->radius;
   if (const auto* b = std::get_if<BoxRegion>(&r.region))
     return (b->min - x).cwiseMax(x - b->max).cwiseMax(0.0).norm();
+  if (const auto* s = std::get_if<SegmentsRegion>(&r.region)) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : s->segments) {
+      const Vec3 ab = b - a;
+      const double length2 = ab.squaredNorm();
+      const double t = length2 > 0.0 ? std::clamp((x - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (x - a - t * ab).norm());
+    }
+    return nearest - s->radius;
+  }
   const auto& h = std::get<HalfSpaceRegion>(r.region);
   return -(x - h.point).dot(h.normal);
 }

@@ -82,9 +82,11 @@ const std::vector<ReactionModel>& reaction_models() {
        beta_noise},
       {"meinhardt-stripes",
        {"a", "b", "c", "d", "e"},
-       {"0.01*a^2*e*beta/c - a*k_ab", "0.01*b^2*d/c - b*k_ab", "0.01*a^2*e*beta + 0.01*b^2*d - c*k_c",
-        "(a - d)*k_de", "(b - e)*k_de"},
-       {{"k_ab", 0.04}, {"k_c", 0.06}, {"k_de", 0.04}, {"beta", 1.0}},
+       // s multiplies every reaction term (1 in the appendix): the rate a sketch's stripe width sets,
+       // as s does in meinhardt-spots. Last in the list, so the other coefficients keep their places.
+       {"s*(0.01*a^2*e*beta/c - a*k_ab)", "s*(0.01*b^2*d/c - b*k_ab)", "s*(0.01*a^2*e*beta + 0.01*b^2*d - c*k_c)",
+        "s*(a - d)*k_de", "s*(b - e)*k_de"},
+       {{"k_ab", 0.04}, {"k_c", 0.06}, {"k_de", 0.04}, {"beta", 1.0}, {"s", 1.0}},
        // c does not diffuse (the appendix gives it no diffusion term).
        {0.005e-4, 0.005e-4, 0.0, 0.4e-4, 0.4e-4},
        // The symmetric uniform steady state for beta = 1: d = a, e = b, c = 0.01 a b / k_ab and
@@ -92,7 +94,7 @@ const std::vector<ReactionModel>& reaction_models() {
        {0.75, 0.75, 0.140625, 0.75, 0.75},
        {kNone, kNone, kNone, kNone, kNone},
        "appendix 8.3 of `004_…` (Meinhardt 1982's five-morphogen stripes, Turk's values), k_ab = 0.04, "
-       "k_c = 0.06, k_de = 0.04, D_a = D_b = 0.005, D_d = D_e = 0.4 per cell, beta = 1 +- 0.1",
+       "k_c = 0.06, k_de = 0.04, D_a = D_b = 0.005, D_d = D_e = 0.4 per cell, beta = 1 +- 0.1, s = 1 (a rate on every term)",
        beta_noise},
   };
   return models;
