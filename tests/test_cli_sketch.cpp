@@ -30,6 +30,17 @@ json four_quadrants(const double (&area)[4], const double (&spacing)[4]) {
   return {{"window", {1.0, 1.0}}, {"marks", marks}};
 }
 
+// Three parallel strokes in the bottom half of a unit window (width class `bottom`) and three in the
+// top half (class `top`), at 20 degrees.
+json strokes(int bottom, int top) {
+  json marks = json::array();
+  for (int k = 0; k < 6; ++k) {
+    const double y = 0.05 + 0.13 * k;
+    marks.push_back({{"stroke", {{"points", {{0.2, y}, {0.8, y + 0.6 * std::tan(20.0 * M_PI / 180.0)}}}, {"width", k < 3 ? bottom : top}}}});
+  }
+  return {{"window", {1.0, 1.0}}, {"marks", marks}};
+}
+
 fs::path write(const TempDir& dir, const std::string& name, const json& j) {
   const fs::path p = dir.path / name;
   std::ofstream(p) << j.dump();
@@ -132,9 +143,11 @@ TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
   const std::vector<Case> cases = {
       {four_quadrants(tiny, spacing), "", 1, "are smaller than a mesh of max_circumradius 0.007 m resolves: the smallest is"},
       {four_quadrants(wide, spacing), "", 1, "the sketched spot areas span 0.0004 to 0.02 m^2 (a factor 50)"},
-      {{{"window", {1.0, 1.0}}, {"marks", {{{"stroke", {{"points", {{0.1, 0.1}, {0.9, 0.9}}}, {"width", 2}}}}}}}, "", 1,
-       "the sketch has no spot"},
-      {four_quadrants(tiny, spacing), "--model meinhardt-stripes", 2, "not a model a sketch can drive"},
+      {strokes(2, 2), "--model turing-spots", 1, "the sketch has no spot"},
+      {four_quadrants(tiny, spacing), "--model meinhardt-stripes", 1, "grows stripes along strokes, and the sketch has none"},
+      {four_quadrants(tiny, spacing), "--model gray-scott", 2, "not a model a sketch can drive"},
+      // Class 1 on a 0.1 m^2 square asks for stripes 0.025 x 0.32 m = 8 mm wide.
+      {strokes(1, 1), "--area 0.1", 1, "are thinner than a mesh of max_circumradius 0.007 m resolves: the thinnest is"},
       {four_quadrants(tiny, spacing), "--regions 0", 2, "--regions 0"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {

@@ -19,6 +19,7 @@
 #include <Eigen/Geometry>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -90,6 +91,30 @@ TEST(Maps, RegionsAndRampsGiveKnownValuesAtKnownPoints) {
   EXPECT_EQ(checked_falloff_quarter, 4);  // (0.5 +- 9/32, 0.5), (0.5, 0.5 +- 9/32)
 }
 
+// Thick segments: 1 within the radius of the nearest segment (the perpendicular distance along it,
+// the distance to the end beyond its ends), the smoothstep beyond; a degenerate segment is a ball.
+TEST(Maps, SegmentsAreOneWithinTheirRadius) {
+  const PreparedSurface s = surface_of("shape:square", 0.05, 4.0);
+  const EvaluatedMaps m = evaluate(
+      {{"lines", {{"segments", {{"points", {{{0.25, 0.5, 0.0}, {0.75, 0.5, 0.0}}, {{0.1, 0.1, 0.0}, {0.1, 0.1, 0.0}}}},
+                                {"radius", 0.1}}},
+                  {"falloff", 0.1}}}},
+      s);
+  const std::vector<Eigen::Vector3d> p = testing::intrinsic_vertex_positions(s);
+  int inside = 0, falloff = 0;
+  for (size_t v = 0; v < p.size(); ++v) {
+    const double x = std::clamp(p[v].x(), 0.25, 0.75);
+    const double d = std::min((p[v] - Eigen::Vector3d(x, 0.5, 0.0)).norm(), (p[v] - Eigen::Vector3d(0.1, 0.1, 0.0)).norm());
+    const double t = (d - 0.1) / 0.1;
+    const double expected = d <= 0.1 ? 1.0 : d >= 0.2 ? 0.0 : 1.0 - t * t * (3.0 - 2.0 * t);
+    EXPECT_NEAR(m.scalar_map("lines")[v], expected, 1e-12) << p[v].transpose();
+    inside += d < 0.1;
+    falloff += d > 0.1 && d < 0.2;
+  }
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(falloff, 20);
+}
+
 TEST(Maps, AxisRampOfASphereAveragesOneHalf) {
   // Archimedes' hat-box theorem: a sphere's area is uniform in height, so a y-ramp averages 1/2
   // over it (the icosphere's facets approximate that to the order of their size).
@@ -156,6 +181,10 @@ TEST(Maps, BadMapsAreRefusedNamingTheMap) {
       {{{"a", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}, {"falloff", -1}}}}, {"map 'a'", "falloff"}},
       {{{"a", {{"sphere", {{"center", {0, 0}}, {"radius", 1}}}}}}, {"map 'a'", "three numbers"}},
       {{{"a", {{"axis", "w"}}}}, {"map 'a'", "\"axis\" = \"w\""}},
+      {{{"a", {{"segments", {{"points", json::array()}, {"radius", 0.1}}}}}}, {"map 'a'", "non-empty list of [[x, y, z]"}},
+      {{{"a", {{"segments", {{"points", {{{0, 0, 0}}}}, {"radius", 0.1}}}}}}, {"map 'a'", "\"points\"[0]", "must be a pair"}},
+      {{{"a", {{"segments", {{"points", {{{0, 0, 0}, {1, 1}}}}, {"radius", 0.1}}}}}}, {"map 'a'", "three numbers"}},
+      {{{"a", {{"segments", {{"points", {{{0, 0, 0}, {1, 1, 1}}}}, {"radius", -1}}}}}}, {"map 'a'", "\"radius\" must be >= 0"}},
       {{{"a", {{"map", "b"}}}, {"b", 1}}, {"map 'a'", "missing \"range\""}},
       {{{"a", {{"sum", json::array()}}}}, {"map 'a'", "non-empty list"}},
       {{{"a", {{"clamp", 1}}}}, {"map 'a'", "needs \"min\", \"max\""}},

@@ -56,6 +56,38 @@ TEST(SketchRegions, TheBlendIsBilinearBetweenRegionCentres) {
   EXPECT_EQ(regions.region_of({2.0, 1.0}), 3);  // the window's far corner belongs to the last region
 }
 
+// Strokes: a region's orientation is the length-weighted axial mean of the segments whose midpoints
+// lie in it (a polyline crossing regions counts in each), its width the length-weighted class width.
+TEST(SketchRegions, StrokesGiveEachRegionTheirOrientationAndWidth) {
+  Sketch sketch;
+  sketch.source = "test";
+  sketch.window = {2.0, 1.0};
+  // Bottom-left: two strokes at 10 and 170 degrees (axes 20 degrees apart across 0): mean 0, not 90.
+  const double a = 10.0 * M_PI / 180.0;
+  sketch.strokes.push_back({{{0.3, 0.2}, {0.3 + 0.4 * std::cos(a), 0.2 + 0.4 * std::sin(a)}}, 1});
+  sketch.strokes.push_back({{{0.7, 0.3}, {0.7 - 0.4 * std::cos(a), 0.3 + 0.4 * std::sin(a)}}, 1});
+  // One polyline from bottom-right (a segment 3 long at 45 degrees, class 4) into top-right (one 1 long at 90).
+  sketch.strokes.push_back({{{1.1, 0.1}, {1.1 + 0.3 / std::sqrt(2.0), 0.1 + 0.3 / std::sqrt(2.0)}, {1.1 + 0.3 / std::sqrt(2.0), 0.9}}, 4});
+  // Top-left: a long class-1 stroke at 30 degrees and a short class-3 one at 120: the weights 3 : 1.
+  const double b = 30.0 * M_PI / 180.0, c = 120.0 * M_PI / 180.0;
+  sketch.strokes.push_back({{{0.2, 0.6}, {0.2 + 0.3 * std::cos(b), 0.6 + 0.3 * std::sin(b)}}, 1});
+  sketch.strokes.push_back({{{0.6, 0.7}, {0.6 + 0.1 * std::cos(c), 0.7 + 0.1 * std::sin(c)}}, 3});
+  const SketchRegions regions = stroke_regions(sketch, 2);
+  ASSERT_EQ(regions.regions.size(), 4u);
+  const double unit = kStripeWidthPerClass * 2.0;  // a class's width: a fraction of the window's width (2)
+  EXPECT_EQ(regions.regions[0].strokes, 2);
+  EXPECT_NEAR(regions.regions[0].orientation, 0.0, 1e-9);
+  EXPECT_NEAR(regions.regions[0].width, unit, 1e-12);
+  EXPECT_EQ(regions.regions[1].strokes, 1);
+  EXPECT_NEAR(regions.regions[1].orientation, 45.0, 1e-9);
+  EXPECT_NEAR(regions.regions[1].width, 4 * unit, 1e-12);
+  EXPECT_NEAR(regions.regions[3].orientation, 90.0, 1e-9);
+  // Doubled angles 60 and 240 weighted 3 and 1: 3 e^{i 60} + e^{i 240} = 2 e^{i 60}: the axis at 30.
+  EXPECT_NEAR(regions.regions[2].orientation, 30.0, 1e-9);
+  EXPECT_NEAR(regions.regions[2].width, (0.3 * 1 + 0.1 * 3) / 0.4 * unit, 1e-12);
+  EXPECT_THROW(stroke_regions(Sketch{}, 2), InputError);
+}
+
 TEST(SketchRegions, ASketchWithoutSpotsIsRefused) {
   Sketch sketch;
   sketch.source = "strokes.json";

@@ -8,8 +8,8 @@
 # Reaction-diffusion: fandisk_gray_scott (needs ../shared/meshes) and petal_stripes keep their
 # preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
-# (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png
-# and tools/sketch/examples/oriented.json and keeps each sketch as measured beside its grown
+# (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
+# oriented.json and strokes.json and keeps each sketch as measured beside its grown
 # pattern (face-on).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
@@ -40,7 +40,11 @@ for scene in "${scenes[@]}"; do
     "$physarum" render "$work/oriented" --views 3 --out "$work/oriented/views" > /dev/null
     cp "$work/oriented/sketch.png" docs/gallery/sketch_oriented_input.png
     cp "$work/oriented/views/view_front.png" docs/gallery/sketch_oriented_result.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png"
+    "$physarum" sketch tools/sketch/examples/strokes.json --backend opencl --out "$work/strokes" > /dev/null
+    "$physarum" render "$work/strokes" --views 3 --out "$work/strokes/views" > /dev/null
+    cp "$work/strokes/sketch.png" docs/gallery/sketch_strokes_input.png
+    cp "$work/strokes/views/view_front.png" docs/gallery/sketch_strokes_result.png
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png"
     continue
   fi
   if [ "$scene" = pearson_map ]; then

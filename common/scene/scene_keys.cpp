@@ -80,7 +80,7 @@ std::vector<SceneKey> build_keys() {
               "named surface maps the parameters and controls below refer to (README \"Surface maps\"; "
               "common/maps/map_definition.hpp); coordinates are the input mesh's, before scale_to_area",
               "{\"NAME\": SOURCE, ...}: a number, ply, fields_full (an earlier run's fields_full.ply on the same "
-              "surface, exact), texture, sphere, box, half_space, axis, map+range, invert, "
+              "surface, exact), texture, sphere, box, half_space, segments, axis, map+range, invert, "
               "threshold, clamp, sum, product, min, max (scalar); direction, toward, away_from, ply face_property (vector)"),
   };
   for (const ParameterSpec& p : kParameterTable) keys.push_back(parameter_key(p));

@@ -54,7 +54,7 @@ std::vector<TrainingRun> read_training_runs(const std::string& csv, const std::s
     if (it == header.end()) throw InputError(where + ": no column '" + name + "' in the header");
     return static_cast<size_t>(it - header.begin());
   };
-  size_t rate = 0, seed = 0, spots = 0, area = 0, spacing = 0;
+  size_t rate = 0, seed = 0, spots = 0, area = 0, spacing = 0, stripe_width = 0;
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty() || line[0] == '#') continue;
@@ -63,6 +63,8 @@ std::vector<TrainingRun> read_training_runs(const std::string& csv, const std::s
       header = fields;
       rate = column("rate"), seed = column("seed"), spots = column("spots"), area = column("spot_area"),
       spacing = column("spacing");
+      const auto width = std::find(header.begin(), header.end(), "stripe_width");
+      stripe_width = width == header.end() ? header.size() : static_cast<size_t>(width - header.begin());
       continue;
     }
     auto number = [&](size_t c) {
@@ -83,7 +85,8 @@ std::vector<TrainingRun> read_training_runs(const std::string& csv, const std::s
     run.spots = static_cast<int>(number(spots));
     run.spot_area = number(area);
     run.spacing = number(spacing);
-    if (run.spot_area > 0.0 && run.spacing > 0.0) runs.push_back(run);
+    run.stripe_width = stripe_width < fields.size() ? number(stripe_width) : 0.0;
+    if ((run.spot_area > 0.0 && run.spacing > 0.0) || run.stripe_width > 0.0) runs.push_back(run);
   }
   if (header.empty()) throw InputError(where + ": no header line (rate,seed,steps,spots,spot_area,spacing)");
   return runs;

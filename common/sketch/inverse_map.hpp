@@ -26,11 +26,12 @@ struct TrainingRun {
   int spots = 0;
   double spot_area = 0.0;  // m^2, median over the spots clear of the boundary
   double spacing = 0.0;    // m, median over neighbouring pairs
+  double stripe_width = 0.0;  // m, the stripes' mean width (the stripe model's runs; 0 without the column)
 };
 
 // The CSV of make_training_data.sh ('#' lines are its provenance; then the header
-// rate,seed,steps,spots,spot_area,spacing). Runs without a measured area (no whole spot) are kept
-// out. InputError naming `where` for a missing column or a value that is not a positive number.
+// rate,seed,steps,spots,spot_area,spacing and, optional, stripes,stripe_width). Runs with neither a
+// measured area (no whole spot) nor a stripe width are kept out. InputError naming `where` for a missing column or a value that is not a positive number.
 std::vector<TrainingRun> read_training_runs(const std::string& csv, const std::string& where);
 
 // One attribute of the pattern (spot area, or spacing) as a function of the rate, inverted.

@@ -43,6 +43,9 @@ struct Sketch {
 
 // The stroke width classes of the paper's interface.
 constexpr int kStrokeWidthClasses = 4;
+// A stroke of width class k asks for stripes k x this fraction of the window's width wide (drawn in a
+// picture, a class-k pen is k x 0.01 of the width: common/sketch/sketch_image.cpp).
+constexpr double kStripeWidthPerClass = 0.025;
 
 // Reads the JSON form. InputError naming `where` and the mark (by index) for anything wrong: a
 // missing or non-positive window, an ellipse without positive radii, a centre outside the window, a

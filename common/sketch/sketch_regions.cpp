@@ -38,13 +38,45 @@ double SketchRegions::blend(const std::vector<double>& per_region, const Eigen::
   return (1 - ty) * ((1 - tx) * at(r0, c0) + tx * at(r0, c1)) + ty * ((1 - tx) * at(r1, c0) + tx * at(r1, c1));
 }
 
-SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attributes, int n) {
-  if (n < 1) throw InputError(sketch.source + ": " + std::to_string(n) + " regions per side; at least 1");
-  if (attributes.spots.empty()) throw InputError(sketch.source + ": the sketch has no spot to take sizes from");
+namespace {
+
+// n x n regions over the window, their centres set, nothing measured yet.
+SketchRegions empty_regions(const Sketch& sketch, int n) {
   SketchRegions result;
   result.n = n;
   result.window = sketch.window;
   result.regions.resize(static_cast<size_t>(n * n));
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c)
+      result.regions[static_cast<size_t>(r * n + c)].center = {(c + 0.5) * sketch.window.x() / n,
+                                                              (r + 0.5) * sketch.window.y() / n};
+  return result;
+}
+
+// Regions without marks take every attribute of the nearest region with some (by centre distance;
+// ties to the first), keeping their own centre and counts.
+template <class HasMarks>
+void fill_empty_regions(SketchRegions& result, HasMarks has_marks) {
+  for (size_t i = 0; i < result.regions.size(); ++i) {
+    RegionAttributes& region = result.regions[i];
+    if (has_marks(region)) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < result.regions.size(); ++j) {
+      const double d = (result.regions[j].center - region.center).squaredNorm();
+      if (has_marks(result.regions[j]) && d < best) best = d, region.filled_from = static_cast<int>(j);
+    }
+    const RegionAttributes& source = result.regions[static_cast<size_t>(region.filled_from)];
+    region.area = source.area, region.aspect = source.aspect, region.orientation = source.orientation;
+    region.spacing = source.spacing, region.width = source.width;
+  }
+}
+
+}  // namespace
+
+SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attributes, int n) {
+  if (n < 1) throw InputError(sketch.source + ": " + std::to_string(n) + " regions per side; at least 1");
+  if (attributes.spots.empty()) throw InputError(sketch.source + ": the sketch has no spot to take sizes from");
+  SketchRegions result = empty_regions(sketch, n);
   std::vector<std::vector<const SpotAttributes*>> members(result.regions.size());
   std::vector<int> region_of_spot;
   for (const SpotAttributes& s : attributes.spots) {
@@ -62,7 +94,6 @@ SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attri
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
       RegionAttributes& region = result.regions[static_cast<size_t>(r * n + c)];
-      region.center = {(c + 0.5) * sketch.window.x() / n, (r + 0.5) * sketch.window.y() / n};
       const auto& in = members[static_cast<size_t>(r * n + c)];
       region.spots = static_cast<int>(in.size());
       std::vector<double> area, aspect, orientation;
@@ -72,19 +103,31 @@ SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attri
       region.spacing = median(edges[static_cast<size_t>(r * n + c)]);
       region.orientation = axial_mean_degrees(orientation);
     }
-  // Regions without spots: the nearest region with some (by centre distance; ties to the first).
-  for (size_t i = 0; i < result.regions.size(); ++i) {
-    RegionAttributes& region = result.regions[i];
-    if (region.spots > 0) continue;
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t j = 0; j < result.regions.size(); ++j) {
-      const double d = (result.regions[j].center - region.center).squaredNorm();
-      if (result.regions[j].spots > 0 && d < best) best = d, region.filled_from = static_cast<int>(j);
+  fill_empty_regions(result, [](const RegionAttributes& r) { return r.spots > 0; });
+  return result;
+}
+
+SketchRegions stroke_regions(const Sketch& sketch, int n) {
+  if (n < 1) throw InputError(sketch.source + ": " + std::to_string(n) + " regions per side; at least 1");
+  if (sketch.strokes.empty()) throw InputError(sketch.source + ": the sketch has no stroke to take stripes from");
+  SketchRegions result = empty_regions(sketch, n);
+  std::vector<std::complex<double>> doubled(result.regions.size());
+  std::vector<double> length(result.regions.size()), width(result.regions.size());
+  for (const SketchStroke& stroke : sketch.strokes)
+    for (size_t k = 0; k + 1 < stroke.points.size(); ++k) {
+      const Eigen::Vector2d d = stroke.points[k + 1] - stroke.points[k];
+      const size_t r = static_cast<size_t>(result.region_of(0.5 * (stroke.points[k] + stroke.points[k + 1])));
+      doubled[r] += std::polar(d.norm(), 2.0 * std::atan2(d.y(), d.x()));
+      length[r] += d.norm();
+      width[r] += d.norm() * stroke.width_class * kStripeWidthPerClass * sketch.window.x();
+      result.regions[r].strokes += 1;
     }
-    const RegionAttributes& source = result.regions[static_cast<size_t>(region.filled_from)];
-    region.area = source.area, region.aspect = source.aspect, region.orientation = source.orientation;
-    region.spacing = source.spacing;
+  for (size_t r = 0; r < result.regions.size(); ++r) {
+    if (result.regions[r].strokes == 0) continue;
+    result.regions[r].orientation = axis_orientation(std::arg(doubled[r]) * 90.0 / M_PI);
+    result.regions[r].width = width[r] / length[r];
   }
+  fill_empty_regions(result, [](const RegionAttributes& r) { return r.strokes > 0; });
   return result;
 }
 

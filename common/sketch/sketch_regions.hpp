@@ -20,6 +20,10 @@ struct RegionAttributes {
   double aspect = 1.0;      // minor / major, median
   double orientation = 0.0; // degrees in [0, 180), the axial mean
   double spacing = 0.0;     // window units, the median length of the Delaunay edges inside the region (0: none)
+  // Regions of strokes (stroke_regions): `orientation` is the strokes', `width` the stripe width asked
+  // for (window units), both weighted by the length of the stroke segments whose midpoints lie here.
+  int strokes = 0;          // stroke segments measured in this region
+  double width = 0.0;
 };
 
 struct SketchRegions {
@@ -36,6 +40,11 @@ struct SketchRegions {
 
 // The regions of a sketch's spots. InputError when n < 1 or the sketch has no spot.
 SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attributes, int n);
+
+// The regions of a sketch's strokes: per region the length-weighted axial mean orientation of the
+// stroke segments whose midpoints lie in it and their width classes' stripe width
+// (kStripeWidthPerClass). InputError when n < 1 or the sketch has no stroke.
+SketchRegions stroke_regions(const Sketch& sketch, int n);
 
 // The axial mean of orientations (degrees, lines not arrows: doubled angles averaged), in [0, 180).
 double axial_mean_degrees(const std::vector<double>& degrees);

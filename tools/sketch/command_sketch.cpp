@@ -8,6 +8,7 @@
 // again, up to K times.
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
+#include "common/base/value_range.hpp"
 #include "common/mesh/mesh_loading.hpp"
 #include "common/mesh/ply_reader.hpp"
 #include "common/output/ply_writer.hpp"
@@ -18,6 +19,7 @@
 #include "tools/sketch/sketch_picture.hpp"
 #include "tools/sketch/sketch_plan.hpp"
 #include "tools/sketch/sketch_report.hpp"
+#include "tools/sketch/stripe_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +35,7 @@ namespace fs = std::filesystem;
 struct SketchOptions {
   std::string sketch;
   std::string mesh = "shape:square";
-  std::string model = "turing-spots";
+  std::string model;  // empty: default_model
   int regions = 2;
   double area = 1.0;
   double max_circumradius = kTrainingCircumradius;
@@ -69,29 +71,44 @@ nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes&
   const nlohmann::ordered_json marks = sketch_attributes_json(attributes);
   for (auto it = marks.begin(); it != marks.end(); ++it) j[it.key()] = it.value();
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const RegionAttributes& r : regions.regions)
-    list.push_back({{"center", {r.center.x(), r.center.y()}},
-                    {"spots", r.spots},
-                    {"filled_from", r.filled_from >= 0 ? nlohmann::ordered_json(r.filled_from) : nlohmann::ordered_json(nullptr)},
-                    {"area", r.area},
-                    {"aspect", r.aspect},
-                    {"orientation", r.orientation},
-                    {"spacing", r.spacing}});
+  const bool stripes = plan.model->stripes;
+  for (const RegionAttributes& r : regions.regions) {
+    nlohmann::ordered_json region = {
+        {"center", {r.center.x(), r.center.y()}},
+        {stripes ? "strokes" : "spots", stripes ? r.strokes : r.spots},
+        {"filled_from", r.filled_from >= 0 ? nlohmann::ordered_json(r.filled_from) : nlohmann::ordered_json(nullptr)}};
+    if (stripes) {
+      region["orientation"] = r.orientation, region["width"] = r.width;
+    } else {
+      region["area"] = r.area, region["aspect"] = r.aspect, region["orientation"] = r.orientation, region["spacing"] = r.spacing;
+    }
+    list.push_back(region);
+  }
   j["regions"] = list;
   j["inverse_map"] = {{"model", plan.model->name},
                       {"coefficient", plan.model->rate_key},
-                      {"trained_area_m2", {plan.trained_smallest, plan.trained_largest}},
+                      {stripes ? "trained_width_m" : "trained_area_m2", {plan.trained_smallest, plan.trained_largest}},
                       {"cross_validated_error", plan.cross_validated_error},
-                      {"diffusion_factor", plan.kappa},
-                      {"aspect", plan.aspect},
-                      {"anisotropy_ratio", plan.ratio},
-                      {"rates", plan.rate}};
+                      {"diffusion_factor", plan.kappa}};
+  if (stripes) {
+    j["inverse_map"]["initiator_segments"] = plan.initiators.size();
+  } else {
+    j["inverse_map"]["aspect"] = plan.aspect;
+  }
+  j["inverse_map"]["anisotropy_ratio"] = plan.ratio;
+  j["inverse_map"]["rates"] = plan.rate;
   return j;
 }
 
-// Runs the scene once with `rates` and measures the result per region.
-std::vector<RegionMeasure> grow_and_measure(const SketchOptions& o, const SketchPlan& plan, const SketchRegions& regions,
-                                            const SketchPatch& patch, const InputMesh& mesh) {
+// One run's measures per region: spots' or stripes', as the model grows.
+struct Measures {
+  std::vector<RegionMeasure> spots;
+  std::vector<StripeMeasure> stripes;
+};
+
+// Runs the scene once with the plan's rates and measures the result per region.
+Measures grow_and_measure(const SketchOptions& o, const SketchPlan& plan, const SketchRegions& regions,
+                          const SketchPatch& patch, const InputMesh& mesh) {
   const fs::path out(o.out);
   const InputVertexData<double> rates = rate_map(regions, patch, mesh, plan.rate);
   // The direction map's components per face (the map source reads NAME_x, NAME_y, NAME_z).
@@ -112,40 +129,59 @@ std::vector<RegionMeasure> grow_and_measure(const SketchOptions& o, const Sketch
   run.device = o.device;
   if (const int code = run_scene(run); code != 0) throw InputError("sketch: the generated run failed (exit " + std::to_string(code) + ")");
   const PlyFields ply = read_ply_fields((out / "fields_full.ply").string());
-  const PatternAnalysis analysis = analyze_pattern(ply.mesh, InputVertexData<double>(ply.property(plan.model->field)), {});
-  return measure_regions(analysis, regions, patch);
+  const std::vector<double>& field = ply.property(plan.model->field);
+  const PatternAnalysis analysis = analyze_pattern(ply.mesh, InputVertexData<double>(field), {});
+  if (plan.model->stripes) return {{}, measure_stripes(ply.mesh, field, analysis, regions, patch)};
+  return {measure_regions(analysis, regions, patch), {}};
 }
+
+// Each region's relative miss of its size (spot area, or stripe width).
+std::vector<double> size_misses(const SketchPlan& plan, const Measures& measures) {
+  std::vector<double> misses;
+  for (size_t k = 0; k < measures.spots.size(); ++k) misses.push_back(area_miss(measures.spots[k], plan.wanted_area[k]));
+  for (size_t k = 0; k < measures.stripes.size(); ++k)
+    misses.push_back(width_miss(measures.stripes[k], plan.wanted_width[k]));
+  return misses;
+}
+
+// The model a sketch drives without --model: spots grow Turing's spots, a sketch of strokes alone
+// Meinhardt's stripes.
+std::string default_model(const Sketch& sketch) { return sketch.spots.empty() ? "meinhardt-stripes" : "turing-spots"; }
 
 int run_sketch(const SketchOptions& o) {
   if (o.regions < 1 || o.regions > 16) throw UsageError("--regions " + std::to_string(o.regions) + ": 1 to 16 per side");
   if (o.refine < 0) throw UsageError("--refine must be >= 0");
   // ---- everything that can refuse the input, before any output exists ----
-  const SketchModel& model = sketch_model(o.model);
+  if (!o.model.empty()) sketch_model(o.model);
   const Sketch sketch = read_sketch(o.sketch);
+  const SketchModel& model = sketch_model(o.model.empty() ? default_model(sketch) : o.model);
   const SketchAttributes attributes = measure_sketch(sketch);
-  const SketchRegions regions = sketch_regions(sketch, attributes, o.regions);
+  if (model.stripes && sketch.strokes.empty())
+    throw InputError(sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
+  const SketchRegions regions =
+      model.stripes ? stroke_regions(sketch, o.regions) : sketch_regions(sketch, attributes, o.regions);
   const InputMesh mesh = load_mesh(o.mesh);
   const SketchPatch patch = sketch_patch(sketch, mesh, o.area);
-  SketchPlan plan = plan_sketch(regions, patch, model, o.max_circumradius);
+  SketchPlan plan = model.stripes ? plan_stripes(regions, patch, model, o.max_circumradius)
+                                  : plan_sketch(regions, patch, model, o.max_circumradius);
+  if (model.stripes) place_initiators(plan, regions, patch, mesh, o.seed);
 
   create_output_folder(o.out);
   write_rgb_png((fs::path(o.out) / "sketch.png").string(), draw_sketch(sketch));
   nlohmann::ordered_json iterations = nlohmann::ordered_json::array();
-  std::vector<RegionMeasure> measures;
+  Measures measures;
+  const double tolerance = model.stripes ? kWidthTolerance : kAreaTolerance;
   for (int iteration = 0;; ++iteration) {
     measures = grow_and_measure(o, plan, regions, patch, mesh);
-    std::vector<double> misses;
-    bool all_pass = true;
-    for (size_t k = 0; k < measures.size(); ++k) {
-      misses.push_back(area_miss(measures[k], plan.wanted_area[k]));
-      all_pass = all_pass && std::abs(misses.back()) <= kAreaTolerance;
-    }
-    iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {"area_misses", misses}});
+    const std::vector<double> misses = size_misses(plan, measures);
+    const bool all_pass = std::all_of(misses.begin(), misses.end(), [&](double m) { return std::abs(m) <= tolerance; });
+    iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {model.stripes ? "width_misses" : "area_misses", misses}});
     if (all_pass || iteration == o.refine) break;
-    // Spots' areas go as 1 / rate (the scaling of the equations): a region whose spots came out
-    // (1 + miss) times too big needs (1 + miss) times the rate. Regions without spots keep theirs.
-    for (size_t k = 0; k < measures.size(); ++k)
-      if (std::isfinite(misses[k])) plan.rate[k] *= 1.0 + misses[k];
+    // Spots' areas go as 1 / rate and stripes' widths as 1 / sqrt(rate) (the scaling of the
+    // equations): a region whose pattern came out (1 + miss) times too big needs (1 + miss) (spots)
+    // or (1 + miss)^2 (stripes) times the rate. Regions without a measure keep theirs.
+    for (size_t k = 0; k < misses.size(); ++k)
+      if (std::isfinite(misses[k])) plan.rate[k] *= std::pow(1.0 + misses[k], model.stripes ? 2.0 : 1.0);
     plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
   }
 
@@ -155,14 +191,19 @@ int run_sketch(const SketchOptions& o) {
   for (size_t k = 0; k < regions.regions.size(); ++k) {
     const RegionAttributes& r = regions.regions[k];
     report["regions"].push_back(
-        region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures[k], patch, plan.ratio < 1.0));
-    passed += report["regions"].back()["verdict"]["area"] == "pass";
+        model.stripes ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], patch)
+                      : region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures.spots[k], patch,
+                                      plan.ratio < 1.0));
+    passed += report["regions"].back()["verdict"][model.stripes ? "orientation" : "area"] == "pass";
   }
   report["iterations"] = iterations;
   write_text_file_atomically((fs::path(o.out) / "sketch.json").string(), sketch_json(sketch, attributes, regions, plan).dump(2) + "\n");
   write_text_file_atomically((fs::path(o.out) / "report.json").string(), report.dump(2) + "\n");
   std::cout << "physarum sketch: " << model.name << ", " << regions.regions.size() << " regions, " << iterations.size()
-            << " run(s); spot area within " << kAreaTolerance * 100 << " % of the sketch in " << passed << " of "
+            << " run(s); "
+            << (model.stripes ? "stripe orientation within " + ValueRange::number(kStripeOrientationTolerance) + " degrees"
+                              : "spot area within " + ValueRange::number(kAreaTolerance * 100) + " %")
+            << " of the sketch in " << passed << " of "
             << regions.regions.size() << " regions; wrote " << o.out << "/{sketch.png, sketch.json, scene.json, report.json, sketch_maps.ply} "
             << "beside the run's files\n";
   return 0;
@@ -174,7 +215,7 @@ Command add_sketch_command(CLI::App& parent) {
   auto options = std::make_shared<SketchOptions>();
   CLI::App* app = parent.add_subcommand(
       "sketch",
-      "Grow a reaction-diffusion texture whose spots have the sizes of drawn ones, and check it\n"
+      "Grow a reaction-diffusion texture whose spots or stripes follow drawn ones, and check it\n"
       "Sketch a pattern (paper 004): SKETCH is a PNG (dark marks on a light background; filled or outlined "
       "blobs are spots, long thin or red marks strokes) or a JSON sketch of ellipses and strokes. Its window "
       "maps onto the mesh's x/y extent; the window is divided into --regions x --regions regions, each region's "
@@ -183,12 +224,17 @@ Command add_sketch_command(CLI::App& parent) {
       "physarum run), DIR/sketch_maps.ply (its rate map), DIR/sketch.png (the marks as measured), the run's files, DIR/sketch.json (every mark's "
       "attributes, the regions, the map) and DIR/report.json (per region the sketched and the generated area, "
       "aspect, orientation and spacing, with a verdict). Elongated spots: both morphogens diffuse aspect^2 as fast "
-      "across the sketched orientations (blended between regions) as along them. Strokes, "
-      "meinhardt-stripes, --layer2 and --colors are not built yet. Example: physarum sketch "
+      "across the sketched orientations (blended between regions) as along them. Strokes "
+      "(meinhardt-stripes, the default for a sketch of strokes alone): each region's stroke orientation and width "
+      "class (k x 2.5 % of the window's width) give the stripes' rate and initiator cells, random segments along the "
+      "blended orientations from which the stripes grow; report.json judges their orientation and width. "
+      "--layer2 and --colors are not built yet. Example: physarum sketch "
       "tools/sketch/examples/four_sizes.json --out sketch");
   app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();
   app->add_option("--mesh", options->mesh, "The surface (a mesh file or shape:NAME); default shape:square");
-  app->add_option("--model", options->model, "turing-spots (default) or meinhardt-spots");
+  app->add_option("--model", options->model,
+                  "turing-spots, meinhardt-spots or meinhardt-stripes (default: turing-spots for a sketch with spots, "
+                  "meinhardt-stripes for one of strokes alone)");
   app->add_option("--regions", options->regions, "Regions per side of the window (default 2: the paper's four)");
   app->add_option("--area", options->area, "The surface's area in m^2 (scale_to_area; default 1)");
   app->add_option("--max-circumradius", options->max_circumradius,

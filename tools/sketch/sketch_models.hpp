@@ -12,11 +12,12 @@
 namespace physarum::cli {
 
 struct SketchModel {
-  std::string name;        // "turing-spots", "meinhardt-spots"
+  std::string name;        // "turing-spots", "meinhardt-spots", "meinhardt-stripes"
   std::string rate_key;    // the coefficient that multiplies every reaction term (ka, s)
   std::string field;       // the morphogen the spots are the high values of
   double rate_time = 0.0;  // rate x simulated time of a run: the training's, at which spots have formed
   std::string training;    // the embedded training file's name
+  bool stripes = false;    // grows stripes along strokes (the map is of stripe width), not spots
 };
 
 const std::vector<SketchModel>& sketch_models();

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <random>
 
 namespace physarum::cli {
 namespace {
@@ -75,6 +77,75 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
   return plan;
 }
 
+SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+                        double max_circumradius) {
+  SketchPlan plan;
+  plan.model = &model;
+  std::vector<double> rates, widths;
+  for (const TrainingRun& r : training_runs(model)) rates.push_back(r.rate), widths.push_back(r.stripe_width);
+  const RateMap map(rates, widths, "stripe width");
+  plan.trained_smallest = map.smallest();
+  plan.trained_largest = map.largest();
+  plan.cross_validated_error = map.cross_validated_error();
+  plan.ratio = kStripeAnisotropy;
+  const double squeeze = std::sqrt(plan.ratio);
+  for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(patch.length_in_metres(r.width));
+  const auto [lo, hi] = std::minmax_element(plan.wanted_width.begin(), plan.wanted_width.end());
+  // The thinnest trained stripe spans as many mesh cells as a stripe of `floor` does on this mesh.
+  const double floor = map.smallest() * max_circumradius / kTrainingCircumradius;
+  if (*lo < floor) {
+    const size_t region = static_cast<size_t>(lo - plan.wanted_width.begin());
+    throw InputError("sketch: region " + std::to_string(region) + "'s stripes (" + number(*lo) +
+                     " m wide) are thinner than a mesh of max_circumradius " + number(max_circumradius) +
+                     " m resolves: the thinnest is " + number(floor) + " m (" + number(floor / patch.length_in_metres(1.0)) +
+                     " in window units); use a wider stroke class, a larger --area or a smaller --max-circumradius");
+  }
+  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, 0.5);
+  if (!kappa) {
+    const double span = map.largest() / map.smallest();
+    throw InputError("sketch: the sketched stripe widths span " + number(*lo) + " to " + number(*hi) + " m (a factor " +
+                     number(*hi / *lo) + "); the training of " + model.name + " spans a factor " + number(span) +
+                     ": draw widths within that factor of each other (with these widest stripes, the thinnest "
+                     "reachable width is " + number(*hi / span) + " m)");
+  }
+  plan.kappa = *kappa;
+  for (const double w : plan.wanted_width)
+    plan.rate.push_back(*map.rate_for(std::clamp(w / squeeze / std::sqrt(plan.kappa), map.smallest(), map.largest())));
+  plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
+  return plan;
+}
+
+void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                      std::uint32_t seed) {
+  std::vector<double> c, s, width;
+  for (const RegionAttributes& r : regions.regions) {
+    c.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
+    s.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
+    width.push_back(r.width);
+  }
+  const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
+  const double mean_width = median(width);
+  const double window_area = patch.window.prod();
+  const auto count = static_cast<size_t>(std::ceil(kInitiatorCover * window_area /
+                                                   (kInitiatorLength * kInitiatorThickness * mean_width * mean_width)));
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), jitter(-kInitiatorJitter, kInitiatorJitter);
+  plan.initiators.clear();
+  for (size_t k = 0; k < count; ++k) {
+    const Eigen::Vector2d centre(unit(random) * patch.window.x(), unit(random) * patch.window.y());
+    const double angle = 0.5 * std::atan2(regions.blend(s, centre), regions.blend(c, centre)) + jitter(random) * M_PI / 180.0;
+    const Eigen::Vector2d half = 0.5 * kInitiatorLength * regions.blend(width, centre) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    auto input_point = [&](const Eigen::Vector2d& w) { return Eigen::Vector2d(patch.low + w.cwiseProduct(stretch)); };
+    const Eigen::Vector2d a = input_point(centre - half), b = input_point(centre + half), middle = input_point(centre);
+    double z = 0.0, nearest = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : mesh.positions)
+      if (const double d = (p.head<2>() - middle).squaredNorm(); d < nearest) nearest = d, z = p.z();
+    plan.initiators.emplace_back(Eigen::Vector3d(a.x(), a.y(), z), Eigen::Vector3d(b.x(), b.y(), z));
+  }
+  // Half the thickness, in input units (the window's two axes averaged, as lengths are).
+  plan.initiator_radius = 0.5 * kInitiatorThickness * mean_width * std::sqrt(stretch.x() * stretch.y());
+}
+
 InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                                  const std::vector<double>& rates) {
   std::vector<double> log_rate;
@@ -112,8 +183,16 @@ nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::stri
   if (plan.ratio < 1.0) maps["sketch_direction"] = {{"ply", map_file}, {"face_property", "direction"}};
   for (size_t m = 0; m < model.morphogens.size(); ++m) {
     nlohmann::ordered_json entry = {{"diffusion", model.diffusion[m] * plan.kappa}};
-    if (plan.ratio < 1.0) entry["anisotropy"] = {{"direction", "sketch_direction"}, {"ratio", plan.ratio}};
+    if (plan.ratio < 1.0 && model.diffusion[m] > 0.0) entry["anisotropy"] = {{"direction", "sketch_direction"}, {"ratio", plan.ratio}};
     morphogens[model.morphogens[m]] = entry;
+  }
+  if (!plan.initiators.empty()) {
+    nlohmann::ordered_json points = nlohmann::ordered_json::array();
+    for (const auto& [a, b] : plan.initiators) points.push_back({{a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}});
+    maps["sketch_initiators"] = {{"segments", {{"points", points}, {"radius", plan.initiator_radius}}}};
+    // a at its uniform state, raised to kInitiatorLevel on the initiator cells.
+    maps["sketch_initial_a"] = {{"map", "sketch_initiators"}, {"range", {model.initial[0], kInitiatorLevel}}};
+    morphogens[model.morphogens[0]]["initial"] = "sketch_initial_a";
   }
   return {{"mesh", mesh},
           {"scale_to_area", area},

@@ -41,7 +41,30 @@ struct SketchPlan {
   double trained_smallest = 0.0, trained_largest = 0.0;  // m^2, the map's range (before kappa)
   double cross_validated_error = 0.0;                    // of the rate, relative
   long long steps = 0;
+  // Stripes (plan_stripes): the width asked for per region (m), the trained widths (m), and the
+  // initiator cells (initiator_segments), in the input mesh's coordinates.
+  std::vector<double> wanted_width;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> initiators;
+  double initiator_radius = 0.0;  // input units
 };
+
+// Initiator cells (004 Sec. 5.4, Fig. 16): segments kInitiatorLength stripe widths long and
+// kInitiatorThickness widths thick, at random centres, enough to cover kInitiatorCover of the surface,
+// each along the strokes' orientation blended at its centre and turned by a uniform draw within
+// +-kInitiatorJitter degrees (the paper's "slight variations"). a is raised to kInitiatorLevel on
+// them. The values are those of the experiments that chose them: 60 such segments on a 1 m^2 square
+// of 2.6 cm stripes turned its labyrinth to within 3 degrees of the segments' orientation.
+inline constexpr double kInitiatorLength = 6.0;
+inline constexpr double kInitiatorThickness = 0.6;
+inline constexpr double kInitiatorCover = 0.15;
+inline constexpr double kInitiatorJitter = 5.0;
+inline constexpr double kInitiatorLevel = 2.0;
+// Stripes also diffuse this many times as fast across the strokes' direction as along it: the
+// labyrinth squeezed across the strokes runs along them (with the initiators alone, a quadrant whose
+// strokes turn 45 degrees from its neighbours' kept a coherence of 0.09; with this, 0.46). The
+// isotropic stripe is then sqrt(ratio) times as wide across, so the width map is asked for
+// width / sqrt(ratio), as the spot map is asked for area / aspect.
+inline constexpr double kStripeAnisotropy = 0.5;
 
 // Spots rounder than this are grown isotropic; thinner than kThinnestAspect are refused (the
 // anisotropy would exceed 1 : 10, beyond what a spot a few cells wide resolves).
@@ -55,6 +78,20 @@ inline constexpr double kThinnestAspect = 0.3;
 SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
                        double max_circumradius);
 
+// Stripes along strokes: each region's stripe width (stroke_regions) through the stripe model's
+// inverse map to a rate, kappa when the widths lie outside the trained ones (a length: it goes as
+// sqrt(kappa)), the run as long as the slowest region needs. InputError, before anything runs, for
+// stripes thinner than the mesh resolves (the message says the thinnest) or widths spanning more than
+// the training does (the span, and the nearest reachable width).
+SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+                        double max_circumradius);
+
+// Fills plan.initiators and plan.initiator_radius (see kInitiatorLength). The window maps onto the
+// input's x/y extent; a segment's z is that of the input vertex nearest its centre in x/y (a flat
+// patch's own z).
+void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                      std::uint32_t seed);
+
 // The rate at each input vertex: the regions' rates blended at the vertex's window point, in logs.
 InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                                  const std::vector<double>& rates);
@@ -66,8 +103,9 @@ std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const S
 
 // The generated scene (runnable with `physarum run`): the model, its rate from the map "sketch_rate"
 // of `map_file` (relative to the scene's folder), diffusion x kappa, anisotropy along the map
-// "sketch_direction" (face property "direction" of the same file) when plan.ratio < 1, the plan's
-// steps.
+// "sketch_direction" (face property "direction" of the same file) when plan.ratio < 1, the
+// initiator cells as the map "sketch_initiators" (a "segments" map) raising a's initial value when
+// the plan has some, the plan's steps.
 nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
                                          double max_circumradius, std::uint32_t seed, const std::string& map_file);
 
