@@ -92,6 +92,10 @@ std::vector<TrainingRun> read_training_runs(const std::string& csv, const std::s
   return runs;
 }
 
+double RateMap::exponent() const {
+  return std::log(attribute_.back() / attribute_.front()) / std::log(rate_.back() / rate_.front());
+}
+
 RateMap::RateMap(const std::vector<double>& rate, const std::vector<double>& attribute, const std::string& attribute_name)
     : name_(attribute_name) {
   std::map<double, std::vector<double>> by_rate;

@@ -47,6 +47,9 @@ class RateMap {
   double smallest() const { return attribute_.front(); }
   double largest() const { return attribute_.back(); }
   const std::string& attribute_name() const { return name_; }
+  // The trained power law's exponent: attribute ~ rate^exponent between the range's two ends (the
+  // equations give -1 for an area and -1/2 for a length; the mesh and the segmentation bend that).
+  double exponent() const;
 
   // Leave one rate out: each pooled point's rate predicted by the map built without it (its
   // neighbours only: the two ends are left out, a map does not extrapolate), as the median of

@@ -177,11 +177,10 @@ int run_sketch(const SketchOptions& o) {
     const bool all_pass = std::all_of(misses.begin(), misses.end(), [&](double m) { return std::abs(m) <= tolerance; });
     iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {model.stripes ? "width_misses" : "area_misses", misses}});
     if (all_pass || iteration == o.refine) break;
-    // Spots' areas go as 1 / rate and stripes' widths as 1 / sqrt(rate) (the scaling of the
-    // equations): a region whose pattern came out (1 + miss) times too big needs (1 + miss) (spots)
-    // or (1 + miss)^2 (stripes) times the rate. Regions without a measure keep theirs.
+    // A region whose pattern came out (1 + miss) times too big needs (1 + miss)^refine_exponent
+    // times the rate (SketchPlan::refine_exponent). Regions without a measure keep theirs.
     for (size_t k = 0; k < misses.size(); ++k)
-      if (std::isfinite(misses[k])) plan.rate[k] *= std::pow(1.0 + misses[k], model.stripes ? 2.0 : 1.0);
+      if (std::isfinite(misses[k])) plan.rate[k] *= std::pow(1.0 + misses[k], plan.refine_exponent);
     plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
   }
 

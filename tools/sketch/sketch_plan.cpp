@@ -87,6 +87,7 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
   plan.trained_smallest = map.smallest();
   plan.trained_largest = map.largest();
   plan.cross_validated_error = map.cross_validated_error();
+  plan.refine_exponent = -1.0 / map.exponent();
   plan.ratio = kStripeAnisotropy;
   const double squeeze = std::sqrt(plan.ratio);
   for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(patch.length_in_metres(r.width));

@@ -46,6 +46,10 @@ struct SketchPlan {
   std::vector<double> wanted_width;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> initiators;
   double initiator_radius = 0.0;  // input units
+  // --refine multiplies a region's rate by (1 + miss)^refine_exponent: 1 for spots (areas go as
+  // 1 / rate, as the trained spots do within a tenth); for stripes -1 / the trained exponent, as
+  // their measured widths go as rate^-0.74, not the equations' rate^-0.5.
+  double refine_exponent = 1.0;
 };
 
 // Initiator cells (004 Sec. 5.4, Fig. 16): segments kInitiatorLength stripe widths long and
