@@ -10,7 +10,7 @@
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
 # (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
 # oriented.json and strokes.json and keeps each sketch as measured beside its grown
-# pattern (face-on).
+# pattern (face-on), then layer_big.json with --layer2 layer_small.json, with and without --rosettes.
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
 set -euo pipefail
@@ -44,7 +44,16 @@ for scene in "${scenes[@]}"; do
     "$physarum" render "$work/strokes" --views 3 --out "$work/strokes/views" > /dev/null
     cp "$work/strokes/sketch.png" docs/gallery/sketch_strokes_input.png
     cp "$work/strokes/views/view_front.png" docs/gallery/sketch_strokes_result.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png"
+    for mode in layers rosettes; do
+      flag=; [ "$mode" = rosettes ] && flag=--rosettes
+      "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json $flag \
+        --backend opencl --out "$work/$mode" > /dev/null
+      "$physarum" render "$work/$mode" --views 3 --out "$work/$mode/views" > /dev/null
+      cp "$work/$mode/views/view_front.png" "docs/gallery/sketch_${mode}_result.png"
+    done
+    cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
+    cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png docs/gallery/sketch_layers_result.png docs/gallery/sketch_rosettes_result.png"
     continue
   fi
   if [ "$scene" = pearson_map ]; then

@@ -18,6 +18,7 @@
 #include "tools/run/run_options.hpp"
 #include "tools/sketch/sketch_picture.hpp"
 #include "tools/sketch/sketch_plan.hpp"
+#include "tools/sketch/sketch_layers.hpp"
 #include "tools/sketch/sketch_report.hpp"
 #include "tools/sketch/stripe_report.hpp"
 
@@ -26,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace physarum::cli {
 namespace {
@@ -44,6 +46,8 @@ struct SketchOptions {
   std::string backend = "auto";
   std::string device;
   std::string out = "sketch";
+  std::string layer2;     // a second sketch: smaller spots between the first's, frozen (tools/sketch/sketch_layers.hpp)
+  bool rosettes = false;  // the frozen spots reset to the uniform state: the new spots ring them
 };
 
 Sketch read_sketch(const std::string& path) {
@@ -106,10 +110,18 @@ struct Measures {
   std::vector<StripeMeasure> stripes;
 };
 
-// Runs the scene once with the plan's rates and measures the result per region.
-Measures grow_and_measure(const SketchOptions& o, const SketchPlan& plan, const SketchRegions& regions,
-                          const SketchPatch& patch, const InputMesh& mesh) {
-  const fs::path out(o.out);
+// One run's result: its measures and the segmentation threshold of its field (a cascade freezes
+// what lies above it), and for a second layer, the cascade's measure.
+struct LayerRun {
+  Measures measures;
+  double threshold = 0.0;
+  CascadeMeasure cascade;
+};
+
+// Runs the scene once in `folder` with the plan's rates and measures the result per region; with a
+// cascade, as the second layer on the first's frozen spots.
+LayerRun grow_and_measure(const SketchOptions& o, const fs::path& out, const SketchPlan& plan, const SketchRegions& regions,
+                          const SketchPatch& patch, const InputMesh& mesh, const Cascade* cascade = nullptr) {
   const InputVertexData<double> rates = rate_map(regions, patch, mesh, plan.rate);
   // The direction map's components per face (the map source reads NAME_x, NAME_y, NAME_z).
   std::vector<std::vector<double>> direction(3);
@@ -119,20 +131,33 @@ Measures grow_and_measure(const SketchOptions& o, const SketchPlan& plan, const 
                    {PlyFaceField{"direction_x", direction[0]}, PlyFaceField{"direction_y", direction[1]},
                     PlyFaceField{"direction_z", direction[2]}},
                    {}, "the sketch's reaction rate per input vertex and spot direction per face");
-  const nlohmann::ordered_json scene =
-      sketch_scene_json(plan, mesh_for_scene(o.mesh), o.area, o.max_circumradius, o.seed, "sketch_maps.ply");
+  // A second layer draws its own noise: the first layer's seed would repeat its noise field.
+  nlohmann::ordered_json scene = sketch_scene_json(plan, mesh_for_scene(o.mesh), o.area, o.max_circumradius,
+                                                   cascade ? o.seed + 1 : o.seed, "sketch_maps.ply");
+  if (cascade) make_cascade_scene(scene, *find_reaction_model(plan.model->name), plan.model->field, *cascade);
   write_text_file_atomically((out / "scene.json").string(), scene.dump(2) + "\n");
   RunOptions run;
   run.scene = (out / "scene.json").string();
-  run.out = o.out;
+  run.out = out.string();
   run.backend = o.backend;
   run.device = o.device;
   if (const int code = run_scene(run); code != 0) throw InputError("sketch: the generated run failed (exit " + std::to_string(code) + ")");
   const PlyFields ply = read_ply_fields((out / "fields_full.ply").string());
   const std::vector<double>& field = ply.property(plan.model->field);
+  std::vector<char> frozen;  // a second layer's: the first layer's spots
+  if (cascade)
+    frozen = frozen_vertices(read_ply_fields((out / cascade->first_fields).string()).property(plan.model->field),
+                             cascade->threshold);
   const PatternAnalysis analysis = analyze_pattern(ply.mesh, InputVertexData<double>(field), {});
-  if (plan.model->stripes) return {{}, measure_stripes(ply.mesh, field, analysis, regions, patch)};
-  return {measure_regions(analysis, regions, patch), {}};
+  LayerRun result;
+  result.threshold = analysis.threshold;
+  if (plan.model->stripes) {
+    result.measures.stripes = measure_stripes(ply.mesh, field, analysis, regions, patch);
+  } else {
+    result.measures.spots = measure_regions(analysis, regions, patch, frozen);
+  }
+  if (cascade) result.cascade = measure_cascade(ply.mesh, field, analysis.threshold, frozen, patch.scale);
+  return result;
 }
 
 // Each region's relative miss of its size (spot area, or stripe width).
@@ -148,63 +173,115 @@ std::vector<double> size_misses(const SketchPlan& plan, const Measures& measures
 // Meinhardt's stripes.
 std::string default_model(const Sketch& sketch) { return sketch.spots.empty() ? "meinhardt-stripes" : "turing-spots"; }
 
+// A sketch measured and planned: everything that can refuse it, before any output exists.
+struct Layer {
+  Sketch sketch;
+  SketchAttributes attributes;
+  SketchRegions regions;
+  SketchPlan plan;
+};
+
+Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::string& model_name, const InputMesh& mesh,
+                    SketchPatch& patch) {
+  Layer layer;
+  layer.sketch = read_sketch(path);
+  const SketchModel& model = sketch_model(model_name.empty() ? default_model(layer.sketch) : model_name);
+  layer.attributes = measure_sketch(layer.sketch);
+  if (model.stripes && layer.sketch.strokes.empty())
+    throw InputError(layer.sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
+  layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
+                                : sketch_regions(layer.sketch, layer.attributes, o.regions);
+  patch = sketch_patch(layer.sketch, mesh, o.area);
+  layer.plan = model.stripes ? plan_stripes(layer.regions, patch, model, o.max_circumradius)
+                             : plan_sketch(layer.regions, patch, model, o.max_circumradius);
+  if (model.stripes) place_initiators(layer.plan, layer.regions, patch, mesh, o.seed);
+  return layer;
+}
+
+// Runs a layer in `folder`, and with --refine K corrects its missed regions' rates and runs again,
+// up to K times; each run's rates and misses are appended to `iterations`.
+LayerRun grow_refined(const SketchOptions& o, const fs::path& folder, Layer& layer, const SketchPatch& patch,
+                      const InputMesh& mesh, nlohmann::ordered_json& iterations) {
+  SketchPlan& plan = layer.plan;
+  const double tolerance = plan.model->stripes ? kWidthTolerance : kAreaTolerance;
+  for (int iteration = 0;; ++iteration) {
+    LayerRun run = grow_and_measure(o, folder, plan, layer.regions, patch, mesh);
+    const std::vector<double> misses = size_misses(plan, run.measures);
+    const bool all_pass = std::all_of(misses.begin(), misses.end(), [&](double m) { return std::abs(m) <= tolerance; });
+    iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {plan.model->stripes ? "width_misses" : "area_misses", misses}});
+    if (all_pass || iteration == o.refine) return run;
+    // A region whose pattern came out (1 + miss) times too big needs (1 + miss)^refine_exponent
+    // times the rate (SketchPlan::refine_exponent). Regions without a measure keep theirs.
+    for (size_t k = 0; k < misses.size(); ++k)
+      if (std::isfinite(misses[k])) plan.rate[k] *= std::pow(1.0 + misses[k], plan.refine_exponent);
+    plan.steps = static_cast<long long>(std::ceil(plan.model->rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
+  }
+}
+
+// report.json's per-region entries of a layer; `passed` counts the regions whose size (spots) or
+// orientation (stripes) passed.
+nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measures, const SketchPatch& patch, int& passed) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  const SketchPlan& plan = layer.plan;
+  for (size_t k = 0; k < layer.regions.regions.size(); ++k) {
+    const RegionAttributes& r = layer.regions.regions[k];
+    list.push_back(plan.model->stripes
+                       ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], patch)
+                       : region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures.spots[k], patch,
+                                       plan.ratio < 1.0));
+    passed += list.back()["verdict"][plan.model->stripes ? "orientation" : "area"] == "pass";
+  }
+  return list;
+}
+
 int run_sketch(const SketchOptions& o) {
   if (o.regions < 1 || o.regions > 16) throw UsageError("--regions " + std::to_string(o.regions) + ": 1 to 16 per side");
   if (o.refine < 0) throw UsageError("--refine must be >= 0");
   // ---- everything that can refuse the input, before any output exists ----
   if (!o.model.empty()) sketch_model(o.model);
-  const Sketch sketch = read_sketch(o.sketch);
-  const SketchModel& model = sketch_model(o.model.empty() ? default_model(sketch) : o.model);
-  const SketchAttributes attributes = measure_sketch(sketch);
-  if (model.stripes && sketch.strokes.empty())
-    throw InputError(sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
-  const SketchRegions regions =
-      model.stripes ? stroke_regions(sketch, o.regions) : sketch_regions(sketch, attributes, o.regions);
   const InputMesh mesh = load_mesh(o.mesh);
-  const SketchPatch patch = sketch_patch(sketch, mesh, o.area);
-  SketchPlan plan = model.stripes ? plan_stripes(regions, patch, model, o.max_circumradius)
-                                  : plan_sketch(regions, patch, model, o.max_circumradius);
-  if (model.stripes) place_initiators(plan, regions, patch, mesh, o.seed);
+  SketchPatch patch;
+  Layer first = prepare_layer(o.sketch, o, o.model, mesh, patch);
+  const SketchModel& model = *first.plan.model;
+  std::optional<Layer> second;
+  if (!o.layer2.empty()) {
+    if (model.stripes) throw InputError("--layer2: a second layer grows spots between the first's; " + model.name + " takes none");
+    SketchPatch patch2;
+    second = prepare_layer(o.layer2, o, model.name, mesh, patch2);
+    if (second->sketch.window != first.sketch.window)
+      throw InputError(o.layer2 + ": its window differs from " + o.sketch + "'s: the two layers must share one window");
+  }
 
   create_output_folder(o.out);
-  write_rgb_png((fs::path(o.out) / "sketch.png").string(), draw_sketch(sketch));
-  nlohmann::ordered_json iterations = nlohmann::ordered_json::array();
-  Measures measures;
-  const double tolerance = model.stripes ? kWidthTolerance : kAreaTolerance;
-  for (int iteration = 0;; ++iteration) {
-    measures = grow_and_measure(o, plan, regions, patch, mesh);
-    const std::vector<double> misses = size_misses(plan, measures);
-    const bool all_pass = std::all_of(misses.begin(), misses.end(), [&](double m) { return std::abs(m) <= tolerance; });
-    iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {model.stripes ? "width_misses" : "area_misses", misses}});
-    if (all_pass || iteration == o.refine) break;
-    // A region whose pattern came out (1 + miss) times too big needs (1 + miss)^refine_exponent
-    // times the rate (SketchPlan::refine_exponent). Regions without a measure keep theirs.
-    for (size_t k = 0; k < misses.size(); ++k)
-      if (std::isfinite(misses[k])) plan.rate[k] *= std::pow(1.0 + misses[k], plan.refine_exponent);
-    plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
-  }
-
-  nlohmann::ordered_json report;
-  report["regions"] = nlohmann::ordered_json::array();
+  const fs::path out(o.out);
+  write_rgb_png((out / "sketch.png").string(), draw_sketch(first.sketch));
+  nlohmann::ordered_json iterations = nlohmann::ordered_json::array(), report;
+  // With a second layer, the first runs in DIR/layer1 and the second, on its frozen spots, in DIR.
+  const fs::path first_folder = second ? out / "layer1" : out;
+  if (second) create_output_folder(first_folder.string());
+  const LayerRun run = grow_refined(o, first_folder, first, patch, mesh, iterations);
   int passed = 0;
-  for (size_t k = 0; k < regions.regions.size(); ++k) {
-    const RegionAttributes& r = regions.regions[k];
-    report["regions"].push_back(
-        model.stripes ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], patch)
-                      : region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures.spots[k], patch,
-                                      plan.ratio < 1.0));
-    passed += report["regions"].back()["verdict"][model.stripes ? "orientation" : "area"] == "pass";
-  }
+  report["regions"] = region_reports(first, run.measures, patch, passed);
   report["iterations"] = iterations;
-  write_text_file_atomically((fs::path(o.out) / "sketch.json").string(), sketch_json(sketch, attributes, regions, plan).dump(2) + "\n");
-  write_text_file_atomically((fs::path(o.out) / "report.json").string(), report.dump(2) + "\n");
-  std::cout << "physarum sketch: " << model.name << ", " << regions.regions.size() << " regions, " << iterations.size()
+  nlohmann::ordered_json sketch_file = sketch_json(first.sketch, first.attributes, first.regions, first.plan);
+  if (second) {
+    write_rgb_png((out / "sketch_layer2.png").string(), draw_sketch(second->sketch));
+    const Cascade cascade{"layer1/fields_full.ply", run.threshold, o.rosettes};
+    const LayerRun top = grow_and_measure(o, out, second->plan, second->regions, patch, mesh, &cascade);
+    int passed2 = 0;
+    report["layer2"] = cascade_json(top.cascade, o.rosettes);
+    report["layer2"]["regions"] = region_reports(*second, top.measures, patch, passed2);
+    sketch_file["layer2"] = sketch_json(second->sketch, second->attributes, second->regions, second->plan);
+  }
+  write_text_file_atomically((out / "sketch.json").string(), sketch_file.dump(2) + "\n");
+  write_text_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
+  std::cout << "physarum sketch: " << model.name << ", " << first.regions.regions.size() << " regions, " << iterations.size()
             << " run(s); "
             << (model.stripes ? "stripe orientation within " + ValueRange::number(kStripeOrientationTolerance) + " degrees"
                               : "spot area within " + ValueRange::number(kAreaTolerance * 100) + " %")
-            << " of the sketch in " << passed << " of "
-            << regions.regions.size() << " regions; wrote " << o.out << "/{sketch.png, sketch.json, scene.json, report.json, sketch_maps.ply} "
-            << "beside the run's files\n";
+            << " of the sketch in " << passed << " of " << first.regions.regions.size() << " regions"
+            << (second ? "; a second layer on its frozen spots (report.json's layer2)" : "") << "; wrote " << o.out
+            << "/{sketch.png, sketch.json, scene.json, report.json, sketch_maps.ply} beside the run's files\n";
   return 0;
 }
 
@@ -243,6 +320,13 @@ Command add_sketch_command(CLI::App& parent) {
   app->add_option("--backend", options->backend, "auto, reference or opencl")->check(CLI::IsMember({"auto", "reference", "opencl"}));
   app->add_option("--device", options->device, "The OpenCL device (default: $PHYSARUM_DEVICE, else the first)");
   app->add_option("--out", options->out, "Output folder (default sketch)");
+  CLI::Option* layer2 = app->add_option(
+      "--layer2", options->layer2,
+      "A second sketch of (smaller) spots grown between the first's, frozen: the first layer runs in DIR/layer1, "
+      "the second in DIR; report.json's layer2 says whether any new spot touches a frozen one");
+  app->add_flag("--rosettes", options->rosettes,
+                "With --layer2: reset the frozen spots to the uniform state, so that the new spots ring them (Turk's leopard)")
+      ->needs(layer2);
   app->footer("Exit codes: 0 success (report.json says how well each region matched), 1 bad input (a bad sketch, "
               "spots too small for the mesh or outside what the training covers: nothing is run), 2 usage error.");
   return {app, [options] { return run_sketch(*options); }};

@@ -27,28 +27,54 @@ double median_aspect(const SketchRegions& regions) {
   return aspect;
 }
 
+// The model's inverse map of `attribute` (TrainingRun's spot_area or stripe_width), its range and
+// cross-validated error noted in the plan.
+RateMap trained_map(SketchPlan& plan, const SketchModel& model, double TrainingRun::*attribute, const std::string& name) {
+  plan.model = &model;
+  std::vector<double> rates, values;
+  for (const TrainingRun& r : training_runs(model)) rates.push_back(r.rate), values.push_back(r.*attribute);
+  RateMap map(rates, values, name);
+  plan.trained_smallest = map.smallest();
+  plan.trained_largest = map.largest();
+  plan.cross_validated_error = map.cross_validated_error();
+  return map;
+}
+
+// The regions' wanted sizes (`what`: "spot areas" in "m^2", "stripe widths" in "m") through the map:
+// kappa, chosen so that every size / squeeze / kappa^exponent lies in the trained range (a size goes
+// as kappa^exponent: 1 for an area, 1/2 for a width), each region's rate and the run's steps.
+// InputError when the sizes span more than the training does.
+void fit_rates(SketchPlan& plan, const RateMap& map, const std::vector<double>& wanted, double squeeze, double exponent,
+               const std::string& what, const std::string& unit) {
+  const auto [lo, hi] = std::minmax_element(wanted.begin(), wanted.end());
+  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, exponent);
+  if (!kappa) {
+    const double span = map.largest() / map.smallest();
+    throw InputError("sketch: the sketched " + what + " span " + number(*lo) + " to " + number(*hi) + " " + unit +
+                     " (a factor " + number(*hi / *lo) + "); the training of " + plan.model->name + " spans a factor " +
+                     number(span) + ": draw " + what + " within that factor of each other (with the largest drawn, the " +
+                     "smallest reachable is " + number(*hi / span) + " " + unit + ")");
+  }
+  plan.kappa = *kappa;
+  for (const double size : wanted) {
+    // Clamped into the range: scale_for_range centres it, rounding may leave an end a hair outside.
+    const double trained = std::clamp(size / squeeze / std::pow(plan.kappa, exponent), map.smallest(), map.largest());
+    plan.rate.push_back(*map.rate_for(trained));
+  }
+  plan.steps = static_cast<long long>(std::ceil(plan.model->rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
+}
+
 }  // namespace
 
 SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
                        double max_circumradius) {
   SketchPlan plan;
-  plan.model = &model;
-  const std::vector<TrainingRun> runs = training_runs(model);
-  std::vector<double> rates, areas;
-  for (const TrainingRun& r : runs) rates.push_back(r.rate), areas.push_back(r.spot_area);
-  const RateMap map(rates, areas, "spot area");
-  plan.trained_smallest = map.smallest();
-  plan.trained_largest = map.largest();
-  plan.cross_validated_error = map.cross_validated_error();
+  const RateMap map = trained_map(plan, model, &TrainingRun::spot_area, "spot area");
   plan.aspect = median_aspect(regions);
   plan.ratio = plan.aspect < kRoundAspect ? plan.aspect * plan.aspect : 1.0;
-  // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
-  // is asked for the isotropic one.
-  const double squeeze = std::sqrt(plan.ratio);
-
   for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(patch.area_in_metres(r.area));
-  const auto [lo, hi] = std::minmax_element(plan.wanted_area.begin(), plan.wanted_area.end());
   // The smallest trained spot covers as many mesh cells as a spot of `floor` does on this mesh.
+  const auto lo = std::min_element(plan.wanted_area.begin(), plan.wanted_area.end());
   const double ratio = max_circumradius / kTrainingCircumradius;
   const double floor = map.smallest() * ratio * ratio;
   if (*lo < floor) {
@@ -58,41 +84,21 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
                      " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / patch.area_in_metres(1.0)) +
                      " in window units^2); draw bigger spots, give a larger --area or a smaller --max-circumradius");
   }
-  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, 1.0);
-  if (!kappa) {
-    const double span = map.largest() / map.smallest();
-    throw InputError("sketch: the sketched spot areas span " + number(*lo) + " to " + number(*hi) + " m^2 (a factor " +
-                     number(*hi / *lo) + "); the training of " + model.name + " spans a factor " + number(span) +
-                     ": draw sizes within that factor of each other (with these largest spots, the smallest "
-                     "reachable area is " + number(*hi / span) + " m^2)");
-  }
-  plan.kappa = *kappa;
-  for (const double a : plan.wanted_area) {
-    // Clamped into the range: scale_for_range centres it, rounding may leave an end a hair outside.
-    const double trained = std::clamp(a / squeeze / plan.kappa, map.smallest(), map.largest());
-    plan.rate.push_back(*map.rate_for(trained));
-  }
-  const double slowest = *std::min_element(plan.rate.begin(), plan.rate.end());
-  plan.steps = static_cast<long long>(std::ceil(model.rate_time / slowest));
+  // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
+  // is asked for the isotropic one.
+  fit_rates(plan, map, plan.wanted_area, std::sqrt(plan.ratio), 1.0, "spot areas", "m^2");
   return plan;
 }
 
 SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
                         double max_circumradius) {
   SketchPlan plan;
-  plan.model = &model;
-  std::vector<double> rates, widths;
-  for (const TrainingRun& r : training_runs(model)) rates.push_back(r.rate), widths.push_back(r.stripe_width);
-  const RateMap map(rates, widths, "stripe width");
-  plan.trained_smallest = map.smallest();
-  plan.trained_largest = map.largest();
-  plan.cross_validated_error = map.cross_validated_error();
+  const RateMap map = trained_map(plan, model, &TrainingRun::stripe_width, "stripe width");
   plan.refine_exponent = -1.0 / map.exponent();
   plan.ratio = kStripeAnisotropy;
-  const double squeeze = std::sqrt(plan.ratio);
   for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(patch.length_in_metres(r.width));
-  const auto [lo, hi] = std::minmax_element(plan.wanted_width.begin(), plan.wanted_width.end());
   // The thinnest trained stripe spans as many mesh cells as a stripe of `floor` does on this mesh.
+  const auto lo = std::min_element(plan.wanted_width.begin(), plan.wanted_width.end());
   const double floor = map.smallest() * max_circumradius / kTrainingCircumradius;
   if (*lo < floor) {
     const size_t region = static_cast<size_t>(lo - plan.wanted_width.begin());
@@ -101,18 +107,7 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
                      " m resolves: the thinnest is " + number(floor) + " m (" + number(floor / patch.length_in_metres(1.0)) +
                      " in window units); use a wider stroke class, a larger --area or a smaller --max-circumradius");
   }
-  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, 0.5);
-  if (!kappa) {
-    const double span = map.largest() / map.smallest();
-    throw InputError("sketch: the sketched stripe widths span " + number(*lo) + " to " + number(*hi) + " m (a factor " +
-                     number(*hi / *lo) + "); the training of " + model.name + " spans a factor " + number(span) +
-                     ": draw widths within that factor of each other (with these widest stripes, the thinnest "
-                     "reachable width is " + number(*hi / span) + " m)");
-  }
-  plan.kappa = *kappa;
-  for (const double w : plan.wanted_width)
-    plan.rate.push_back(*map.rate_for(std::clamp(w / squeeze / std::sqrt(plan.kappa), map.smallest(), map.largest())));
-  plan.steps = static_cast<long long>(std::ceil(model.rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
+  fit_rates(plan, map, plan.wanted_width, std::sqrt(plan.ratio), 0.5, "stripe widths", "m");
   return plan;
 }
 

@@ -14,7 +14,7 @@ const char* within(double miss, double tolerance) { return std::abs(miss) <= tol
 }  // namespace
 
 std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch) {
+                                           const SketchPatch& patch, const std::vector<char>& first_layer) {
   const size_t n = regions.regions.size();
   std::vector<std::vector<double>> area(n), aspect(n), orientation(n), spacing(n);
   std::vector<int> region_of(analysis.regions.size(), -1);
@@ -22,6 +22,7 @@ std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, cons
   for (size_t i = 0; i < analysis.regions.size(); ++i) {
     const AnalysedRegion& r = analysis.regions[i];
     if (r.is_stripe || r.touches_boundary) continue;
+    if (!first_layer.empty() && r.shape.centre_vertex >= 0 && first_layer[static_cast<size_t>(r.shape.centre_vertex)]) continue;
     const int k = regions.region_of(patch.window_point(r.shape.centre));
     region_of[i] = k;
     area[static_cast<size_t>(k)].push_back(r.area * area_scale);

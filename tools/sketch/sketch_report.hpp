@@ -34,8 +34,10 @@ struct RegionMeasure {
 
 // Per region (SketchRegions order), from an analysis of the run's field on the input surface
 // (fields_full.ply: input coordinates).
+// `first_layer`: per vertex, frozen spots of a first layer (a cascade's second layer), whose regions
+// (those centred on a frozen vertex) are left out; empty for none.
 std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch);
+                                           const SketchPatch& patch, const std::vector<char>& first_layer = {});
 
 // The region's relative miss of its sketched area (generated / sketched - 1); infinity without spots.
 double area_miss(const RegionMeasure& generated, double sketched_area);
