@@ -304,7 +304,8 @@ Command add_sketch_command(CLI::App& parent) {
       "(meinhardt-stripes, the default for a sketch of strokes alone): each region's stroke orientation and width "
       "class (k x 2.5 % of the window's width) give the stripes' rate and initiator cells, random segments along the "
       "blended orientations from which the stripes grow; report.json judges their orientation and width. "
-      "--layer2 and --colors are not built yet. Example: physarum sketch "
+      "--layer2 SKETCH2 grows a second sketch's spots between the first's, frozen (--rosettes: around them, reset), "
+      "the first layer in DIR/layer1; --colors is not built yet. Example: physarum sketch "
       "tools/sketch/examples/four_sizes.json --out sketch");
   app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();
   app->add_option("--mesh", options->mesh, "The surface (a mesh file or shape:NAME); default shape:square");
