@@ -1,11 +1,12 @@
-// `physarum sketch SKETCH`: from drawn spots to a reaction-diffusion texture with the same sizes
+// `physarum sketch SKETCH`: from drawn spots or strokes to a reaction-diffusion texture like them
 // (004, Phan & Grimm), which checks its own result. The sketch (a PNG or the JSON form,
-// common/sketch/sketch.hpp) is measured and divided into regions (common/sketch/sketch_regions.hpp),
-// each region's spot area goes through the model's inverse map to a reaction rate
+// common/sketch/sketch.hpp) is measured and divided into regions (common/sketch/sketch_regions.hpp);
+// each region's spot area or stripe width goes through the model's inverse map to a reaction rate
 // (tools/sketch/sketch_plan.hpp), the generated scene is written and run as `physarum run` runs it,
-// and the grown spots are measured per region against the sketch (tools/sketch/sketch_report.hpp);
-// --refine K corrects each missed region's rate by its miss (the area goes as 1 / rate) and runs
-// again, up to K times.
+// and the grown spots (tools/sketch/sketch_report.hpp) or stripes (tools/sketch/stripe_report.hpp)
+// are measured per region against the sketch; --refine K corrects each missed region's rate by its
+// miss and runs again, up to K times. --layer2 grows a second sketch's spots on the first's frozen
+// ones (tools/sketch/sketch_layers.hpp).
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
 #include "common/base/value_range.hpp"
