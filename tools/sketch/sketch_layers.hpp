@@ -11,9 +11,11 @@
 // vertices is a first-layer spot (with the skirt its standing values spread around it); every other
 // region is a second-layer spot. A second-layer spot overlaps a frozen one when its peak (a strict
 // local maximum of the field at a free vertex) lies inside a first-layer spot's region: a frozen
-// spot's skirt falls away from it and has no peak of its own. The distance from each new spot's
-// centre to the nearest frozen vertex is set against the same distance of every free vertex (what
-// spots placed without regard to the first layer would have): rosettes hug the frozen discs.
+// spot's skirt falls away from it and has no peak of its own. The distance along the surface (fast
+// marching) from each new spot's centre to the frozen set is set against the same distance of every
+// free vertex (what spots placed without regard to the first layer would have): rosettes gather
+// round the frozen discs, more of their spots near one (within 3/4 of the free surface's median
+// distance) than of the free surface.
 #include "common/mesh/input_mesh.hpp"
 #include "common/reaction_diffusion/reaction_models.hpp"
 
@@ -40,7 +42,7 @@ struct CascadeMeasure {
   int frozen_spots = 0;  // connected sets of frozen vertices
   int spots = 0;         // second-layer spots: regions without a frozen vertex
   int overlapping = 0;   // second-layer peaks inside a first-layer spot's region
-  std::vector<double> spot_distance;  // per second-layer spot: centre to the nearest frozen vertex (m)
+  std::vector<double> spot_distance;  // per second-layer spot: centre to the frozen set along the surface (m)
   std::vector<double> free_distance;  // that distance of every free vertex (m)
 };
 
@@ -52,7 +54,8 @@ std::vector<char> frozen_vertices(const std::vector<double>& first_field, double
 CascadeMeasure measure_cascade(const InputMesh& mesh, const std::vector<double>& field, double threshold,
                                const std::vector<char>& frozen, double scale);
 
-// report.json's "layer2" summary: counts, the overlapping peaks, the distances' medians and a histogram.
+// report.json's "layer2" summary: counts, the overlapping peaks, the distances' medians, a histogram,
+// the near shares and the verdict (cascade: no overlap; rosettes: more spots near than surface).
 nlohmann::ordered_json cascade_json(const CascadeMeasure& m, bool rosettes);
 
 }  // namespace physarum::cli
