@@ -27,6 +27,23 @@ double median_aspect(const SketchRegions& regions) {
   return aspect;
 }
 
+// The regions' orientations blended at a window point as axes (doubled angles: 0 and 180 degrees are
+// one axis), in radians: the direction map's and the initiators' orientation.
+class AxisBlend {
+ public:
+  explicit AxisBlend(const SketchRegions& regions) : regions_(regions) {
+    for (const RegionAttributes& r : regions.regions) {
+      cos_.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
+      sin_.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
+    }
+  }
+  double at(const Eigen::Vector2d& w) const { return 0.5 * std::atan2(regions_.blend(sin_, w), regions_.blend(cos_, w)); }
+
+ private:
+  const SketchRegions& regions_;
+  std::vector<double> cos_, sin_;
+};
+
 // The model's inverse map of `attribute` (TrainingRun's spot_area or stripe_width), its range and
 // cross-validated error noted in the plan.
 RateMap trained_map(SketchPlan& plan, const SketchModel& model, double TrainingRun::*attribute, const std::string& name) {
@@ -113,12 +130,9 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
 
 void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                       std::uint32_t seed) {
-  std::vector<double> c, s, width;
-  for (const RegionAttributes& r : regions.regions) {
-    c.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
-    s.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
-    width.push_back(r.width);
-  }
+  const AxisBlend axis(regions);
+  std::vector<double> width;
+  for (const RegionAttributes& r : regions.regions) width.push_back(r.width);
   const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
   const double mean_width = median(width);
   const double window_area = patch.window.prod();
@@ -129,7 +143,7 @@ void place_initiators(SketchPlan& plan, const SketchRegions& regions, const Sket
   plan.initiators.clear();
   for (size_t k = 0; k < count; ++k) {
     const Eigen::Vector2d centre(unit(random) * patch.window.x(), unit(random) * patch.window.y());
-    const double angle = 0.5 * std::atan2(regions.blend(s, centre), regions.blend(c, centre)) + jitter(random) * M_PI / 180.0;
+    const double angle = axis.at(centre) + jitter(random) * M_PI / 180.0;
     const Eigen::Vector2d half = 0.5 * kInitiatorLength * regions.blend(width, centre) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     auto input_point = [&](const Eigen::Vector2d& w) { return Eigen::Vector2d(patch.low + w.cwiseProduct(stretch)); };
     const Eigen::Vector2d a = input_point(centre - half), b = input_point(centre + half), middle = input_point(centre);
@@ -153,18 +167,14 @@ InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch
 }
 
 std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh) {
-  std::vector<double> c, s;
-  for (const RegionAttributes& r : regions.regions) {
-    c.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
-    s.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
-  }
+  const AxisBlend axis(regions);
   const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
   std::vector<Eigen::Vector3d> directions;
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d centroid = (mesh.positions[static_cast<size_t>(t[0])] + mesh.positions[static_cast<size_t>(t[1])] +
                                       mesh.positions[static_cast<size_t>(t[2])]) / 3.0;
     const Eigen::Vector2d w = patch.window_point(centroid);
-    const double angle = 0.5 * std::atan2(regions.blend(s, w), regions.blend(c, w));
+    const double angle = axis.at(w);
     const Eigen::Vector2d d = Eigen::Vector2d(std::cos(angle), std::sin(angle)).cwiseProduct(stretch).normalized();
     directions.emplace_back(d.x(), d.y(), 0.0);
   }
