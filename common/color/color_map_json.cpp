@@ -51,6 +51,22 @@ bool is_built_in(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+// "#rrggbb,#rrggbb,...": two or more colours, equally spaced from the map's start to its end.
+ColorMapSettings color_list_settings(const std::string& text, const std::string& where) {
+  std::vector<ColorStop> stops;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    stops.push_back({0.0, parse_hex_color(item, where)});
+  }
+  if (stops.size() < 2) throw InputError(where + " = \"" + text + "\": a colour list needs two or more colours, separated by commas");
+  for (size_t k = 0; k < stops.size(); ++k) stops[k].position = static_cast<double>(k) / static_cast<double>(stops.size() - 1);
+  ColorMapSettings settings;
+  settings.map = ColorMap(text, std::move(stops));
+  return settings;
+}
+
 }  // namespace
 
 std::string hex_color(const Rgb8& color) {
@@ -154,6 +170,7 @@ ColorMapSettings resolve_color_map(const json& value, const std::string& scene_f
     throw InputError(where + " = " + value.dump() + " has the wrong type (" + value.type_name() +
                      "; expected a map name, a path to a colour-map file or an object)");
   const std::string text = value.get<std::string>();
+  if (text.rfind('#', 0) == 0) return color_list_settings(text, where);
   if (is_built_in(text)) {
     ColorMapSettings settings;
     settings.map = ColorMap::named(text);

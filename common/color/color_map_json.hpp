@@ -12,7 +12,8 @@
 // in units of U so that one map file suits scenes of any size and agent count.
 //
 // A scene's "colormap" is a built-in name ("viridis"), a path to such a file (relative to the scene
-// file's folder, or absolute), or an object of the same form inline. Every error is an InputError
+// file's folder, or absolute), a list of two or more colours "#rrggbb,#rrggbb,..." (equally spaced
+// stops, first to last), or an object of the same form inline. Every error is an InputError
 // naming the file or key and what is wrong.
 #include "common/color/color_mapping.hpp"
 

@@ -88,7 +88,11 @@ RgbImage render_shaded(const InputMesh& mesh, const PreviewOptions& options, con
         const double w0 = ((b.x() - px) * (c.y() - py) - (b.y() - py) * (c.x() - px)) / area2;
         const double w1 = ((c.x() - px) * (a.y() - py) - (c.y() - py) * (a.x() - px)) / area2;
         const double w2 = 1.0 - w0 - w1;
-        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        // A pixel centre on an edge shared by two triangles can come out a rounding error outside
+        // both (w2 is 1 - w0 - w1 in one, a sub-area in the other): a small tolerance keeps it
+        // covered, where a strict test left a speck of background in the picture.
+        constexpr double kOnEdge = -1e-9;
+        if (w0 < kOnEdge || w1 < kOnEdge || w2 < kOnEdge) continue;
         const double z = w0 * a.z() + w1 * b.z() + w2 * c.z();
         const size_t pixel = static_cast<size_t>(y) * image.width + x;
         if (z <= depth[pixel]) continue;
@@ -152,6 +156,16 @@ RgbImage render_species_preview(const InputMesh& mesh, const std::vector<InputVe
     }
     for (double& c : rgb) c = std::min(c, 1.0);
     return rgb;
+  });
+}
+
+RgbImage render_layers_preview(const InputMesh& mesh, const InputVertexData<double>& first, const InputVertexData<double>& last,
+                               const InputVertexData<double>& first_share, const LayerColours& colours,
+                               const PreviewOptions& options) {
+  check_values(mesh, first), check_values(mesh, last), check_values(mesh, first_share);
+  return render_shaded(mesh, options, [&](const std::array<int, 3>& t, double w0, double w1, double w2) {
+    auto at = [&](const InputVertexData<double>& u) { return w0 * u[t[0]] + w1 * u[t[1]] + w2 * u[t[2]]; };
+    return colours.at(at(first), at(last), at(first_share));
   });
 }
 

@@ -3,6 +3,7 @@
 // the bounding box), coloured by a per-vertex field through a perceptual colour map, Lambert-shaded,
 // drawn by a small software rasteriser with a z-buffer and written as PNG (OpenImageIO) through a
 // temporary file and rename.
+#include "common/color/layer_colours.hpp"
 #include "common/mesh/input_mesh.hpp"
 #include "common/output/ply_writer.hpp"
 
@@ -40,6 +41,13 @@ RgbImage render_species_preview(const InputMesh& mesh, const std::vector<InputVe
                                 const std::vector<FieldColoring>& colorings, const PreviewOptions& options = {});
 // Species s's colour, components in [0, 1] (a fixed palette of 8, repeated beyond).
 std::array<double, 3> species_colour(int species);
+
+// Layers in their own colour sets (common/color/layer_colours.hpp): at each point the first layer's
+// field, the final field and the first layer's share, interpolated in the triangle, coloured by
+// `colours`. InputError on a size mismatch.
+RgbImage render_layers_preview(const InputMesh& mesh, const InputVertexData<double>& first, const InputVertexData<double>& last,
+                               const InputVertexData<double>& first_share, const LayerColours& colours,
+                               const PreviewOptions& options = {});
 
 // Writes an 8-bit RGB PNG at `path` (temporary file and rename); InputError naming `path` when it
 // cannot be written.

@@ -29,25 +29,34 @@ void write_image_atomically(const std::string& path, const char* format, const O
   });
 }
 
-// RGB words of full scale Word's maximum (255 or 65535), rows top first: the colour map's sRGB
-// colour of each chart or padding texel, the background colour elsewhere (8-bit colours scale to
+// RGB words of full scale Word's maximum (255 or 65535), rows top first: `colour(texel's channel
+// values)` for each chart or padding texel, the background colour elsewhere (8-bit colours scale to
 // 16 bits by 257, so 255 stays full scale).
-template <typename Word>
-std::vector<Word> coloured_pixels(const BakedTexture& texture, std::size_t channel, const TextureColouring& colouring) {
+template <typename Word, typename Colour>
+std::vector<Word> coloured_pixels(const BakedTexture& texture, const Colour& colour, const Rgb8& background) {
   constexpr double kFullScale = std::numeric_limits<Word>::max();
   const size_t texels = static_cast<size_t>(texture.width) * static_cast<size_t>(texture.height);
   std::vector<Word> pixels(texels * 3);
   for (size_t t = 0; t < texels; ++t) {
     if (texture.coverage[t] == TexelCoverage::Background) {
-      for (int c = 0; c < 3; ++c)
-        pixels[3 * t + c] = static_cast<Word>(std::lround(colouring.background[c] / 255.0 * kFullScale));
+      for (int c = 0; c < 3; ++c) pixels[3 * t + c] = static_cast<Word>(std::lround(background[c] / 255.0 * kFullScale));
       continue;
     }
-    const double value = texture.values[t * texture.channels.size() + channel];
-    const auto rgb = color_map_color_float(colouring.coloring.map, colouring.coloring.normalise(value, colouring.upper_end));
+    const SrgbColor rgb = colour(&texture.values[t * texture.channels.size()]);
     for (int c = 0; c < 3; ++c) pixels[3 * t + c] = static_cast<Word>(std::lround(std::clamp(rgb[c], 0.0, 1.0) * kFullScale));
   }
   return pixels;
+}
+
+// One channel through the colour map.
+template <typename Word>
+std::vector<Word> coloured_pixels(const BakedTexture& texture, std::size_t channel, const TextureColouring& colouring) {
+  return coloured_pixels<Word>(
+      texture,
+      [&](const float* values) {
+        return color_map_color_float(colouring.coloring.map, colouring.coloring.normalise(values[channel], colouring.upper_end));
+      },
+      colouring.background);
 }
 
 }  // namespace
@@ -57,6 +66,12 @@ std::vector<std::uint8_t> texture_rgb8(const BakedTexture& texture, std::size_t 
     throw InputError("texture: it has " + std::to_string(texture.channels.size()) + " channels, no channel " +
                      std::to_string(channel));
   return coloured_pixels<std::uint8_t>(texture, channel, colouring);
+}
+
+std::vector<std::uint8_t> composed_texture_rgb8(const BakedTexture& texture,
+                                                const std::function<SrgbColor(const float* channels)>& colour,
+                                                const Rgb8& background) {
+  return coloured_pixels<std::uint8_t>(texture, colour, background);
 }
 
 void write_texture_png(const std::string& path, const BakedTexture& texture, std::size_t channel,

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,13 +25,20 @@ struct TextureColouring {
   // The value at the top of the colour map (FieldColoring::upper of the field's vertex values, so the
   // texture's colours are those of the PLY files).
   double upper_end = 1.0;
-  std::array<std::uint8_t, 3> background = {0, 0, 0};  // texels outside every chart and its padding
+  Rgb8 background = {0, 0, 0};  // texels outside every chart and its padding
 };
 
 // The 8-bit sRGB RGB pixels of channel `channel` (row-major, top row first: exactly what
 // write_texture_png writes at 8 bits), for embedding elsewhere (a glTF baseColorTexture). InputError
 // when the channel does not exist.
 std::vector<std::uint8_t> texture_rgb8(const BakedTexture& texture, std::size_t channel, const TextureColouring& colouring);
+
+// The 8-bit sRGB pixels of a texture coloured from all its channels at once: `colour` gets each
+// chart or padding texel's channel values (in the texture's channel order), as for a colour composed
+// of several fields (common/color/layer_colours.hpp); background texels are `background`.
+std::vector<std::uint8_t> composed_texture_rgb8(const BakedTexture& texture,
+                                                const std::function<SrgbColor(const float* channels)>& colour,
+                                                const Rgb8& background = {0, 0, 0});
 
 // Writes channel `channel` of `texture` as an RGB PNG with `bits` (8 or 16) per channel at `path`.
 // InputError naming `path` when the channel does not exist, bits is neither 8 nor 16, or the file

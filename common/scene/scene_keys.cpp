@@ -127,7 +127,8 @@ std::vector<SceneKey> build_keys() {
               "colours of pheromone.ply and preview.png: levels (in multiples of U), gamma, remap curve, map "
               "(common/color/color_map_json.hpp; `physarum colormap IMAGE` extracts one from a picture)",
               "a built-in name (viridis, magma, inferno, grey, physarum, moss, ocean, ember, lichen), a path to a "
-              "MAP.json, or an inline {\"stops\", \"gamma\", \"remap\", \"levels\"} object"),
+              "MAP.json, a list of colours `\"#rrggbb,#rrggbb,...\"` (equally spaced, first to last), or an inline "
+              "{\"stops\", \"gamma\", \"remap\", \"levels\"} object"),
       // ---- the differential harness (ComparisonSettings, tools/scenes/compare/README.md) ----
       setting("compare_burn_in", K::Number, false, kNonNegative, "s", shown(c.burn_in), "compare: simulated and discarded per seed (reaction-diffusion: half the run unless given)"),
       setting("compare_duration", K::Number, false, kPositive, "s", shown(c.duration), "compare: simulated and averaged per seed (reaction-diffusion: the other half unless given)"),

@@ -111,32 +111,6 @@ std::optional<ResultFile> read_result(const fs::path& run_dir, const std::string
   return r;
 }
 
-// The surface rebuilt from run.json's recipe must be the one the run simulated on: the same
-// intrinsic triangles, its vertices where fields_full.ply has them (to float precision, the PLY's).
-void check_same_triangulation(const InputMesh& rebuilt, const InputMesh& recorded, const std::string& file,
-                              const std::string& mesh) {
-  const std::string why = file + " does not match the surface rebuilt from " + mesh + " (was the mesh file changed "
-                          "since the run?): ";
-  if (rebuilt.vertex_count() != recorded.vertex_count() || rebuilt.triangle_count() != recorded.triangle_count())
-    throw InputError(why + std::to_string(recorded.vertex_count()) + " vertices and " +
-                     std::to_string(recorded.triangle_count()) + " triangles recorded, " +
-                     std::to_string(rebuilt.vertex_count()) + " and " + std::to_string(rebuilt.triangle_count()) +
-                     " rebuilt");
-  if (rebuilt.triangles != recorded.triangles) throw InputError(why + "the triangles differ");
-  double extent = 0.0;
-  for (const Eigen::Vector3d& p : rebuilt.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
-  for (int v = 0; v < rebuilt.vertex_count(); ++v)
-    if ((rebuilt.positions[static_cast<size_t>(v)] - recorded.positions[static_cast<size_t>(v)]).cwiseAbs().maxCoeff() >
-        1e-6 * std::max(extent, 1e-30))
-      throw InputError(why + "vertex " + std::to_string(v) + " moved");
-}
-
-// What re-baking the texture needs: the surface and where each texel lies on it.
-struct SurfaceForExports {
-  PreparedSurface surface;
-  TexelLocations texels;
-};
-
 int run_render(const RenderOptions& o) {
   const std::vector<CameraView> views = standard_views(o.views);
   if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
@@ -157,13 +131,9 @@ int run_render(const RenderOptions& o) {
     if (!run.surface) throw InputError((run_dir / "run.json").string() + ": records a texture but not the surface to bake it on");
     if (!full || !on_input)
       throw InputError(run_dir.string() + ": re-baking texture.png needs both fields_full.ply and " + run.fields_file);
-    PreparedSurface surface = prepare_surface(*run.surface);
-    check_same_triangulation(build_full_resolution_mesh(surface.input, surface.domain).mesh, full->ply.mesh,
-                             (run_dir / full->name).string(), run.surface->mesh);
-    if (surface.input.triangles != on_input->ply.mesh.triangles)
+    rebuilt = rebuild_surface_for_exports(*run.surface, *run.texture, full->ply.mesh, (run_dir / full->name).string());
+    if (rebuilt->surface.input.triangles != on_input->ply.mesh.triangles)
       throw InputError((run_dir / on_input->name).string() + " does not match the mesh " + run.surface->mesh);
-    TexelLocations texels = locate_texels(surface.input, surface.domain, run.texture->size, run.texture->size);
-    rebuilt = SurfaceForExports{std::move(surface), std::move(texels)};
   }
 
   // Levels are in multiples of U, as `physarum run` colours.

@@ -1,7 +1,11 @@
 #include "tools/run/surface_exports.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/output/preview_image.hpp"
 #include "common/output/texture_image.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
+
+#include <algorithm>
 
 #include <iostream>
 
@@ -63,6 +67,18 @@ SurfaceSpec surface_spec_from_json(const nlohmann::json& j, const std::string& w
   return spec;
 }
 
+namespace {
+
+// texture.exr on request: the baked channels' raw values.
+void write_exr_if_asked(const std::filesystem::path& out, const BakedTexture& baked, const TextureSettings& texture,
+                        SurfaceExportsWritten& written) {
+  if (texture.format != "exr") return;
+  write_texture_exr((out / "texture.exr").string(), baked);
+  written.files.push_back("texture.exr");
+}
+
+}  // namespace
+
 SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, const InputMesh& input,
                                             const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
                                             const IntrinsicVertexData<double>& field,
@@ -79,10 +95,7 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
     write_texture_png((out / "texture.png").string(), baked, 0, colouring, texture.format == "png16" ? 16 : 8);
     written.files.push_back("texture.png");
     glb_texture = GltfTexture{baked.width, baked.height, texture_rgb8(baked, 0, colouring)};
-    if (texture.format == "exr") {
-      write_texture_exr((out / "texture.exr").string(), baked);
-      written.files.push_back("texture.exr");
-    }
+    write_exr_if_asked(out, baked, texture, written);
   }
   // result.glb carries pheromone.ply's colours (the same map over the same range) and the texture.
   InputVertexData<Rgb8> colors(on_input.size());
@@ -91,6 +104,53 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
   written.glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
   written.files.push_back("result.glb");
   return written;
+}
+
+SurfaceExportsWritten write_composed_exports(const std::filesystem::path& out, const InputMesh& input,
+                                             const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
+                                             const std::vector<BakeField>& fields,
+                                             const std::function<SrgbColor(const float* channels)>& texel_colour,
+                                             const InputVertexData<double>& on_input,
+                                             const InputVertexData<Rgb8>& vertex_colours, const TextureSettings& texture) {
+  SurfaceExportsWritten written;
+  std::optional<GltfTexture> glb_texture;
+  if (texels) {
+    const BakedTexture baked = bake_fields(*texels, domain, fields, BakeOptions{.margin = texture.margin});
+    RgbImage image{baked.width, baked.height, composed_texture_rgb8(baked, texel_colour)};
+    write_rgb_png((out / "texture.png").string(), image);
+    written.files.push_back("texture.png");
+    glb_texture = GltfTexture{baked.width, baked.height, std::move(image.pixels)};
+    write_exr_if_asked(out, baked, texture, written);
+  }
+  written.glb = write_result_glb((out / "result.glb").string(), input, on_input, vertex_colours, glb_texture);
+  written.files.push_back("result.glb");
+  return written;
+}
+
+void check_same_triangulation(const InputMesh& rebuilt, const InputMesh& recorded, const std::string& file,
+                              const std::string& mesh) {
+  const std::string why = file + " does not match the surface rebuilt from " + mesh + " (was the mesh file changed "
+                          "since the run?): ";
+  if (rebuilt.vertex_count() != recorded.vertex_count() || rebuilt.triangle_count() != recorded.triangle_count())
+    throw InputError(why + std::to_string(recorded.vertex_count()) + " vertices and " +
+                     std::to_string(recorded.triangle_count()) + " triangles recorded, " +
+                     std::to_string(rebuilt.vertex_count()) + " and " + std::to_string(rebuilt.triangle_count()) +
+                     " rebuilt");
+  if (rebuilt.triangles != recorded.triangles) throw InputError(why + "the triangles differ");
+  double extent = 0.0;
+  for (const Eigen::Vector3d& p : rebuilt.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  for (int v = 0; v < rebuilt.vertex_count(); ++v)
+    if ((rebuilt.positions[static_cast<size_t>(v)] - recorded.positions[static_cast<size_t>(v)]).cwiseAbs().maxCoeff() >
+        1e-6 * std::max(extent, 1e-30))
+      throw InputError(why + "vertex " + std::to_string(v) + " moved");
+}
+
+SurfaceForExports rebuild_surface_for_exports(const SurfaceSpec& spec, const TextureSettings& texture,
+                                              const InputMesh& recorded_full, const std::string& full_file) {
+  PreparedSurface surface = prepare_surface(spec);
+  check_same_triangulation(build_full_resolution_mesh(surface.input, surface.domain).mesh, recorded_full, full_file, spec.mesh);
+  TexelLocations texels = locate_texels(surface.input, surface.domain, texture.size, texture.size);
+  return SurfaceForExports{std::move(surface), std::move(texels)};
 }
 
 std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,5 +63,34 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
                                             const IntrinsicVertexData<double>& field,
                                             const InputVertexData<double>& on_input, const ColorMapping& coloring,
                                             const TextureSettings& texture);
+
+// A composite of several fields (a two-layer sketch's colour sets, common/color/layer_colours.hpp): as
+// write_surface_exports, with `fields` (on the intrinsic vertices) baked together and each texel
+// coloured by `texel_colour` from its channel values, result.glb's vertex colours `vertex_colours`
+// and its values `on_input`; texture.png is 8-bit whatever the format (texture.exr still on request).
+SurfaceExportsWritten write_composed_exports(const std::filesystem::path& out, const InputMesh& input,
+                                             const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
+                                             const std::vector<BakeField>& fields,
+                                             const std::function<SrgbColor(const float* channels)>& texel_colour,
+                                             const InputVertexData<double>& on_input,
+                                             const InputVertexData<Rgb8>& vertex_colours, const TextureSettings& texture);
+
+// The surface rebuilt from the recipe run.json records must be the one the run simulated on: the
+// same intrinsic triangles, its vertices where `recorded` (fields_full.ply's mesh, read from `file`)
+// has them, to the PLY's float precision. InputError naming `file` and `mesh` otherwise.
+void check_same_triangulation(const InputMesh& rebuilt, const InputMesh& recorded, const std::string& file,
+                              const std::string& mesh);
+
+// What re-baking a finished run's texture needs: its surface and where each texel lies on it.
+struct SurfaceForExports {
+  PreparedSurface surface;
+  TexelLocations texels;
+};
+
+// Rebuilds the surface from run.json's recipe (the slow part: the intrinsic refinement), checks it
+// against the run's fields_full.ply (check_same_triangulation) and locates the texels at the run's
+// texture size.
+SurfaceForExports rebuild_surface_for_exports(const SurfaceSpec& spec, const TextureSettings& texture,
+                                              const InputMesh& recorded_full, const std::string& full_file);
 
 }  // namespace physarum::cli

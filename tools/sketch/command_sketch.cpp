@@ -17,6 +17,7 @@
 #include "common/sketch/sketch_image.hpp"
 #include "tools/commands.hpp"
 #include "tools/run/run_options.hpp"
+#include "tools/sketch/sketch_colours.hpp"
 #include "tools/sketch/sketch_picture.hpp"
 #include "tools/sketch/sketch_plan.hpp"
 #include "tools/sketch/sketch_layers.hpp"
@@ -49,6 +50,7 @@ struct SketchOptions {
   std::string out = "sketch";
   std::string layer2;     // a second sketch: smaller spots between the first's, frozen (tools/sketch/sketch_layers.hpp)
   bool rosettes = false;  // the frozen spots reset to the uniform state: the new spots ring them
+  std::vector<std::string> colors;  // a colour set per layer (tools/sketch/sketch_colours.hpp)
 };
 
 Sketch read_sketch(const std::string& path) {
@@ -253,6 +255,9 @@ int run_sketch(const SketchOptions& o) {
       throw InputError(o.layer2 + ": its window differs from " + o.sketch + "'s: the two layers must share one window");
   }
 
+  const std::vector<ColorMapSettings> colour_sets = read_colour_sets(o.colors);
+  if (colour_sets.size() == 2 && !second) throw UsageError("--colors: a second colour set is for a second layer (--layer2)");
+
   create_output_folder(o.out);
   const fs::path out(o.out);
   write_rgb_png((out / "sketch.png").string(), draw_sketch(first.sketch));
@@ -273,6 +278,11 @@ int run_sketch(const SketchOptions& o) {
     report["layer2"] = cascade_json(top.cascade, o.rosettes);
     report["layer2"]["regions"] = region_reports(*second, top.measures, patch, passed2);
     sketch_file["layer2"] = sketch_json(second->sketch, second->attributes, second->regions, second->plan);
+  }
+  if (!colour_sets.empty()) {
+    const ColorMapSettings& top_set = colour_sets.back();  // SET2, or SET1 for both layers
+    write_layer_colours(first_folder, model.field, colour_sets.front());
+    if (second) write_layer_colours(out, model.field, top_set, FirstLayerColours{first_folder, run.threshold}, colour_sets.front());
   }
   write_text_file_atomically((out / "sketch.json").string(), sketch_file.dump(2) + "\n");
   write_text_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
@@ -306,7 +316,7 @@ Command add_sketch_command(CLI::App& parent) {
       "class (k x 2.5 % of the window's width) give the stripes' rate and initiator cells, random segments along the "
       "blended orientations from which the stripes grow; report.json judges their orientation and width. "
       "--layer2 SKETCH2 grows a second sketch's spots between the first's, frozen (--rosettes: around them, reset), "
-      "the first layer in DIR/layer1; --colors is not built yet. Example: physarum sketch "
+      "the first layer in DIR/layer1; --colors SET1 [SET2] draws each layer in its own colour set. Example: physarum sketch "
       "tools/sketch/examples/four_sizes.json --out sketch");
   app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();
   app->add_option("--mesh", options->mesh, "The surface (a mesh file or shape:NAME); default shape:square");
@@ -329,6 +339,11 @@ Command add_sketch_command(CLI::App& parent) {
   app->add_flag("--rosettes", options->rosettes,
                 "With --layer2: reset the frozen spots to the uniform state, so that the new spots ring them (Turk's leopard)")
       ->needs(layer2);
+  app->add_option("--colors", options->colors,
+                  "A colour set per layer, each spread from the layer's valley to its peak: a colour-map name, a MAP.json "
+                  "or \"#rrggbb,#rrggbb,...\"; redraws preview.png, view_front.png, texture.png and result.glb, with "
+                  "--layer2 the first layer's spots in SET1 and the rest in SET2")
+      ->expected(1, 2);
   app->footer("Exit codes: 0 success (report.json says how well each region matched), 1 bad input (a bad sketch, "
               "spots too small for the mesh or outside what the training covers: nothing is run), 2 usage error.");
   return {app, [options] { return run_sketch(*options); }};
