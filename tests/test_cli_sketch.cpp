@@ -3,11 +3,14 @@
 // in the sketched order (the round trip, on a flat 1 m^2 patch at the training's
 // resolution: about 12 s on two cores), with its files; and every refusal comes before anything is
 // run or written.
+#include "common/mesh/ply_reader.hpp"
+#include "glb_reader.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -174,13 +177,48 @@ json lattice(double area, double spacing) {
 // median distance (2.5 cm along the surface) of one (measured: none within a whole median; 144 new
 // spots); with --rosettes the frozen discs are reset and the new spots ring them: 48 % of them that
 // near, where the free surface has 36 % (and the plain cascade 0 %).
+// --colors (paper 004, Sec. 2.3): result.glb's vertex colours show the first layer's frozen spots
+// (its field at or above the threshold) in the first set, red to yellow, and everything else in the
+// second, blue to cyan; each set spans its layer's valley to peak on the full-resolution field (the
+// second's over the free vertices), so the green channel is the value's place in that range.
+void expect_layer_colours(const fs::path& out, double threshold) {
+  const PlyFields first_full = read_ply_fields((out / "layer1/fields_full.ply").string()),
+                  last_full = read_ply_fields((out / "fields_full.ply").string());
+  const std::vector<double>&f1 = first_full.property("a"), &f2 = last_full.property("a");
+  double low1 = HUGE_VAL, high1 = -HUGE_VAL, low2 = HUGE_VAL, high2 = -HUGE_VAL;
+  for (size_t v = 0; v < f1.size(); ++v) {
+    low1 = std::min(low1, f1[v]), high1 = std::max(high1, f1[v]);
+    if (f1[v] < threshold) low2 = std::min(low2, f2[v]), high2 = std::max(high2, f2[v]);
+  }
+  const PlyFields first_input = read_ply_fields((out / "layer1/morphogens.ply").string()),
+                  last_input = read_ply_fields((out / "morphogens.ply").string());
+  const std::vector<double>&a1 = first_input.property("a"), &a2 = last_input.property("a");
+  const LoadedGlb glb = load_glb((out / "result.glb").string());
+  const tinygltf::Primitive& p = glb.model.meshes.at(0).primitives.at(0);
+  const std::vector<float> colour = read_floats(glb.model, p.attributes.at("COLOR_0"), TINYGLTF_TYPE_VEC3, 3);
+  int first_layer = 0;
+  for (size_t v = 0; v < a1.size(); ++v) {
+    const bool frozen = a1[v] >= threshold;
+    first_layer += frozen;
+    const double green = frozen ? (a1[v] - low1) / (high1 - low1) : (a2[v] - low2) / (high2 - low2);
+    SCOPED_TRACE("input vertex " + std::to_string(v) + (frozen ? " (first layer)" : " (second layer)"));
+    // Linear light in the file; the sets are sRGB: 0 and 1 are both, the green one decoded here.
+    ASSERT_NEAR(colour[3 * v + 0], frozen ? 1.0 : 0.0, 1e-6);
+    ASSERT_NEAR(colour[3 * v + 2], frozen ? 0.0 : 1.0, 1e-6);
+    ASSERT_NEAR(colour[3 * v + 1], expected_linear(static_cast<std::uint8_t>(std::lround(255 * std::clamp(green, 0.0, 1.0)))), 1e-6);
+  }
+  EXPECT_GT(first_layer, 0);
+  EXPECT_LT(first_layer, static_cast<int>(a1.size()));
+}
+
 TEST(CliSketch, ASecondLayerGrowsBetweenOrAroundTheFrozenFirst) {
   TempDir dir;
   const fs::path big = write(dir, "big.json", lattice(0.004, 0.16)), small = write(dir, "small.json", lattice(0.0008, 0.07));
   for (const bool rosettes : {false, true}) {
     const fs::path out = dir.path / (rosettes ? "rosettes" : "cascade");
     const CommandResult r = run_physarum("sketch " + quoted(big) + " --layer2 " + quoted(small) +
-                                         (rosettes ? " --rosettes" : "") + " --out " + quoted(out));
+                                         (rosettes ? " --rosettes" : " --colors '#ff0000,#ffff00' '#0000ff,#00ffff'") +
+                                         " --out " + quoted(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* f : {"layer1/fields_full.ply", "layer1/scene.json", "fields_full.ply", "sketch_layer2.png"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -191,8 +229,9 @@ TEST(CliSketch, ASecondLayerGrowsBetweenOrAroundTheFrozenFirst) {
     EXPECT_GE(layer2["spots"].get<int>(), 60);
     EXPECT_EQ(layer2["verdict"], "pass");
     const double near = layer2["near_share"]["spots"].get<double>(), free = layer2["near_share"]["free"].get<double>();
-    EXPECT_NEAR(free, 0.36, 0.05);  // the surface's share: the first layer's layout
     if (!rosettes) {
+      const json scene = json::parse(std::ifstream(out / "scene.json"));
+      expect_layer_colours(out, scene["maps"]["frozen"]["at"].get<double>());
       EXPECT_EQ(layer2["overlapping"].get<int>(), 0);
       EXPECT_LE(near, 0.05);
       // The first layer keeps its sizes; the second's spots come out 0.78 to 0.81 of the sketched area.
@@ -250,6 +289,9 @@ TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
       {four_quadrants(tiny, spacing), "--rosettes", 2, "--rosettes requires --layer2"},
       {strokes(2, 2), "--layer2 " + quoted(write(dir, "second.json", strokes(2, 2))), 1,
        "a second layer grows spots between the first's; meinhardt-stripes takes none"},
+      {lattice(0.004, 0.16), "--colors '#ff0000'", 1, "--colors set 1 = \"#ff0000\": a colour list needs two or more colours"},
+      {lattice(0.004, 0.16), "--colors '#ff0000,#00ff00' magma", 2, "a second colour set is for a second layer"},
+      {lattice(0.004, 0.16), "--colors nosuchmap", 1, "--colors set 1 = \"nosuchmap\" is neither a built-in colour map"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string index = std::to_string(i);
