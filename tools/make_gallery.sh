@@ -10,7 +10,8 @@
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
 # (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
 # oriented.json and strokes.json and keeps each sketch as measured beside its grown
-# pattern (face-on), then layer_big.json with --layer2 layer_small.json, with and without --rosettes.
+# pattern (face-on), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
+# each layer in its own colour set, and four_sizes.json on the cow (needs ../shared/meshes).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
 set -euo pipefail
@@ -44,16 +45,26 @@ for scene in "${scenes[@]}"; do
     "$physarum" render "$work/strokes" --views 3 --out "$work/strokes/views" > /dev/null
     cp "$work/strokes/sketch.png" docs/gallery/sketch_strokes_input.png
     cp "$work/strokes/views/view_front.png" docs/gallery/sketch_strokes_result.png
-    for mode in layers rosettes; do
-      flag=; [ "$mode" = rosettes ] && flag=--rosettes
-      "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json $flag \
-        --backend opencl --out "$work/$mode" > /dev/null
-      "$physarum" render "$work/$mode" --views 3 --out "$work/$mode/views" > /dev/null
-      cp "$work/$mode/views/view_front.png" "docs/gallery/sketch_${mode}_result.png"
-    done
+    # Each layer in its own colour set (--colors): the sketch draws view_front.png itself, composited.
+    "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json \
+      --colors '#fbe7c6,#f28c28' '#fbe7c6,#b5179e' --backend opencl --out "$work/layers" > /dev/null
+    "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json --rosettes \
+      --colors '#f0c890,#c08040' '#f0c890,#3a2010,#100800' --backend opencl --out "$work/rosettes" > /dev/null
+    for mode in layers rosettes; do cp "$work/$mode/view_front.png" "docs/gallery/sketch_${mode}_result.png"; done
+    pictures="docs/gallery/sketch_layers_result.png docs/gallery/sketch_rosettes_result.png"
+    # Spots of four sizes on a 3D mesh: the window's quadrants over the cow's x/y extent.
+    if [ -f ../shared/meshes/spot.obj ]; then
+      "$physarum" sketch tools/sketch/examples/four_sizes.json --mesh ../shared/meshes/spot.obj --area 3 \
+        --colors '#1a1a2e,#e94560,#ffd460' --backend opencl --out "$work/cow" > /dev/null
+      cp "$work/cow/preview.png" docs/gallery/sketch_cow_result.png
+      cp "$work/cow/sketch.png" docs/gallery/sketch_cow_input.png
+      pictures="$pictures docs/gallery/sketch_cow_input.png docs/gallery/sketch_cow_result.png"
+    else
+      echo "make_gallery.sh: ../shared/meshes/spot.obj is absent: no sketch on the cow" >&2
+    fi
     cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
     cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png docs/gallery/sketch_layers_result.png docs/gallery/sketch_rosettes_result.png"
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
     continue
   fi
   if [ "$scene" = pearson_map ]; then
