@@ -79,6 +79,33 @@ TEST(ReactionDiffusionBuild, AnisotropicStiffnessDiffusesAlongAndAcrossAtTheirRa
   EXPECT_GT(interior, 500);
 }
 
+// A ratio map (a sketch's per-region squeeze): r = 0.1 + 0.3 t, t going 0 to 1 across the square
+// along x. A face takes its corners' mean, which for a linear r is r at its centroid, so the energy
+// of u = y is a times the integral of r over the unit square, 0.25 a exactly (the midpoint rule is
+// exact for a linear r), while u = x (along the direction) keeps a.
+TEST(ReactionDiffusionBuild, ARatioMapSqueezesEachFaceByItsCornersRatio) {
+  const double a = 0.04;
+  json scene = turing_square({{"diffusion", a}, {"anisotropy", {{"direction", "east"}, {"ratio", "squeeze"}}}});
+  scene["maps"]["t"] = {{"axis", "x"}};
+  scene["maps"]["squeeze"] = {{"map", "t"}, {"range", {0.1, 0.4}}};
+  const auto rd = load_rd_system(scene);
+  const CsrMatrix& k = rd.system.stiffness[1];
+  std::vector<double> x, y;
+  for (const auto& q : vertex_positions(rd.surface)) x.push_back(q.x()), y.push_back(q.y());
+  EXPECT_NEAR(quadratic_form(k, x), a, 1e-12);
+  EXPECT_NEAR(quadratic_form(k, y), 0.25 * a, 1e-12);
+
+  // A ratio must be > 0 at every vertex: the map's 0 at the square's left edge is refused.
+  scene["maps"]["squeeze"]["range"] = {0.0, 0.4};
+  try {
+    load_rd_system(scene);
+    ADD_FAILURE() << "a ratio of 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("morphogens.v.anisotropy.ratio"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("must be > 0"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReactionDiffusionBuild, ExplicitSubstepsFollowTheDenseStabilityLimit) {
   const auto rd = load_rd_system(turing_square({{"diffusion", 0.0375}}));
   // lambda_max of M^-1 K for the faster morphogen (u, D = 0.18), from a dense symmetric eigen-solve.

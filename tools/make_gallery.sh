@@ -9,7 +9,7 @@
 # preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
 # (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
-# oriented.json and strokes.json and keeps each sketch as measured beside its grown
+# oriented.json, mixed_aspects.json and strokes.json and keeps each sketch as measured beside its grown
 # pattern (face-on), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
 # each layer in its own colour set, and four_sizes.json on the cow (needs ../shared/meshes).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
@@ -41,6 +41,10 @@ for scene in "${scenes[@]}"; do
     "$physarum" render "$work/oriented" --views 3 --out "$work/oriented/views" > /dev/null
     cp "$work/oriented/sketch.png" docs/gallery/sketch_oriented_input.png
     cp "$work/oriented/views/view_front.png" docs/gallery/sketch_oriented_result.png
+    "$physarum" sketch tools/sketch/examples/mixed_aspects.json --backend opencl --out "$work/mixed" > /dev/null
+    "$physarum" render "$work/mixed" --views 3 --out "$work/mixed/views" > /dev/null
+    cp "$work/mixed/sketch.png" docs/gallery/sketch_mixed_input.png
+    cp "$work/mixed/views/view_front.png" docs/gallery/sketch_mixed_result.png
     "$physarum" sketch tools/sketch/examples/strokes.json --backend opencl --out "$work/strokes" > /dev/null
     "$physarum" render "$work/strokes" --views 3 --out "$work/strokes/views" > /dev/null
     cp "$work/strokes/sketch.png" docs/gallery/sketch_strokes_input.png
@@ -64,7 +68,7 @@ for scene in "${scenes[@]}"; do
     fi
     cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
     cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
     continue
   fi
   if [ "$scene" = pearson_map ]; then

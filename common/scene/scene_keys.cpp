@@ -60,7 +60,7 @@ std::vector<SceneKey> build_keys() {
               "(a number, or a scalar map such as an earlier run's field: a cascade), floor the value is raised to after "
               "every step (turing's v: 0, as Turk's; null: none)",
               "{\"u\": {\"diffusion\": D >= 0 or SCALAR_MAP, \"initial\": x or SCALAR_MAP, \"anisotropy\": {\"direction\": VECTOR_MAP, "
-              "\"ratio\": r > 0}, \"minimum\": x or null}, ...}"),
+              "\"ratio\": r > 0 or SCALAR_MAP}, \"minimum\": x or null}, ...}"),
       setting("reaction", K::Object, false, {}, "", "the model's",
               "custom kinetics: one formula per morphogen (2 to 8; layer order = alphabetical), over the "
               "morphogens and parameters; + - * / ^, exp log sqrt abs min max sin cos tanh",

@@ -96,7 +96,7 @@ void read_morphogen_entry(const json& entry, MorphogenSpec& m, bool diffusion_re
     spec.direction = field_map_name(*dir, source, akey + ".direction");
     const auto ratio = a->find("ratio");
     if (ratio == a->end()) fail_key(source, akey, "missing \"ratio\" (rate across the direction / rate along it, > 0)");
-    spec.ratio = field_number(*ratio, source, akey + ".ratio");
+    spec.ratio = field_operand(*ratio, source, akey + ".ratio");
     m.anisotropy = spec;
   }
 }
@@ -323,8 +323,11 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
     if (const auto* map = std::get_if<std::string>(&m.initial)) check_map(key + ".initial", *map, MapKind::Scalar);
     if (m.anisotropy) {
       check_map(key + ".anisotropy.direction", m.anisotropy->direction, MapKind::Vector);
-      if (!(m.anisotropy->ratio > 0.0) || !std::isfinite(m.anisotropy->ratio))
-        fail_key(source, key + ".anisotropy.ratio", number_text(m.anisotropy->ratio) + " must be > 0");
+      if (const double* ratio = std::get_if<double>(&m.anisotropy->ratio)) {
+        if (!(*ratio > 0.0) || !std::isfinite(*ratio)) fail_key(source, key + ".anisotropy.ratio", number_text(*ratio) + " must be > 0");
+      } else {
+        check_map(key + ".anisotropy.ratio", std::get<std::string>(m.anisotropy->ratio), MapKind::Scalar);
+      }
     }
   }
   for (const auto& [name, value] : spec.coefficients)
@@ -371,7 +374,7 @@ nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec
     oj entry;
     entry["diffusion"] = operand(g.diffusion);
     entry["initial"] = operand(g.initial);
-    if (g.anisotropy) entry["anisotropy"] = {{"direction", g.anisotropy->direction}, {"ratio", g.anisotropy->ratio}};
+    if (g.anisotropy) entry["anisotropy"] = {{"direction", g.anisotropy->direction}, {"ratio", operand(g.anisotropy->ratio)}};
     if (std::isfinite(g.minimum)) entry["minimum"] = g.minimum;
     entry["reaction"] = spec.reaction[m];
     morphogens[g.name] = entry;

@@ -17,9 +17,9 @@
 //                                                  the ALPHABETICAL order of the names (a JSON object has
 //                                                  no order of its own)
 //   "morphogens": {"u": {"diffusion": 2e-5 | MAP, "initial": 1.0 | MAP,
-//                        "anisotropy": {"direction": VECTOR_MAP, "ratio": r}, "minimum": 0 | null}}
-//                  "diffusion" is the rate ALONG the direction, ratio x it the rate across (r > 0;
-//                  r = 1 is isotropic); "minimum" is a floor the value is raised to after every
+//                        "anisotropy": {"direction": VECTOR_MAP, "ratio": r | MAP}, "minimum": 0 | null}}
+//                  "diffusion" is the rate ALONG the direction, ratio x it the rate across (r > 0,
+//                  a number or a scalar map; r = 1 is isotropic); "minimum" is a floor the value is raised to after every
 //                  step (null: none; the turing model's v has 0 by default, as Turk's)
 //   "initial": {"noise": a, "seed_region": {"map": MAP, "values": {"u": 0.5}},
 //               "spots": {"count": n, "radius": r, "values": {"v": 0.25}}}
@@ -45,7 +45,7 @@ namespace physarum {
 
 struct AnisotropySpec {
   std::string direction;  // a vector map
-  double ratio = 1.0;     // rate across the direction / rate along it, > 0
+  MapOperand ratio = 1.0;  // rate across the direction / rate along it, > 0: a number or a scalar map
 };
 
 struct MorphogenSpec {

@@ -57,14 +57,18 @@ int entry_index(const CsrMatrix& m, int row, int col) {
 }  // namespace
 
 CsrMatrix diffusion_stiffness(const SurfaceDomain& domain, const IntrinsicVertexData<double>& rate,
-                              const IntrinsicFaceData<std::array<double, 2>>* direction, double ratio) {
-  if (static_cast<int>(rate.size()) != domain.vertex_count)
-    throw std::invalid_argument("diffusion_stiffness: one rate per vertex is needed");
+                              const IntrinsicFaceData<std::array<double, 2>>* direction,
+                              const IntrinsicVertexData<double>* ratio) {
+  if (static_cast<int>(rate.size()) != domain.vertex_count || (ratio && static_cast<int>(ratio->size()) != domain.vertex_count))
+    throw std::invalid_argument("diffusion_stiffness: one rate (and ratio) per vertex is needed");
+  auto face_mean = [](const IntrinsicVertexData<double>& u, const std::array<int, 3>& v) {
+    return (u[static_cast<size_t>(v[0])] + u[static_cast<size_t>(v[1])] + u[static_cast<size_t>(v[2])]) / 3.0;
+  };
   CsrMatrix k = domain.laplacian;
   std::fill(k.value.begin(), k.value.end(), 0.0);
   for (int f = 0; f < domain.face_count; ++f) {
     const auto& v = domain.face_vertices[static_cast<size_t>(f)];
-    const double a = (rate[static_cast<size_t>(v[0])] + rate[static_cast<size_t>(v[1])] + rate[static_cast<size_t>(v[2])]) / 3.0;
+    const double a = face_mean(rate, v);
     Eigen::Matrix2d tensor = a * Eigen::Matrix2d::Identity();
     if (direction) {
       const auto& d = (*direction)[static_cast<size_t>(f)];
@@ -73,7 +77,8 @@ CsrMatrix diffusion_stiffness(const SurfaceDomain& domain, const IntrinsicVertex
       if (length > 0.0 && std::isfinite(length)) {
         const Eigen::Vector2d unit = dir / length;
         const Eigen::Matrix2d along = unit * unit.transpose();
-        tensor = a * along + ratio * a * (Eigen::Matrix2d::Identity() - along);
+        const double across = ratio ? face_mean(*ratio, v) : 1.0;
+        tensor = a * along + across * a * (Eigen::Matrix2d::Identity() - along);
       }
     }
     const auto g = hat_gradients(domain, f);
@@ -168,9 +173,15 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
   system.mass = domain.vertex_mass;
   for (const MorphogenSpec& m : spec.morphogens) {
     const IntrinsicVertexData<double> rate = per_vertex(m.diffusion, maps, n, scene, "morphogens." + m.name + ".diffusion", true);
-    if (m.anisotropy)
-      system.stiffness.push_back(diffusion_stiffness(domain, rate, &maps.vector_map(m.anisotropy->direction), m.anisotropy->ratio));
-    else
+    if (m.anisotropy) {
+      const std::string key = "morphogens." + m.name + ".anisotropy.ratio";
+      const IntrinsicVertexData<double> ratio = per_vertex(m.anisotropy->ratio, maps, n, scene, key, false);
+      for (size_t i = 0; i < ratio.size(); ++i)
+        if (!(ratio[i] > 0.0))
+          fail_key(scene.source, key, "the value " + ValueRange::number(ratio[i]) + " at intrinsic vertex " + std::to_string(i) +
+                                          " must be > 0 (the rate across the direction over the rate along it)");
+      system.stiffness.push_back(diffusion_stiffness(domain, rate, &maps.vector_map(m.anisotropy->direction), &ratio));
+    } else
       system.stiffness.push_back(diffusion_stiffness(domain, rate));
   }
 

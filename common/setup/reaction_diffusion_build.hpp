@@ -40,9 +40,11 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
                                                         const EvaluatedMaps& maps);
 
 // K for a per-vertex diffusion rate; with `direction` (per face, in the face's frame, any length) the
-// rate is the one along it and ratio x rate the one across.
+// rate is the one along it and ratio x rate the one across, the ratio per vertex (`ratio`, > 0; a
+// face takes its corners' mean, as it takes the rate's).
 CsrMatrix diffusion_stiffness(const SurfaceDomain& domain, const IntrinsicVertexData<double>& rate,
-                              const IntrinsicFaceData<std::array<double, 2>>* direction = nullptr, double ratio = 1.0);
+                              const IntrinsicFaceData<std::array<double, 2>>* direction = nullptr,
+                              const IntrinsicVertexData<double>* ratio = nullptr);
 
 // lambda_max of M^-1 K (K symmetric positive semi-definite, M the diagonal lumped mass), by Lanczos;
 // where that does not converge in 1000 restarts, Gershgorin's upper bound on it (never below it, so

@@ -97,12 +97,8 @@ nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes&
                       {stripes ? "trained_width_m" : "trained_area_m2", {plan.trained_smallest, plan.trained_largest}},
                       {"cross_validated_error", plan.cross_validated_error},
                       {"diffusion_factor", plan.kappa}};
-  if (stripes) {
-    j["inverse_map"]["initiator_segments"] = plan.initiators.size();
-  } else {
-    j["inverse_map"]["aspect"] = plan.aspect;
-  }
-  j["inverse_map"]["anisotropy_ratio"] = plan.ratio;
+  if (stripes) j["inverse_map"]["initiator_segments"] = plan.initiators.size();
+  j["inverse_map"]["anisotropy_ratios"] = plan.ratio;
   j["inverse_map"]["rates"] = plan.rate;
   return j;
 }
@@ -125,15 +121,15 @@ struct LayerRun {
 // cascade, as the second layer on the first's frozen spots.
 LayerRun grow_and_measure(const SketchOptions& o, const fs::path& out, const SketchPlan& plan, const SketchRegions& regions,
                           const SketchPatch& patch, const InputMesh& mesh, const Cascade* cascade = nullptr) {
-  const InputVertexData<double> rates = rate_map(regions, patch, mesh, plan.rate);
+  const InputVertexData<double> rates = scale_map(regions, patch, mesh, plan.rate), ratios = scale_map(regions, patch, mesh, plan.ratio);
   // The direction map's components per face (the map source reads NAME_x, NAME_y, NAME_z).
   std::vector<std::vector<double>> direction(3);
-  for (const Eigen::Vector3d& d : direction_map(regions, patch, mesh))
+  for (const Eigen::Vector3d& d : direction_map(regions, plan.ratio, patch, mesh))
     for (int k = 0; k < 3; ++k) direction[static_cast<size_t>(k)].push_back(d[k]);
-  write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}},
+  write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}, PlyField{"ratio", ratios}},
                    {PlyFaceField{"direction_x", direction[0]}, PlyFaceField{"direction_y", direction[1]},
                     PlyFaceField{"direction_z", direction[2]}},
-                   {}, "the sketch's reaction rate per input vertex and spot direction per face");
+                   {}, "the sketch's reaction rate and anisotropy ratio per input vertex and spot direction per face");
   // A second layer draws its own noise: the first layer's seed would repeat its noise field.
   nlohmann::ordered_json scene = sketch_scene_json(plan, mesh_for_scene(o.mesh), o.area, o.max_circumradius,
                                                    cascade ? o.seed + 1 : o.seed, "sketch_maps.ply");
@@ -231,7 +227,7 @@ nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measur
     list.push_back(plan.model->stripes
                        ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], patch)
                        : region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures.spots[k], patch,
-                                       plan.ratio < 1.0));
+                                       plan.ratio[k] < 1.0));
     passed += list.back()["verdict"][plan.model->stripes ? "orientation" : "area"] == "pass";
   }
   return list;

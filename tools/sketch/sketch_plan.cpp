@@ -15,26 +15,33 @@ namespace {
 
 std::string number(double x) { return ValueRange::number(x); }
 
-// The regions' median aspect, refused below kThinnestAspect.
-double median_aspect(const SketchRegions& regions) {
-  std::vector<double> aspects;
-  for (const RegionAttributes& r : regions.regions) aspects.push_back(r.aspect);
-  const double aspect = median(aspects);
-  if (aspect < kThinnestAspect)
-    throw InputError("sketch: the spots' aspect (minor / major radius, the regions' median) is " + number(aspect) +
-                     "; the thinnest a spot can be grown is " + number(kThinnestAspect) + " (an anisotropy of 1 : " +
-                     number(1.0 / (kThinnestAspect * kThinnestAspect)) + ")");
-  return aspect;
+// Each region's anisotropy ratio, aspect^2 (1 for spots rounder than kRoundAspect); a region whose
+// spots are thinner than kThinnestAspect is refused.
+std::vector<double> region_ratios(const SketchRegions& regions) {
+  std::vector<double> ratios;
+  for (size_t k = 0; k < regions.regions.size(); ++k) {
+    const double aspect = regions.regions[k].aspect;
+    if (aspect < kThinnestAspect)
+      throw InputError("sketch: region " + std::to_string(k) + "'s spots have aspect (minor / major radius) " + number(aspect) +
+                       "; the thinnest a spot can be grown is " + number(kThinnestAspect) + " (an anisotropy of 1 : " +
+                       number(1.0 / (kThinnestAspect * kThinnestAspect)) + ")");
+    ratios.push_back(aspect < kRoundAspect ? aspect * aspect : 1.0);
+  }
+  return ratios;
 }
 
 // The regions' orientations blended at a window point as axes (doubled angles: 0 and 180 degrees are
-// one axis), in radians: the direction map's and the initiators' orientation.
+// one axis), in radians: the direction map's and the initiators' orientation. Each region weighs by
+// how much it is squeezed, 1 - its ratio (a round region's orientation means nothing), or equally
+// when none is.
 class AxisBlend {
  public:
-  explicit AxisBlend(const SketchRegions& regions) : regions_(regions) {
-    for (const RegionAttributes& r : regions.regions) {
-      cos_.push_back(std::cos(2.0 * r.orientation * M_PI / 180.0));
-      sin_.push_back(std::sin(2.0 * r.orientation * M_PI / 180.0));
+  AxisBlend(const SketchRegions& regions, const std::vector<double>& ratio) : regions_(regions) {
+    const bool squeezed = std::any_of(ratio.begin(), ratio.end(), [](double r) { return r < 1.0; });
+    for (size_t k = 0; k < regions.regions.size(); ++k) {
+      const double weight = squeezed ? 1.0 - ratio[k] : 1.0, angle = 2.0 * regions.regions[k].orientation * M_PI / 180.0;
+      cos_.push_back(weight * std::cos(angle));
+      sin_.push_back(weight * std::sin(angle));
     }
   }
   double at(const Eigen::Vector2d& w) const { return 0.5 * std::atan2(regions_.blend(sin_, w), regions_.blend(cos_, w)); }
@@ -58,13 +65,17 @@ RateMap trained_map(SketchPlan& plan, const SketchModel& model, double TrainingR
 }
 
 // The regions' wanted sizes (`what`: "spot areas" in "m^2", "stripe widths" in "m") through the map:
-// kappa, chosen so that every size / squeeze / kappa^exponent lies in the trained range (a size goes
-// as kappa^exponent: 1 for an area, 1/2 for a width), each region's rate and the run's steps.
+// kappa, chosen so that every isotropic size (the size / sqrt(the region's ratio): the anisotropy
+// squeezes an isotropic pattern by that) / kappa^exponent lies in the trained range (a size goes as
+// kappa^exponent: 1 for an area, 1/2 for a width), each region's rate and the run's steps.
 // InputError when the sizes span more than the training does.
-void fit_rates(SketchPlan& plan, const RateMap& map, const std::vector<double>& wanted, double squeeze, double exponent,
+void fit_rates(SketchPlan& plan, const RateMap& map, const std::vector<double>& wanted, double exponent,
                const std::string& what, const std::string& unit) {
+  std::vector<double> isotropic;
+  for (size_t k = 0; k < wanted.size(); ++k) isotropic.push_back(wanted[k] / std::sqrt(plan.ratio[k]));
   const auto [lo, hi] = std::minmax_element(wanted.begin(), wanted.end());
-  const std::optional<double> kappa = scale_for_range(map, *lo / squeeze, *hi / squeeze, exponent);
+  const auto [iso_lo, iso_hi] = std::minmax_element(isotropic.begin(), isotropic.end());
+  const std::optional<double> kappa = scale_for_range(map, *iso_lo, *iso_hi, exponent);
   if (!kappa) {
     const double span = map.largest() / map.smallest();
     throw InputError("sketch: the sketched " + what + " span " + number(*lo) + " to " + number(*hi) + " " + unit +
@@ -73,9 +84,9 @@ void fit_rates(SketchPlan& plan, const RateMap& map, const std::vector<double>& 
                      "smallest reachable is " + number(*hi / span) + " " + unit + ")");
   }
   plan.kappa = *kappa;
-  for (const double size : wanted) {
+  for (const double size : isotropic) {
     // Clamped into the range: scale_for_range centres it, rounding may leave an end a hair outside.
-    const double trained = std::clamp(size / squeeze / std::pow(plan.kappa, exponent), map.smallest(), map.largest());
+    const double trained = std::clamp(size / std::pow(plan.kappa, exponent), map.smallest(), map.largest());
     plan.rate.push_back(*map.rate_for(trained));
   }
   plan.steps = static_cast<long long>(std::ceil(plan.model->rate_time / *std::min_element(plan.rate.begin(), plan.rate.end())));
@@ -87,8 +98,7 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
                        double max_circumradius) {
   SketchPlan plan;
   const RateMap map = trained_map(plan, model, &TrainingRun::spot_area, "spot area");
-  plan.aspect = median_aspect(regions);
-  plan.ratio = plan.aspect < kRoundAspect ? plan.aspect * plan.aspect : 1.0;
+  plan.ratio = region_ratios(regions);
   for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(patch.area_in_metres(r.area));
   // The smallest trained spot covers as many mesh cells as a spot of `floor` does on this mesh.
   const auto lo = std::min_element(plan.wanted_area.begin(), plan.wanted_area.end());
@@ -103,7 +113,7 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
   }
   // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
   // is asked for the isotropic one.
-  fit_rates(plan, map, plan.wanted_area, std::sqrt(plan.ratio), 1.0, "spot areas", "m^2");
+  fit_rates(plan, map, plan.wanted_area, 1.0, "spot areas", "m^2");
   return plan;
 }
 
@@ -112,7 +122,7 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
   SketchPlan plan;
   const RateMap map = trained_map(plan, model, &TrainingRun::stripe_width, "stripe width");
   plan.refine_exponent = -1.0 / map.exponent();
-  plan.ratio = kStripeAnisotropy;
+  plan.ratio.assign(regions.regions.size(), kStripeAnisotropy);
   for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(patch.length_in_metres(r.width));
   // The thinnest trained stripe spans as many mesh cells as a stripe of `floor` does on this mesh.
   const auto lo = std::min_element(plan.wanted_width.begin(), plan.wanted_width.end());
@@ -124,13 +134,13 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
                      " m resolves: the thinnest is " + number(floor) + " m (" + number(floor / patch.length_in_metres(1.0)) +
                      " in window units); use a wider stroke class, a larger --area or a smaller --max-circumradius");
   }
-  fit_rates(plan, map, plan.wanted_width, std::sqrt(plan.ratio), 0.5, "stripe widths", "m");
+  fit_rates(plan, map, plan.wanted_width, 0.5, "stripe widths", "m");
   return plan;
 }
 
 void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                       std::uint32_t seed) {
-  const AxisBlend axis(regions);
+  const AxisBlend axis(regions, plan.ratio);
   std::vector<double> width;
   for (const RegionAttributes& r : regions.regions) width.push_back(r.width);
   const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
@@ -156,18 +166,18 @@ void place_initiators(SketchPlan& plan, const SketchRegions& regions, const Sket
   plan.initiator_radius = 0.5 * kInitiatorThickness * mean_width * std::sqrt(stretch.x() * stretch.y());
 }
 
-InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
-                                 const std::vector<double>& rates) {
-  std::vector<double> log_rate;
-  for (const double r : rates) log_rate.push_back(std::log(r));
+InputVertexData<double> scale_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                                  const std::vector<double>& values) {
+  std::vector<double> logs;
+  for (const double r : values) logs.push_back(std::log(r));
   InputVertexData<double> map(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v)
-    map[v] = std::exp(regions.blend(log_rate, patch.window_point(mesh.positions[v])));
+  for (size_t v = 0; v < mesh.positions.size(); ++v) map[v] = std::exp(regions.blend(logs, patch.window_point(mesh.positions[v])));
   return map;
 }
 
-std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh) {
-  const AxisBlend axis(regions);
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const std::vector<double>& ratio,
+                                           const SketchPatch& patch, const InputMesh& mesh) {
+  const AxisBlend axis(regions, ratio);
   const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
   std::vector<Eigen::Vector3d> directions;
   for (const auto& t : mesh.triangles) {
@@ -186,10 +196,15 @@ nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::stri
   const ReactionModel& model = *find_reaction_model(plan.model->name);
   nlohmann::ordered_json morphogens = nlohmann::ordered_json::object();
   nlohmann::ordered_json maps = {{"sketch_rate", {{"ply", map_file}, {"property", "rate"}}}};
-  if (plan.ratio < 1.0) maps["sketch_direction"] = {{"ply", map_file}, {"face_property", "direction"}};
+  // One ratio for every region is a number (as a user would write it); ratios that differ a map.
+  const auto [least, most] = std::minmax_element(plan.ratio.begin(), plan.ratio.end());
+  const bool anisotropic = *least < 1.0;
+  const nlohmann::ordered_json ratio = *least == *most ? nlohmann::ordered_json(*least) : nlohmann::ordered_json("sketch_ratio");
+  if (anisotropic) maps["sketch_direction"] = {{"ply", map_file}, {"face_property", "direction"}};
+  if (anisotropic && *least != *most) maps["sketch_ratio"] = {{"ply", map_file}, {"property", "ratio"}};
   for (size_t m = 0; m < model.morphogens.size(); ++m) {
     nlohmann::ordered_json entry = {{"diffusion", model.diffusion[m] * plan.kappa}};
-    if (plan.ratio < 1.0 && model.diffusion[m] > 0.0) entry["anisotropy"] = {{"direction", "sketch_direction"}, {"ratio", plan.ratio}};
+    if (anisotropic && model.diffusion[m] > 0.0) entry["anisotropy"] = {{"direction", "sketch_direction"}, {"ratio", ratio}};
     morphogens[model.morphogens[m]] = entry;
   }
   if (!plan.initiators.empty()) {

@@ -11,8 +11,8 @@
 // the isotropic area, the major axis along the direction. The equations give this map exactly,
 // where the paper learns it (LWR from aspect and axis to four grid coefficients): r = aspect^2, the
 // size map asked for area / aspect, and the direction field the regions' orientations blended (as
-// axes). The anisotropy ratio is one number for the surface (a scene's "ratio" is), so the regions'
-// median aspect sets it; orientations vary per region.
+// axes). Each region has its own ratio, blended over the surface as the rates are (a scalar map
+// "sketch_ratio"; one number when the regions agree), so round and elongated spots can share a patch.
 #include "common/base/element_data.hpp"
 #include "common/mesh/input_mesh.hpp"
 #include "common/sketch/inverse_map.hpp"
@@ -36,8 +36,7 @@ struct SketchPlan {
   std::vector<double> wanted_area;  // m^2 per region
   std::vector<double> rate;         // per region
   double kappa = 1.0;               // every diffusion rate x kappa
-  double aspect = 1.0;              // the spots' minor / major radius asked for (the regions' median)
-  double ratio = 1.0;               // the anisotropy ratio, aspect^2 (1: isotropic, no direction map)
+  std::vector<double> ratio;        // per region, the anisotropy ratio: aspect^2 (1: isotropic)
   double trained_smallest = 0.0, trained_largest = 0.0;  // m^2, the map's range (before kappa)
   double cross_validated_error = 0.0;                    // of the rate, relative
   long long steps = 0;
@@ -78,7 +77,7 @@ inline constexpr double kThinnestAspect = 0.3;
 // InputError, before anything runs, when a region asks for spots smaller than the mesh resolves
 // (the smallest trained spot in cells, on a mesh of `max_circumradius`; the message says the
 // smallest size), when the sketched sizes span more than the training does (it says the span and
-// the nearest reachable size), or when the spots are thinner than kThinnestAspect.
+// the nearest reachable size), or when a region's spots are thinner than kThinnestAspect.
 SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
                        double max_circumradius);
 
@@ -96,18 +95,22 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
 void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
                       std::uint32_t seed);
 
-// The rate at each input vertex: the regions' rates blended at the vertex's window point, in logs.
-InputVertexData<double> rate_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
-                                 const std::vector<double>& rates);
+// A scale per region (a rate, an anisotropy ratio: > 0) at each input vertex, the regions' values
+// blended at the vertex's window point in logs.
+InputVertexData<double> scale_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+                                  const std::vector<double>& values);
 
 // The direction per input face (a unit vector in the input's x/y plane): the regions' orientations
-// blended at the face's centroid as axes (doubled angles), turned from the window's frame into the
-// input's (the window's axes are scaled onto the patch's).
-std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh);
+// blended at the face's centroid as axes (doubled angles, each region weighted by 1 - its ratio when
+// any is squeezed), turned from the window's frame into the input's (the window's axes are scaled
+// onto the patch's).
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const std::vector<double>& ratio,
+                                           const SketchPatch& patch, const InputMesh& mesh);
 
 // The generated scene (runnable with `physarum run`): the model, its rate from the map "sketch_rate"
 // of `map_file` (relative to the scene's folder), diffusion x kappa, anisotropy along the map
-// "sketch_direction" (face property "direction" of the same file) when plan.ratio < 1, the
+// "sketch_direction" (face property "direction" of the same file) with the ratio (a number, or the
+// map "sketch_ratio", property "ratio" of the file, when the regions' differ) where any ratio < 1, the
 // initiator cells as the map "sketch_initiators" (a "segments" map) raising a's initial value when
 // the plan has some, the plan's steps.
 nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
