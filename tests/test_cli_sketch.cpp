@@ -291,6 +291,11 @@ TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
   };
   const double tiny[4] = {0.00003, 0.00003, 0.00003, 0.00003}, wide[4] = {0.0004, 0.001, 0.004, 0.02};
   const double spacing[4] = {0.05, 0.05, 0.12, 0.14};
+  // Ellipses of aspect 0.2 in the bottom-left region.
+  json thin_spots = {{"window", {1.0, 1.0}}, {"marks", json::array()}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      thin_spots["marks"].push_back({{"ellipse", {{"center", {0.1 + 0.12 * i, 0.1 + 0.12 * j}}, {"radii", {0.05, 0.01}}}}});
   const std::vector<Case> cases = {
       {four_quadrants(tiny, spacing), "", 1, "are smaller than a mesh of max_circumradius 0.007 m resolves: the smallest is"},
       {four_quadrants(wide, spacing), "", 1, "the sketched spot areas span 0.0004 to 0.02 m^2 (a factor 50)"},
@@ -303,6 +308,7 @@ TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
       {four_quadrants(tiny, spacing), "--rosettes", 2, "--rosettes requires --layer2"},
       {strokes(2, 2), "--layer2 " + quoted(write(dir, "second.json", strokes(2, 2))), 1,
        "a second layer grows spots between the first's; meinhardt-stripes takes none"},
+      {thin_spots, "", 1, "region 0's spots have aspect (minor / major radius) 0.2; the thinnest a spot can be grown is 0.3"},
       {lattice(0.004, 0.16), "--colors '#ff0000'", 1, "--colors set 1 = \"#ff0000\": a colour list needs two or more colours"},
       {lattice(0.004, 0.16), "--colors '#ff0000,#00ff00' magma", 2, "a second colour set is for a second layer"},
       {lattice(0.004, 0.16), "--colors nosuchmap", 1, "--colors set 1 = \"nosuchmap\" is neither a built-in colour map"},

@@ -16,8 +16,7 @@ std::pair<double, double> value_range(const std::vector<double>& field, const st
   return {low, high};
 }
 
-}  // namespace
-
+// `set` (its map, gamma and remap; not its levels) spread over [valley, peak].
 ColorMapping valley_to_peak(const ColorMapSettings& set, double valley, double peak) {
   if (!std::isfinite(valley) || !std::isfinite(peak))
     throw InputError("colour set " + set.map.name() + ": the field's valley and peak must be finite");
@@ -30,6 +29,8 @@ ColorMapping valley_to_peak(const ColorMapSettings& set, double valley, double p
   m.high = peak > valley ? peak : valley + 1.0;
   return m;
 }
+
+}  // namespace
 
 LayerColours::LayerColours(const ColorMapSettings& set, const std::vector<double>& field) {
   if (field.empty()) throw InputError("layer colours: an empty field");

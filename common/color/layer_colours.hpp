@@ -13,10 +13,6 @@
 
 namespace physarum {
 
-// `set` (its map, gamma and remap; not its levels) spread over [valley, peak]. InputError when
-// valley or peak is not finite.
-ColorMapping valley_to_peak(const ColorMapSettings& set, double valley, double peak);
-
 class LayerColours {
  public:
   // One layer: its set over the field's valley and peak. `field` must not be empty.
