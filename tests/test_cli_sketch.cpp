@@ -85,7 +85,7 @@ TEST(CliSketch, FourSketchedSpotSizesGrowInTheirRegions) {
 // ratio, aspect^2 = 0.25 below and 1 above, blended as a map. The elongated spots grow along the
 // sketched axes, within 15 degrees and 0.15 in aspect, the round ones round (isotropic spots measure
 // 0.8 to 0.9 here, the segmentation's pixels and neighbours squeezing them a little), all at the
-// sketched area (about 20 s here).
+// sketched area (about 8 s here).
 TEST(CliSketch, OrientedEllipsesGrowOrientedSpots) {
   TempDir dir;
   json marks = json::array();
