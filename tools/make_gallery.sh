@@ -58,7 +58,7 @@ for scene in "${scenes[@]}"; do
     pictures="docs/gallery/sketch_layers_result.png docs/gallery/sketch_rosettes_result.png"
     # Spots of four sizes on a 3D mesh: the window's quadrants over the cow's x/y extent.
     if [ -f ../shared/meshes/spot.obj ]; then
-      "$physarum" sketch tools/sketch/examples/four_sizes.json --mesh ../shared/meshes/spot.obj --area 3 \
+      "$physarum" sketch tools/sketch/examples/four_sizes.json --mesh ../shared/meshes/spot.obj --area 3 --refine 1 \
         --colors '#1a1a2e,#e94560,#ffd460' --backend opencl --out "$work/cow" > /dev/null
       cp "$work/cow/preview.png" docs/gallery/sketch_cow_result.png
       cp "$work/cow/sketch.png" docs/gallery/sketch_cow_input.png
