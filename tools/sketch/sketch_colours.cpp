@@ -6,6 +6,7 @@
 #include "common/output/camera_views.hpp"
 #include "common/output/preview_image.hpp"
 #include "tools/run/surface_exports.hpp"
+#include "tools/sketch/sketch_layers.hpp"
 
 #include <fstream>
 
@@ -23,12 +24,12 @@ LayerFields read_layer(const fs::path& folder) {
   return {read_ply_fields((folder / "fields_full.ply").string()), read_ply_fields((folder / "morphogens.ply").string())};
 }
 
-// The first layer's share of each vertex: 1 in its frozen spots, 0 elsewhere; 1 everywhere for a
-// single layer.
+// The first layer's share of each vertex: 1 in its frozen spots (frozen_vertices, as the cascade
+// froze them), 0 elsewhere; 1 everywhere for a single layer.
 std::vector<double> first_share(const std::vector<double>& first, const std::optional<FirstLayerColours>& layer) {
-  std::vector<double> share;
-  for (const double x : first) share.push_back(!layer || x >= layer->threshold ? 1.0 : 0.0);
-  return share;
+  if (!layer) return std::vector<double>(first.size(), 1.0);
+  const std::vector<char> frozen = frozen_vertices(first, layer->threshold);
+  return std::vector<double>(frozen.begin(), frozen.end());
 }
 
 }  // namespace
