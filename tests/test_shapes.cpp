@@ -33,7 +33,7 @@ double signed_volume(const InputMesh& m) {
 int euler_characteristic(const InputMeshStatistics& s) { return s.vertices - s.edges + s.faces; }
 
 TEST(Shapes, NamesAreTheDocumentedOnesAndAllLoadClean) {
-  const std::set<std::string> expected{"square", "disk", "sphere", "skinny-sphere", "torus", "octagonal-prism"};
+  const std::set<std::string> expected{"square", "disk", "sphere", "skinny-sphere", "torus", "octagonal-prism", "cube"};
   const auto names = shape_names();
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()), expected);
   for (const std::string& name : names) {
@@ -50,11 +50,11 @@ TEST(Shapes, NamesAreTheDocumentedOnesAndAllLoadClean) {
 
 TEST(Shapes, UnknownShapeListsTheValidNames) {
   try {
-    load_mesh("shape:cube");
+    load_mesh("shape:dodecahedron");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("shape:cube"), std::string::npos) << what;
+    EXPECT_NE(what.find("shape:dodecahedron"), std::string::npos) << what;
     for (const std::string& name : shape_names()) EXPECT_NE(what.find(name), std::string::npos) << what;
   }
 }
@@ -208,6 +208,47 @@ TEST(Shapes, OctagonalPrismIsClosedWithTheExactArea) {
   double total = 0;
   for (const auto& t : m.triangles) total += triangle_area(m, t);
   EXPECT_NEAR(total, s.area, 1e-12);
+}
+
+TEST(Shapes, CubeIsClosedAndItsUvTilesMapEachSideWithoutOverlap) {
+  const InputMesh m = load_mesh("shape:cube");
+  const InputMeshStatistics s = compute_statistics(m);
+  EXPECT_EQ(euler_characteristic(s), 2);
+  EXPECT_EQ(s.boundary_loops, 0);
+  EXPECT_EQ(m.vertex_count(), 6 * 24 * 24 + 2);  // V - E + F = 2 with F = 2 x 6 x 24^2, E = 3F / 2
+  EXPECT_NEAR(s.area, 6.0, 1e-12);
+  EXPECT_NEAR(signed_volume(m), 1.0, 1e-12) << "oriented outward";
+  ASSERT_EQ(m.triangle_uvs.size(), m.triangles.size());
+  // Each side is its tile, a 3 x 2 grid cell less a 4 % margin: every triangle's UV map is the
+  // scaling by (1 - 0.08) / 3 along u and (1 - 0.08) / 2 along v, counterclockwise (u x v the outward
+  // normal), inside its side's cell.
+  const double su = 0.92 / 3.0, sv = 0.92 / 2.0;
+  std::set<std::pair<int, int>> cells;
+  for (size_t f = 0; f < m.triangles.size(); ++f) {
+    const auto& t = m.triangles[f];
+    const auto& tu = m.triangle_uvs[f];
+    Eigen::Matrix<double, 3, 2> edges3;
+    Eigen::Matrix2d edges2;
+    for (int k = 1; k < 3; ++k) {
+      edges3.col(k - 1) = m.positions[t[k]] - m.positions[t[0]];
+      edges2.col(k - 1) = m.uvs[tu[k]] - m.uvs[tu[0]];
+    }
+    ASSERT_GT(edges2.determinant(), 0.0) << "face " << f << ": its UV triangle is turned over";
+    const Eigen::Matrix<double, 3, 2> J = edges3 * edges2.inverse();  // surface per UV unit
+    EXPECT_NEAR(J.col(0).norm(), 1.0 / su, 1e-9) << f;
+    EXPECT_NEAR(J.col(1).norm(), 1.0 / sv, 1e-9) << f;
+    EXPECT_NEAR(J.col(0).dot(J.col(1)), 0.0, 1e-9) << f;
+    const Eigen::Vector2d centre = (m.uvs[tu[0]] + m.uvs[tu[1]] + m.uvs[tu[2]]) / 3.0;
+    const std::pair<int, int> cell{static_cast<int>(centre.x() * 3.0), static_cast<int>(centre.y() * 2.0)};
+    cells.insert(cell);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(m.uvs[tu[k]].x() * 3.0 - cell.first, 0.04 - 1e-9);
+      EXPECT_LE(m.uvs[tu[k]].x() * 3.0 - cell.first, 0.96 + 1e-9);
+      EXPECT_GE(m.uvs[tu[k]].y() * 2.0 - cell.second, 0.04 - 1e-9);
+      EXPECT_LE(m.uvs[tu[k]].y() * 2.0 - cell.second, 0.96 + 1e-9);
+    }
+  }
+  EXPECT_EQ(cells.size(), 6u) << "one tile per side";
 }
 
 }  // namespace

@@ -226,16 +226,73 @@ PolygonSoup octagonal_prism() {
   return b.soup();
 }
 
+// A unit cube centred at the origin, `cells` x `cells` squares a side (their diagonals alternating),
+// its corners and edges shared between sides, and a UV layout of 3 x 2 tiles, one per side: +x, +y,
+// -x along the bottom row (their v up the cube's z, going round it), +z, -z, -y along the top. Each
+// tile keeps a margin of kTileMargin of its size so that a baked texture's padding stays inside it.
+PolygonSoup cube() {
+  constexpr int cells = 24;
+  constexpr double kTileMargin = 0.04;
+  struct Side {
+    Eigen::Vector3d normal, u, v;  // u x v = normal: a tile seen in UV is its side seen from outside
+    int column, row;
+  };
+  const std::array<Side, 6> sides{{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, 0, 0},
+                                   {{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}, 1, 0},
+                                   {{-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, 2, 0},
+                                   {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 0, 1},
+                                   {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}, 1, 1},
+                                   {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}, 2, 1}}};
+  PolygonSoup soup;
+  std::map<std::array<int, 3>, int> lattice;  // a point of the cube's (2 cells + 1)^3 half-cell lattice -> vertex
+  auto vertex = [&](const Eigen::Vector3d& p) {
+    const std::array<int, 3> key{static_cast<int>(std::lround(2 * cells * p.x())), static_cast<int>(std::lround(2 * cells * p.y())),
+                                 static_cast<int>(std::lround(2 * cells * p.z()))};
+    auto [it, inserted] = lattice.try_emplace(key, static_cast<int>(soup.positions.size()));
+    if (inserted) soup.positions.push_back(p);
+    return it->second;
+  };
+  for (const Side& side : sides) {
+    std::vector<int> id, uv;
+    for (int j = 0; j <= cells; ++j)
+      for (int i = 0; i <= cells; ++i) {
+        const double a = double(i) / cells, b = double(j) / cells;
+        id.push_back(vertex(0.5 * side.normal + (a - 0.5) * side.u + (b - 0.5) * side.v));
+        uv.push_back(static_cast<int>(soup.uvs.size()));
+        soup.uvs.emplace_back((side.column + kTileMargin + (1.0 - 2.0 * kTileMargin) * a) / 3.0,
+                              (side.row + kTileMargin + (1.0 - 2.0 * kTileMargin) * b) / 2.0);
+      }
+    auto corner = [&](int i, int j) { return static_cast<size_t>(j * (cells + 1) + i); };
+    auto add = [&](std::array<size_t, 3> c) {
+      soup.add_polygon({id[c[0]], id[c[1]], id[c[2]]});
+      for (const size_t k : c) soup.corner_uv.push_back(uv[k]);
+    };
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i) {
+        const size_t v00 = corner(i, j), v10 = corner(i + 1, j), v11 = corner(i + 1, j + 1), v01 = corner(i, j + 1);
+        if ((i + j) % 2 == 0) {
+          add({v00, v10, v11});
+          add({v00, v11, v01});
+        } else {
+          add({v00, v10, v01});
+          add({v10, v11, v01});
+        }
+      }
+  }
+  return soup;
+}
+
 struct ShapeEntry {
   const char* name;
   PolygonSoup (*make)();
 };
-constexpr std::array<ShapeEntry, 6> shapes{{{"square", square},
+constexpr std::array<ShapeEntry, 7> shapes{{{"square", square},
                                             {"disk", disk},
                                             {"sphere", sphere},
                                             {"skinny-sphere", skinny_sphere},
                                             {"torus", torus},
-                                            {"octagonal-prism", octagonal_prism}}};
+                                            {"octagonal-prism", octagonal_prism},
+                                            {"cube", cube}}};
 
 }  // namespace
 

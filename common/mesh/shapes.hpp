@@ -10,6 +10,8 @@
 //   torus           R = 1, r = 0.4, 64 x 24 grid
 //   octagonal-prism closed prism over a regular octagon (circumradius 0.5, height 1.5, centred at
 //                   the origin, axis z), each side split into 2 columns x 6 rows; caps are fans
+//   cube            unit cube centred at the origin, 24 x 24 squares a side, with a UV layout of
+//                   3 x 2 tiles (one per side: +x, +y, -x bottom row, v up z; +z, -z, -y top row)
 // All are CCW seen from outside (+z for the flat ones), in metres.
 #include "common/mesh/mesh_file_reader.hpp"
 

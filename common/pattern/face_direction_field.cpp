@@ -2,7 +2,7 @@
 #include "common/pattern/face_direction_field.hpp"
 
 #include "common/base/errors.hpp"
-#include "common/pattern/spot_shape.hpp"
+#include "common/mesh/closest_point.hpp"
 
 #include <limits>
 #include <string>

@@ -42,9 +42,4 @@ SpotShape spot_shape(const InputMesh& mesh, const PatternRegion& region);
 // degrees; nothing when the direction is (nearly) normal to the surface there or zero.
 std::optional<double> angle_to_direction_deg(const SpotShape& spot, const Eigen::Vector3d& direction);
 
-// The point of triangle (a, b, c) closest to p, as barycentric coordinates (Ericson, Real-Time
-// Collision Detection, 5.1.5).
-Eigen::Vector3d closest_point_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                          const Eigen::Vector3d& c);
-
 }  // namespace physarum

@@ -51,6 +51,7 @@ struct SketchOptions {
   std::string layer2;     // a second sketch: smaller spots between the first's, frozen (tools/sketch/sketch_layers.hpp)
   bool rosettes = false;  // the frozen spots reset to the uniform state: the new spots ring them
   std::vector<std::string> colors;  // a colour set per layer (tools/sketch/sketch_colours.hpp)
+  bool uv = false;  // the window is the mesh's UV layout (common/sketch/sketch_domain.hpp)
 };
 
 Sketch read_sketch(const std::string& path) {
@@ -120,11 +121,11 @@ struct LayerRun {
 // Runs the scene once in `folder` with the plan's rates and measures the result per region; with a
 // cascade, as the second layer on the first's frozen spots.
 LayerRun grow_and_measure(const SketchOptions& o, const fs::path& out, const SketchPlan& plan, const SketchRegions& regions,
-                          const SketchPatch& patch, const InputMesh& mesh, const Cascade* cascade = nullptr) {
-  const InputVertexData<double> rates = scale_map(regions, patch, mesh, plan.rate), ratios = scale_map(regions, patch, mesh, plan.ratio);
+                          const SketchDomain& domain, const InputMesh& mesh, const Cascade* cascade = nullptr) {
+  const InputVertexData<double> rates = scale_map(regions, domain, mesh, plan.rate), ratios = scale_map(regions, domain, mesh, plan.ratio);
   // The direction map's components per face (the map source reads NAME_x, NAME_y, NAME_z).
   std::vector<std::vector<double>> direction(3);
-  for (const Eigen::Vector3d& d : direction_map(regions, plan.ratio, patch, mesh))
+  for (const Eigen::Vector3d& d : direction_map(regions, plan, domain, mesh))
     for (int k = 0; k < 3; ++k) direction[static_cast<size_t>(k)].push_back(d[k]);
   write_fields_ply((out / "sketch_maps.ply").string(), mesh, {PlyField{"rate", rates}, PlyField{"ratio", ratios}},
                    {PlyFaceField{"direction_x", direction[0]}, PlyFaceField{"direction_y", direction[1]},
@@ -151,11 +152,11 @@ LayerRun grow_and_measure(const SketchOptions& o, const fs::path& out, const Ske
   LayerRun result;
   result.threshold = analysis.threshold;
   if (plan.model->stripes) {
-    result.measures.stripes = measure_stripes(ply.mesh, field, analysis, regions, patch);
+    result.measures.stripes = measure_stripes(ply.mesh, field, analysis, regions, domain);
   } else {
-    result.measures.spots = measure_regions(analysis, regions, patch, frozen);
+    result.measures.spots = measure_regions(analysis, regions, domain, frozen);
   }
-  if (cascade) result.cascade = measure_cascade(ply.mesh, field, analysis.threshold, frozen, patch.scale);
+  if (cascade) result.cascade = measure_cascade(ply.mesh, field, analysis.threshold, frozen, domain.scale());
   return result;
 }
 
@@ -172,16 +173,17 @@ std::vector<double> size_misses(const SketchPlan& plan, const Measures& measures
 // Meinhardt's stripes.
 std::string default_model(const Sketch& sketch) { return sketch.spots.empty() ? "meinhardt-stripes" : "turing-spots"; }
 
-// A sketch measured and planned: everything that can refuse it, before any output exists.
+// A sketch measured, placed on the surface and planned: everything that can refuse it, before any
+// output exists.
 struct Layer {
   Sketch sketch;
   SketchAttributes attributes;
   SketchRegions regions;
+  std::optional<SketchDomain> domain;
   SketchPlan plan;
 };
 
-Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::string& model_name, const InputMesh& mesh,
-                    SketchPatch& patch) {
+Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::string& model_name, const InputMesh& mesh) {
   Layer layer;
   layer.sketch = read_sketch(path);
   const SketchModel& model = sketch_model(model_name.empty() ? default_model(layer.sketch) : model_name);
@@ -190,21 +192,22 @@ Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::
     throw InputError(layer.sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
   layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
                                 : sketch_regions(layer.sketch, layer.attributes, o.regions);
-  patch = sketch_patch(layer.sketch, mesh, o.area);
-  layer.plan = model.stripes ? plan_stripes(layer.regions, patch, model, o.max_circumradius)
-                             : plan_sketch(layer.regions, patch, model, o.max_circumradius);
-  if (model.stripes) place_initiators(layer.plan, layer.regions, patch, mesh, o.seed);
+  layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
+  const SketchDomain& domain = *layer.domain;
+  layer.plan = model.stripes ? plan_stripes(layer.regions, domain, model, o.max_circumradius)
+                             : plan_sketch(layer.regions, domain, model, o.max_circumradius);
+  if (model.stripes) place_initiators(layer.plan, layer.regions, domain, o.seed);
   return layer;
 }
 
 // Runs a layer in `folder`, and with --refine K corrects its missed regions' rates and runs again,
 // up to K times; each run's rates and misses are appended to `iterations`.
-LayerRun grow_refined(const SketchOptions& o, const fs::path& folder, Layer& layer, const SketchPatch& patch,
-                      const InputMesh& mesh, nlohmann::ordered_json& iterations) {
+LayerRun grow_refined(const SketchOptions& o, const fs::path& folder, Layer& layer, const InputMesh& mesh,
+                      nlohmann::ordered_json& iterations) {
   SketchPlan& plan = layer.plan;
   const double tolerance = plan.model->stripes ? kWidthTolerance : kAreaTolerance;
   for (int iteration = 0;; ++iteration) {
-    LayerRun run = grow_and_measure(o, folder, plan, layer.regions, patch, mesh);
+    LayerRun run = grow_and_measure(o, folder, plan, layer.regions, *layer.domain, mesh);
     const std::vector<double> misses = size_misses(plan, run.measures);
     const bool all_pass = std::all_of(misses.begin(), misses.end(), [&](double m) { return std::abs(m) <= tolerance; });
     iterations.push_back({{"rates", plan.rate}, {"steps", plan.steps}, {plan.model->stripes ? "width_misses" : "area_misses", misses}});
@@ -219,15 +222,16 @@ LayerRun grow_refined(const SketchOptions& o, const fs::path& folder, Layer& lay
 
 // report.json's per-region entries of a layer; `passed` counts the regions whose size (spots) or
 // orientation (stripes) passed.
-nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measures, const SketchPatch& patch, int& passed) {
+nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measures, int& passed) {
+  const SketchDomain& domain = *layer.domain;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   const SketchPlan& plan = layer.plan;
   for (size_t k = 0; k < layer.regions.regions.size(); ++k) {
     const RegionAttributes& r = layer.regions.regions[k];
     list.push_back(plan.model->stripes
-                       ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], patch)
-                       : region_report(r, plan.wanted_area[k], patch.length_in_metres(r.spacing), measures.spots[k], patch,
-                                       plan.ratio[k] < 1.0));
+                       ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], domain)
+                       : region_report(r, plan.wanted_area[k], r.spacing * domain.frame_at(r.center).length_factor(),
+                                       measures.spots[k], domain, plan.ratio[k] < 1.0));
     passed += list.back()["verdict"][plan.model->stripes ? "orientation" : "area"] == "pass";
   }
   return list;
@@ -239,14 +243,12 @@ int run_sketch(const SketchOptions& o) {
   // ---- everything that can refuse the input, before any output exists ----
   if (!o.model.empty()) sketch_model(o.model);
   const InputMesh mesh = load_mesh(o.mesh);
-  SketchPatch patch;
-  Layer first = prepare_layer(o.sketch, o, o.model, mesh, patch);
+  Layer first = prepare_layer(o.sketch, o, o.model, mesh);
   const SketchModel& model = *first.plan.model;
   std::optional<Layer> second;
   if (!o.layer2.empty()) {
     if (model.stripes) throw InputError("--layer2: a second layer grows spots between the first's; " + model.name + " takes none");
-    SketchPatch patch2;
-    second = prepare_layer(o.layer2, o, model.name, mesh, patch2);
+    second = prepare_layer(o.layer2, o, model.name, mesh);
     if (second->sketch.window != first.sketch.window)
       throw InputError(o.layer2 + ": its window differs from " + o.sketch + "'s: the two layers must share one window");
   }
@@ -261,18 +263,18 @@ int run_sketch(const SketchOptions& o) {
   // With a second layer, the first runs in DIR/layer1 and the second, on its frozen spots, in DIR.
   const fs::path first_folder = second ? out / "layer1" : out;
   if (second) create_output_folder(first_folder.string());
-  const LayerRun run = grow_refined(o, first_folder, first, patch, mesh, iterations);
+  const LayerRun run = grow_refined(o, first_folder, first, mesh, iterations);
   int passed = 0;
-  report["regions"] = region_reports(first, run.measures, patch, passed);
+  report["regions"] = region_reports(first, run.measures, passed);
   report["iterations"] = iterations;
   nlohmann::ordered_json sketch_file = sketch_json(first.sketch, first.attributes, first.regions, first.plan);
   if (second) {
     write_rgb_png((out / "sketch_layer2.png").string(), draw_sketch(second->sketch));
     const Cascade cascade{"layer1/fields_full.ply", run.threshold, o.rosettes};
-    const LayerRun top = grow_and_measure(o, out, second->plan, second->regions, patch, mesh, &cascade);
+    const LayerRun top = grow_and_measure(o, out, second->plan, second->regions, *second->domain, mesh, &cascade);
     int passed2 = 0;
     report["layer2"] = cascade_json(top.cascade, o.rosettes);
-    report["layer2"]["regions"] = region_reports(*second, top.measures, patch, passed2);
+    report["layer2"]["regions"] = region_reports(*second, top.measures, passed2);
     sketch_file["layer2"] = sketch_json(second->sketch, second->attributes, second->regions, second->plan);
   }
   if (!colour_sets.empty()) {
@@ -301,7 +303,7 @@ Command add_sketch_command(CLI::App& parent) {
       "Grow a reaction-diffusion texture whose spots or stripes follow drawn ones, and check it\n"
       "Sketch a pattern (paper 004): SKETCH is a PNG (dark marks on a light background; filled or outlined "
       "blobs are spots, long thin or red marks strokes) or a JSON sketch of ellipses and strokes. Its window "
-      "maps onto the mesh's x/y extent; the window is divided into --regions x --regions regions, each region's "
+      "maps onto the mesh's x/y extent, or with --uv onto its UV layout; the window is divided into --regions x --regions regions, each region's "
       "spot area goes through the model's inverse map (learned from tools/sketch/make_training_data.sh's runs) "
       "to a reaction rate, blended over the surface. Writes DIR/scene.json (the generated scene, runnable with "
       "physarum run), DIR/sketch_maps.ply (its rate map), DIR/sketch.png (the marks as measured), the run's files, DIR/sketch.json (every mark's "
@@ -316,6 +318,9 @@ Command add_sketch_command(CLI::App& parent) {
       "tools/sketch/examples/four_sizes.json --out sketch");
   app->add_option("sketch", options->sketch, "The sketch: a PNG or a JSON sketch")->required();
   app->add_option("--mesh", options->mesh, "The surface (a mesh file or shape:NAME); default shape:square");
+  app->add_flag("--uv", options->uv,
+                "The sketch is painted on the mesh's UV layout (the window onto UV [0, 1]^2, a PNG's top row at v = 1), "
+                "measured on the surface through the layout's stretch; the mesh must have texture coordinates");
   app->add_option("--model", options->model,
                   "turing-spots, meinhardt-spots or meinhardt-stripes (default: turing-spots for a sketch with spots, "
                   "meinhardt-stripes for one of strokes alone)");

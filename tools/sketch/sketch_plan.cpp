@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <random>
 
 namespace physarum::cli {
@@ -15,14 +14,27 @@ namespace {
 
 std::string number(double x) { return ValueRange::number(x); }
 
-// Each region's anisotropy ratio, aspect^2 (1 for spots rounder than kRoundAspect); a region whose
-// spots are thinner than kThinnestAspect is refused.
-std::vector<double> region_ratios(const SketchRegions& regions) {
+// Metres per window unit across a stroke drawn at `degrees`: the strip between two parallel window
+// lines a unit apart becomes one of width (area factor) / |the line's direction on the surface|.
+double width_factor(const WindowFrame& at, double degrees) {
+  const Eigen::Vector2d along(std::cos(degrees * M_PI / 180.0), std::sin(degrees * M_PI / 180.0));
+  return at.area_factor() / (at.stretch * along).norm();
+}
+
+// A region's spots as the surface sees them: its drawn ellipse through the window's map at its centre.
+EllipseShape surface_spot(const RegionAttributes& r, const SketchDomain& domain) {
+  return on_surface(domain.frame_at(r.center), {r.aspect, r.orientation});
+}
+
+// Each region's anisotropy ratio, its spots' aspect on the surface squared (1 for spots rounder than
+// kRoundAspect); a region whose spots are thinner than kThinnestAspect is refused.
+std::vector<double> region_ratios(const SketchRegions& regions, const SketchDomain& domain) {
   std::vector<double> ratios;
   for (size_t k = 0; k < regions.regions.size(); ++k) {
-    const double aspect = regions.regions[k].aspect;
+    const double aspect = surface_spot(regions.regions[k], domain).aspect;
     if (aspect < kThinnestAspect)
       throw InputError("sketch: region " + std::to_string(k) + "'s spots have aspect (minor / major radius) " + number(aspect) +
+                       (domain.on_uv() ? " on the surface" : "") +
                        "; the thinnest a spot can be grown is " + number(kThinnestAspect) + " (an anisotropy of 1 : " +
                        number(1.0 / (kThinnestAspect * kThinnestAspect)) + ")");
     ratios.push_back(aspect < kRoundAspect ? aspect * aspect : 1.0);
@@ -30,26 +42,26 @@ std::vector<double> region_ratios(const SketchRegions& regions) {
   return ratios;
 }
 
-// The regions' orientations blended at a window point as axes (doubled angles: 0 and 180 degrees are
-// one axis), in radians: the direction map's and the initiators' orientation. Each region weighs by
-// how much it is squeezed, 1 - its ratio (a round region's orientation means nothing), or equally
-// when none is.
-class AxisBlend {
- public:
-  AxisBlend(const SketchRegions& regions, const std::vector<double>& ratio) : regions_(regions) {
-    const bool squeezed = std::any_of(ratio.begin(), ratio.end(), [](double r) { return r < 1.0; });
-    for (size_t k = 0; k < regions.regions.size(); ++k) {
-      const double weight = squeezed ? 1.0 - ratio[k] : 1.0, angle = 2.0 * regions.regions[k].orientation * M_PI / 180.0;
-      cos_.push_back(weight * std::cos(angle));
-      sin_.push_back(weight * std::sin(angle));
-    }
-  }
-  double at(const Eigen::Vector2d& w) const { return 0.5 * std::atan2(regions_.blend(sin_, w), regions_.blend(cos_, w)); }
+// How much each region's orientation counts where orientations are blended: by how much it is
+// squeezed, 1 - its ratio (a round region's orientation means nothing), or equally when none is.
+std::vector<double> axis_weights(const std::vector<double>& ratio) {
+  const bool squeezed = std::any_of(ratio.begin(), ratio.end(), [](double r) { return r < 1.0; });
+  std::vector<double> weights;
+  for (const double r : ratio) weights.push_back(squeezed ? 1.0 - r : 1.0);
+  return weights;
+}
 
- private:
-  const SketchRegions& regions_;
-  std::vector<double> cos_, sin_;
-};
+// Per-region axes (degrees) blended at a window point as axes (doubled angles: 0 and 180 degrees are
+// one axis), weighted; in radians.
+double blend_axes(const SketchRegions& regions, const std::vector<double>& degrees, const std::vector<double>& weights,
+                  const Eigen::Vector2d& w) {
+  std::vector<double> cos, sin;
+  for (size_t k = 0; k < degrees.size(); ++k) {
+    cos.push_back(weights[k] * std::cos(2.0 * degrees[k] * M_PI / 180.0));
+    sin.push_back(weights[k] * std::sin(2.0 * degrees[k] * M_PI / 180.0));
+  }
+  return 0.5 * std::atan2(regions.blend(sin, w), regions.blend(cos, w));
+}
 
 // The model's inverse map of `attribute` (TrainingRun's spot_area or stripe_width), its range and
 // cross-validated error noted in the plan.
@@ -94,12 +106,12 @@ void fit_rates(SketchPlan& plan, const RateMap& map, const std::vector<double>& 
 
 }  // namespace
 
-SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+SketchPlan plan_sketch(const SketchRegions& regions, const SketchDomain& domain, const SketchModel& model,
                        double max_circumradius) {
   SketchPlan plan;
   const RateMap map = trained_map(plan, model, &TrainingRun::spot_area, "spot area");
-  plan.ratio = region_ratios(regions);
-  for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(patch.area_in_metres(r.area));
+  plan.ratio = region_ratios(regions, domain);
+  for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(r.area * domain.frame_at(r.center).area_factor());
   // The smallest trained spot covers as many mesh cells as a spot of `floor` does on this mesh.
   const auto lo = std::min_element(plan.wanted_area.begin(), plan.wanted_area.end());
   const double ratio = max_circumradius / kTrainingCircumradius;
@@ -108,7 +120,7 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
     const size_t region = static_cast<size_t>(lo - plan.wanted_area.begin());
     throw InputError("sketch: region " + std::to_string(region) + "'s spots (" + number(*lo) +
                      " m^2) are smaller than a mesh of max_circumradius " + number(max_circumradius) +
-                     " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / patch.area_in_metres(1.0)) +
+                     " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / domain.frame_at(regions.regions[region].center).area_factor()) +
                      " in window units^2); draw bigger spots, give a larger --area or a smaller --max-circumradius");
   }
   // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
@@ -117,13 +129,13 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
   return plan;
 }
 
-SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+SketchPlan plan_stripes(const SketchRegions& regions, const SketchDomain& domain, const SketchModel& model,
                         double max_circumradius) {
   SketchPlan plan;
   const RateMap map = trained_map(plan, model, &TrainingRun::stripe_width, "stripe width");
   plan.refine_exponent = -1.0 / map.exponent();
   plan.ratio.assign(regions.regions.size(), kStripeAnisotropy);
-  for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(patch.length_in_metres(r.width));
+  for (const RegionAttributes& r : regions.regions) plan.wanted_width.push_back(r.width * width_factor(domain.frame_at(r.center), r.orientation));
   // The thinnest trained stripe spans as many mesh cells as a stripe of `floor` does on this mesh.
   const auto lo = std::min_element(plan.wanted_width.begin(), plan.wanted_width.end());
   const double floor = map.smallest() * max_circumradius / kTrainingCircumradius;
@@ -131,62 +143,67 @@ SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, 
     const size_t region = static_cast<size_t>(lo - plan.wanted_width.begin());
     throw InputError("sketch: region " + std::to_string(region) + "'s stripes (" + number(*lo) +
                      " m wide) are thinner than a mesh of max_circumradius " + number(max_circumradius) +
-                     " m resolves: the thinnest is " + number(floor) + " m (" + number(floor / patch.length_in_metres(1.0)) +
+                     " m resolves: the thinnest is " + number(floor) + " m (" + number(floor / width_factor(domain.frame_at(regions.regions[region].center), regions.regions[region].orientation)) +
                      " in window units); use a wider stroke class, a larger --area or a smaller --max-circumradius");
   }
   fit_rates(plan, map, plan.wanted_width, 0.5, "stripe widths", "m");
   return plan;
 }
 
-void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
-                      std::uint32_t seed) {
-  const AxisBlend axis(regions, plan.ratio);
-  std::vector<double> width;
-  for (const RegionAttributes& r : regions.regions) width.push_back(r.width);
-  const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
-  const double mean_width = median(width);
-  const double window_area = patch.window.prod();
-  const auto count = static_cast<size_t>(std::ceil(kInitiatorCover * window_area /
-                                                   (kInitiatorLength * kInitiatorThickness * mean_width * mean_width)));
+void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchDomain& domain, std::uint32_t seed) {
+  std::vector<double> width, orientation;
+  for (const RegionAttributes& r : regions.regions) width.push_back(r.width), orientation.push_back(r.orientation);
+  const std::vector<double> weights = axis_weights(plan.ratio);
+  const double typical_width = median(plan.wanted_width);  // m
+  const auto count = static_cast<size_t>(std::ceil(kInitiatorCover * domain.surface_area() /
+                                                   (kInitiatorLength * kInitiatorThickness * typical_width * typical_width)));
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0), jitter(-kInitiatorJitter, kInitiatorJitter);
   plan.initiators.clear();
-  for (size_t k = 0; k < count; ++k) {
-    const Eigen::Vector2d centre(unit(random) * patch.window.x(), unit(random) * patch.window.y());
-    const double angle = axis.at(centre) + jitter(random) * M_PI / 180.0;
+  // A UV layout leaves gaps between its charts: centres drawn there are drawn again (a bounded number
+  // of times: a layout that covers almost none of the window places fewer segments).
+  for (size_t tries = 0; plan.initiators.size() < count && tries < 100 * count; ++tries) {
+    const Eigen::Vector2d centre(unit(random) * domain.window().x(), unit(random) * domain.window().y());
+    const std::optional<Eigen::Vector3d> middle = domain.surface_point(centre);
+    if (!middle) continue;
+    const double angle = blend_axes(regions, orientation, weights, centre) + jitter(random) * M_PI / 180.0;
     const Eigen::Vector2d half = 0.5 * kInitiatorLength * regions.blend(width, centre) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    auto input_point = [&](const Eigen::Vector2d& w) { return Eigen::Vector2d(patch.low + w.cwiseProduct(stretch)); };
-    const Eigen::Vector2d a = input_point(centre - half), b = input_point(centre + half), middle = input_point(centre);
-    double z = 0.0, nearest = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& p : mesh.positions)
-      if (const double d = (p.head<2>() - middle).squaredNorm(); d < nearest) nearest = d, z = p.z();
-    plan.initiators.emplace_back(Eigen::Vector3d(a.x(), a.y(), z), Eigen::Vector3d(b.x(), b.y(), z));
+    // The segment straight in the tangent plane at its centre, in input units.
+    const Eigen::Vector3d reach = domain.frame_at(centre).to_surface(half) / domain.scale();
+    plan.initiators.emplace_back(*middle - reach, *middle + reach);
   }
-  // Half the thickness, in input units (the window's two axes averaged, as lengths are).
-  plan.initiator_radius = 0.5 * kInitiatorThickness * mean_width * std::sqrt(stretch.x() * stretch.y());
+  plan.initiator_radius = 0.5 * kInitiatorThickness * typical_width / domain.scale();  // input units
 }
 
-InputVertexData<double> scale_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDomain& domain, const InputMesh& mesh,
                                   const std::vector<double>& values) {
   std::vector<double> logs;
   for (const double r : values) logs.push_back(std::log(r));
   InputVertexData<double> map(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v) map[v] = std::exp(regions.blend(logs, patch.window_point(mesh.positions[v])));
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    // A vertex on a UV seam has a window point per side: the blends averaged (in logs).
+    const std::vector<Eigen::Vector2d> points = domain.vertex_window_points(v);
+    double sum = 0.0;
+    for (const Eigen::Vector2d& w : points) sum += regions.blend(logs, w);
+    map[v] = std::exp(sum / static_cast<double>(points.size()));
+  }
   return map;
 }
 
-std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const std::vector<double>& ratio,
-                                           const SketchPatch& patch, const InputMesh& mesh) {
-  const AxisBlend axis(regions, ratio);
-  const Eigen::Vector2d stretch = (patch.high - patch.low).cwiseQuotient(patch.window);  // input units per window unit
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPlan& plan, const SketchDomain& domain,
+                                           const InputMesh& mesh) {
+  const std::vector<double> weights = axis_weights(plan.ratio);
+  std::vector<double> axes(regions.regions.size());
   std::vector<Eigen::Vector3d> directions;
-  for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d centroid = (mesh.positions[static_cast<size_t>(t[0])] + mesh.positions[static_cast<size_t>(t[1])] +
-                                      mesh.positions[static_cast<size_t>(t[2])]) / 3.0;
-    const Eigen::Vector2d w = patch.window_point(centroid);
-    const double angle = axis.at(w);
-    const Eigen::Vector2d d = Eigen::Vector2d(std::cos(angle), std::sin(angle)).cwiseProduct(stretch).normalized();
-    directions.emplace_back(d.x(), d.y(), 0.0);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const WindowFrame frame = domain.frame_of_face(f);
+    // Each region's drawn spot (a stroke: a line, aspect 0) as this face sees it, its major axis.
+    for (size_t k = 0; k < axes.size(); ++k) {
+      const RegionAttributes& r = regions.regions[k];
+      axes[k] = on_surface(frame, {plan.model->stripes ? 0.0 : r.aspect, r.orientation}).orientation;
+    }
+    const double angle = blend_axes(regions, axes, weights, domain.face_window_point(f));
+    directions.push_back(frame.frame * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
   }
   return directions;
 }

@@ -13,12 +13,15 @@
 // size map asked for area / aspect, and the direction field the regions' orientations blended (as
 // axes). Each region has its own ratio, blended over the surface as the rates are (a scalar map
 // "sketch_ratio"; one number when the regions agree), so round and elongated spots can share a patch.
+//
+// Sizes, aspects and orientations are the surface's: a region's drawn ellipse goes through the
+// window's map at its centre (common/sketch/sketch_domain.hpp; on a UV layout, its stretch there).
 #include "common/base/element_data.hpp"
 #include "common/mesh/input_mesh.hpp"
 #include "common/sketch/inverse_map.hpp"
+#include "common/sketch/sketch_domain.hpp"
 #include "common/sketch/sketch_regions.hpp"
 #include "tools/sketch/sketch_models.hpp"
-#include "tools/sketch/sketch_patch.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -78,7 +81,7 @@ inline constexpr double kThinnestAspect = 0.3;
 // (the smallest trained spot in cells, on a mesh of `max_circumradius`; the message says the
 // smallest size), when the sketched sizes span more than the training does (it says the span and
 // the nearest reachable size), or when a region's spots are thinner than kThinnestAspect.
-SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+SketchPlan plan_sketch(const SketchRegions& regions, const SketchDomain& domain, const SketchModel& model,
                        double max_circumradius);
 
 // Stripes along strokes: each region's stripe width (stroke_regions) through the stripe model's
@@ -86,26 +89,24 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchPatch& patch, c
 // sqrt(kappa)), the run as long as the slowest region needs. InputError, before anything runs, for
 // stripes thinner than the mesh resolves (the message says the thinnest) or widths spanning more than
 // the training does (the span, and the nearest reachable width).
-SketchPlan plan_stripes(const SketchRegions& regions, const SketchPatch& patch, const SketchModel& model,
+SketchPlan plan_stripes(const SketchRegions& regions, const SketchDomain& domain, const SketchModel& model,
                         double max_circumradius);
 
-// Fills plan.initiators and plan.initiator_radius (see kInitiatorLength). The window maps onto the
-// input's x/y extent; a segment's z is that of the input vertex nearest its centre in x/y (a flat
-// patch's own z).
-void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
-                      std::uint32_t seed);
+// Fills plan.initiators and plan.initiator_radius (see kInitiatorLength): segments straight in the
+// surface's tangent plane at window points drawn uniformly (again where a UV layout has no face),
+// their count from the surface's area and the stripes' median width.
+void place_initiators(SketchPlan& plan, const SketchRegions& regions, const SketchDomain& domain, std::uint32_t seed);
 
 // A scale per region (a rate, an anisotropy ratio: > 0) at each input vertex, the regions' values
-// blended at the vertex's window point in logs.
-InputVertexData<double> scale_map(const SketchRegions& regions, const SketchPatch& patch, const InputMesh& mesh,
+// blended at the vertex's window point in logs (on a UV seam, the blends of its window points averaged).
+InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDomain& domain, const InputMesh& mesh,
                                   const std::vector<double>& values);
 
-// The direction per input face (a unit vector in the input's x/y plane): the regions' orientations
-// blended at the face's centroid as axes (doubled angles, each region weighted by 1 - its ratio when
-// any is squeezed), turned from the window's frame into the input's (the window's axes are scaled
-// onto the patch's).
-std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const std::vector<double>& ratio,
-                                           const SketchPatch& patch, const InputMesh& mesh);
+// The direction per input face (a unit tangent vector): each region's drawn spot (a stroke's line for
+// stripes) through the face's map, its major axes blended at the face's window point as axes
+// (doubled angles, each region weighted by 1 - its ratio when any is squeezed).
+std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPlan& plan, const SketchDomain& domain,
+                                           const InputMesh& mesh);
 
 // The generated scene (runnable with `physarum run`): the model, its rate from the map "sketch_rate"
 // of `map_file` (relative to the scene's folder), diffusion x kappa, anisotropy along the map

@@ -11,29 +11,36 @@ namespace {
 
 const char* within(double miss, double tolerance) { return std::abs(miss) <= tolerance ? "pass" : "miss"; }
 
+// A spot's ellipse as it would have been drawn in the window: its surface ellipse (major axis in the
+// map's tangent basis) pulled back through the window's map there.
+EllipseShape drawn_shape(const SpotShape& spot, const WindowFrame& at) {
+  const Eigen::Vector2d axis = at.frame.transpose() * spot.major_axis;
+  return in_window(at, {1.0 / spot.aspect_ratio, std::atan2(axis.y(), axis.x()) * 180.0 / M_PI});
+}
+
 }  // namespace
 
 std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch, const std::vector<char>& first_layer) {
+                                           const SketchDomain& domain, const std::vector<char>& first_layer) {
   const size_t n = regions.regions.size();
   std::vector<std::vector<double>> area(n), aspect(n), orientation(n), spacing(n);
   std::vector<int> region_of(analysis.regions.size(), -1);
-  const double area_scale = patch.scale * patch.scale;
+  const double area_scale = domain.scale() * domain.scale();
   for (size_t i = 0; i < analysis.regions.size(); ++i) {
     const AnalysedRegion& r = analysis.regions[i];
     if (r.is_stripe || r.touches_boundary) continue;
     if (!first_layer.empty() && r.shape.centre_vertex >= 0 && first_layer[static_cast<size_t>(r.shape.centre_vertex)]) continue;
-    const int k = regions.region_of(patch.window_point(r.shape.centre));
+    const SketchDomain::Located at = domain.locate(r.shape.centre);
+    const int k = regions.region_of(at.window_point);
     region_of[i] = k;
     area[static_cast<size_t>(k)].push_back(r.area * area_scale);
-    aspect[static_cast<size_t>(k)].push_back(1.0 / r.shape.aspect_ratio);
-    // The major axis in the window's frame (x and y scaled as the window maps onto the patch).
-    const Eigen::Vector2d axis = r.shape.major_axis.head<2>().cwiseQuotient(patch.high - patch.low).cwiseProduct(patch.window);
-    orientation[static_cast<size_t>(k)].push_back(std::fmod(std::atan2(axis.y(), axis.x()) * 180.0 / M_PI + 180.0, 180.0));
+    const EllipseShape drawn = drawn_shape(r.shape, at.frame);
+    aspect[static_cast<size_t>(k)].push_back(drawn.aspect);
+    orientation[static_cast<size_t>(k)].push_back(drawn.orientation);
   }
   for (const SpotPair& p : analysis.pairs) {
     const int a = region_of[static_cast<size_t>(p.a)], b = region_of[static_cast<size_t>(p.b)];
-    if (a >= 0 && a == b) spacing[static_cast<size_t>(a)].push_back(p.distance * patch.scale);
+    if (a >= 0 && a == b) spacing[static_cast<size_t>(a)].push_back(p.distance * domain.scale());
   }
   std::vector<RegionMeasure> measures(n);
   for (size_t k = 0; k < n; ++k) {
@@ -50,14 +57,20 @@ double area_miss(const RegionMeasure& generated, double sketched_area) {
   return generated.spots > 0 ? generated.area / sketched_area - 1.0 : std::numeric_limits<double>::infinity();
 }
 
+nlohmann::ordered_json center_json(const SketchDomain& domain, const Eigen::Vector2d& window_point) {
+  const std::optional<Eigen::Vector3d> p = domain.surface_point(window_point);
+  if (!p) return nullptr;
+  if (!domain.on_uv()) return {p->x(), p->y()};
+  return {p->x(), p->y(), p->z()};
+}
+
 double axis_difference(double a, double b) {
   const double d = std::fmod(std::abs(a - b), 180.0);
   return std::min(d, 180.0 - d);
 }
 
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchPatch& patch, bool shaped) {
-  const Eigen::Vector2d m = patch.metres_per_unit();
+                                     const RegionMeasure& generated, const SketchDomain& domain, bool shaped) {
   nlohmann::ordered_json verdict;
   if (generated.spots == 0) {
     verdict = {{"area", "no spots"}, {"spacing", "no spots"}, {"aspect", "no spots"}, {"orientation", "no spots"}};
@@ -73,15 +86,14 @@ nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sk
                                                                            kOrientationTolerance);
   }
   // Lengths in the input mesh's units, as `physarum analyze` reports them (../shared/DESIGN.md).
-  const double s = patch.scale;
+  const double s = domain.scale();
   auto length_or_null = [s](double metres) {
     return metres > 0.0 ? nlohmann::ordered_json(metres / s) : nlohmann::ordered_json(nullptr);
   };
   auto area_or_null = [s](bool any, double m2) { return any ? nlohmann::ordered_json(m2 / (s * s)) : nlohmann::ordered_json(nullptr); };
   auto or_null = [](bool any, double x) { return any ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
-  const Eigen::Vector2d center = patch.low + sketched.center.cwiseProduct(m) / s;
   const bool any = generated.spots > 0;
-  return {{"center", {center.x(), center.y()}},
+  return {{"center", center_json(domain, sketched.center)},
           {"sketched_spots", sketched.spots},
           {"sketched",
            {{"area", sketched_area_m2 / (s * s)},

@@ -6,7 +6,7 @@
 // per attribute: report.json (../shared/DESIGN.md, "Sketches").
 #include "common/pattern/pattern_analysis.hpp"
 #include "common/sketch/sketch_regions.hpp"
-#include "tools/sketch/sketch_patch.hpp"
+#include "common/sketch/sketch_domain.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +27,8 @@ inline constexpr double kOrientedAspect = 0.6;
 struct RegionMeasure {
   int spots = 0;             // whole spots whose centres lie in the region
   double area = 0.0;         // m^2, median
+  // The spots' shapes as drawn in the window (each pulled back through the window's map at its
+  // centre, common/sketch/sketch_domain.hpp), to set beside the sketched ones:
   double aspect = 1.0;       // minor / major, median
   double orientation = 0.0;  // degrees in [0, 180) in the window's frame, axial mean
   double spacing = 0.0;      // m, median over neighbouring pairs with both centres in the region (0: none)
@@ -37,7 +39,7 @@ struct RegionMeasure {
 // `first_layer`: per vertex, frozen spots of a first layer (a cascade's second layer), whose regions
 // (those centred on a frozen vertex) are left out; empty for none.
 std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch, const std::vector<char>& first_layer = {});
+                                           const SketchDomain& domain, const std::vector<char>& first_layer = {});
 
 // The region's relative miss of its sketched area (generated / sketched - 1); infinity without spots.
 double area_miss(const RegionMeasure& generated, double sketched_area);
@@ -47,7 +49,11 @@ double area_miss(const RegionMeasure& generated, double sketched_area);
 // the mesh is not rescaled); the arguments in metres. `shaped`: the plan grew elongated spots (an anisotropy); without it the
 // aspect and orientation are reported and judged "not controlled" (round spots asked for).
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchPatch& patch, bool shaped);
+                                     const RegionMeasure& generated, const SketchDomain& domain, bool shaped);
+
+// A region's centre as report.json gives it: the input surface's point at the window point, x and y
+// on a patch, x, y and z on a UV layout (null where the layout has no face there).
+nlohmann::ordered_json center_json(const SketchDomain& domain, const Eigen::Vector2d& window_point);
 
 // The difference of two axes' angles in degrees, in [0, 90].
 double axis_difference(double a, double b);

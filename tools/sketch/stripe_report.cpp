@@ -27,25 +27,26 @@ Eigen::Vector3d face_gradient(const Eigen::Vector3d& p0, const Eigen::Vector3d& 
 
 std::vector<StripeMeasure> measure_stripes(const InputMesh& mesh, const std::vector<double>& field,
                                            const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch) {
+                                           const SketchDomain& domain) {
   const size_t n = regions.regions.size();
-  // Window units per input unit: the gradient of f in the window's frame is g_input x (high - low) / window.
-  const Eigen::Vector2d to_window = (patch.high - patch.low).cwiseQuotient(patch.window);
   std::vector<Eigen::Matrix2d> tensor(n, Eigen::Matrix2d::Zero());
   for (const auto& t : mesh.triangles) {
     const auto i = [&](int k) { return static_cast<size_t>(t[static_cast<size_t>(k)]); };
     double area = 0.0;
     const Eigen::Vector3d g = face_gradient(mesh.positions[i(0)], mesh.positions[i(1)], mesh.positions[i(2)],
                                             field[i(0)], field[i(1)], field[i(2)], area);
-    const Eigen::Vector2d gw = g.head<2>().cwiseProduct(to_window);
     const Eigen::Vector3d centroid = (mesh.positions[i(0)] + mesh.positions[i(1)] + mesh.positions[i(2)]) / 3.0;
-    tensor[static_cast<size_t>(regions.region_of(patch.window_point(centroid)))] += area * gw * gw.transpose();
+    const SketchDomain::Located at = domain.locate(centroid);
+    // The gradient in the window's frame (the chain rule through the window's map there; up to the
+    // metres per input unit, one factor for every face).
+    const Eigen::Vector2d gw = at.frame.stretch.transpose() * (at.frame.frame.transpose() * g);
+    tensor[static_cast<size_t>(regions.region_of(at.window_point))] += area * gw * gw.transpose();
   }
   std::vector<std::vector<double>> widths(n);
   for (const AnalysedRegion& r : analysis.regions)
     if (r.is_stripe && r.stripe_width)
-      widths[static_cast<size_t>(regions.region_of(patch.window_point(r.shape.centre)))].push_back(*r.stripe_width *
-                                                                                                  patch.scale);
+      widths[static_cast<size_t>(regions.region_of(domain.locate(r.shape.centre).window_point))].push_back(*r.stripe_width *
+                                                                                                           domain.scale());
   std::vector<StripeMeasure> measures(n);
   for (size_t k = 0; k < n; ++k) {
     const Eigen::Matrix2d& J = tensor[k];
@@ -64,11 +65,10 @@ double width_miss(const StripeMeasure& generated, double sketched_width) {
 }
 
 nlohmann::ordered_json stripe_region_report(const RegionAttributes& sketched, double sketched_width_m,
-                                            const StripeMeasure& generated, const SketchPatch& patch) {
-  const double s = patch.scale;
+                                            const StripeMeasure& generated, const SketchDomain& domain) {
+  const double s = domain.scale();
   const double miss = width_miss(generated, sketched_width_m);
-  const Eigen::Vector2d center = patch.low + sketched.center.cwiseProduct(patch.metres_per_unit()) / s;
-  return {{"center", {center.x(), center.y()}},
+  return {{"center", center_json(domain, sketched.center)},
           {"sketched_strokes", sketched.strokes},
           {"sketched", {{"orientation", sketched.orientation}, {"width", sketched_width_m / s}}},
           {"generated",

@@ -14,7 +14,7 @@
 #include "common/mesh/input_mesh.hpp"
 #include "common/pattern/pattern_analysis.hpp"
 #include "common/sketch/sketch_regions.hpp"
-#include "tools/sketch/sketch_patch.hpp"
+#include "common/sketch/sketch_domain.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -38,7 +38,7 @@ struct StripeMeasure {
 // mesh in input coordinates and the field per vertex) and its analysis.
 std::vector<StripeMeasure> measure_stripes(const InputMesh& mesh, const std::vector<double>& field,
                                            const PatternAnalysis& analysis, const SketchRegions& regions,
-                                           const SketchPatch& patch);
+                                           const SketchDomain& domain);
 
 // The region's relative miss of its sketched width (generated / sketched - 1); infinity without stripes.
 double width_miss(const StripeMeasure& generated, double sketched_width);
@@ -47,6 +47,6 @@ double width_miss(const StripeMeasure& generated, double sketched_width);
 // "generated": {"stripes", "orientation", "coherence", "width"}, "verdict": {"orientation", "width"}},
 // lengths in the input mesh's units; the arguments in metres.
 nlohmann::ordered_json stripe_region_report(const RegionAttributes& sketched, double sketched_width_m,
-                                            const StripeMeasure& generated, const SketchPatch& patch);
+                                            const StripeMeasure& generated, const SketchDomain& domain);
 
 }  // namespace physarum::cli
