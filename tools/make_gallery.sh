@@ -49,6 +49,10 @@ for scene in "${scenes[@]}"; do
     "$physarum" render "$work/strokes" --views 3 --out "$work/strokes/views" > /dev/null
     cp "$work/strokes/sketch.png" docs/gallery/sketch_strokes_input.png
     cp "$work/strokes/views/view_front.png" docs/gallery/sketch_strokes_result.png
+    "$physarum" sketch tools/sketch/examples/cube_orientations.json --mesh shape:cube --uv --area 1.5 --regions 6 \
+      --backend opencl --out "$work/cube" > /dev/null
+    cp "$work/cube/sketch.png" docs/gallery/sketch_cube_input.png
+    cp "$work/cube/preview.png" docs/gallery/sketch_cube_result.png
     # Each layer in its own colour set (--colors): the sketch draws view_front.png itself, composited.
     "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json \
       --colors '#fbe7c6,#f28c28' '#fbe7c6,#b5179e' --backend opencl --out "$work/layers" > /dev/null
@@ -68,7 +72,7 @@ for scene in "${scenes[@]}"; do
     fi
     cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
     cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_cube_input.png docs/gallery/sketch_cube_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
     continue
   fi
   if [ "$scene" = pearson_map ]; then

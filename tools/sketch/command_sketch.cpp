@@ -258,7 +258,7 @@ int run_sketch(const SketchOptions& o) {
 
   create_output_folder(o.out);
   const fs::path out(o.out);
-  write_rgb_png((out / "sketch.png").string(), draw_sketch(first.sketch));
+  write_rgb_png((out / "sketch.png").string(), draw_sketch(first.sketch, o.uv ? &mesh : nullptr));
   nlohmann::ordered_json iterations = nlohmann::ordered_json::array(), report;
   // With a second layer, the first runs in DIR/layer1 and the second, on its frozen spots, in DIR.
   const fs::path first_folder = second ? out / "layer1" : out;
@@ -269,7 +269,7 @@ int run_sketch(const SketchOptions& o) {
   report["iterations"] = iterations;
   nlohmann::ordered_json sketch_file = sketch_json(first.sketch, first.attributes, first.regions, first.plan);
   if (second) {
-    write_rgb_png((out / "sketch_layer2.png").string(), draw_sketch(second->sketch));
+    write_rgb_png((out / "sketch_layer2.png").string(), draw_sketch(second->sketch, o.uv ? &mesh : nullptr));
     const Cascade cascade{"layer1/fields_full.ply", run.threshold, o.rosettes};
     const LayerRun top = grow_and_measure(o, out, second->plan, second->regions, *second->domain, mesh, &cascade);
     int passed2 = 0;

@@ -25,14 +25,34 @@ double half_width(const SketchStroke& s, const Eigen::Vector2d& window) {
   return 0.5 * (s.width > 0.0 ? s.width : 0.01 * s.width_class * window.minCoeff());
 }
 
+// The pixels the mesh's UV triangles cover (the window onto UV [0, 1]^2), set to `grey`.
+void draw_charts(RgbImage& image, const InputMesh& mesh, unsigned char grey) {
+  auto pixel = [&](const Eigen::Vector2d& uv) { return Eigen::Vector2d(uv.x() * image.width, (1.0 - uv.y()) * image.height); };
+  for (const auto& t : mesh.triangle_uvs) {
+    const Eigen::Vector2d a = pixel(mesh.uvs[static_cast<size_t>(t[0])]), b = pixel(mesh.uvs[static_cast<size_t>(t[1])]),
+                          c = pixel(mesh.uvs[static_cast<size_t>(t[2])]);
+    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (!(std::abs(area) > 0.0)) continue;
+    const Eigen::Vector2d low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    for (int row = std::max(0, static_cast<int>(low.y())); row <= std::min(image.height - 1, static_cast<int>(high.y())); ++row)
+      for (int column = std::max(0, static_cast<int>(low.x())); column <= std::min(image.width - 1, static_cast<int>(high.x())); ++column) {
+        const Eigen::Vector2d p(column + 0.5, row + 0.5);
+        auto side = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return ((v - u).x() * (p - u).y() - (v - u).y() * (p - u).x()) / area; };
+        if (side(a, b) >= 0.0 && side(b, c) >= 0.0 && side(c, a) >= 0.0)
+          std::fill_n(image.pixels.begin() + (static_cast<ptrdiff_t>(row) * image.width + column) * 3, 3, grey);
+      }
+  }
+}
+
 }  // namespace
 
-RgbImage draw_sketch(const Sketch& sketch, int size) {
+RgbImage draw_sketch(const Sketch& sketch, const InputMesh* uv_layout, int size) {
   const double unit = size / sketch.window.maxCoeff();  // pixels per window unit
   RgbImage image;
   image.width = std::max(1, static_cast<int>(std::lround(sketch.window.x() * unit)));
   image.height = std::max(1, static_cast<int>(std::lround(sketch.window.y() * unit)));
   image.pixels.assign(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3, 255);
+  if (uv_layout) draw_charts(image, *uv_layout, 230);
   for (int row = 0; row < image.height; ++row)
     for (int column = 0; column < image.width; ++column) {
       // The top row is the window's largest y.
