@@ -328,6 +328,42 @@ TEST(CliSketch, AUvSketchIsMeasuredThroughTheLayoutsStretch) {
   EXPECT_NEAR(region["center"][0].get<double>(), 0.5, 1e-9) << "the window's centre is the layout's x = 0.5";
 }
 
+// Marks on the surface (JSON "surface_point" ellipses): four round marks of four sizes at the
+// quadrants' centres of the 1 m^2 square, each its own region, blended by geodesic distance. Their
+// spacing is exactly 0.5 m; the spots grown nearest each mark have its area within 25 %, in the
+// marks' order (about 9 s here).
+TEST(CliSketch, MarksOnTheSurfaceGrowTheirSizesAroundThem) {
+  TempDir dir;
+  const double area[4] = {0.0007, 0.0013, 0.0022, 0.0038};
+  json marks = json::array();
+  for (int q = 0; q < 4; ++q) {
+    const double r = std::sqrt(area[q] / M_PI);
+    marks.push_back({{"ellipse",
+                      {{"surface_point", {0.25 + 0.5 * (q % 2), 0.25 + 0.5 * (q / 2), 0.0}}, {"radii", {r, r}}, {"direction", {1, 0, 0}}}}});
+  }
+  const fs::path out = dir.path / "out";
+  const CommandResult r = run_physarum("sketch " + quoted(write(dir, "marks.json", {{"marks", marks}})) + " --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "sketch.png"));
+  const json sketch = json::parse(std::ifstream(out / "sketch.json"));
+  ASSERT_EQ(sketch["surface_marks"].size(), 4u);
+  for (const json& m : sketch["surface_marks"]) EXPECT_NEAR(m["spacing"].get<double>(), 0.5, 1e-3);
+  const json report = json::parse(std::ifstream(out / "report.json"));
+  ASSERT_EQ(report["regions"].size(), 4u);
+  double last = 0.0;
+  for (int q = 0; q < 4; ++q) {
+    const json& region = report["regions"][static_cast<size_t>(q)];
+    SCOPED_TRACE(region.dump());
+    EXPECT_NEAR(region["center"][0].get<double>(), 0.25 + 0.5 * (q % 2), 1e-9);
+    ASSERT_GE(region["generated"]["spots"].get<int>(), 5);
+    const double generated = region["generated"]["area"].get<double>();
+    EXPECT_NEAR(generated / area[q], 1.0, 0.25);
+    EXPECT_GT(generated, last) << "ordered as the marks";
+    last = generated;
+    EXPECT_EQ(region["verdict"]["spacing"], "marks: not judged");
+  }
+}
+
 TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
   TempDir dir;
   struct Case {
@@ -360,6 +396,10 @@ TEST(CliSketch, BadSketchesAreRefusedBeforeAnythingRuns) {
       {lattice(0.004, 0.16), "--colors '#ff0000,#00ff00' magma", 2, "a second colour set is for a second layer"},
       {lattice(0.004, 0.16), "--colors nosuchmap", 1, "--colors set 1 = \"nosuchmap\" is neither a built-in colour map"},
       {lattice(0.004, 0.16), "--uv", 1, "a UV sketch is painted on the mesh's UV layout, and shape:square has no texture coordinates"},
+      {{{"marks", {{{"ellipse", {{"surface_point", {0.5, 0.5, 0.0}}, {"radii", {0.03, 0.03}}, {"direction", {0, 0, 1}}}}}}}}, "", 1,
+       "mark 0: its direction is (nearly) normal to the surface"},
+      {{{"marks", {{{"ellipse", {{"surface_point", {0.5, 0.5, 0.0}}, {"radii", {0.03, 0.03}}, {"direction", {1, 0, 0}}}}}}}}, "--uv", 2,
+       "marks lie on the surface, not in a UV window"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string index = std::to_string(i);

@@ -62,6 +62,19 @@ TEST(SketchJson, EllipsesAreMeasuredExactlyAndTheirAxesNormalized) {
   EXPECT_EQ(a.strokes[0].width_class, 3);
 }
 
+TEST(SketchJson, SurfaceMarksKeepTheirPointRadiiAndDirection) {
+  // The first radius is the minor one: the major axis lies across the direction.
+  const Sketch s = sketch_from_json(
+      {{"marks", {{{"ellipse", {{"surface_point", {0.1, 0.2, 0.3}}, {"radii", {0.02, 0.05}}, {"direction", {0, 2, 0}}}}}}}}, "s.json");
+  ASSERT_EQ(s.surface_spots.size(), 1u);
+  EXPECT_TRUE(s.spots.empty());
+  EXPECT_TRUE(s.surface_spots[0].point.isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
+  EXPECT_DOUBLE_EQ(s.surface_spots[0].major, 0.05);
+  EXPECT_DOUBLE_EQ(s.surface_spots[0].minor, 0.02);
+  EXPECT_TRUE(s.surface_spots[0].direction.isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_TRUE(s.surface_spots[0].across);
+}
+
 TEST(SketchJson, BadSketchesAreRefusedWithTheirReason) {
   auto bad = [](const json& j) { return refusal([&] { sketch_from_json(j, "s.json"); }); };
   EXPECT_NE(bad({{"marks", json::array()}}).find("s.json: the sketch has no \"marks\""), std::string::npos);
@@ -71,7 +84,15 @@ TEST(SketchJson, BadSketchesAreRefusedWithTheirReason) {
             std::string::npos);
   EXPECT_NE(bad({{"marks", {{{"stroke", {{"points", {{0.1, 0.1}, {0.2, 0.2}}}, {"width", 5}}}}}}}).find("width class 1..4"),
             std::string::npos);
-  EXPECT_NE(bad({{"marks", {{{"ellipse", {{"surface_point", {0, 0, 1}}, {"radii", {0.1, 0.1}}}}}}}}).find("window marks only"),
+  EXPECT_NE(bad({{"marks", {{{"ellipse", {{"surface_point", {0, 0, 1}}, {"radii", {0.1, 0.1}}}}}}}}).find("mark 0: missing \"direction\""),
+            std::string::npos);
+  EXPECT_NE(bad({{"marks", {{{"ellipse", {{"surface_point", {0, 0, 1}}, {"radii", {0.1, 0.1}}, {"direction", {0, 0, 0}}}}}}}})
+                .find("mark 0: \"direction\" must not be zero"),
+            std::string::npos);
+  EXPECT_NE(bad({{"marks",
+                  {{{"ellipse", {{"surface_point", {0, 0, 1}}, {"radii", {0.1, 0.1}}, {"direction", {1, 0, 0}}}}},
+                   {{"ellipse", {{"center", {0.5, 0.5}}, {"radii", {0.1, 0.1}}}}}}}})
+                .find("mixes marks on the surface"),
             std::string::npos);
   EXPECT_NE(bad({{"marks", {{{"blob", json::object()}}}}}).find("unknown kind \"blob\""), std::string::npos);
 }

@@ -10,7 +10,8 @@
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
 # (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
 # oriented.json, mixed_aspects.json and strokes.json and keeps each sketch as measured beside its grown
-# pattern (face-on), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
+# pattern (face-on), cube_orientations.json on shape:cube's UV layout, sphere_marks.json (marks on the
+# surface), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
 # each layer in its own colour set, and four_sizes.json on the cow (needs ../shared/meshes).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
@@ -53,6 +54,9 @@ for scene in "${scenes[@]}"; do
       --backend opencl --out "$work/cube" > /dev/null
     cp "$work/cube/sketch.png" docs/gallery/sketch_cube_input.png
     cp "$work/cube/preview.png" docs/gallery/sketch_cube_result.png
+    "$physarum" sketch tools/sketch/examples/sphere_marks.json --mesh shape:sphere --area 2 --backend opencl --out "$work/sphere" > /dev/null
+    cp "$work/sphere/sketch.png" docs/gallery/sketch_sphere_input.png
+    cp "$work/sphere/preview.png" docs/gallery/sketch_sphere_result.png
     # Each layer in its own colour set (--colors): the sketch draws view_front.png itself, composited.
     "$physarum" sketch tools/sketch/examples/layer_big.json --layer2 tools/sketch/examples/layer_small.json \
       --colors '#fbe7c6,#f28c28' '#fbe7c6,#b5179e' --backend opencl --out "$work/layers" > /dev/null
@@ -72,7 +76,7 @@ for scene in "${scenes[@]}"; do
     fi
     cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
     cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
-    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_cube_input.png docs/gallery/sketch_cube_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
+    echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_cube_input.png docs/gallery/sketch_cube_result.png docs/gallery/sketch_sphere_input.png docs/gallery/sketch_sphere_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"
     continue
   fi
   if [ "$scene" = pearson_map ]; then

@@ -19,11 +19,7 @@ class MarkReader {
   void only(const json& object, const std::set<std::string>& fields, const std::string& what) const {
     if (!object.is_object()) fail(what + " must be an object");
     for (auto it = object.begin(); it != object.end(); ++it)
-      if (!fields.count(it.key())) {
-        if (it.key() == "surface_point" || it.key() == "direction")
-          fail(what + ": \"" + it.key() + "\" marks lie on a mesh's surface; this sketch reader takes window marks only");
-        fail(what + ": unknown field \"" + it.key() + "\"");
-      }
+      if (!fields.count(it.key())) fail(what + ": unknown field \"" + it.key() + "\"");
   }
 
   double number(const json& object, const char* field, const std::string& what) const {
@@ -38,6 +34,17 @@ class MarkReader {
       fail(what + " = " + value.dump() + " must be two numbers");
     const Eigen::Vector2d p(value[0].get<double>(), value[1].get<double>());
     if (!p.allFinite()) fail(what + " must be finite");
+    return p;
+  }
+
+  Eigen::Vector3d triple_field(const json& object, const char* field, const std::string& what) const {
+    const auto it = object.find(field);
+    if (it == object.end()) fail(what + ": missing \"" + field + "\"");
+    const json& v = *it;
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      fail(what + " \"" + field + "\" = " + v.dump() + " must be three numbers");
+    const Eigen::Vector3d p(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+    if (!p.allFinite()) fail(what + " \"" + field + "\" must be finite");
     return p;
   }
 
@@ -67,6 +74,21 @@ SketchSpot read_ellipse(const json& e, const Eigen::Vector2d& window, const Mark
   spot.major = radii.maxCoeff();
   spot.minor = radii.minCoeff();
   spot.orientation = axis_orientation(radii[0] >= radii[1] ? angle : angle + 90.0);
+  return spot;
+}
+
+SurfaceSpot read_surface_ellipse(const json& e, const MarkReader& r, const std::string& what) {
+  r.only(e, {"surface_point", "radii", "direction"}, what);
+  SurfaceSpot spot;
+  spot.point = r.triple_field(e, "surface_point", what);
+  const Eigen::Vector2d radii = r.pair_field(e, "radii", what);
+  if (!(radii.minCoeff() > 0.0)) r.fail(what + ": \"radii\" must both be > 0");
+  spot.major = radii.maxCoeff();
+  spot.minor = radii.minCoeff();
+  spot.direction = r.triple_field(e, "direction", what);
+  if (!(spot.direction.norm() > 0.0)) r.fail(what + ": \"direction\" must not be zero");
+  spot.direction.normalize();
+  spot.across = radii[0] < radii[1];
   return spot;
 }
 
@@ -108,10 +130,14 @@ Sketch sketch_from_json(const json& j, const std::string& where) {
     const json& mark = (*marks)[k];
     const std::string what = "mark " + std::to_string(k);
     if (!mark.is_object() || mark.size() != 1) r.fail(what + " must be {\"ellipse\": {...}} or {\"stroke\": {...}}");
-    if (mark.contains("ellipse")) sketch.spots.push_back(read_ellipse(mark["ellipse"], sketch.window, r, what));
+    if (mark.contains("ellipse") && mark["ellipse"].is_object() && mark["ellipse"].contains("surface_point"))
+      sketch.surface_spots.push_back(read_surface_ellipse(mark["ellipse"], r, what));
+    else if (mark.contains("ellipse")) sketch.spots.push_back(read_ellipse(mark["ellipse"], sketch.window, r, what));
     else if (mark.contains("stroke")) sketch.strokes.push_back(read_stroke(mark["stroke"], sketch.window, r, what));
     else r.fail(what + ": unknown kind \"" + mark.begin().key() + "\" (ellipse or stroke)");
   }
+  if (!sketch.surface_spots.empty() && (!sketch.spots.empty() || !sketch.strokes.empty()))
+    r.fail("the sketch mixes marks on the surface (\"surface_point\") with marks in the window: give one kind");
   return sketch;
 }
 

@@ -87,6 +87,12 @@ SketchDomain SketchDomain::patch(const Sketch& sketch, const InputMesh& mesh, do
   return d;
 }
 
+SketchDomain SketchDomain::surface(const Sketch& sketch, const InputMesh& mesh, double area) {
+  SketchDomain d(sketch, mesh, area);
+  d.patch_frame_.stretch = Eigen::Matrix2d::Identity() * d.scale_;
+  return d;
+}
+
 SketchDomain SketchDomain::uv(const Sketch& sketch, const InputMesh& mesh, double area) {
   if (mesh.triangle_uvs.empty())
     throw InputError(sketch.source + ": a UV sketch is painted on the mesh's UV layout, and " + mesh.source +

@@ -8,7 +8,9 @@
 //          in a paint program: its top row at v = 1), so a sketch is painted on the texture the mesh
 //          wears. Each face's UV triangle and its triangle on the surface give that face's own linear
 //          map, the UV layout's stretch: a round mark on a stretched part of the layout is an
-//          elongated spot on the surface, as the texture would show it.
+//          elongated spot on the surface, as the texture would show it;
+//   surface marks drawn on the surface itself (common/sketch/surface_marks.hpp): no window; lengths
+//          are the input mesh's, times its scale.
 //
 // Either way the mesh is scaled to `area` m^2 as scale_to_area does, and every map is a WindowFrame:
 // window vectors to metres in a tangent frame of the surface.
@@ -57,6 +59,8 @@ class SketchDomain {
   // InputError when the area is not > 0, the mesh has no texture coordinates, or no UV triangle
   // has an area.
   static SketchDomain uv(const Sketch& sketch, const InputMesh& mesh, double area);
+  // InputError when the area is not > 0. Every map is the scale, in an arbitrary tangent basis.
+  static SketchDomain surface(const Sketch& sketch, const InputMesh& mesh, double area);
 
   bool on_uv() const { return on_uv_; }
   const Eigen::Vector2d& window() const { return window_; }

@@ -131,4 +131,19 @@ SketchRegions stroke_regions(const Sketch& sketch, int n) {
   return result;
 }
 
+SketchRegions surface_regions(std::shared_ptr<const SurfaceMarks> marks) {
+  SketchRegions result;
+  result.n = 0;
+  for (size_t k = 0; k < marks->size(); ++k) {
+    RegionAttributes r;
+    r.spots = 1;
+    r.area = marks->area[k];
+    r.aspect = marks->aspect[k];
+    r.spacing = marks->spacing[k];
+    result.regions.push_back(r);
+  }
+  result.marks = std::move(marks);
+  return result;
+}
+
 }  // namespace physarum

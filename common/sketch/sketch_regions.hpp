@@ -5,9 +5,11 @@
 // smoothly over the pattern (the paper's Figs. 2, 3). A region without marks takes the attributes
 // of the nearest region that has some.
 #include "common/sketch/sketch_attributes.hpp"
+#include "common/sketch/surface_marks.hpp"
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace physarum {
@@ -30,6 +32,10 @@ struct SketchRegions {
   int n = 1;
   Eigen::Vector2d window = Eigen::Vector2d::Ones();
   std::vector<RegionAttributes> regions;  // row by row from the bottom-left: index = row * n + column
+  // A sketch of marks on the surface (surface_regions): a region per mark, in the marks' order, its
+  // attributes in input units with orientation 0 (along the mark's own axis), blended by the marks'
+  // weights rather than over the window (region_of and blend are then not for use).
+  std::shared_ptr<const SurfaceMarks> marks;
 
   // The region a window point lies in (points on the window's edge or outside it: the nearest).
   int region_of(const Eigen::Vector2d& p) const;
@@ -40,6 +46,9 @@ struct SketchRegions {
 
 // The regions of a sketch's spots. InputError when n < 1 or the sketch has no spot.
 SketchRegions sketch_regions(const Sketch& sketch, const SketchAttributes& attributes, int n);
+
+// The regions of marks on a surface: one per mark.
+SketchRegions surface_regions(std::shared_ptr<const SurfaceMarks> marks);
 
 // The regions of a sketch's strokes: per region the length-weighted axial mean orientation of the
 // stroke segments whose midpoints lie in it and their width classes' stripe width

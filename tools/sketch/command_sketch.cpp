@@ -98,6 +98,7 @@ nlohmann::ordered_json sketch_json(const Sketch& sketch, const SketchAttributes&
                       {stripes ? "trained_width_m" : "trained_area_m2", {plan.trained_smallest, plan.trained_largest}},
                       {"cross_validated_error", plan.cross_validated_error},
                       {"diffusion_factor", plan.kappa}};
+  if (regions.marks) j["surface_marks"] = surface_marks_json(*regions.marks);
   if (stripes) j["inverse_map"]["initiator_segments"] = plan.initiators.size();
   j["inverse_map"]["anisotropy_ratios"] = plan.ratio;
   j["inverse_map"]["rates"] = plan.rate;
@@ -171,7 +172,9 @@ std::vector<double> size_misses(const SketchPlan& plan, const Measures& measures
 
 // The model a sketch drives without --model: spots grow Turing's spots, a sketch of strokes alone
 // Meinhardt's stripes.
-std::string default_model(const Sketch& sketch) { return sketch.spots.empty() ? "meinhardt-stripes" : "turing-spots"; }
+std::string default_model(const Sketch& sketch) {
+  return sketch.spots.empty() && sketch.surface_spots.empty() ? "meinhardt-stripes" : "turing-spots";
+}
 
 // A sketch measured, placed on the surface and planned: everything that can refuse it, before any
 // output exists.
@@ -187,12 +190,19 @@ Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::
   Layer layer;
   layer.sketch = read_sketch(path);
   const SketchModel& model = sketch_model(model_name.empty() ? default_model(layer.sketch) : model_name);
-  layer.attributes = measure_sketch(layer.sketch);
   if (model.stripes && layer.sketch.strokes.empty())
     throw InputError(layer.sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
-  layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
-                                : sketch_regions(layer.sketch, layer.attributes, o.regions);
-  layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
+  if (!layer.sketch.surface_spots.empty()) {
+    // Marks on the surface: a region per mark, placed on the mesh (common/sketch/surface_marks.hpp).
+    if (o.uv) throw UsageError("--uv: " + layer.sketch.source + "'s marks lie on the surface, not in a UV window");
+    layer.regions = surface_regions(std::make_shared<const SurfaceMarks>(place_surface_marks(layer.sketch, mesh)));
+    layer.domain = SketchDomain::surface(layer.sketch, mesh, o.area);
+  } else {
+    layer.attributes = measure_sketch(layer.sketch);
+    layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
+                                  : sketch_regions(layer.sketch, layer.attributes, o.regions);
+    layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
+  }
   const SketchDomain& domain = *layer.domain;
   layer.plan = model.stripes ? plan_stripes(layer.regions, domain, model, o.max_circumradius)
                              : plan_sketch(layer.regions, domain, model, o.max_circumradius);
@@ -220,6 +230,20 @@ LayerRun grow_refined(const SketchOptions& o, const fs::path& folder, Layer& lay
   }
 }
 
+// A region's centre in report.json: a mark's point on the surface, or the window centre's.
+nlohmann::ordered_json region_center(const SketchRegions& regions, size_t k, const SketchDomain& domain) {
+  if (!regions.marks) return center_json(domain, regions.regions[k].center);
+  const Eigen::Vector3d& p = regions.marks->point[k];
+  return {p.x(), p.y(), p.z()};
+}
+
+// sketch.png: the marks as measured, in their window (over the UV layout with --uv), or for marks on
+// the surface drawn on the full-resolution mesh of a run in `run_folder`.
+RgbImage sketch_picture(const Layer& layer, const SketchOptions& o, const InputMesh& mesh, const fs::path& run_folder) {
+  if (!layer.regions.marks) return draw_sketch(layer.sketch, o.uv ? &mesh : nullptr);
+  return draw_surface_marks(*layer.regions.marks, read_ply_fields((run_folder / "fields_full.ply").string()).mesh);
+}
+
 // report.json's per-region entries of a layer; `passed` counts the regions whose size (spots) or
 // orientation (stripes) passed.
 nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measures, int& passed) {
@@ -230,8 +254,17 @@ nlohmann::ordered_json region_reports(const Layer& layer, const Measures& measur
     const RegionAttributes& r = layer.regions.regions[k];
     list.push_back(plan.model->stripes
                        ? stripe_region_report(r, plan.wanted_width[k], measures.stripes[k], domain)
-                       : region_report(r, plan.wanted_area[k], r.spacing * domain.frame_at(r.center).length_factor(),
-                                       measures.spots[k], domain, plan.ratio[k] < 1.0));
+                       : region_report(r, plan.wanted_area[k], r.spacing * region_length_factor(layer.regions, k, domain),
+                                       measures.spots[k], region_center(layer.regions, k, domain), domain.scale(),
+                                       plan.ratio[k] < 1.0));
+    if (layer.regions.marks) {
+      // A mark's orientation is its own axis: the sketched angle from it is 0.
+      const Eigen::Vector3d& axis = layer.regions.marks->axis[k];
+      list.back()["sketched"]["axis"] = {axis.x(), axis.y(), axis.z()};
+      // Marks are samples of the pattern placed far apart, not a drawn lattice: their spacing is
+      // reported, not judged.
+      if (list.back()["verdict"].contains("spacing")) list.back()["verdict"]["spacing"] = "marks: not judged";
+    }
     passed += list.back()["verdict"][plan.model->stripes ? "orientation" : "area"] == "pass";
   }
   return list;
@@ -258,18 +291,19 @@ int run_sketch(const SketchOptions& o) {
 
   create_output_folder(o.out);
   const fs::path out(o.out);
-  write_rgb_png((out / "sketch.png").string(), draw_sketch(first.sketch, o.uv ? &mesh : nullptr));
+
   nlohmann::ordered_json iterations = nlohmann::ordered_json::array(), report;
   // With a second layer, the first runs in DIR/layer1 and the second, on its frozen spots, in DIR.
   const fs::path first_folder = second ? out / "layer1" : out;
   if (second) create_output_folder(first_folder.string());
   const LayerRun run = grow_refined(o, first_folder, first, mesh, iterations);
+  write_rgb_png((out / "sketch.png").string(), sketch_picture(first, o, mesh, first_folder));
   int passed = 0;
   report["regions"] = region_reports(first, run.measures, passed);
   report["iterations"] = iterations;
   nlohmann::ordered_json sketch_file = sketch_json(first.sketch, first.attributes, first.regions, first.plan);
   if (second) {
-    write_rgb_png((out / "sketch_layer2.png").string(), draw_sketch(second->sketch, o.uv ? &mesh : nullptr));
+    write_rgb_png((out / "sketch_layer2.png").string(), sketch_picture(*second, o, mesh, first_folder));
     const Cascade cascade{"layer1/fields_full.ply", run.threshold, o.rosettes};
     const LayerRun top = grow_and_measure(o, out, second->plan, second->regions, *second->domain, mesh, &cascade);
     int passed2 = 0;

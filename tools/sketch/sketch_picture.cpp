@@ -66,4 +66,17 @@ RgbImage draw_sketch(const Sketch& sketch, const InputMesh* uv_layout, int size)
   return image;
 }
 
+RgbImage draw_surface_marks(const SurfaceMarks& marks, const InputMesh& surface) {
+  InputVertexData<double> ink(surface.positions.size(), 0.0);
+  // Full ink inside 0.8 of a mark's rim, none beyond 1.2: interpolated over the faces, the rim is
+  // drawn smoothly at 1 rather than along the mesh's edges.
+  for (size_t v = 0; v < surface.positions.size(); ++v)
+    for (size_t k = 0; k < marks.size(); ++k)
+      ink[v] = std::max(ink[v], std::clamp((1.2 - marks.ellipse_radius(k, surface.positions[v])) / 0.4, 0.0, 1.0));
+  PreviewOptions options;
+  options.coloring.map = ColorMap("marks", {{0.0, {0.92, 0.92, 0.92}}, {1.0, {0.0, 0.0, 0.0}}});
+  options.coloring.high = 1.0;
+  return render_preview(surface, ink, options);
+}
+
 }  // namespace physarum::cli

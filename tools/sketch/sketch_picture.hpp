@@ -6,11 +6,16 @@
 #include "common/mesh/input_mesh.hpp"
 #include "common/output/preview_image.hpp"
 #include "common/sketch/sketch.hpp"
+#include "common/sketch/surface_marks.hpp"
 
 namespace physarum::cli {
 
 // `size` pixels along the window's longer side; `uv_layout`: the mesh whose UV charts lie under the
 // marks, or nullptr.
 RgbImage draw_sketch(const Sketch& sketch, const InputMesh* uv_layout = nullptr, int size = 512);
+
+// Marks drawn on the surface, black on light grey, on `surface` (a mesh of the input surface, such as
+// a run's fields_full.ply: fine enough to show small marks) in the preview's three-quarter view.
+RgbImage draw_surface_marks(const SurfaceMarks& marks, const InputMesh& surface);
 
 }  // namespace physarum::cli

@@ -5,11 +5,22 @@
 #include "common/reaction_diffusion/reaction_models.hpp"
 #include "common/sketch/median.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 namespace physarum::cli {
+
+double region_area_factor(const SketchRegions& regions, size_t k, const SketchDomain& domain) {
+  return regions.marks ? domain.scale() * domain.scale() : domain.frame_at(regions.regions[k].center).area_factor();
+}
+
+double region_length_factor(const SketchRegions& regions, size_t k, const SketchDomain& domain) {
+  return std::sqrt(region_area_factor(regions, k, domain));
+}
+
 namespace {
 
 std::string number(double x) { return ValueRange::number(x); }
@@ -21,8 +32,11 @@ double width_factor(const WindowFrame& at, double degrees) {
   return at.area_factor() / (at.stretch * along).norm();
 }
 
-// A region's spots as the surface sees them: its drawn ellipse through the window's map at its centre.
-EllipseShape surface_spot(const RegionAttributes& r, const SketchDomain& domain) {
+// A region's spots as the surface sees them: its drawn ellipse through the window's map at its
+// centre (a mark on the surface: its own shape, along its own axis).
+EllipseShape surface_spot(const SketchRegions& regions, size_t k, const SketchDomain& domain) {
+  const RegionAttributes& r = regions.regions[k];
+  if (regions.marks) return {r.aspect, 0.0};
   return on_surface(domain.frame_at(r.center), {r.aspect, r.orientation});
 }
 
@@ -31,7 +45,7 @@ EllipseShape surface_spot(const RegionAttributes& r, const SketchDomain& domain)
 std::vector<double> region_ratios(const SketchRegions& regions, const SketchDomain& domain) {
   std::vector<double> ratios;
   for (size_t k = 0; k < regions.regions.size(); ++k) {
-    const double aspect = surface_spot(regions.regions[k], domain).aspect;
+    const double aspect = surface_spot(regions, k, domain).aspect;
     if (aspect < kThinnestAspect)
       throw InputError("sketch: region " + std::to_string(k) + "'s spots have aspect (minor / major radius) " + number(aspect) +
                        (domain.on_uv() ? " on the surface" : "") +
@@ -111,7 +125,8 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchDomain& domain,
   SketchPlan plan;
   const RateMap map = trained_map(plan, model, &TrainingRun::spot_area, "spot area");
   plan.ratio = region_ratios(regions, domain);
-  for (const RegionAttributes& r : regions.regions) plan.wanted_area.push_back(r.area * domain.frame_at(r.center).area_factor());
+  for (size_t k = 0; k < regions.regions.size(); ++k)
+    plan.wanted_area.push_back(regions.regions[k].area * region_area_factor(regions, k, domain));
   // The smallest trained spot covers as many mesh cells as a spot of `floor` does on this mesh.
   const auto lo = std::min_element(plan.wanted_area.begin(), plan.wanted_area.end());
   const double ratio = max_circumradius / kTrainingCircumradius;
@@ -120,8 +135,9 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchDomain& domain,
     const size_t region = static_cast<size_t>(lo - plan.wanted_area.begin());
     throw InputError("sketch: region " + std::to_string(region) + "'s spots (" + number(*lo) +
                      " m^2) are smaller than a mesh of max_circumradius " + number(max_circumradius) +
-                     " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / domain.frame_at(regions.regions[region].center).area_factor()) +
-                     " in window units^2); draw bigger spots, give a larger --area or a smaller --max-circumradius");
+                     " m resolves: the smallest is " + number(floor) + " m^2 (" + number(floor / region_area_factor(regions, region, domain)) +
+                     (regions.marks ? " in the mesh's units^2)" : " in window units^2)") +
+                     "; draw bigger spots, give a larger --area or a smaller --max-circumradius");
   }
   // Squeezed across the direction, a spot has sqrt(ratio) times its isotropic area: the size map
   // is asked for the isotropic one.
@@ -180,7 +196,13 @@ InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDoma
   std::vector<double> logs;
   for (const double r : values) logs.push_back(std::log(r));
   InputVertexData<double> map(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+  for (size_t v = 0; v < mesh.positions.size() && regions.marks; ++v) {
+    const std::vector<double> w = regions.marks->weights(v);
+    double sum = 0.0;
+    for (size_t k = 0; k < w.size(); ++k) sum += w[k] * logs[k];
+    map[v] = std::exp(sum);
+  }
+  for (size_t v = 0; v < mesh.positions.size() && !regions.marks; ++v) {
     // A vertex on a UV seam has a window point per side: the blends averaged (in logs).
     const std::vector<Eigen::Vector2d> points = domain.vertex_window_points(v);
     double sum = 0.0;
@@ -190,9 +212,35 @@ InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDoma
   return map;
 }
 
+// The direction map of marks on the surface: at each face every mark's axis projected into the
+// face's plane, blended as axes with the marks' weights at the face's corners (averaged) times their
+// squeeze (axis_weights); a mark whose axis is normal to the face does not count there.
+std::vector<Eigen::Vector3d> surface_direction_map(const SurfaceMarks& marks, const std::vector<double>& squeeze,
+                                                   const InputMesh& mesh) {
+  std::vector<Eigen::Vector3d> directions;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.positions[static_cast<size_t>(t[0])];
+    const Eigen::Vector3d e1 = (mesh.positions[static_cast<size_t>(t[1])] - a).normalized();
+    const Eigen::Vector3d n = e1.cross(mesh.positions[static_cast<size_t>(t[2])] - a).normalized(), e2 = n.cross(e1);
+    double c = 0.0, s = 0.0;
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::vector<double> w = marks.weights(static_cast<size_t>(t[static_cast<size_t>(corner)]));
+      for (size_t k = 0; k < marks.size(); ++k) {
+        const Eigen::Vector2d axis(marks.axis[k].dot(e1), marks.axis[k].dot(e2));  // its length: how far it lies in the face
+        const double angle = 2.0 * std::atan2(axis.y(), axis.x()), weight = w[k] * squeeze[k] * axis.squaredNorm();
+        c += weight * std::cos(angle), s += weight * std::sin(angle);
+      }
+    }
+    const double angle = 0.5 * std::atan2(s, c);
+    directions.push_back(std::cos(angle) * e1 + std::sin(angle) * e2);
+  }
+  return directions;
+}
+
 std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const SketchPlan& plan, const SketchDomain& domain,
                                            const InputMesh& mesh) {
   const std::vector<double> weights = axis_weights(plan.ratio);
+  if (regions.marks) return surface_direction_map(*regions.marks, weights, mesh);
   std::vector<double> axes(regions.regions.size());
   std::vector<Eigen::Vector3d> directions;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {

@@ -92,6 +92,11 @@ SketchPlan plan_sketch(const SketchRegions& regions, const SketchDomain& domain,
 SketchPlan plan_stripes(const SketchRegions& regions, const SketchDomain& domain, const SketchModel& model,
                         double max_circumradius);
 
+// Square metres per unit^2 of region k's sizes (window units^2 through the window's map at its
+// centre; the mesh's units^2 for marks on the surface), and metres per unit (its square root).
+double region_area_factor(const SketchRegions& regions, size_t k, const SketchDomain& domain);
+double region_length_factor(const SketchRegions& regions, size_t k, const SketchDomain& domain);
+
 // Fills plan.initiators and plan.initiator_radius (see kInitiatorLength): segments straight in the
 // surface's tangent plane at window points drawn uniformly (again where a UV layout has no face),
 // their count from the surface's area and the stripes' median width.

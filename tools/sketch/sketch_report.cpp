@@ -30,11 +30,20 @@ std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, cons
     const AnalysedRegion& r = analysis.regions[i];
     if (r.is_stripe || r.touches_boundary) continue;
     if (!first_layer.empty() && r.shape.centre_vertex >= 0 && first_layer[static_cast<size_t>(r.shape.centre_vertex)]) continue;
-    const SketchDomain::Located at = domain.locate(r.shape.centre);
-    const int k = regions.region_of(at.window_point);
+    int k = 0;
+    EllipseShape drawn;
+    if (regions.marks) {
+      // Marks on the surface: the nearest mark's region, the orientation as the angle from its axis.
+      k = regions.marks->nearest(r.shape.centre);
+      drawn = {1.0 / r.shape.aspect_ratio,
+               angle_to_direction_deg(r.shape, regions.marks->axis[static_cast<size_t>(k)]).value_or(90.0)};
+    } else {
+      const SketchDomain::Located at = domain.locate(r.shape.centre);
+      k = regions.region_of(at.window_point);
+      drawn = drawn_shape(r.shape, at.frame);
+    }
     region_of[i] = k;
     area[static_cast<size_t>(k)].push_back(r.area * area_scale);
-    const EllipseShape drawn = drawn_shape(r.shape, at.frame);
     aspect[static_cast<size_t>(k)].push_back(drawn.aspect);
     orientation[static_cast<size_t>(k)].push_back(drawn.orientation);
   }
@@ -70,7 +79,8 @@ double axis_difference(double a, double b) {
 }
 
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchDomain& domain, bool shaped) {
+                                     const RegionMeasure& generated, const nlohmann::ordered_json& center, double scale,
+                                     bool shaped) {
   nlohmann::ordered_json verdict;
   if (generated.spots == 0) {
     verdict = {{"area", "no spots"}, {"spacing", "no spots"}, {"aspect", "no spots"}, {"orientation", "no spots"}};
@@ -86,14 +96,14 @@ nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sk
                                                                            kOrientationTolerance);
   }
   // Lengths in the input mesh's units, as `physarum analyze` reports them (../shared/DESIGN.md).
-  const double s = domain.scale();
+  const double s = scale;
   auto length_or_null = [s](double metres) {
     return metres > 0.0 ? nlohmann::ordered_json(metres / s) : nlohmann::ordered_json(nullptr);
   };
   auto area_or_null = [s](bool any, double m2) { return any ? nlohmann::ordered_json(m2 / (s * s)) : nlohmann::ordered_json(nullptr); };
   auto or_null = [](bool any, double x) { return any ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
   const bool any = generated.spots > 0;
-  return {{"center", center_json(domain, sketched.center)},
+  return {{"center", center},
           {"sketched_spots", sketched.spots},
           {"sketched",
            {{"area", sketched_area_m2 / (s * s)},

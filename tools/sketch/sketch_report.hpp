@@ -28,7 +28,8 @@ struct RegionMeasure {
   int spots = 0;             // whole spots whose centres lie in the region
   double area = 0.0;         // m^2, median
   // The spots' shapes as drawn in the window (each pulled back through the window's map at its
-  // centre, common/sketch/sketch_domain.hpp), to set beside the sketched ones:
+  // centre, common/sketch/sketch_domain.hpp), to set beside the sketched ones; for marks on the
+  // surface, the orientation is the angle (0 to 90 degrees) from the mark's axis:
   double aspect = 1.0;       // minor / major, median
   double orientation = 0.0;  // degrees in [0, 180) in the window's frame, axial mean
   double spacing = 0.0;      // m, median over neighbouring pairs with both centres in the region (0: none)
@@ -45,11 +46,12 @@ std::vector<RegionMeasure> measure_regions(const PatternAnalysis& analysis, cons
 double area_miss(const RegionMeasure& generated, double sketched_area);
 
 // One region's report entry: {"center", "sketched": {...}, "generated": {...}, "verdict": {...}},
-// lengths and the centre in the input mesh's units (as `physarum analyze` reports them; metres when
+// lengths (`scale`: metres per input unit) and the centre (as given) in the input mesh's units (as `physarum analyze` reports them; metres when
 // the mesh is not rescaled); the arguments in metres. `shaped`: the plan grew elongated spots (an anisotropy); without it the
 // aspect and orientation are reported and judged "not controlled" (round spots asked for).
 nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sketched_area_m2, double sketched_spacing_m,
-                                     const RegionMeasure& generated, const SketchDomain& domain, bool shaped);
+                                     const RegionMeasure& generated, const nlohmann::ordered_json& center, double scale,
+                                     bool shaped);
 
 // A region's centre as report.json gives it: the input surface's point at the window point, x and y
 // on a patch, x, y and z on a UV layout (null where the layout has no face there).
