@@ -14,12 +14,17 @@
  *   RD_ELL_WIDTH          the explicit sub-step matrix's ELL slots per row
  *   RD_ZERO_ROW_SUMS      only when that matrix holds off-diagonal entries only (see RD_NEIGHBOUR)
  *   RD_FLOORS             {floor_0, floor_1, ...}: each morphogen's floor, -INFINITY for none
+ *   RD_INTERLEAVED        only when the morphogens are stored vertex by vertex (see Layout)
  * so the kinetics are compiled code, not interpreted.
  *
  * Layout: every per-vertex array is padded to `stride` (the padded launch size) and morphogen m's
  * values are the block [m * stride, (m + 1) * stride) of one buffer; coefficient c's values are the
  * block c of `coefficients`. Every kernel runs on the padded size, hence the `i < n` guards on
- * writes (padding rows read valid, zero-weighted entries). */
+ * writes (padding rows read valid, zero-weighted entries). With RD_INTERLEAVED (the explicit
+ * integrator with five or more morphogens) the morphogens are stored vertex by vertex instead,
+ * u[i * RD_MORPHOGENS + m]: a neighbour's five values are then one gather of 20 contiguous bytes
+ * rather than five gathers from five blocks (a CPU's prefetchers follow a handful of streams, and
+ * five blocks of neighbours made 15 of them). */
 #include "device_types.h"
 
 #ifndef RD_MORPHOGENS
@@ -34,6 +39,16 @@
 #define RD_STIFFNESS_OF(m) (m)
 #endif
 
+/* Where morphogen m's value at vertex i lies in a state buffer, and (RD_INDEX) vertex i's offset from
+ * a morphogen's first value. */
+#ifdef RD_INTERLEAVED
+#define RD_AT(m, i) ((size_t)(i) * RD_MORPHOGENS + (size_t)(m))
+#define RD_INDEX(i) ((size_t)(i) * RD_MORPHOGENS)
+#else
+#define RD_AT(m, i) ((size_t)(m) * stride + (size_t)(i))
+#define RD_INDEX(i) (i)
+#endif
+
 /* A neighbour's contribution to row i's diffusion sum of morphogen m. With RD_ZERO_ROW_SUMS the
  * matrix holds only the off-diagonal entries of rows that sum to zero (a diffusion operator leaves
  * constants alone, so W_ii = -sum_j W_ij), and (W u)_i = sum_j W_ij (u_j - u_i): one slot and one
@@ -41,9 +56,9 @@
  * a large diagonal against its neighbours. A padding slot (value 0 at the row's own column) adds
  * 0 either way. The index is a signed int so that a CPU compiler gathers with 32-bit offsets. */
 #ifdef RD_ZERO_ROW_SUMS
-#define RD_NEIGHBOUR(m, j) (u_in[(size_t)(m) * stride + (j)] - rd_u[m])
+#define RD_NEIGHBOUR(m, j) (u_in[RD_AT(m, j)] - rd_u[m])
 #else
-#define RD_NEIGHBOUR(m, j) u_in[(size_t)(m) * stride + (j)]
+#define RD_NEIGHBOUR(m, j) u_in[RD_AT(m, j)]
 #endif
 
 /* The morphogens of a vertex as one vector (rd_vector; a float3 for three, a float4 for four, a
@@ -74,9 +89,17 @@ typedef float8 rd_vector;
 #define RD_VECTOR_OF(a)                                                                              \
   ((float8)((a)[RD_LANE(0)], (a)[RD_LANE(1)], (a)[RD_LANE(2)], (a)[RD_LANE(3)], (a)[RD_LANE(4)], \
             (a)[RD_LANE(5)], (a)[RD_LANE(6)], (a)[RD_LANE(7)]))
+#ifdef RD_INTERLEAVED
+/* A vertex's values are contiguous: its first four one 16-byte load (vload4 needs only a float's
+ * alignment), the rest single floats. */
+#define RD_GATHER(p, j)                                                                               \
+  ((float8)(vload4(0, (p)[0] + (j)), (p)[0][(j) + RD_LANE(4)], (p)[0][(j) + RD_LANE(5)], (p)[0][(j) + RD_LANE(6)], \
+            (p)[0][(j) + RD_LANE(7)]))
+#else
 #define RD_GATHER(p, j)                                                                                      \
   ((float8)((p)[RD_LANE(0)][j], (p)[RD_LANE(1)][j], (p)[RD_LANE(2)][j], (p)[RD_LANE(3)][j], (p)[RD_LANE(4)][j], \
             (p)[RD_LANE(5)][j], (p)[RD_LANE(6)][j], (p)[RD_LANE(7)][j]))
+#endif
 #define RD_VECTOR_TO(a, v)                                                                          \
   ((a)[RD_LANE(7)] = (v).s7, (a)[RD_LANE(6)] = (v).s6, (a)[RD_LANE(5)] = (v).s5, (a)[4] = (v).s4, \
    (a)[3] = (v).s3, (a)[2] = (v).s2, (a)[1] = (v).s1, (a)[0] = (v).s0)
@@ -114,8 +137,8 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
   __global const float* rd_in[RD_MORPHOGENS];
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
-    rd_in[m] = u_in + (size_t)m * stride;
-    rd_u[m] = rd_in[m][i];
+    rd_in[m] = u_in + RD_AT(m, 0);
+    rd_u[m] = rd_in[m][RD_INDEX(i)];
   }
   /* All morphogens' neighbour values of a slot are one short vector, so a device that runs
    * work-items one at a time still does every morphogen's subtraction and multiply-add of a slot in
@@ -150,7 +173,7 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
     }
     const rd_vector w = RD_VECTOR_OF(rd_w);
 #endif
-    const rd_vector neighbour = RD_GATHER(rd_in, j);
+    const rd_vector neighbour = RD_GATHER(rd_in, RD_INDEX(j));
 #ifdef RD_ZERO_ROW_SUMS
     sum += w * (neighbour - own);
 #else
@@ -174,14 +197,24 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
 #ifdef RD_HAS_FIXED
   if (fixed[i]) {
 #pragma unroll
-    for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[m * stride + i] = rd_u[m];
+    for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[RD_AT(m, i)] = rd_u[m];
     return;
   }
 #else
   (void)fixed;
 #endif
+#if defined(RD_INTERLEAVED)
+  /* The vertex's values are contiguous: the first four one 16-byte store. */
+  float rd_new[RD_MORPHOGENS];
 #pragma unroll
-  for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[(size_t)m * stride + i] = rd_u[m] + diffusion[m] + h * rd_r[m];
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_new[m] = rd_u[m] + diffusion[m] + h * rd_r[m];
+  vstore4((float4)(rd_new[0], rd_new[1], rd_new[2], rd_new[3]), 0, u_out + RD_INDEX(i));
+#pragma unroll
+  for (uint m = 4; m < RD_MORPHOGENS; ++m) u_out[RD_AT(m, i)] = rd_new[m];
+#else
+#pragma unroll
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) u_out[RD_AT(m, i)] = rd_u[m] + diffusion[m] + h * rd_r[m];
+#endif
 }
 
 /* The rest of the sub-step: each row with more than RD_ELL_WIDTH entries adds its remaining ones,
@@ -200,7 +233,7 @@ __kernel void rd_explicit_overflow(const uint count, const uint stride, const ui
 #endif
   float rd_u[RD_MORPHOGENS];
 #pragma unroll
-  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u_in[m * stride + i];
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u_in[RD_AT(m, i)];
   (void)rd_u;  /* read by RD_NEIGHBOUR only with RD_ZERO_ROW_SUMS */
 #pragma unroll
   for (uint m = 0; m < RD_MORPHOGENS; ++m) {
@@ -212,7 +245,7 @@ __kernel void rd_explicit_overflow(const uint count, const uint stride, const ui
     for (int e = row_start[j]; e < end; ++e)
       sum += value[RD_STIFFNESS_OF(m) * entries + e] * RD_NEIGHBOUR(m, column[e]);
 #endif
-    u_out[m * stride + i] += sum;
+    u_out[RD_AT(m, i)] += sum;
   }
 }
 
@@ -229,7 +262,7 @@ __kernel void rd_imex_rhs(const uint n, const uint stride, __global const float*
   if (i >= n) return;
   float rd_u[RD_MORPHOGENS], rd_r[RD_MORPHOGENS];
 #pragma unroll
-  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u[m * stride + i];
+  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_u[m] = u[RD_AT(m, i)];
   RD_LOAD_COEFFICIENTS
   RD_REACTIONS
   (void)coefficients;
@@ -263,5 +296,15 @@ __kernel void rd_apply_floors(const uint n, const uint stride, __global const uc
 #endif
   const float floors[RD_MORPHOGENS] = RD_FLOORS;
   for (uint m = 0; m < RD_MORPHOGENS; ++m)
-    if (u[m * stride + i] < floors[m]) u[m * stride + i] = floors[m];
+    if (u[RD_AT(m, i)] < floors[m]) u[RD_AT(m, i)] = floors[m];
+}
+
+/* One morphogen of an interleaved state copied out into a block of its own (`lane`), for what reads
+ * a morphogen as one array: statistics, the host's reads. */
+__kernel void rd_copy_morphogen(const uint n, const uint stride, const uint m, __global const float* u,
+                                __global float* lane) {
+  const uint i = get_global_id(0);
+  (void)stride;  /* read by RD_AT only when blocks are stored one after another */
+  if (i >= n) return;
+  lane[i] = u[RD_AT(m, i)];
 }

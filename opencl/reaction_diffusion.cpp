@@ -21,7 +21,7 @@
 namespace physarum::opencl {
 
 struct OpenCLReactionDiffusion::Kernels {
-  cl::Kernel substep, overflow, imex_rhs, floors;
+  cl::Kernel substep, overflow, imex_rhs, floors, copy_morphogen;
 };
 
 
@@ -113,6 +113,7 @@ OpenCLReactionDiffusion::OpenCLReactionDiffusion(const ComputeContext& compute, 
   // In this order: each step needs the ones before it, and the device sees its calls and
   // allocations in the order it always has (the same buffers, the same bits).
   Setup setup;
+  interleaved_ = integrator_ == Integrator::Forward && M >= 5;
   translate_kinetics(system, setup);
   find_shared_weights(system, setup);
   make_substep_matrices(system, setup);
@@ -226,7 +227,7 @@ std::string OpenCLReactionDiffusion::kernel_prelude(const Setup& setup) const {
          (has_fixed_ ? "#define RD_HAS_FIXED\n" : "") +
          (setup.shared_weights ? "#define RD_SHARED_WEIGHTS\n#define RD_WEIGHT_SCALES {" + setup.scales + "}\n" : "") +
          "#define RD_ELL_WIDTH " + std::to_string(setup.ell_width) + "\n" +
-         (setup.zero_row_sums ? "#define RD_ZERO_ROW_SUMS\n" : "");
+         (setup.zero_row_sums ? "#define RD_ZERO_ROW_SUMS\n" : "") + (interleaved_ ? "#define RD_INTERLEAVED\n" : "");
 }
 
 void OpenCLReactionDiffusion::build_kernels(const std::string& prelude) {
@@ -238,6 +239,7 @@ void OpenCLReactionDiffusion::build_kernels(const std::string& prelude) {
     kernels_->overflow = cl::Kernel(program, "rd_explicit_overflow");
     kernels_->imex_rhs = cl::Kernel(program, "rd_imex_rhs");
     kernels_->floors = cl::Kernel(program, "rd_apply_floors");
+    kernels_->copy_morphogen = cl::Kernel(program, "rd_copy_morphogen");
     group_ = common_work_group_size({&kernels_->substep, &kernels_->overflow, &kernels_->imex_rhs, &kernels_->floors},
                                     compute_.device, 256);
   } catch (const cl::Error& e) {
@@ -280,7 +282,7 @@ void OpenCLReactionDiffusion::allocate_state(const ReactionDiffusionSystem& syst
     DeviceBuffer& u = state_[half];
     u = allocate_written<cl_float>(compute_, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
     compute_.queue.enqueueFillBuffer(u.buffer, 0.0f, 0, u.payload_bytes);
-    for (size_t m = 0; m < M; ++m) {
+    for (size_t m = 0; m < M && !interleaved_; ++m) {
       cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
       DeviceBuffer view;
       view.buffer = u.buffer.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region);
@@ -289,6 +291,33 @@ void OpenCLReactionDiffusion::allocate_state(const ReactionDiffusionSystem& syst
       state_views_[half].push_back(view);
     }
   }
+  if (interleaved_) lane_ = allocate_written<cl_float>(compute_, "one morphogen (copied out)", stride_);
+}
+
+const DeviceBuffer& OpenCLReactionDiffusion::morphogen_block(int morphogen) const {
+  if (!interleaved_) return state_view(morphogen);
+  set_arguments(kernels_->copy_morphogen, static_cast<cl_uint>(vertex_count_), static_cast<cl_uint>(stride_),
+                static_cast<cl_uint>(morphogen), state(), lane_);
+  compute_.queue.enqueueNDRangeKernel(kernels_->copy_morphogen, cl::NullRange, cl::NDRange(stride_), cl::NDRange(group_));
+  return lane_;
+}
+
+std::vector<float> OpenCLReactionDiffusion::read_state() const {
+  std::vector<float> all(static_cast<size_t>(morphogen_count_) * static_cast<size_t>(vertex_count_));
+  compute_.queue.enqueueReadBuffer(state().buffer, CL_TRUE, 0, all.size() * sizeof(cl_float), all.data());
+  return all;
+}
+
+void OpenCLReactionDiffusion::write_morphogen(int morphogen, const std::vector<float>& values) {
+  const auto M = static_cast<size_t>(morphogen_count_);
+  if (!interleaved_) {
+    compute_.queue.enqueueWriteBuffer(state().buffer, CL_TRUE, static_cast<size_t>(morphogen) * stride_ * sizeof(cl_float),
+                                      values.size() * sizeof(cl_float), values.data());
+    return;
+  }
+  std::vector<float> all = read_state();
+  for (size_t i = 0; i < values.size(); ++i) all[i * M + static_cast<size_t>(morphogen)] = values[i];
+  compute_.queue.enqueueWriteBuffer(state().buffer, CL_TRUE, 0, all.size() * sizeof(cl_float), all.data());
 }
 
 void OpenCLReactionDiffusion::upload_explicit_operator(const Setup& setup) {
@@ -506,8 +535,8 @@ IntrinsicVertexData<double> OpenCLReactionDiffusion::field_values(int layer) con
   if (layer >= morphogen_count_)
     return IntrinsicVertexData<double>(static_fields_[static_cast<size_t>(layer - morphogen_count_)]->concentration().values());
   std::vector<float> values(static_cast<size_t>(vertex_count_));
-  compute_.queue.enqueueReadBuffer(state().buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
-                                   values.size() * sizeof(cl_float), values.data());
+  compute_.queue.enqueueReadBuffer(morphogen_block(layer).buffer, CL_TRUE, 0, values.size() * sizeof(cl_float),
+                                   values.data());
   return IntrinsicVertexData<double>(std::vector<double>(values.begin(), values.end()));
 }
 
@@ -519,9 +548,7 @@ void OpenCLReactionDiffusion::set_field(const IntrinsicVertexData<double>& value
         DeviceVertexData<double>(values.values()));
     return;
   }
-  const std::vector<float> floats(values.begin(), values.end());
-  compute_.queue.enqueueWriteBuffer(state().buffer, CL_TRUE, static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
-                                    floats.size() * sizeof(cl_float), floats.data());
+  write_morphogen(layer, std::vector<float>(values.begin(), values.end()));
   update_dirichlet_coupling();
 }
 
@@ -532,21 +559,25 @@ void OpenCLReactionDiffusion::fill_field(double value, int layer) {
     static_fields_[static_cast<size_t>(layer - morphogen_count_)]->fill(value);
     return;
   }
-  compute_.queue.enqueueFillBuffer(state().buffer, static_cast<cl_float>(value),
-                                   static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
-                                   static_cast<size_t>(vertex_count_) * sizeof(cl_float));
+  if (interleaved_) {
+    write_morphogen(layer, std::vector<float>(static_cast<size_t>(vertex_count_), static_cast<cl_float>(value)));
+  } else {
+    compute_.queue.enqueueFillBuffer(state().buffer, static_cast<cl_float>(value),
+                                     static_cast<size_t>(layer) * stride_ * sizeof(cl_float),
+                                     static_cast<size_t>(vertex_count_) * sizeof(cl_float));
+  }
   update_dirichlet_coupling();
 }
 
 FieldStatistics OpenCLReactionDiffusion::field_statistics(double U, int layer) const {
   check_morphogen(layer, "field_statistics");
   if (layer >= morphogen_count_) return static_fields_[static_cast<size_t>(layer - morphogen_count_)]->statistics(U);
-  return statistics_->compute(state_view(layer).buffer, U);
+  return statistics_->compute(morphogen_block(layer).buffer, U);
 }
 
 std::vector<std::string> OpenCLReactionDiffusion::damaged_canaries() const {
   std::vector<std::string> damaged = statistics_->damaged_canaries();
-  for (const DeviceBuffer* b : {&state_[0], &state_[1], &rhs_, &coupling_})
+  for (const DeviceBuffer* b : {&state_[0], &state_[1], &rhs_, &coupling_, &lane_})
     if (b->guarded && !canary_intact(compute_, *b)) damaged.push_back(b->name);
   for (const auto& solver : solvers_)
     for (const std::string& name : solver->damaged_canaries()) damaged.push_back(name);

@@ -181,6 +181,15 @@ class OpenCLReactionDiffusion final : public SimulationBackend {
   const DeviceBuffer& state_view(int morphogen) const {
     return state_views_[static_cast<size_t>(current_)][static_cast<size_t>(morphogen)];
   }
+  // Five or more morphogens with the explicit integrator are stored vertex by vertex
+  // (RD_INTERLEAVED in reaction_diffusion.cl): no sub-buffers then; a morphogen is copied out into
+  // `lane_` (one block) to be read or summarised, and written by reading, changing and writing the
+  // whole state on the host.
+  bool interleaved_ = false;
+  DeviceBuffer lane_;
+  const DeviceBuffer& morphogen_block(int morphogen) const;  // state_view, or the morphogen copied into lane_
+  std::vector<float> read_state() const;                      // the whole state of an interleaved run
+  void write_morphogen(int morphogen, const std::vector<float>& values);
   DeviceBuffer rhs_, coupling_;  // IMEX: b, and the held vertices' contribution to it
   // IMEX.
   ImexSolver imex_solver_ = ImexSolver::Automatic;
