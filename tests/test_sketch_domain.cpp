@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 namespace physarum {
 namespace {
@@ -62,6 +63,23 @@ TEST(SketchDomain, AUvLayoutsStretchIsEachFacesOwnMap) {
     ASSERT_EQ(points.size(), 2u) << v;
     EXPECT_NEAR(std::abs(points[0].x() - points[1].x()), 0.1, 1e-9) << "u = 0.45 and 0.55";
   }
+}
+
+TEST(SketchDomain, TheLayoutsChartsAreItsPiecesJoinedByUvEdges) {
+  const InputMesh mesh = testing::make_uv_rectangle();
+  const SketchDomain domain = SketchDomain::uv(window(1.0, 1.0), mesh, 3.0);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const double x = (mesh.positions[mesh.triangles[f][0]] + mesh.positions[mesh.triangles[f][1]] + mesh.positions[mesh.triangles[f][2]]).x() / 3;
+    EXPECT_EQ(domain.face_chart(f), x < 1.5 ? 0 : 1) << f;
+  }
+  EXPECT_EQ(domain.chart_at({0.25, 0.5}), 0);
+  EXPECT_EQ(domain.chart_at({0.75, 0.5}), 1);
+  EXPECT_EQ(domain.chart_at({0.5, 0.5}), -1) << "between the charts";
+  const InputMesh cube = load_mesh("shape:cube");
+  const SketchDomain tiles = SketchDomain::uv(window(1.5, 1.0), cube, 6.0);
+  std::set<int> charts;
+  for (size_t f = 0; f < cube.triangles.size(); ++f) charts.insert(tiles.face_chart(f));
+  EXPECT_EQ(charts.size(), 6u) << "one chart per side";
 }
 
 TEST(SketchDomain, APatchIsTheWindowOnItsXyExtent) {

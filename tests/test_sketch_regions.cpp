@@ -100,5 +100,22 @@ TEST(SketchRegions, ASketchWithoutSpotsIsRefused) {
   }
 }
 
+// Two regions side by side, on two charts: between their centres the plain blend is linear; a
+// point on the left chart takes the left region's value alone (the right one's weight dropped and
+// the rest renormalised), one with no chart the plain blend.
+TEST(SketchRegions, ABlendKeepsToThePointsChart) {
+  SketchRegions regions;
+  regions.n = 2;
+  regions.window = {1.0, 1.0};
+  regions.regions.resize(4);
+  regions.chart = {0, 1, 0, 1};
+  const std::vector<double> value = {1.0, 3.0, 1.0, 3.0};
+  EXPECT_DOUBLE_EQ(regions.blend(value, {0.5, 0.5}), 2.0);
+  EXPECT_DOUBLE_EQ(regions.blend(value, {0.4, 0.5}), 1.0 + 2.0 * 0.3);
+  EXPECT_DOUBLE_EQ(regions.blend(value, {0.4, 0.5}, 0), 1.0);
+  EXPECT_DOUBLE_EQ(regions.blend(value, {0.6, 0.3}, 1), 3.0);
+  EXPECT_DOUBLE_EQ(regions.blend(value, {0.4, 0.5}, -1), 1.6);
+}
+
 }  // namespace
 }  // namespace physarum

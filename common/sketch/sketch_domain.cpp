@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace physarum {
 namespace {
@@ -28,6 +29,32 @@ std::optional<Eigen::Vector3d> barycentric_2d(const Eigen::Vector2d& p, const Ei
 
 // The frame of a face from its window-to-metres Jacobian J (3 x 2): J's columns orthonormalised
 // (Gram-Schmidt) give the tangent basis, the stretch is J in that basis (upper triangular).
+// The UV charts: faces joined across every edge whose two ends have the same UVs on both sides
+// (union-find), numbered in order of their first face.
+std::vector<int> uv_charts(const InputMesh& mesh) {
+  std::vector<int> parent(mesh.triangles.size());
+  for (size_t f = 0; f < parent.size(); ++f) parent[f] = static_cast<int>(f);
+  auto root = [&](int f) {
+    while (parent[static_cast<size_t>(f)] != f) f = parent[static_cast<size_t>(f)] = parent[static_cast<size_t>(parent[static_cast<size_t>(f)])];
+    return f;
+  };
+  std::map<std::pair<int, int>, int> edge_face;  // a UV edge (ends in order) -> the first face seen with it
+  for (size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = mesh.triangle_uvs[f][static_cast<size_t>(c)], b = mesh.triangle_uvs[f][static_cast<size_t>((c + 1) % 3)];
+      const auto [it, inserted] = edge_face.try_emplace({std::min(a, b), std::max(a, b)}, static_cast<int>(f));
+      if (!inserted) parent[static_cast<size_t>(root(static_cast<int>(f)))] = root(it->second);
+    }
+  std::vector<int> chart(mesh.triangles.size()), number(mesh.triangles.size(), -1);
+  int charts = 0;
+  for (size_t f = 0; f < chart.size(); ++f) {
+    int& n = number[static_cast<size_t>(root(static_cast<int>(f)))];
+    if (n < 0) n = charts++;
+    chart[f] = n;
+  }
+  return chart;
+}
+
 WindowFrame frame_from_jacobian(const Eigen::Matrix<double, 3, 2>& J) {
   WindowFrame f;
   const Eigen::Vector3d e1 = J.col(0).normalized();
@@ -122,12 +149,17 @@ SketchDomain SketchDomain::uv(const Sketch& sketch, const InputMesh& mesh, doubl
     lengths += d.face_frames_[f].length_factor();
     ++good;
   }
+  d.face_chart_ = uv_charts(mesh);
   d.vertex_points_.resize(mesh.positions.size());
+  d.vertex_point_charts_.resize(mesh.positions.size());
   for (size_t f = 0; f < mesh.triangles.size(); ++f)
     for (int c = 0; c < 3; ++c) {
-      std::vector<Eigen::Vector2d>& points = d.vertex_points_[static_cast<size_t>(mesh.triangles[f][static_cast<size_t>(c)])];
+      const auto v = static_cast<size_t>(mesh.triangles[f][static_cast<size_t>(c)]);
+      std::vector<Eigen::Vector2d>& points = d.vertex_points_[v];
       const Eigen::Vector2d w = d.corner_window_point(f, c);
-      if (std::find(points.begin(), points.end(), w) == points.end()) points.push_back(w);
+      if (std::find(points.begin(), points.end(), w) != points.end()) continue;
+      points.push_back(w);
+      d.vertex_point_charts_[v].push_back(d.face_chart_[f]);
     }
   if (good == 0) throw InputError(mesh.source + ": no UV triangle has an area; the UV layout cannot carry a sketch");
   // Degenerate faces: their own tangent plane, stretched as the layout is on average.
@@ -184,6 +216,19 @@ SketchDomain::Located SketchDomain::locate(const Eigen::Vector3d& p) const {
 std::vector<Eigen::Vector2d> SketchDomain::vertex_window_points(size_t vertex) const {
   if (!on_uv_) return {locate(mesh_->positions[vertex]).window_point};
   return vertex_points_[vertex];
+}
+
+std::vector<int> SketchDomain::vertex_charts(size_t vertex) const {
+  if (!on_uv_) return {-1};
+  return vertex_point_charts_[vertex];
+}
+
+int SketchDomain::chart_at(const Eigen::Vector2d& w) const {
+  if (!on_uv_) return -1;
+  Eigen::Vector3d bary;
+  const size_t f = uv_face(w, bary);
+  const auto inside = barycentric_2d(w, corner_window_point(f, 0), corner_window_point(f, 1), corner_window_point(f, 2));
+  return inside && inside->minCoeff() >= -1e-12 ? face_chart_[f] : -1;
 }
 
 Eigen::Vector2d SketchDomain::face_window_point(size_t face) const {

@@ -78,9 +78,15 @@ class SketchDomain {
     WindowFrame frame;
   };
   Located locate(const Eigen::Vector3d& input_point) const;
-  // The window points of an input vertex: one per distinct UV of its corners (several on a seam).
+  // The window points of an input vertex: one per distinct UV of its corners (several on a seam),
+  // and the UV chart of each (vertex_charts, in the same order).
   std::vector<Eigen::Vector2d> vertex_window_points(size_t vertex) const;
+  std::vector<int> vertex_charts(size_t vertex) const;
   Eigen::Vector2d face_window_point(size_t face) const;  // the centroid's
+  // UV charts: the pieces of the layout whose triangles share UV edges, numbered from 0; -1 on a
+  // patch (one piece) and, for a window point, in a gap between charts.
+  int face_chart(size_t face) const { return on_uv_ ? face_chart_[face] : -1; }
+  int chart_at(const Eigen::Vector2d& window_point) const;
   // The point of the input surface at a window point (input coordinates): on a patch its x/y with the
   // z of the nearest input vertex (a flat patch's own); nothing where a UV sketch has no face.
   std::optional<Eigen::Vector3d> surface_point(const Eigen::Vector2d& window_point) const;
@@ -101,6 +107,8 @@ class SketchDomain {
   WindowFrame patch_frame_;
   std::vector<WindowFrame> face_frames_;  // a UV sketch's, per input face
   std::vector<std::vector<Eigen::Vector2d>> vertex_points_;  // a UV sketch's, per input vertex
+  std::vector<std::vector<int>> vertex_point_charts_;        // ... and their charts
+  std::vector<int> face_chart_;                              // a UV sketch's, per input face
   std::shared_ptr<const FaceLocator> locator_;
 };
 

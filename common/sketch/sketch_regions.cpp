@@ -7,6 +7,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <tuple>
 
 namespace physarum {
 
@@ -22,7 +23,7 @@ int SketchRegions::region_of(const Eigen::Vector2d& p) const {
   return cell(p.y(), window.y()) * n + cell(p.x(), window.x());
 }
 
-double SketchRegions::blend(const std::vector<double>& per_region, const Eigen::Vector2d& p) const {
+double SketchRegions::blend(const std::vector<double>& per_region, const Eigen::Vector2d& p, int point_chart) const {
   // Continuous cell coordinates whose integers are the regions' centres.
   auto axis = [&](double x, double extent, int& i0, double& t) {
     const double u = std::clamp(x / extent * n - 0.5, 0.0, static_cast<double>(n - 1));
@@ -35,7 +36,15 @@ double SketchRegions::blend(const std::vector<double>& per_region, const Eigen::
   axis(p.y(), window.y(), r0, ty);
   const int c1 = std::min(c0 + 1, n - 1), r1 = std::min(r0 + 1, n - 1);
   auto at = [&](int r, int c) { return per_region[static_cast<size_t>(r * n + c)]; };
-  return (1 - ty) * ((1 - tx) * at(r0, c0) + tx * at(r0, c1)) + ty * ((1 - tx) * at(r1, c0) + tx * at(r1, c1));
+  const double plain = (1 - ty) * ((1 - tx) * at(r0, c0) + tx * at(r0, c1)) + ty * ((1 - tx) * at(r1, c0) + tx * at(r1, c1));
+  if (point_chart < 0 || chart.empty()) return plain;
+  double sum = 0.0, weights = 0.0;
+  for (const auto& [r, c, w] : {std::tuple{r0, c0, (1 - ty) * (1 - tx)}, std::tuple{r0, c1, (1 - ty) * tx},
+                                std::tuple{r1, c0, ty * (1 - tx)}, std::tuple{r1, c1, ty * tx}}) {
+    if (chart[static_cast<size_t>(r * n + c)] != point_chart) continue;
+    sum += w * at(r, c), weights += w;
+  }
+  return weights > 0.0 ? sum / weights : plain;
 }
 
 namespace {

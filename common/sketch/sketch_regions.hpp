@@ -39,9 +39,16 @@ struct SketchRegions {
 
   // The region a window point lies in (points on the window's edge or outside it: the nearest).
   int region_of(const Eigen::Vector2d& p) const;
+  // Per region, the UV chart its centre lies in (a UV sketch: common/sketch/sketch_domain.hpp;
+  // -1 in a gap between charts), or empty: one piece.
+  std::vector<int> chart;
+
   // A per-region value at a window point, bilinear between the regions' centres (constant beyond
-  // the outer centres): the paper's linear interpolation between neighbouring regions.
-  double blend(const std::vector<double>& per_region, const Eigen::Vector2d& p) const;
+  // the outer centres): the paper's linear interpolation between neighbouring regions. Given the
+  // point's chart (>= 0) and the regions' charts, regions centred on another chart take no part (the
+  // others' weights renormalised; all four apart: the plain blend), so that a chart's attributes do
+  // not leak across the gap onto its neighbour in the layout.
+  double blend(const std::vector<double>& per_region, const Eigen::Vector2d& p, int point_chart = -1) const;
 };
 
 // The regions of a sketch's spots. InputError when n < 1 or the sketch has no spot.

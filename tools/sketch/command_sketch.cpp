@@ -202,6 +202,9 @@ Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::
     layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
                                   : sketch_regions(layer.sketch, layer.attributes, o.regions);
     layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
+    // On a UV layout each region blends only with the regions of its own chart.
+    if (o.uv)
+      for (const RegionAttributes& r : layer.regions.regions) layer.regions.chart.push_back(layer.domain->chart_at(r.center));
   }
   const SketchDomain& domain = *layer.domain;
   layer.plan = model.stripes ? plan_stripes(layer.regions, domain, model, o.max_circumradius)

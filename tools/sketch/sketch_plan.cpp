@@ -68,13 +68,13 @@ std::vector<double> axis_weights(const std::vector<double>& ratio) {
 // Per-region axes (degrees) blended at a window point as axes (doubled angles: 0 and 180 degrees are
 // one axis), weighted; in radians.
 double blend_axes(const SketchRegions& regions, const std::vector<double>& degrees, const std::vector<double>& weights,
-                  const Eigen::Vector2d& w) {
+                  const Eigen::Vector2d& w, int chart) {
   std::vector<double> cos, sin;
   for (size_t k = 0; k < degrees.size(); ++k) {
     cos.push_back(weights[k] * std::cos(2.0 * degrees[k] * M_PI / 180.0));
     sin.push_back(weights[k] * std::sin(2.0 * degrees[k] * M_PI / 180.0));
   }
-  return 0.5 * std::atan2(regions.blend(sin, w), regions.blend(cos, w));
+  return 0.5 * std::atan2(regions.blend(sin, w, chart), regions.blend(cos, w, chart));
 }
 
 // The model's inverse map of `attribute` (TrainingRun's spot_area or stripe_width), its range and
@@ -182,8 +182,10 @@ void place_initiators(SketchPlan& plan, const SketchRegions& regions, const Sket
     const Eigen::Vector2d centre(unit(random) * domain.window().x(), unit(random) * domain.window().y());
     const std::optional<Eigen::Vector3d> middle = domain.surface_point(centre);
     if (!middle) continue;
-    const double angle = blend_axes(regions, orientation, weights, centre) + jitter(random) * M_PI / 180.0;
-    const Eigen::Vector2d half = 0.5 * kInitiatorLength * regions.blend(width, centre) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const int chart = domain.chart_at(centre);
+    const double angle = blend_axes(regions, orientation, weights, centre, chart) + jitter(random) * M_PI / 180.0;
+    const Eigen::Vector2d half =
+        0.5 * kInitiatorLength * regions.blend(width, centre, chart) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     // The segment straight in the tangent plane at its centre, in input units.
     const Eigen::Vector3d reach = domain.frame_at(centre).to_surface(half) / domain.scale();
     plan.initiators.emplace_back(*middle - reach, *middle + reach);
@@ -205,8 +207,9 @@ InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDoma
   for (size_t v = 0; v < mesh.positions.size() && !regions.marks; ++v) {
     // A vertex on a UV seam has a window point per side: the blends averaged (in logs).
     const std::vector<Eigen::Vector2d> points = domain.vertex_window_points(v);
+    const std::vector<int> charts = domain.vertex_charts(v);
     double sum = 0.0;
-    for (const Eigen::Vector2d& w : points) sum += regions.blend(logs, w);
+    for (size_t k = 0; k < points.size(); ++k) sum += regions.blend(logs, points[k], charts[k]);
     map[v] = std::exp(sum / static_cast<double>(points.size()));
   }
   return map;
@@ -250,7 +253,7 @@ std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const S
       const RegionAttributes& r = regions.regions[k];
       axes[k] = on_surface(frame, {plan.model->stripes ? 0.0 : r.aspect, r.orientation}).orientation;
     }
-    const double angle = blend_axes(regions, axes, weights, domain.face_window_point(f));
+    const double angle = blend_axes(regions, axes, weights, domain.face_window_point(f), domain.face_chart(f));
     directions.push_back(frame.frame * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
   }
   return directions;
