@@ -36,7 +36,7 @@ const std::map<std::string, std::vector<std::string>> kLayerBelow = {
     {"run", {"simulation"}},
     {"harness", {"setup"}},
     {"pattern", {"map_tools"}},
-    {"sketch", {"base"}},
+    {"sketch", {"map_tools"}},
     {"output", {"color", "maps"}},
 };
 // What the backends may include of common/: the simulation interface and everything below it.

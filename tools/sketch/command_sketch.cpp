@@ -6,7 +6,8 @@
 // and the grown spots (tools/sketch/sketch_report.hpp) or stripes (tools/sketch/stripe_report.hpp)
 // are measured per region against the sketch; --refine K corrects each missed region's rate by its
 // miss and runs again, up to K times. --layer2 grows a second sketch's spots on the first's frozen
-// ones (tools/sketch/sketch_layers.hpp).
+// ones (tools/sketch/sketch_layers.hpp). The window lies on a patch or a UV layout, or the marks on
+// the surface itself (common/sketch/sketch_domain.hpp, common/sketch/surface_marks.hpp).
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
 #include "common/base/value_range.hpp"
@@ -186,26 +187,30 @@ struct Layer {
   SketchPlan plan;
 };
 
+// The layer's regions and where they lie: a region per mark for marks on the surface
+// (common/sketch/surface_marks.hpp), else the window's n x n regions on the patch or (--uv) the UV
+// layout, each blending only with the regions of its own chart there.
+void place_regions(Layer& layer, const SketchOptions& o, const SketchModel& model, const InputMesh& mesh) {
+  if (!layer.sketch.surface_spots.empty()) {
+    if (o.uv) throw UsageError("--uv: " + layer.sketch.source + "'s marks lie on the surface, not in a UV window");
+    layer.regions = surface_regions(std::make_shared<const SurfaceMarks>(place_surface_marks(layer.sketch, mesh)));
+    layer.domain = SketchDomain::surface(layer.sketch, mesh, o.area);
+    return;
+  }
+  layer.attributes = measure_sketch(layer.sketch);
+  layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions) : sketch_regions(layer.sketch, layer.attributes, o.regions);
+  layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
+  if (o.uv)
+    for (const RegionAttributes& r : layer.regions.regions) layer.regions.chart.push_back(layer.domain->chart_at(r.center));
+}
+
 Layer prepare_layer(const std::string& path, const SketchOptions& o, const std::string& model_name, const InputMesh& mesh) {
   Layer layer;
   layer.sketch = read_sketch(path);
   const SketchModel& model = sketch_model(model_name.empty() ? default_model(layer.sketch) : model_name);
   if (model.stripes && layer.sketch.strokes.empty())
     throw InputError(layer.sketch.source + ": " + model.name + " grows stripes along strokes, and the sketch has none");
-  if (!layer.sketch.surface_spots.empty()) {
-    // Marks on the surface: a region per mark, placed on the mesh (common/sketch/surface_marks.hpp).
-    if (o.uv) throw UsageError("--uv: " + layer.sketch.source + "'s marks lie on the surface, not in a UV window");
-    layer.regions = surface_regions(std::make_shared<const SurfaceMarks>(place_surface_marks(layer.sketch, mesh)));
-    layer.domain = SketchDomain::surface(layer.sketch, mesh, o.area);
-  } else {
-    layer.attributes = measure_sketch(layer.sketch);
-    layer.regions = model.stripes ? stroke_regions(layer.sketch, o.regions)
-                                  : sketch_regions(layer.sketch, layer.attributes, o.regions);
-    layer.domain = o.uv ? SketchDomain::uv(layer.sketch, mesh, o.area) : SketchDomain::patch(layer.sketch, mesh, o.area);
-    // On a UV layout each region blends only with the regions of its own chart.
-    if (o.uv)
-      for (const RegionAttributes& r : layer.regions.regions) layer.regions.chart.push_back(layer.domain->chart_at(r.center));
-  }
+  place_regions(layer, o, model, mesh);
   const SketchDomain& domain = *layer.domain;
   layer.plan = model.stripes ? plan_stripes(layer.regions, domain, model, o.max_circumradius)
                              : plan_sketch(layer.regions, domain, model, o.max_circumradius);
@@ -339,7 +344,8 @@ Command add_sketch_command(CLI::App& parent) {
       "sketch",
       "Grow a reaction-diffusion texture whose spots or stripes follow drawn ones, and check it\n"
       "Sketch a pattern (paper 004): SKETCH is a PNG (dark marks on a light background; filled or outlined "
-      "blobs are spots, long thin or red marks strokes) or a JSON sketch of ellipses and strokes. Its window "
+      "blobs are spots, long thin or red marks strokes) or a JSON sketch of ellipses and strokes, or of ellipses "
+      "on the mesh's surface (\"surface_point\": each mark a region, blended by geodesic distance). Its window "
       "maps onto the mesh's x/y extent, or with --uv onto its UV layout; the window is divided into --regions x --regions regions, each region's "
       "spot area goes through the model's inverse map (learned from tools/sketch/make_training_data.sh's runs) "
       "to a reaction rate, blended over the surface. Writes DIR/scene.json (the generated scene, runnable with "
@@ -361,7 +367,8 @@ Command add_sketch_command(CLI::App& parent) {
   app->add_option("--model", options->model,
                   "turing-spots, meinhardt-spots or meinhardt-stripes (default: turing-spots for a sketch with spots, "
                   "meinhardt-stripes for one of strokes alone)");
-  app->add_option("--regions", options->regions, "Regions per side of the window (default 2: the paper's four)");
+  app->add_option("--regions", options->regions,
+                  "Regions per side of the window (default 2: the paper's four); marks on the surface are a region each");
   app->add_option("--area", options->area, "The surface's area in m^2 (scale_to_area; default 1)");
   app->add_option("--max-circumradius", options->max_circumradius,
                   "The mesh resolution in m (default 0.007, the training's: about the models' 1 cm cell)");
