@@ -198,19 +198,19 @@ InputVertexData<double> scale_map(const SketchRegions& regions, const SketchDoma
   std::vector<double> logs;
   for (const double r : values) logs.push_back(std::log(r));
   InputVertexData<double> map(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size() && regions.marks; ++v) {
-    const std::vector<double> w = regions.marks->weights(v);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
     double sum = 0.0;
-    for (size_t k = 0; k < w.size(); ++k) sum += w[k] * logs[k];
+    if (regions.marks) {
+      const std::vector<double> w = regions.marks->weights(v);
+      for (size_t k = 0; k < w.size(); ++k) sum += w[k] * logs[k];
+    } else {
+      // A vertex on a UV seam has a window point per side: the blends averaged (in logs).
+      const std::vector<Eigen::Vector2d> points = domain.vertex_window_points(v);
+      const std::vector<int> charts = domain.vertex_charts(v);
+      for (size_t k = 0; k < points.size(); ++k) sum += regions.blend(logs, points[k], charts[k]);
+      sum /= static_cast<double>(points.size());
+    }
     map[v] = std::exp(sum);
-  }
-  for (size_t v = 0; v < mesh.positions.size() && !regions.marks; ++v) {
-    // A vertex on a UV seam has a window point per side: the blends averaged (in logs).
-    const std::vector<Eigen::Vector2d> points = domain.vertex_window_points(v);
-    const std::vector<int> charts = domain.vertex_charts(v);
-    double sum = 0.0;
-    for (size_t k = 0; k < points.size(); ++k) sum += regions.blend(logs, points[k], charts[k]);
-    map[v] = std::exp(sum / static_cast<double>(points.size()));
   }
   return map;
 }
