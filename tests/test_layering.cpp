@@ -36,6 +36,7 @@ const std::map<std::string, std::vector<std::string>> kLayerBelow = {
     {"run", {"simulation"}},
     {"harness", {"setup"}},
     {"pattern", {"map_tools"}},
+    {"shell", {"numerics"}},
     {"sketch", {"map_tools"}},
     {"output", {"color", "maps"}},
 };

@@ -36,6 +36,9 @@ enum class RandomPurpose : std::uint32_t {
   ReactionNoise = 8,       // block = morphogen: first uniform, the vertex's noise draw
   ReactionSpot = 9,        // block 0: first uniform, the spot centre's place in the mass distribution
   ReactionParameterNoise = 10,  // block = coefficient: first uniform, the vertex's draw ("parameter_noise")
+  // The growth model's shell (common/shell/sheet_perturbation.hpp): the stream is the vertex, the counter
+  // step the growth step.
+  ShellPerturbation = 11,  // block 0: first uniform, the vertex's out-of-plane offset
 };
 
 inline PhiloxWords agent_random_words(std::uint32_t seed, std::uint32_t agent, std::uint32_t step, RandomPurpose purpose,

@@ -59,6 +59,9 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const
   // Always LL' (supernodal): for small matrices CHOLMOD would pick a simplicial LDL', which factors
   // an indefinite matrix without complaint instead of refusing it.
   s.common.supernodal = CHOLMOD_SUPERNODAL;
+  // No printing: a matrix that is not positive definite is reported by factor()'s exception, and
+  // Newton's method (common/shell/shell_equilibrium.cpp) expects and handles that case.
+  s.common.print = 0;
   s.outer.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.outerSize() + 1);
   s.inner.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
   cholmod_sparse a = view(pattern);
@@ -112,6 +115,13 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
   s.solves.push_back(std::make_unique<SupernodalSolve>(view, s.min_parallel_entries));
   s.numeric.push_back(f);
   return static_cast<int>(s.numeric.size()) - 1;
+}
+
+void SharedCholesky::release_factors() {
+  State& s = *state_;
+  s.solves.clear();
+  for (cholmod_factor*& f : s.numeric) cholmod_free_factor(&f, &s.common);
+  s.numeric.clear();
 }
 
 Eigen::VectorXd SharedCholesky::solve(int index, const Eigen::VectorXd& b) const {

@@ -31,6 +31,9 @@ class SharedCholesky {
   // Factors `matrix` and returns its index for solve(). std::invalid_argument when the pattern
   // differs; std::runtime_error naming `what` when it is not positive definite.
   int factor(const Eigen::SparseMatrix<double>& matrix, const char* what);
+  // Frees every numeric factorization (their indices become invalid), keeping the analysis: an
+  // iteration that factors a new matrix of the same pattern each time (Newton's method) stays at one.
+  void release_factors();
   // x with matrix(index) x = b: forward and backward substitution over the supernodal factor, by
   // subtrees of its elimination tree on several threads when it is large (common/numerics/supernodal_solve.hpp).
   // The same b gives the same bits every time, whatever the machine's thread count. Thread-safe.

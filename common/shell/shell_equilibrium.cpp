@@ -1,0 +1,187 @@
+#include "common/shell/shell_equilibrium.hpp"
+
+#include "common/shell/membrane_energy.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace physarum {
+namespace {
+
+// A rotation and translation taking the gauge face to its canonical place: first vertex at the
+// origin, second on +x, third in the xy-plane. In that frame the six fixed coordinates are plain
+// coordinates: (x, y, z) of the first, (y, z) of the second, z of the third.
+struct GaugeFrame {
+  Eigen::Matrix3d rotation;  // rows: the frame's axes
+  Eigen::Vector3d origin;
+
+  GaugeFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) : origin(a) {
+    const Eigen::Vector3d ex = (b - a).normalized();
+    const Eigen::Vector3d ez = ex.cross(c - a).normalized();
+    rotation.row(0) = ex.transpose();
+    rotation.row(1) = ez.cross(ex).transpose();
+    rotation.row(2) = ez.transpose();
+  }
+  Eigen::VectorXd into(const std::vector<Eigen::Vector3d>& positions) const {
+    Eigen::VectorXd x(3 * static_cast<Eigen::Index>(positions.size()));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      x.segment<3>(3 * static_cast<Eigen::Index>(v)) = rotation * (positions[v] - origin);
+    return x;
+  }
+  std::vector<Eigen::Vector3d> out_of(const Eigen::VectorXd& x) const {
+    std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(x.size() / 3));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      positions[v] = rotation.transpose() * x.segment<3>(3 * static_cast<Eigen::Index>(v)) + origin;
+    return positions;
+  }
+};
+
+double mean_rest_edge(const ShellRestState& rest) {
+  double sum = 0.0;
+  for (const Eigen::Matrix2d& m : rest.face_metric) sum += std::sqrt(m(0, 0)) + std::sqrt(m(1, 1));
+  return rest.face_metric.empty() ? 1.0 : sum / (2.0 * static_cast<double>(rest.face_metric.size()));
+}
+
+// Replaces the fixed coordinates' rows and columns of `h` by the identity times `diagonal`.
+void fix_coordinates(Eigen::SparseMatrix<double>& h, const std::array<int, 6>& fixed, double diagonal) {
+  for (int k = 0; k < h.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(h, k); it; ++it) {
+      const bool row_fixed = std::find(fixed.begin(), fixed.end(), it.row()) != fixed.end();
+      const bool column_fixed = std::find(fixed.begin(), fixed.end(), it.col()) != fixed.end();
+      if (row_fixed || column_fixed) it.valueRef() = it.row() == it.col() ? diagonal : 0.0;
+    }
+}
+
+}  // namespace
+
+int ShellEquilibrium::factor_hessian(const Eigen::VectorXd& x, const ShellRestState& rest, const std::array<int, 6>& fixed,
+                                     Eigen::SparseMatrix<double>& h, bool& projected) const {
+  cholesky_->release_factors();
+  projected = false;
+  // The exact Hessian when it is positive definite: quadratic convergence near a stable equilibrium.
+  energy_.hessian(x, rest, false, h);
+  double diagonal = h.diagonal().cwiseAbs().maxCoeff();
+  fix_coordinates(h, fixed, diagonal);
+  try {
+    return cholesky_->factor(h, "the shell's Hessian");
+  } catch (const std::runtime_error&) {
+  }
+  // Otherwise (far from equilibrium, or a sheet about to buckle) the element Hessians made positive
+  // semidefinite (common/numerics/positive_projection.hpp); a small shift, grown until CHOLMOD
+  // accepts the matrix, covers what is left singular.
+  projected = true;
+  energy_.hessian(x, rest, true, h);
+  diagonal = h.diagonal().cwiseAbs().maxCoeff();
+  fix_coordinates(h, fixed, diagonal);
+  for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 * diagonal : shift * 100.0) {
+    Eigen::SparseMatrix<double> shifted = h;
+    if (shift > 0.0)
+      for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
+    try {
+      return cholesky_->factor(shifted, "the shell's Hessian");
+    } catch (const std::runtime_error&) {
+      if (shift > diagonal) throw;
+    }
+  }
+}
+
+ShellEquilibrium::ShellEquilibrium(const ShellTopology& topology, const ShellMaterial& material, int gauge_face)
+    : energy_(topology, material), gauge_face_(gauge_face) {
+  if (gauge_face < 0 || gauge_face >= static_cast<int>(topology.faces.size()))
+    throw std::invalid_argument("ShellEquilibrium: gauge face out of range");
+  Eigen::SparseMatrix<double> spd = energy_.pattern();
+  for (int i = 0; i < spd.rows(); ++i) spd.coeffRef(i, i) = 1.0;
+  cholesky_ = std::make_unique<SharedCholesky>(spd);
+}
+
+ShellEquilibrium::~ShellEquilibrium() = default;
+
+NewtonReport ShellEquilibrium::solve(std::vector<Eigen::Vector3d>& positions, const ShellRestState& rest,
+                                     const NewtonSettings& settings) const {
+  const auto& face = energy_.topology().faces[static_cast<std::size_t>(gauge_face_)];
+  const GaugeFrame frame(positions[face[0]], positions[face[1]], positions[face[2]]);
+  const std::array<int, 6> fixed = {3 * face[0], 3 * face[0] + 1, 3 * face[0] + 2,
+                                    3 * face[1] + 1, 3 * face[1] + 2, 3 * face[2] + 2};
+  Eigen::VectorXd x = frame.into(positions);
+  const double force_scale = energy_.material().membrane_stiffness() * mean_rest_edge(rest);
+
+  const auto free_gradient = [&](const Eigen::VectorXd& at) {
+    Eigen::VectorXd g = energy_.gradient(at, rest);
+    for (int i : fixed) g(i) = 0.0;
+    return g;
+  };
+  NewtonReport report;
+  Eigen::VectorXd g = free_gradient(x);
+  double energy = energy_.energy(x, rest).total();
+  Eigen::SparseMatrix<double> h;
+  for (;;) {
+    report.residuals.push_back(g.lpNorm<Eigen::Infinity>() / force_scale);
+    if (report.residuals.back() <= settings.tolerance) {
+      report.converged = true;
+      break;
+    }
+    if (report.iterations >= settings.max_iterations) break;
+    bool projected = false;
+    const int index = factor_hessian(x, rest, fixed, h, projected);
+    const Eigen::VectorXd d = -cholesky_->solve(index, g);
+    const double slope = g.dot(d);
+    double step = 1.0;
+    Eigen::VectorXd trial;
+    double trial_energy = 0.0;
+    bool accepted = false;
+    for (int halving = 0; halving < 40 && !accepted; ++halving, step *= 0.5) {
+      trial = x + step * d;
+      trial_energy = energy_.energy(trial, rest).total();
+      accepted = trial_energy <= energy + 1e-4 * step * slope;
+    }
+    // A full step that was accepted may be too short: along a buckling mode the projected Hessian
+    // overstates the curvature. Longer steps while they keep lowering the energy.
+    if (projected && accepted && step == 0.5)
+      for (double longer = 2.0; longer <= 64.0; longer *= 2.0) {
+        const Eigen::VectorXd further = x + longer * d;
+        const double further_energy = energy_.energy(further, rest).total();
+        if (!(further_energy < trial_energy)) break;
+        trial = further;
+        trial_energy = further_energy;
+      }
+    Eigen::VectorXd trial_gradient;
+    if (!accepted) {
+      // Near the minimum the energy's change drowns in its rounding: take the full step if it
+      // brings the forces down.
+      trial = x + d;
+      trial_energy = energy_.energy(trial, rest).total();
+      trial_gradient = free_gradient(trial);
+      if (trial_gradient.lpNorm<Eigen::Infinity>() >= g.lpNorm<Eigen::Infinity>()) break;
+    } else {
+      trial_gradient = free_gradient(trial);
+    }
+    x = std::move(trial);
+    g = std::move(trial_gradient);
+    energy = trial_energy;
+    ++report.iterations;
+  }
+  cholesky_->release_factors();
+  report.energy = energy_.energy(x, rest);
+  positions = frame.out_of(x);
+  return report;
+}
+
+int central_face(const ShellTopology& topology, const std::vector<Eigen::Vector3d>& positions) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : positions) mean += p;
+  mean /= static_cast<double>(std::max<std::size_t>(positions.size(), 1));
+  int best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < static_cast<int>(topology.faces.size()); ++f) {
+    const auto& t = topology.faces[static_cast<std::size_t>(f)];
+    const double distance = ((positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0 - mean).squaredNorm();
+    if (distance < best_distance) best_distance = distance, best = f;
+  }
+  return best;
+}
+
+}  // namespace physarum
