@@ -37,6 +37,7 @@ const std::map<std::string, std::vector<std::string>> kLayerBelow = {
     {"harness", {"setup"}},
     {"pattern", {"map_tools"}},
     {"shell", {"numerics"}},
+    {"growth", {"shell"}},
     {"sketch", {"map_tools"}},
     {"output", {"color", "maps"}},
 };

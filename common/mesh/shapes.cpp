@@ -84,23 +84,7 @@ void stitch_rings(TriangleBuilder& b, const std::vector<int>& inner, const std::
   }
 }
 
-PolygonSoup disk() {
-  constexpr int rings = 16;
-  TriangleBuilder b;
-  std::vector<int> previous{b.vertex({0, 0, 0})};
-  for (int k = 1; k <= rings; ++k) {
-    std::vector<int> ring;
-    const int count = 6 * k;
-    for (int j = 0; j < count; ++j) {
-      const double angle = 2 * pi * j / count, radius = double(k) / rings;
-      ring.push_back(b.vertex({radius * std::cos(angle), radius * std::sin(angle), 0.0}));
-    }
-    stitch_rings(b, previous, ring);
-    previous = std::move(ring);
-  }
-  b.orient([](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitZ(); });
-  return b.soup();
-}
+PolygonSoup disk() { return disk_soup(16); }
 
 PolygonSoup sphere() {
   TriangleBuilder b;
@@ -295,6 +279,23 @@ constexpr std::array<ShapeEntry, 7> shapes{{{"square", square},
                                             {"cube", cube}}};
 
 }  // namespace
+
+PolygonSoup disk_soup(int rings) {
+  TriangleBuilder b;
+  std::vector<int> previous{b.vertex({0, 0, 0})};
+  for (int k = 1; k <= rings; ++k) {
+    std::vector<int> ring;
+    const int count = 6 * k;
+    for (int j = 0; j < count; ++j) {
+      const double angle = 2 * pi * j / count, radius = double(k) / rings;
+      ring.push_back(b.vertex({radius * std::cos(angle), radius * std::sin(angle), 0.0}));
+    }
+    stitch_rings(b, previous, ring);
+    previous = std::move(ring);
+  }
+  b.orient([](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitZ(); });
+  return b.soup();
+}
 
 std::vector<std::string> shape_names() {
   std::vector<std::string> names;

@@ -22,6 +22,11 @@ namespace physarum {
 
 std::vector<std::string> shape_names();
 
+// The unit disk in z = 0 as `rings` concentric rings of 6k vertices around a centre vertex
+// (1 + 3 rings (rings + 1) vertices, nearly equilateral triangles): shape:disk has 16 rings; the
+// growth model's benchmarks and tests take other sizes.
+PolygonSoup disk_soup(int rings);
+
 // The shape's triangles as a polygon soup (load_mesh validates it like a file). NAME is without
 // the "shape:" prefix. Throws InputError listing the valid names when NAME is unknown.
 PolygonSoup make_shape_soup(const std::string& name);

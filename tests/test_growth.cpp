@@ -1,0 +1,111 @@
+// The growth step (common/growth/): the paper's growth functions at known points, their refusals,
+// dilution's conservation, and anisotropic growth's known shape (a disk grown uniformly along x
+// only becomes a flat, unstressed ellipse).
+#include "common/base/errors.hpp"
+#include "common/growth/face_growth.hpp"
+#include "common/growth/growth_law.hpp"
+#include "common/mesh/mesh_loading.hpp"
+#include "common/shell/sheet_perturbation.hpp"
+#include "common/shell/shell_equilibrium.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace physarum {
+namespace {
+
+TEST(GrowthLaw, ThePapersFunctionsAtKnownPoints) {
+  GrowthLaw polynomial;  // m = 0, n = 1, gamma = 0.05 (Fig. 9)
+  EXPECT_DOUBLE_EQ(growth_increment(polynomial, 0.7, 0.25), 5.0);
+  EXPECT_DOUBLE_EQ(growth_increment(polynomial, 0.7, -0.01), 0.0);  // rounding below zero counts as zero
+  polynomial.m = 1, polynomial.n = 0;                                // Fig. 8: grows where a is high
+  EXPECT_DOUBLE_EQ(growth_increment(polynomial, 0.5, 0.3), 10.0);
+  polynomial.rate = 0.02;
+  EXPECT_DOUBLE_EQ(growth_stretch(polynomial, 0.5, 0.3), 1.2);
+  GrowthLaw exponential;
+  exponential.function = GrowthFunction::Exponential;
+  exponential.lambda = 1.08, exponential.m = 0, exponential.n = 1, exponential.gamma = 0.029;
+  // Where a^m b^n = gamma the exponent vanishes: g = lambda; where b = 0, lambda / e.
+  EXPECT_NEAR(growth_increment(exponential, 0.3, 0.029), 1.08, 1e-15);
+  EXPECT_NEAR(growth_increment(exponential, 0.3, 0.0), 1.08 / std::exp(1.0), 1e-15);
+}
+
+TEST(GrowthLaw, BadValuesAreRefusedNamingTheKey) {
+  const auto message = [](GrowthLaw law) {
+    try {
+      validate_growth_law(law, "scene.json: growth");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  GrowthLaw law;
+  EXPECT_EQ(message(law), "");
+  law.gamma = 0;
+  EXPECT_NE(message(law).find("\"gamma\""), std::string::npos);
+  law = {}, law.rate = -0.1;
+  EXPECT_NE(message(law).find("\"rate\""), std::string::npos);
+  law = {}, law.n = -1;
+  EXPECT_NE(message(law).find("\"n\""), std::string::npos);
+  law = {}, law.lambda = std::nan("");
+  EXPECT_NE(message(law).find("\"lambda\""), std::string::npos);
+}
+
+TEST(GrowthDilution, EachMorphogensAmountIsConservedThroughAGrowthStep) {
+  const InputMesh disk = load_mesh("shape:disk");
+  const ShellTopology topology = build_shell_topology(disk.vertex_count(), disk.triangles);
+  ShellRestState rest = rest_state_of(topology, disk.positions);
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> values(disk.positions.size());
+  for (double& v : values) v = uniform(random);
+  FaceGrowth growth;
+  for (std::size_t f = 0; f < topology.faces.size(); ++f) {
+    growth.along.push_back(1.0 + 0.3 * uniform(random));
+    growth.across.push_back(growth.along.back());
+  }
+  const std::vector<double> before = rest_vertex_masses(topology, rest);
+  grow_faces(rest, growth);
+  const std::vector<double> after = rest_vertex_masses(topology, rest);
+  const auto amount = [&](const std::vector<double>& mass) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < values.size(); ++i) sum += mass[i] * values[i];
+    return sum;
+  };
+  const double total = amount(before);
+  dilute(values, before, after);
+  EXPECT_NEAR(amount(after), total, 1e-9 * total);
+  EXPECT_GT(rest_area(rest), 1.1 * 3.14);  // it did grow
+}
+
+TEST(GrowthAnisotropy, ADiskGrownAlongXBecomesAFlatEllipse) {
+  // Growth by 1.5 along x and 1 across everywhere is the linear map diag(1.5, 1): a compatible
+  // metric, so the equilibrium is that map's image (up to a rigid motion), flat and unstressed.
+  const InputMesh disk = load_mesh("shape:disk");
+  const ShellTopology topology = build_shell_topology(disk.vertex_count(), disk.triangles);
+  ShellRestState rest = rest_state_of(topology, disk.positions);
+  FaceGrowth growth;
+  growth.along.assign(topology.faces.size(), 1.5);
+  growth.across.assign(topology.faces.size(), 1.0);
+  growth.direction = face_directions(topology, disk.positions,
+                                     std::vector<Eigen::Vector3d>(topology.faces.size(), Eigen::Vector3d::UnitX()));
+  grow_faces(rest, growth);
+  std::vector<Eigen::Vector3d> positions = disk.positions;
+  perturb_out_of_plane(topology, positions, 1e-4, 1, 1);
+  const ShellEquilibrium solver(topology, {0.01, 1e7, 0.3}, central_face(topology, disk.positions));
+  const NewtonReport report = solver.solve(positions, rest, NewtonSettings{});
+  ASSERT_TRUE(report.converged) << report.residual();
+  // Distances from the centre vertex (index 0) are those of the mapped disk.
+  double worst = 0.0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const Eigen::Vector3d mapped(1.5 * disk.positions[v].x(), disk.positions[v].y(), 0.0);
+    worst = std::max(worst, std::abs((positions[v] - positions[0]).norm() - mapped.norm()));
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(report.energy.total(), 1e-12 * 1e7 * 0.01);
+}
+
+}  // namespace
+}  // namespace physarum
