@@ -56,19 +56,63 @@ void fix_coordinates(Eigen::SparseMatrix<double>& h, const std::array<int, 6>& f
     }
 }
 
+
+struct LineSearchResult {
+  bool moved = false;      // false: no step lowered the energy or the forces
+  bool full_step = false;  // the Newton step itself was accepted
+  double step = 0.0;       // along the direction
+  double energy = 0.0;     // there
+};
+
+// Backtracking (Armijo) along d from x; after an accepted full step of a projected Hessian, longer
+// steps while they keep lowering the energy (along a buckling mode the projected Hessian overstates
+// the curvature). Near the minimum the energy's change drowns in its rounding: when no step passes,
+// the full step is taken if it brings the forces down.
+template <typename Energy, typename Gradient>
+LineSearchResult search_line(const Eigen::VectorXd& x, const Eigen::VectorXd& d, const Eigen::VectorXd& g, double energy,
+                             bool projected, const Energy& energy_at, const Gradient& gradient_at) {
+  const double slope = g.dot(d);
+  LineSearchResult result;
+  double step = 1.0;
+  for (int halving = 0; halving < 40; ++halving, step *= 0.5) {
+    const double trial = energy_at(x + step * d);
+    if (trial <= energy + 1e-4 * step * slope) {
+      result = {true, halving == 0, step, trial};
+      break;
+    }
+  }
+  if (!result.moved) {
+    if (gradient_at(x + d).template lpNorm<Eigen::Infinity>() >= g.lpNorm<Eigen::Infinity>()) return result;
+    return {true, true, 1.0, energy_at(x + d)};
+  }
+  if (projected && result.full_step)
+    for (double longer = 2.0; longer <= 64.0; longer *= 2.0) {
+      const double further = energy_at(x + longer * d);
+      if (!(further < result.energy)) break;
+      result.step = longer;
+      result.energy = further;
+    }
+  return result;
+}
+
 }  // namespace
 
 int ShellEquilibrium::factor_hessian(const Eigen::VectorXd& x, const ShellRestState& rest, const std::array<int, 6>& fixed,
-                                     Eigen::SparseMatrix<double>& h, bool& projected) const {
+                                     Eigen::SparseMatrix<double>& h, bool try_exact, bool& projected,
+                                     NewtonReport& report) const {
   cholesky_->release_factors();
   projected = false;
+  double diagonal = 0.0;
   // The exact Hessian when it is positive definite: quadratic convergence near a stable equilibrium.
-  energy_.hessian(x, rest, false, h);
-  double diagonal = h.diagonal().cwiseAbs().maxCoeff();
-  fix_coordinates(h, fixed, diagonal);
-  try {
-    return cholesky_->factor(h, "the shell's Hessian");
-  } catch (const std::runtime_error&) {
+  if (try_exact) {
+    energy_.hessian(x, rest, false, h);
+    diagonal = h.diagonal().cwiseAbs().maxCoeff();
+    fix_coordinates(h, fixed, diagonal);
+    ++report.factorizations;
+    try {
+      return cholesky_->factor(h, "the shell's Hessian");
+    } catch (const std::runtime_error&) {
+    }
   }
   // Otherwise (far from equilibrium, or a sheet about to buckle) the element Hessians made positive
   // semidefinite (common/numerics/positive_projection.hpp); a small shift, grown until CHOLMOD
@@ -77,7 +121,9 @@ int ShellEquilibrium::factor_hessian(const Eigen::VectorXd& x, const ShellRestSt
   energy_.hessian(x, rest, true, h);
   diagonal = h.diagonal().cwiseAbs().maxCoeff();
   fix_coordinates(h, fixed, diagonal);
+  ++report.projected_iterations;
   for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 * diagonal : shift * 100.0) {
+    ++report.factorizations;
     Eigen::SparseMatrix<double> shifted = h;
     if (shift > 0.0)
       for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
@@ -118,6 +164,10 @@ NewtonReport ShellEquilibrium::solve(std::vector<Eigen::Vector3d>& positions, co
   Eigen::VectorXd g = free_gradient(x);
   double energy = energy_.energy(x, rest).total();
   Eigen::SparseMatrix<double> h;
+  // Whether to try the exact Hessian first: a factorization that fails costs nearly as much as one
+  // that succeeds, so after a failure only once the projected steps have become full Newton steps
+  // (the iterate is closing in).
+  bool try_exact = true;
   for (;;) {
     report.residuals.push_back(g.lpNorm<Eigen::Infinity>() / force_scale);
     if (report.residuals.back() <= settings.tolerance) {
@@ -126,42 +176,16 @@ NewtonReport ShellEquilibrium::solve(std::vector<Eigen::Vector3d>& positions, co
     }
     if (report.iterations >= settings.max_iterations) break;
     bool projected = false;
-    const int index = factor_hessian(x, rest, fixed, h, projected);
+    const int index = factor_hessian(x, rest, fixed, h, try_exact, projected, report);
     const Eigen::VectorXd d = -cholesky_->solve(index, g);
-    const double slope = g.dot(d);
-    double step = 1.0;
-    Eigen::VectorXd trial;
-    double trial_energy = 0.0;
-    bool accepted = false;
-    for (int halving = 0; halving < 40 && !accepted; ++halving, step *= 0.5) {
-      trial = x + step * d;
-      trial_energy = energy_.energy(trial, rest).total();
-      accepted = trial_energy <= energy + 1e-4 * step * slope;
-    }
-    // A full step that was accepted may be too short: along a buckling mode the projected Hessian
-    // overstates the curvature. Longer steps while they keep lowering the energy.
-    if (projected && accepted && step == 0.5)
-      for (double longer = 2.0; longer <= 64.0; longer *= 2.0) {
-        const Eigen::VectorXd further = x + longer * d;
-        const double further_energy = energy_.energy(further, rest).total();
-        if (!(further_energy < trial_energy)) break;
-        trial = further;
-        trial_energy = further_energy;
-      }
-    Eigen::VectorXd trial_gradient;
-    if (!accepted) {
-      // Near the minimum the energy's change drowns in its rounding: take the full step if it
-      // brings the forces down.
-      trial = x + d;
-      trial_energy = energy_.energy(trial, rest).total();
-      trial_gradient = free_gradient(trial);
-      if (trial_gradient.lpNorm<Eigen::Infinity>() >= g.lpNorm<Eigen::Infinity>()) break;
-    } else {
-      trial_gradient = free_gradient(trial);
-    }
-    x = std::move(trial);
-    g = std::move(trial_gradient);
-    energy = trial_energy;
+    const LineSearchResult found = search_line(
+        x, d, g, energy, projected, [&](const Eigen::VectorXd& at) { return energy_.energy(at, rest).total(); },
+        free_gradient);
+    if (!found.moved) break;
+    try_exact = !projected || found.full_step;
+    x += found.step * d;
+    g = free_gradient(x);
+    energy = found.energy;
     ++report.iterations;
   }
   cholesky_->release_factors();

@@ -11,8 +11,9 @@
 //   coordinates: its first vertex all three, its second the two across the first edge, its third
 //   the one out of the face's plane —, which leaves the energy's minimisers unchanged up to a rigid
 //   motion and makes H positive definite.
-// - A backtracking line search (Armijo) on the energy; a step whose energy change is lost in
-//   rounding is accepted when it lowers the residual instead.
+// - A backtracking line search (Armijo) on the energy, which after a full projected step tries
+//   longer ones (a buckling mode's curvature is overstated by the projection); a step whose energy
+//   change is lost in rounding is accepted when it lowers the residual instead.
 // - The residual is the largest force on a free coordinate divided by Y h l, with l the mean rest
 //   edge length: a dimensionless strain, so one tolerance serves every sheet size and material.
 #include "common/numerics/shared_cholesky.hpp"
@@ -32,6 +33,8 @@ struct NewtonSettings {
 struct NewtonReport {
   bool converged = false;
   int iterations = 0;             // Newton steps taken
+  int projected_iterations = 0;   // steps that used the projected Hessian
+  int factorizations = 0;         // Cholesky factorizations, failed ones included
   std::vector<double> residuals;  // before each step, and the final one
   ShellEnergyParts energy;        // at the final positions
   double residual() const { return residuals.empty() ? 0.0 : residuals.back(); }
@@ -54,9 +57,10 @@ class ShellEquilibrium {
  private:
   // Assembles and factors the Newton matrix at x (the fixed coordinates' rows replaced by identity);
   // returns the factor's index in cholesky_.
-  // `projected`: whether the exact Hessian was not positive definite and the projected one was used.
+  // With `try_exact`, the exact Hessian first; `projected`: whether the projected one was used.
+  // Counts the factorizations and projected iterations into `report`.
   int factor_hessian(const Eigen::VectorXd& x, const ShellRestState& rest, const std::array<int, 6>& fixed,
-                     Eigen::SparseMatrix<double>& h, bool& projected) const;
+                     Eigen::SparseMatrix<double>& h, bool try_exact, bool& projected, NewtonReport& report) const;
 
   ShellEnergy energy_;
   int gauge_face_;
