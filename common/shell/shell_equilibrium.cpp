@@ -57,6 +57,9 @@ void fix_coordinates(Eigen::SparseMatrix<double>& h, const std::array<int, 6>& f
 }
 
 
+// Below this residual every step gets a fresh factorization (see solve()).
+constexpr double kReuseBelow = 1e-7;
+
 struct LineSearchResult {
   bool moved = false;      // false: no step lowered the energy or the forces
   bool full_step = false;  // the Newton step itself was accepted
@@ -167,7 +170,8 @@ NewtonReport ShellEquilibrium::solve(std::vector<Eigen::Vector3d>& positions, co
   // Whether to try the exact Hessian first: a factorization that fails costs nearly as much as one
   // that succeeds, so after a failure only once the projected steps have become full Newton steps
   // (the iterate is closing in).
-  bool try_exact = true;
+  bool try_exact = true, projected = false;
+  int index = -1;
   for (;;) {
     report.residuals.push_back(g.lpNorm<Eigen::Infinity>() / force_scale);
     if (report.residuals.back() <= settings.tolerance) {
@@ -175,8 +179,13 @@ NewtonReport ShellEquilibrium::solve(std::vector<Eigen::Vector3d>& positions, co
       break;
     }
     if (report.iterations >= settings.max_iterations) break;
-    bool projected = false;
-    const int index = factor_hessian(x, rest, fixed, h, try_exact, projected, report);
+    // A factorization is reused while the steps it gives keep cutting the residual by 4 or more
+    // (a chord step costs a solve, a factorization 10-20 of them); the last iterations, below
+    // kReuseBelow, are full Newton steps again, which converge quadratically.
+    const double residual = report.residuals.back();
+    const bool reuse = index >= 0 && residual > kReuseBelow && report.residuals.size() >= 2 &&
+                       residual <= 0.25 * report.residuals[report.residuals.size() - 2];
+    if (!reuse) index = factor_hessian(x, rest, fixed, h, try_exact, projected, report);
     const Eigen::VectorXd d = -cholesky_->solve(index, g);
     const LineSearchResult found = search_line(
         x, d, g, energy, projected, [&](const Eigen::VectorXd& at) { return energy_.energy(at, rest).total(); },
