@@ -56,7 +56,6 @@ void fix_coordinates(Eigen::SparseMatrix<double>& h, const std::array<int, 6>& f
     }
 }
 
-
 // Below this residual every step gets a fresh factorization (see solve()).
 constexpr double kReuseBelow = 1e-7;
 

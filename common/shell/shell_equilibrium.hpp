@@ -6,7 +6,8 @@
 //   per topology). H is the exact Hessian where that is positive definite (quadratic convergence near
 //   a stable equilibrium); otherwise the sum of the element Hessians made positive semidefinite
 //   (common/numerics/positive_projection.hpp), so d descends even where the sheet is compressed and
-//   about to buckle.
+//   about to buckle. A factorization is reused (a chord step) while its steps keep cutting the
+//   residual by 4 or more, down to 1e-7; below that every step is a full Newton step again.
 // - Rigid motions are removed by a gauge: three vertices of one face ("gauge face") lose six
 //   coordinates: its first vertex all three, its second the two across the first edge, its third
 //   the one out of the face's plane —, which leaves the energy's minimisers unchanged up to a rigid
