@@ -4,12 +4,15 @@
 #include "common/base/errors.hpp"
 #include "common/growth/face_growth.hpp"
 #include "common/growth/growth_law.hpp"
+#include "common/growth/sheet_refinement.hpp"
 #include "common/mesh/mesh_loading.hpp"
 #include "common/shell/sheet_perturbation.hpp"
 #include "common/shell/shell_equilibrium.hpp"
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -105,6 +108,56 @@ TEST(GrowthAnisotropy, ADiskGrownAlongXBecomesAFlatEllipse) {
   }
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(report.energy.total(), 1e-12 * 1e7 * 0.01);
+}
+
+// The unit disk grown uniformly by 2 (rest edges about 0.13, twice shape:disk's).
+GrowingSheet grown_disk() {
+  const InputMesh disk = load_mesh("shape:disk");
+  GrowingSheet sheet{build_shell_topology(disk.vertex_count(), disk.triangles), disk.positions, {}, {}};
+  sheet.rest = rest_state_of(sheet.topology, disk.positions);
+  for (Eigen::Matrix2d& m : sheet.rest.face_metric) m *= 4.0;
+  return sheet;
+}
+
+TEST(GrowthRefinement, SplitsEveryLongEdgeKeepingTheRestAreaAndTheMesh) {
+  GrowingSheet sheet = grown_disk();
+  std::vector<double> x, linear;
+  for (const Eigen::Vector3d& p : sheet.positions) x.push_back(p.x()), linear.push_back(0.3 + 2 * p.x() - p.y());
+  sheet.values = {x, linear};
+  const double area = rest_area(sheet.rest);
+  const int faces_before = static_cast<int>(sheet.topology.faces.size());
+  const int splits = refine_sheet(sheet, 0.08);
+  EXPECT_GT(splits, faces_before / 2);
+  // Every edge within the bound, as both of its faces' rest metrics say.
+  for (std::size_t f = 0; f < sheet.topology.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LE(rest_edge_length_squared(sheet.rest.face_metric[f], c), 0.08 * 0.08 * (1 + 1e-12)) << "face " << f;
+  // The children tile their parents' rest triangles: the area is unchanged.
+  EXPECT_NEAR(rest_area(sheet.rest), area, 1e-12 * area);
+  // Still one disk: V - E + F = 1, every face's metric a proper triangle's.
+  const int v = sheet.topology.vertex_count, f = static_cast<int>(sheet.topology.faces.size());
+  const int e = (3 * f + static_cast<int>(std::count(sheet.topology.on_boundary.begin(), sheet.topology.on_boundary.end(), 1))) / 2;
+  EXPECT_EQ(v - e + f, 1);
+  for (const Eigen::Matrix2d& m : sheet.rest.face_metric) EXPECT_GT(m.determinant(), 0.0);
+  // A field linear along the edges is interpolated exactly; the positions are the edges' midpoints.
+  ASSERT_EQ(sheet.values[1].size(), sheet.positions.size());
+  for (std::size_t i = 0; i < sheet.positions.size(); ++i) {
+    EXPECT_NEAR(sheet.values[0][i], sheet.positions[i].x(), 1e-12);
+    EXPECT_NEAR(sheet.values[1][i], 0.3 + 2 * sheet.positions[i].x() - sheet.positions[i].y(), 1e-12);
+  }
+}
+
+TEST(GrowthRefinement, ARefinedUniformlyGrownDiskIsStillFlatAndUnstressed) {
+  GrowingSheet sheet = grown_disk();
+  refine_sheet(sheet, 0.08);
+  const ShellEquilibrium solver(sheet.topology, {0.01, 1e7, 0.3}, central_face(sheet.topology, sheet.positions));
+  perturb_out_of_plane(sheet.topology, sheet.positions, 1e-4, 1, 1);
+  const NewtonReport report = solver.solve(sheet.positions, sheet.rest, NewtonSettings{});
+  ASSERT_TRUE(report.converged) << report.residual();
+  EXPECT_LT(report.energy.total(), 1e-12 * 1e7 * 0.01);
+  double radius = 0.0;
+  for (const Eigen::Vector3d& p : sheet.positions) radius = std::max(radius, (p - sheet.positions[0]).norm());
+  EXPECT_NEAR(radius, 2.0, 1e-6);
 }
 
 }  // namespace
