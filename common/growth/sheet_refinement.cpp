@@ -18,9 +18,9 @@ struct RestFace {
   std::array<double, 3> opposite;
 };
 
-// The edge a split chose: its ends, its squared rest length, and where its new vertex is.
+// An edge that may be split: its ends and its squared rest length.
 struct Split {
-  int a, b, middle;
+  int a, b;
   double length_squared;
 };
 
@@ -37,14 +37,6 @@ void split_face(std::vector<RestFace>& faces, std::size_t f, int c, int middle) 
 }
 
 }  // namespace
-
-Eigen::Matrix2d metric_from_edge_lengths(const std::array<double, 3>& opposite_squared) {
-  const double e1 = opposite_squared[2], e2 = opposite_squared[1];  // |x1 - x0|^2, |x2 - x0|^2
-  const double cross = 0.5 * (e1 + e2 - opposite_squared[0]);
-  Eigen::Matrix2d metric;
-  metric << e1, cross, cross, e2;
-  return metric;
-}
 
 int refine_sheet(GrowingSheet& sheet, double max_edge, int max_split_rounds) {
   const double bound = max_edge * max_edge;
@@ -65,7 +57,7 @@ int refine_sheet(GrowingSheet& sheet, double max_edge, int max_split_rounds) {
     for (const RestFace& face : faces)
       for (int c = 0; c < 3; ++c) {
         const int a = face.v[(c + 1) % 3], b = face.v[(c + 2) % 3];
-        auto [it, fresh] = chosen.try_emplace(undirected_key(a, b), Split{a, b, -1, face.opposite[c]});
+        auto [it, fresh] = chosen.try_emplace(undirected_key(a, b), Split{a, b, face.opposite[c]});
         if (!fresh) it->second.length_squared = 0.5 * (it->second.length_squared + face.opposite[c]);
       }
     std::vector<Split> long_edges;
@@ -82,20 +74,20 @@ int refine_sheet(GrowingSheet& sheet, double max_edge, int max_split_rounds) {
     for (std::size_t f = 0; f < faces.size(); ++f)
       for (int c = 0; c < 3; ++c) faces_of_edge[undirected_key(faces[f].v[(c + 1) % 3], faces[f].v[(c + 2) % 3])].push_back({f, c});
     std::vector<char> touched(faces.size(), 0);
-    for (Split& split : long_edges) {
+    for (const Split& split : long_edges) {
       const auto& beside = faces_of_edge[undirected_key(split.a, split.b)];
       if (std::any_of(beside.begin(), beside.end(), [&](const auto& fc) { return touched[fc.first] != 0; })) continue;
-      split.middle = static_cast<int>(sheet.positions.size());
+      const int middle = static_cast<int>(sheet.positions.size());
       sheet.positions.push_back(0.5 * (sheet.positions[split.a] + sheet.positions[split.b]));
       for (std::vector<double>& field : sheet.values) field.push_back(0.5 * (field[split.a] + field[split.b]));
       const auto angle = rest_angle.find(undirected_key(split.a, split.b));
       if (angle != rest_angle.end()) {
-        rest_angle[undirected_key(split.a, split.middle)] = angle->second;
-        rest_angle[undirected_key(split.middle, split.b)] = angle->second;
+        rest_angle[undirected_key(split.a, middle)] = angle->second;
+        rest_angle[undirected_key(middle, split.b)] = angle->second;
       }
       for (const auto& [f, c] : beside) {
         touched[f] = 1;
-        split_face(faces, f, c, split.middle);
+        split_face(faces, f, c, middle);
         touched.push_back(1);
       }
       ++splits;

@@ -30,8 +30,4 @@ struct GrowingSheet {
 // `max_split_rounds` bounds the work: each round halves the longest edges.
 int refine_sheet(GrowingSheet& sheet, double max_edge, int max_split_rounds = 64);
 
-// The rest metric (common/shell/rest_metric.hpp) of a triangle whose rest edge lengths, squared, are
-// `opposite[c]` for the edge opposite corner c.
-Eigen::Matrix2d metric_from_edge_lengths(const std::array<double, 3>& opposite_squared);
-
 }  // namespace physarum

@@ -27,6 +27,14 @@ double rest_edge_length_squared(const Eigen::Matrix2d& metric, int corner) {
   }
 }
 
+Eigen::Matrix2d metric_from_edge_lengths(const std::array<double, 3>& opposite_squared) {
+  const double e1 = opposite_squared[2], e2 = opposite_squared[1];  // |x1 - x0|^2, |x2 - x0|^2
+  const double cross = 0.5 * (e1 + e2 - opposite_squared[0]);
+  Eigen::Matrix2d metric;
+  metric << e1, cross, cross, e2;
+  return metric;
+}
+
 double hinge_weight(const ShellHinge& hinge, const ShellRestState& rest) {
   const Eigen::Matrix2d& m0 = rest.face_metric[static_cast<std::size_t>(hinge.faces[0])];
   const Eigen::Matrix2d& m1 = rest.face_metric[static_cast<std::size_t>(hinge.faces[1])];

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace physarum {
@@ -23,6 +24,9 @@ ShellRestState rest_state_of(const ShellTopology& topology, const std::vector<Ei
 
 // The squared rest length of the edge opposite `corner` in a face with rest metric `metric`.
 double rest_edge_length_squared(const Eigen::Matrix2d& metric, int corner);
+// The inverse: the rest metric of a face whose squared rest edge lengths are `opposite_squared[c]`
+// for the edge opposite corner c.
+Eigen::Matrix2d metric_from_edge_lengths(const std::array<double, 3>& opposite_squared);
 
 // The bending weight |ebar|^2 / (Abar_0 + Abar_1) of a hinge (common/shell/hinge_bending.hpp): the
 // edge's squared rest length is the mean of what its two faces' metrics say (they differ when the

@@ -46,13 +46,20 @@ double mean_rest_edge(const ShellRestState& rest) {
   return rest.face_metric.empty() ? 1.0 : sum / (2.0 * static_cast<double>(rest.face_metric.size()));
 }
 
-// Replaces the fixed coordinates' rows and columns of `h` by the identity times `diagonal`.
+// Replaces the fixed coordinates' rows and columns of `h` by the identity times `diagonal`. The
+// pattern is symmetric, so a fixed coordinate's row entries are found through its column's: only
+// those columns are visited, not the whole matrix.
 void fix_coordinates(Eigen::SparseMatrix<double>& h, const std::array<int, 6>& fixed, double diagonal) {
-  for (int k = 0; k < h.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(h, k); it; ++it) {
-      const bool row_fixed = std::find(fixed.begin(), fixed.end(), it.row()) != fixed.end();
-      const bool column_fixed = std::find(fixed.begin(), fixed.end(), it.col()) != fixed.end();
-      if (row_fixed || column_fixed) it.valueRef() = it.row() == it.col() ? diagonal : 0.0;
+  const int* outer = h.outerIndexPtr();
+  const int* inner = h.innerIndexPtr();
+  double* values = h.valuePtr();
+  for (int p : fixed)
+    for (int k = outer[p]; k < outer[p + 1]; ++k) {
+      const int row = inner[k];
+      values[k] = row == p ? diagonal : 0.0;
+      if (row == p) continue;
+      const int* mirror = std::lower_bound(inner + outer[row], inner + outer[row + 1], p);
+      values[mirror - inner] = 0.0;
     }
 }
 
