@@ -1,6 +1,7 @@
 #include "api/feasible_surface.hpp"
 
 #include "common/model/agent_model.hpp"
+#include "common/setup/growing_sheet_surface.hpp"
 #include "common/setup/run_feasibility.hpp"
 #include "common/setup/scene_maps.hpp"
 
@@ -26,7 +27,8 @@ FeasibleSurface prepare_feasible_surface(const Scene& given, long long steps, co
   };
   if (agents && !mapped) check_scales(given);
   FeasibleSurface feasible;
-  feasible.surface = prepare_scene_surface(given, say);
+  // A growth scene simulates on its mesh's own triangles at rest (common/setup/growing_sheet_surface.hpp).
+  feasible.surface = is_growth(given) ? sheet_surface(initial_sheet(given), given.mesh) : prepare_scene_surface(given, say);
   const PreparedSurface& surface = feasible.surface;
   for (const std::string& w : surface.warnings) say("physarum: warning: " + w);
   feasible.maps = cached_evaluate_maps(map_sources_of(given), surface, cache, &feasible.maps_report);

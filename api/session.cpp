@@ -19,6 +19,7 @@ struct SessionParts {
   std::optional<SceneArrays> arrays;  // the agent model's
   ChosenBackend chosen;               // owns the compute context the backend uses: kept beside it
   std::unique_ptr<SimulationBackend> backend;
+  GrowthSimulation* growth = nullptr;  // the backend, for a growth scene
   std::vector<std::string> layer_names;
   int preview_layer = 0;
   int substeps = 1;
@@ -37,8 +38,10 @@ std::string scene_identity(const Scene& scene, const PreparedSurface& surface) {
   j["time_step"] = scene.time_step;
   j["seed"] = scene.seed;
   j["maps"] = scene.maps_given;
-  if (const ReactionDiffusionSpec* system = scene.reaction_diffusion()) j["model"] = reaction_diffusion_json(*system);
-  else j["model"] = scene_parameters_json(scene);
+  std::visit(overloaded{[&](const AgentModelSpec&) { j["model"] = scene_parameters_json(scene); },
+                        [&](const ReactionDiffusionSpec& system) { j["model"] = reaction_diffusion_json(system); },
+                        [&](const GrowthSpec& growth) { j["model"] = growth_json(growth); }},
+             scene.model);
   return hex64(content_hash(j.dump()));
 }
 
@@ -69,6 +72,23 @@ void build_reaction_diffusion_backend(SessionParts& p, const Scene& given, const
                                               options.opencl);
 }
 
+void build_growth_backend(SessionParts& p, const Scene& given, const SessionOptions& options) {
+  p.scene = given;
+  const GrowthSpec& spec = *given.growth();
+  const opencl::ComputeContext* compute = p.chosen.compute ? &*p.chosen.compute : nullptr;
+  const BackendChoice choice = p.chosen.backend;
+  const opencl::OpenCLBackendOptions opencl = options.opencl;
+  auto make = [choice, compute, opencl](const SurfaceDomain& domain, ReactionDiffusionSystem system) {
+    return make_reaction_diffusion_backend(choice, compute, domain, std::move(system), opencl);
+  };
+  auto growth = std::make_unique<GrowthSimulation>(given, p.feasible.surface, p.feasible.maps, make);
+  for (const MorphogenSpec& m : spec.reaction.morphogens) p.layer_names.push_back(m.name);
+  p.preview_layer = spec.reaction.morphogen_index(spec.reaction.preview_morphogen);
+  p.substeps = growth->substeps();
+  p.growth = growth.get();
+  p.backend = std::move(growth);
+}
+
 }  // namespace
 
 Session::Session(const Scene& scene, const SessionOptions& options) : parts_(std::make_unique<SessionParts>()) {
@@ -83,7 +103,8 @@ Session::Session(const Scene& scene, const SessionOptions& options) : parts_(std
   if (options.backend == "auto" && options.log)
     options.log("physarum: " + std::string(to_string(p.chosen.backend)) + " backend (auto: " + p.chosen.why + ")");
   std::visit(overloaded{[&](const AgentModelSpec&) { build_agent_backend(p, scene, options); },
-                        [&](const ReactionDiffusionSpec&) { build_reaction_diffusion_backend(p, scene, options); }},
+                        [&](const ReactionDiffusionSpec&) { build_reaction_diffusion_backend(p, scene, options); },
+                        [&](const GrowthSpec&) { build_growth_backend(p, scene, options); }},
              scene.model);
   p.scene_hash = scene_identity(p.scene, p.feasible.surface);
 }
@@ -104,6 +125,8 @@ const SimulationBackend& Session::backend() const { return *parts_->backend; }
 const std::vector<std::string>& Session::layer_names() const { return parts_->layer_names; }
 int Session::preview_layer() const { return parts_->preview_layer; }
 int Session::substeps() const { return parts_->substeps; }
+GrowthSimulation* Session::growth() { return parts_->growth; }
+const GrowthSimulation* Session::growth() const { return parts_->growth; }
 
 void Session::step(long long steps) { parts_->backend->run(steps); }
 double Session::time() const { return parts_->backend->time(); }
@@ -113,6 +136,10 @@ IntrinsicVertexData<double> Session::field(int layer) const { return parts_->bac
 
 InputVertexData<double> Session::field_on_input(int layer) const {
   const PreparedSurface& s = surface();
+  if (parts_->growth) {  // the input's vertices are the sheet's first ones, wherever the sheet went
+    const IntrinsicVertexData<double> all = field(layer);
+    return InputVertexData<double>(std::vector<double>(all.begin(), all.begin() + s.input.vertex_count()));
+  }
   return intrinsic_to_input(s.input, s.domain.vertex_location, field(layer));
 }
 
@@ -120,6 +147,10 @@ void Session::set_field(const IntrinsicVertexData<double>& values, int layer) { 
 
 void Session::set_field_on_input(const InputVertexData<double>& values, int layer) {
   const PreparedSurface& s = surface();
+  if (parts_->growth) {  // the sheet's own vertices: the input's until the sheet is refined
+    set_field(IntrinsicVertexData<double>(std::vector<double>(values.begin(), values.end())), layer);
+    return;
+  }
   set_field(input_to_intrinsic(s.input, s.domain.vertex_location, values), layer);
 }
 

@@ -7,6 +7,7 @@
 // The public headers of the library are the ones api/physarum.hpp includes.
 #include "api/backend_factory.hpp"
 #include "api/feasible_surface.hpp"
+#include "api/growth_simulation.hpp"
 #include "common/scene/scene.hpp"
 #include "common/simulation/simulation_backend.hpp"
 #include "common/surface/prepared_surface.hpp"
@@ -58,6 +59,11 @@ class Session {
   int preview_layer() const;
   // Explicit sub-steps per step of a reaction–diffusion system (its stability limit); 1 otherwise.
   int substeps() const;
+  // A growth scene's simulation (its sheet, its growth records), nullptr for the other models. Its
+  // layers live on the sheet as it is now: surface() is the sheet at the start, growth()->surface()
+  // the sheet now.
+  GrowthSimulation* growth();
+  const GrowthSimulation* growth() const;
 
   void step(long long steps = 1);
   double time() const;

@@ -1,5 +1,7 @@
 #include "common/growth/sheet_refinement.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cstdint>
 #include <unordered_map>
@@ -24,9 +26,25 @@ struct Split {
   double length_squared;
 };
 
+// A direction given on a parent's edge vectors, on a child's: the child's corners in the parent's
+// edge-vector coordinates (corner 0 at the origin, corner 1 at (1, 0), corner 2 at (0, 1)) give its
+// edge vectors there, and the coefficients solve [e1' e2'] c' = c.
+Eigen::Vector2d child_direction(const Eigen::Vector2d& parent, const std::array<Eigen::Vector2d, 3>& child_corners) {
+  Eigen::Matrix2d edges;
+  edges.col(0) = child_corners[1] - child_corners[0];
+  edges.col(1) = child_corners[2] - child_corners[0];
+  return edges.inverse() * parent;
+}
+
+// The per-face fields beside the faces (GrowingSheet::directions and initial_area), split with them.
+struct FaceFields {
+  std::vector<std::vector<Eigen::Vector2d>>& directions;
+  std::vector<double>& initial_area;
+};
+
 // Splits face f of `faces` across its edge opposite corner c (the edge being split), appending the
 // second child; the new vertex is `middle`.
-void split_face(std::vector<RestFace>& faces, std::size_t f, int c, int middle) {
+void split_face(std::vector<RestFace>& faces, FaceFields fields, std::size_t f, int c, int middle) {
   const RestFace parent = faces[f];
   const int a = parent.v[(c + 1) % 3], b = parent.v[(c + 2) % 3], apex = parent.v[c];
   const double ab = parent.opposite[c], b_apex = parent.opposite[(c + 1) % 3], a_apex = parent.opposite[(c + 2) % 3];
@@ -34,6 +52,17 @@ void split_face(std::vector<RestFace>& faces, std::size_t f, int c, int middle) 
   // (apex, a, middle) and (apex, middle, b): counter-clockwise like (apex, a, b).
   faces[f] = {{apex, a, middle}, {0.25 * ab, median, a_apex}};
   faces.push_back({{apex, middle, b}, {0.25 * ab, b_apex, median}});
+  const std::array<Eigen::Vector2d, 3> unit{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)};
+  const Eigen::Vector2d p_apex = unit[c], p_a = unit[(c + 1) % 3], p_b = unit[(c + 2) % 3], p_middle = 0.5 * (p_a + p_b);
+  for (std::vector<Eigen::Vector2d>& field : fields.directions) {
+    const Eigen::Vector2d d = field[f];
+    field[f] = child_direction(d, {p_apex, p_a, p_middle});
+    field.push_back(child_direction(d, {p_apex, p_middle, p_b}));
+  }
+  if (!fields.initial_area.empty()) {
+    fields.initial_area[f] *= 0.5;  // the median halves the parent: equal rest areas
+    fields.initial_area.push_back(fields.initial_area[f]);
+  }
 }
 
 }  // namespace
@@ -87,7 +116,7 @@ int refine_sheet(GrowingSheet& sheet, double max_edge, int max_split_rounds) {
       }
       for (const auto& [f, c] : beside) {
         touched[f] = 1;
-        split_face(faces, f, c, middle);
+        split_face(faces, FaceFields{sheet.directions, sheet.initial_area}, f, c, middle);
         touched.push_back(1);
       }
       ++splits;

@@ -9,7 +9,12 @@
 //   face are flat in the rest state (0);
 // - positions: the split edge's current midpoint (the next equilibrium solve relaxes it);
 // - per-vertex values (morphogen concentrations): the mean of the edge's two ends, as the paper
-//   does: linear interpolation along the edge, exact for a field linear there.
+//   does: linear interpolation along the edge, exact for a field linear there;
+// - per-face directions (coefficients on the face's rest edge vectors): the same direction in the
+//   parent's rest shape, written on each child's edge vectors (exact: the children's edges are
+//   combinations of the parent's with coefficients 0, +-1/2, +-1);
+// - per-face initial areas: split in proportion to the children's rest areas (equal halves), so a
+//   face's rest area over its initial area stays the area growth of the tissue it is made of.
 #include "common/shell/rest_metric.hpp"
 #include "common/shell/shell_topology.hpp"
 
@@ -24,6 +29,10 @@ struct GrowingSheet {
   std::vector<Eigen::Vector3d> positions;
   ShellRestState rest;
   std::vector<std::vector<double>> values;  // per-vertex fields (each of topology.vertex_count entries)
+  // Per-face direction fields, each as coefficients on the faces' rest edge vectors (face_directions).
+  std::vector<std::vector<Eigen::Vector2d>> directions;
+  // Per face: the rest area of the initial sheet's tissue it is made of (empty: not tracked).
+  std::vector<double> initial_area;
 };
 
 // Splits until every edge's rest length is at most `max_edge`; returns the number of splits.

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -306,9 +307,16 @@ std::vector<std::string> shape_names() {
 PolygonSoup make_shape_soup(const std::string& name) {
   for (const auto& s : shapes)
     if (name == s.name) return s.make();
+  // disk-N: the unit disk of N rings (1 + 3 N (N + 1) vertices).
+  if (name.rfind("disk-", 0) == 0 && name.size() > 5 && name.size() <= 8 &&
+      std::all_of(name.begin() + 5, name.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const int rings = std::stoi(name.substr(5));
+    if (rings >= 1 && rings <= kMaxDiskRings) return disk_soup(rings);
+    throw InputError("shape:" + name + ": a disk has 1 to " + std::to_string(kMaxDiskRings) + " rings");
+  }
   std::string valid;
   for (const auto& s : shapes) valid += std::string(valid.empty() ? "" : ", ") + s.name;
-  throw InputError("shape:" + name + ": unknown shape (valid shapes: " + valid + ")");
+  throw InputError("shape:" + name + ": unknown shape (valid shapes: " + valid + ", disk-N)");
 }
 
 }  // namespace physarum

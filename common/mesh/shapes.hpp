@@ -2,6 +2,8 @@
 // Built-in procedural surfaces, used as MESH "shape:NAME" wherever a mesh file is accepted:
 //   square          flat 1 m x 1 m square in z = 0, 32 x 32 cells with alternating diagonals
 //   disk            flat unit disk in z = 0 built from 16 rings; its boundary is a regular 96-gon
+//   disk-N          the same disk of N rings, 1 <= N <= 400 (disk-55: 9,241 vertices, the growth
+//                   model's scenes)
 //   sphere          icosphere of radius 1, subdivision level 4 (2562 vertices)
 //   skinny-sphere   unit sphere of long thin non-Delaunay triangles (Fig. 4 of the paper): 96
 //                   longitudes x 16 latitude rings, each ring twisted by two segments against the
@@ -26,6 +28,7 @@ std::vector<std::string> shape_names();
 // (1 + 3 rings (rings + 1) vertices, nearly equilateral triangles): shape:disk has 16 rings; the
 // growth model's benchmarks and tests take other sizes.
 PolygonSoup disk_soup(int rings);
+constexpr int kMaxDiskRings = 400;
 
 // The shape's triangles as a polygon soup (load_mesh validates it like a file). NAME is without
 // the "shape:" prefix. Throws InputError listing the valid names when NAME is unknown.

@@ -106,6 +106,8 @@ std::string payload_bytes(const SimulationState& state) {
   w.vectors(a.heading);
   for (const std::vector<double>* v : {&a.age, &a.exposure, &a.exposure_threshold, &a.time_since_decision, &a.accumulated_turn})
     w.array(*v);
+  w.value(static_cast<std::uint64_t>(state.model_arrays.size()));
+  for (const std::vector<double>& array : state.model_arrays) w.array(array);
   return w.take();
 }
 
@@ -128,6 +130,9 @@ SimulationState parse_payload(const char* data, std::size_t size, const std::str
   a.heading = r.vectors();
   for (std::vector<double>* v : {&a.age, &a.exposure, &a.exposure_threshold, &a.time_since_decision, &a.accumulated_turn})
     *v = r.array<double>();
+  const auto arrays = r.value<std::uint64_t>();
+  if (arrays > size) throw InputError(path + ": checkpoint payload records " + std::to_string(arrays) + " model arrays");
+  for (std::uint64_t i = 0; i < arrays; ++i) state.model_arrays.push_back(r.array<double>());
   r.expect_end();
   return state;
 }

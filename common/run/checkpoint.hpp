@@ -25,7 +25,7 @@
 
 namespace physarum {
 
-constexpr std::uint32_t kCheckpointVersion = 1;
+constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the model arrays (a growing sheet)
 
 // Which run a state belongs to. A resume refuses a checkpoint whose build, backend, device or scene
 // differs from the run resuming it: any of them changes the numbers, so the continuation would not

@@ -128,6 +128,13 @@ void reaction_diffusion_comparison_defaults(const json& j, Scene& scene) {
 // "reaction" is given), else the agent model. The other model's keys are refused rather than
 // silently ignored, so a half-converted scene does not run as something it is not.
 SceneModel read_model(const json& j, const std::string& path) {
+  if (std::optional<GrowthSpec> growth = read_growth(j, path)) {
+    for (const std::string& key : agent_model_keys())
+      if (j.contains(key))
+        throw InputError(path + ": key '" + key + "' belongs to the agent model (\"physarum\"), and this scene's " +
+                         "\"model\" is \"growth\"");
+    return std::move(*growth);
+  }
   if (std::optional<ReactionDiffusionSpec> system = read_reaction_diffusion(j, path)) {
     for (const std::string& key : agent_model_keys())
       if (j.contains(key))
@@ -157,6 +164,7 @@ Scene scene_from_json(nlohmann::json j, const std::string& source, const nlohman
     throw InputError(path + ": a scene must be one JSON object ({...}), found " + std::string(j.type_name()));
   apply_scene_overrides(j, overrides, path);
   check_scene_nesting(j, path);
+  hoist_growth_time_keys(j, path);
   refuse_unknown_keys(j, path);
   const std::filesystem::path folder = std::filesystem::path(source).parent_path();
   const SceneReader read{j, path};
@@ -204,8 +212,16 @@ void validate_scene(const Scene& scene) {
   if (scene.steps && scene.sim_time)
     throw InputError(scene_where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
   std::visit(overloaded{[&](const AgentModelSpec& agents) { validate_agent_model(agents, scene.maps, s); },
-                        [&](const ReactionDiffusionSpec& system) { validate_reaction_diffusion(system, scene.maps, s); }},
+                        [&](const ReactionDiffusionSpec& system) { validate_reaction_diffusion(system, scene.maps, s); },
+                        [&](const GrowthSpec& growth) { validate_growth(growth, scene.maps, s); }},
              scene.model);
+}
+
+Scene reaction_diffusion_scene(const Scene& growth_scene) {
+  if (!growth_scene.growth()) throw std::logic_error("reaction_diffusion_scene: not a growth scene");
+  Scene scene = growth_scene;
+  scene.model = growth_scene.growth()->reaction;
+  return scene;
 }
 
 bool has_parameter_maps(const Scene& scene) {

@@ -7,6 +7,7 @@
 #include "common/color/color_map_json.hpp"
 #include "common/maps/map_definition.hpp"
 #include "common/scene/scene_agents.hpp"
+#include "common/scene/scene_growth.hpp"
 #include "common/scene/scene_reaction_diffusion.hpp"
 
 #include <array>
@@ -38,11 +39,11 @@ struct ComparisonSettings {
   int eigenpairs = 48;            // manifold harmonics computed for the bands
 };
 
-// The model a scene runs: the agent model (paper 000, "model": "physarum", the default) or a
-// reaction–diffusion system (paper 002). Each alternative is read, validated and evaluated on a
+// The model a scene runs: the agent model (paper 000, "model": "physarum", the default), a
+// reaction–diffusion system (paper 002) or a reaction–diffusion system on a growing sheet (paper 003). Each alternative is read, validated and evaluated on a
 // surface by its own files (scene_agents, scene_reaction_diffusion; common/setup/); a new model is
 // one more alternative here and one branch in load_scene.
-using SceneModel = std::variant<AgentModelSpec, ReactionDiffusionSpec>;
+using SceneModel = std::variant<AgentModelSpec, ReactionDiffusionSpec, GrowthSpec>;
 
 struct Scene {
   std::string source;  // the scene file, for messages ("" when built in code)
@@ -77,7 +78,13 @@ struct Scene {
   // The reaction–diffusion system, or nullptr for a scene of another model.
   ReactionDiffusionSpec* reaction_diffusion() { return std::get_if<ReactionDiffusionSpec>(&model); }
   const ReactionDiffusionSpec* reaction_diffusion() const { return std::get_if<ReactionDiffusionSpec>(&model); }
+  // The growth model's part, or nullptr.
+  const GrowthSpec* growth() const { return std::get_if<GrowthSpec>(&model); }
 };
+
+// A growth scene's reaction–diffusion system as a scene of its own (the same surface, maps, time
+// step and seed): what builds the system on each state of the growing sheet.
+Scene reaction_diffusion_scene(const Scene& growth_scene);
 
 // Parses and validates a scene file. A relative "mesh" path, and the files the maps read, are
 // resolved against the scene file's folder.
@@ -99,6 +106,7 @@ void validate_scene(const Scene& scene);
 // common/base/overloaded.hpp instead, so a new model does not compile until each says what it does).
 inline bool is_agent_model(const Scene& scene) { return std::holds_alternative<AgentModelSpec>(scene.model); }
 inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion() != nullptr; }
+inline bool is_growth(const Scene& scene) { return scene.growth() != nullptr; }
 
 // The agent model's agent count, 0 for a model without agents (memory estimates, run.json).
 inline int agent_count(const Scene& scene) { return is_agent_model(scene) ? scene.agent_model().agents : 0; }

@@ -46,7 +46,39 @@ std::vector<SceneKey> build_keys() {
               "the field model: the agent model, a named reaction-diffusion model (common/reaction_diffusion/reaction_models.cpp) "
               "or custom kinetics (\"reaction\"); a reaction-diffusion scene takes none of the agent keys",
               "\"physarum\", \"gray-scott\", \"gierer-meinhardt\", \"turing\", \"activator-substrate\", \"turing-spots\", "
-              "\"meinhardt-spots\", \"meinhardt-stripes\", \"custom\""),
+              "\"meinhardt-spots\", \"meinhardt-stripes\", \"custom\", \"growth\" (a reaction-diffusion system on a growing "
+              "thin shell, paper 003: the keys below down to \"dilute\")"),
+      // ---- the growth model (common/scene/scene_growth.hpp, docs/growth.md) ----
+      setting("reaction_diffusion", K::Object, false, {}, "", "gray-scott, u = 1, v = 0 but v = 1, u = 0 near the sheet's centre",
+              "growth: the reaction-diffusion system on the sheet, with the keys of a reaction-diffusion scene (model, "
+              "parameters, morphogens, initial, dirichlet, preview_morphogen, integrator; time_step here or at the top)",
+              "{\"model\": ..., \"parameters\": {..}, \"morphogens\": {..}, \"initial\": {..}, ...}"),
+      setting("shell", K::Object, false, {}, "m, Pa", "aluminium: 0.002 m, 7e10 Pa, 0.33; perturbation 1e-3, tolerance 1e-8, "
+              "200 iterations",
+              "growth: the thin elastic sheet (St. Venant-Kirchhoff membrane, discrete-hinge bending), the out-of-plane "
+              "nudge before each growth step (a fraction of the mean rest edge length) and Newton's stopping rule (a "
+              "residual strain: largest free force / (Y h mean edge))",
+              "{\"thickness\": h > 0, \"young_modulus\": Y > 0, \"poisson_ratio\": -1 < nu < 0.5, \"perturbation\": 0..0.5, "
+              "\"tolerance\": > 0, \"max_iterations\": n}"),
+      setting("growth", K::Object, false, {}, "", "polynomial, m = 0, n = 1, gamma = 0.05, rate = 0.01",
+              "growth: each face's rest lengths grow by 1 + rate g(a, b) per growth step, g = a^m b^n / gamma (Eq. 7) or "
+              "lambda exp(a^m b^n / gamma - 1) (Eq. 6) of the face's mean morphogens a, b (default the first two); or a "
+              "prescribed target stretch of rest lengths (a scalar map or a number; 1 = none) reached in equal factors; "
+              "either anisotropic along a vector map, growing `across` times as much across it",
+              "{\"function\": \"polynomial\" or \"exponential\", \"m\", \"n\", \"gamma\", \"lambda\", \"rate\", \"a\": MORPHOGEN, "
+              "\"b\": MORPHOGEN} or {\"stretch\": SCALAR_MAP or s > 0}, + \"anisotropy\": {\"direction\": VECTOR_MAP, "
+              "\"across\": 0..10}"),
+      setting("schedule", K::Object, false, {}, "steps", "0 reaction steps, 1 growth step, not interleaved",
+              "growth: reaction_steps RD steps then growth_steps growth steps, or (interleaved) reaction_steps RD steps "
+              "before each growth step; the run's length (each RD or growth step is one step of physarum run)",
+              "{\"reaction_steps\": N >= 0, \"growth_steps\": G >= 1, \"interleaved\": true or false}"),
+      setting("refine", K::Object, false, {}, "m", "none",
+              "growth: after each growth step, rest edges longer than max_edge are split at their midpoints "
+              "(longest first; the children tile their parent's rest shape; concentrations averaged)",
+              "{\"max_edge\": L > 0}"),
+      setting("dilute", K::Boolean, false, {}, "", "false",
+              "growth: scale every concentration by old / new rest mass after each growth step, so each morphogen's "
+              "amount is conserved as the tissue grows"),
       setting("parameters", K::Object, false, {}, "", "the model's",
               "reaction-diffusion coefficients (F, k, rho, ...): numbers or scalar map names",
               "{\"NAME\": number or SCALAR_MAP, ...}"),
@@ -192,6 +224,8 @@ std::string allowed_column(const SceneKey& k) {
     case KeyKind::List:
     case KeyKind::NumberOrString:
       return std::string(k.allowed_text);
+    case KeyKind::Boolean:
+      return "true or false";
   }
   return {};
 }

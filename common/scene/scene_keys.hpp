@@ -23,6 +23,7 @@ enum class KeyKind {
   Object,          // a JSON object described by allowed_text ("maps", "bias")
   List,            // a JSON list described by allowed_text ("read_stimuli", "write_stimuli")
   NumberOrString,  // a number or a map name ("spawn_weight")
+  Boolean,         // true or false ("dilute")
 };
 
 struct SceneKey {

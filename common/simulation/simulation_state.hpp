@@ -29,6 +29,10 @@ struct SimulationState {
   Agents agents;
   // The running totals of run.json.
   SimulationCounters counters;
+  // What a model whose surface changes as it runs needs to rebuild it (the growth model's sheet:
+  // shape, rest state, carried maps, step records), in that model's own layout (api/growth_simulation.cpp);
+  // empty for the others.
+  std::vector<std::vector<double>> model_arrays;
 };
 
 }  // namespace physarum

@@ -43,6 +43,7 @@
 #include "tools/run/run_checkpoints.hpp"
 #include "api/session.hpp"
 #include "tools/run/run_loop.hpp"
+#include "tools/run/run_growth.hpp"
 #include "tools/run/run_reaction_diffusion.hpp"
 #include "tools/run/surface_exports.hpp"
 
@@ -70,6 +71,13 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
     // Nearest whole step: T / dt often lands a rounding error away from an integer.
     return std::max<long long>(1, std::llround(seconds / scene.time_step));
   };
+  if (const GrowthSpec* growth = scene.growth()) {
+    if (o.steps || o.sim_time)
+      throw UsageError(std::string(o.steps ? "--steps" : "--sim-time") + ": a growth scene's length is its schedule (" +
+                       std::to_string(growth->schedule.total_steps()) + " steps here: --set schedule.growth_steps=G, "
+                       "--set schedule.reaction_steps=N)");
+    return growth->schedule.total_steps();
+  }
   if (o.steps) return *o.steps;
   if (o.sim_time) return steps_for(*o.sim_time);
   if (scene.steps) return *scene.steps;
@@ -217,7 +225,8 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, scene);
   return std::visit(overloaded{[&](const AgentModelSpec&) { return run_agents(scene, o, steps, resume); },
-                               [&](const ReactionDiffusionSpec&) { return run_reaction_diffusion(scene, o, steps, resume); }},
+                               [&](const ReactionDiffusionSpec&) { return run_reaction_diffusion(scene, o, steps, resume); },
+                               [&](const GrowthSpec&) { return run_growth(scene, o, steps, resume); }},
                     scene.model);
 }
 

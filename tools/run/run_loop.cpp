@@ -69,6 +69,7 @@ double simulate(SimulationBackend& simulation, const RunSetup& setup, const Mode
       if (setup.time_lapse.due(s)) setup.time_lapse.add(model.frame());
       side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     }
+    if (model.stopped && model.stopped()) break;
     checkpoints.after_step(s, simulation, stats, side_seconds);
     progress.update(s);
   }
@@ -80,25 +81,26 @@ double simulate(SimulationBackend& simulation, const RunSetup& setup, const Mode
 // the names written, in order, to `written`.
 SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSetup& setup, const ModelRun& model,
                                    const ModelResult& result, std::vector<std::string>& written) {
-  const PreparedSurface& surface = setup.surface;
+  const PreparedSurface& surface = result.surface ? *result.surface : setup.surface;
+  const FullResolutionMesh& full = result.full ? *result.full : setup.full;
   std::vector<InputVertexData<double>> on_input, on_full;
   std::vector<PlyField> input_fields, full_fields;
   on_input.reserve(result.layers.size());
   on_full.reserve(result.layers.size());
   for (const auto& [name, values] : result.layers) {
     on_input.push_back(intrinsic_to_input(surface.input_to_intrinsic, values));
-    on_full.push_back(setup.full.vertex_values(values));
+    on_full.push_back(full.vertex_values(values));
     input_fields.push_back(PlyField{name, on_input.back()});
     full_fields.push_back(PlyField{name, on_full.back()});
   }
   write_fields_ply((out / model.fields_file).string(), surface.input, input_fields, result.coloring,
                    model.fields_description + " per input vertex");
-  write_fields_ply((out / "fields_full.ply").string(), setup.full.mesh, full_fields, result.coloring,
+  write_fields_ply((out / "fields_full.ply").string(), full.mesh, full_fields, result.coloring,
                    model.fields_description + " per intrinsic vertex (full resolution)");
   PreviewOptions preview;
   preview.coloring = result.coloring;
   if (result.preview) write_rgb_png((out / "preview.png").string(), *result.preview);
-  else write_preview_png((out / "preview.png").string(), setup.full.mesh, on_full.front(), preview);
+  else write_preview_png((out / "preview.png").string(), full.mesh, on_full.front(), preview);
   written.insert(written.end(), {model.fields_file, "fields_full.ply", "preview.png"});
   const SurfaceExportsWritten exports =
       write_surface_exports(out, surface.input, surface.domain, setup.texels, result.layers.front().second,
@@ -125,19 +127,23 @@ int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const Mo
   written.insert(written.end(), {"stats.csv", "run.json"});
   setup.time_lapse.write(o.out);
   if (setup.time_lapse.enabled()) written.insert(written.end(), {"frames/", "frames.gif"});
+  if (model.write_extra) model.write_extra(out, written);
+  const std::optional<std::string> stopped = model.stopped ? model.stopped() : std::nullopt;
 
   nlohmann::ordered_json j;
   j["backend"] = simulation.backend_name();
   j["backend_requested"] = o.backend;
   j["device"] = simulation.device_name();
-  j["steps"] = setup.steps;
+  j["steps"] = stopped ? simulation.steps_taken() : setup.steps;
+  if (stopped) j["stopped"] = *stopped;
   j["sim_time"] = simulation.time();
   j["seconds"] = seconds;
   j["fields_file"] = model.fields_file;
   model.run_json(j, seconds);
-  j["intrinsic_vertices"] = setup.surface.domain.vertex_count;
-  j["intrinsic_faces"] = setup.surface.domain.face_count;
-  j["area"] = setup.surface.domain.total_area;
+  const PreparedSurface& final_surface = result.surface ? *result.surface : setup.surface;
+  j["intrinsic_vertices"] = final_surface.domain.vertex_count;
+  j["intrinsic_faces"] = final_surface.domain.face_count;
+  j["area"] = final_surface.domain.total_area;
   // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
   j["result_glb_vertices"] = exports.glb.vertices;
   j["result_glb_seam_splits"] = exports.glb.seam_splits;
@@ -155,6 +161,10 @@ int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const Mo
   for (const std::string& name : written) files += (files.empty() ? "" : ", ") + name;
   std::cout << "physarum run: " << model.summary(seconds) << "; wrote " << out.string() << "/{" << files << "}"
             << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
+  if (stopped) {
+    std::cerr << "physarum: error: " << *stopped << "\n";
+    return 1;
+  }
   return 0;
 }
 

@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -35,6 +36,10 @@ struct ModelResult {
   // The preview when the model draws its own (competing species: one colour per species); else
   // preview.png shows the first layer through `coloring`.
   std::optional<RgbImage> preview;
+  // The surface the layers lie on when the model changed it as it ran (the growth model's sheet:
+  // every output is on it); null: the run's surface (RunSetup).
+  const PreparedSurface* surface = nullptr;
+  const FullResolutionMesh* full = nullptr;
 };
 
 // What one model's run writes, for the run loop.
@@ -51,6 +56,12 @@ struct ModelRun {
   std::function<void(nlohmann::ordered_json& run_json, double seconds)> run_json;
   // The model's part of the closing line, e.g. "300 steps (3 s simulated) in 1.2 s, ...".
   std::function<std::string(double seconds)> summary;
+  // Optional: why the model stopped before the last step (the loop stops too, writes what the model
+  // holds, then prints this and exits with 1); nullopt while it runs on.
+  std::function<std::optional<std::string>()> stopped;
+  // Optional: files of the model's own, written after the others (the growth model's frame meshes);
+  // appends their names to `written`.
+  std::function<void(const std::filesystem::path& out, std::vector<std::string>& written)> write_extra;
 };
 
 // Everything the loop runs on, prepared by the model's front end before any output exists.
