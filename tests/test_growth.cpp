@@ -6,6 +6,7 @@
 #include "common/growth/growth_law.hpp"
 #include "common/growth/sheet_refinement.hpp"
 #include "common/mesh/mesh_loading.hpp"
+#include "common/shell/membrane_energy.hpp"
 #include "common/shell/sheet_perturbation.hpp"
 #include "common/shell/shell_equilibrium.hpp"
 
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 
 namespace physarum {
@@ -113,7 +115,9 @@ TEST(GrowthAnisotropy, ADiskGrownAlongXBecomesAFlatEllipse) {
 // The unit disk grown uniformly by 2 (rest edges about 0.13, twice shape:disk's).
 GrowingSheet grown_disk() {
   const InputMesh disk = load_mesh("shape:disk");
-  GrowingSheet sheet{build_shell_topology(disk.vertex_count(), disk.triangles), disk.positions, {}, {}};
+  GrowingSheet sheet;
+  sheet.topology = build_shell_topology(disk.vertex_count(), disk.triangles);
+  sheet.positions = disk.positions;
   sheet.rest = rest_state_of(sheet.topology, disk.positions);
   for (Eigen::Matrix2d& m : sheet.rest.face_metric) m *= 4.0;
   return sheet;
@@ -145,6 +149,28 @@ TEST(GrowthRefinement, SplitsEveryLongEdgeKeepingTheRestAreaAndTheMesh) {
     EXPECT_NEAR(sheet.values[0][i], sheet.positions[i].x(), 1e-12);
     EXPECT_NEAR(sheet.values[1][i], 0.3 + 2 * sheet.positions[i].x() - sheet.positions[i].y(), 1e-12);
   }
+}
+
+// Per-face data rides along: a direction field stays the same vector on every child (the children's
+// edges are exact combinations of the parent's), and initial areas split with the rest area (the
+// disk was grown by 4 in area, so every face's ratio stays 4 and the total is kept).
+TEST(GrowthRefinement, CarriesDirectionsAndInitialAreasExactly) {
+  GrowingSheet sheet = grown_disk();
+  const Eigen::Vector3d d(1.0, 0.5, 0.0);
+  sheet.directions = {face_directions(sheet.topology, sheet.positions, std::vector<Eigen::Vector3d>(sheet.topology.faces.size(), d))};
+  for (const Eigen::Matrix2d& m : sheet.rest.face_metric) sheet.initial_area.push_back(metric_area(m) / 4.0);
+  const double initial = std::accumulate(sheet.initial_area.begin(), sheet.initial_area.end(), 0.0);
+  refine_sheet(sheet, 0.08);
+  ASSERT_EQ(sheet.directions[0].size(), sheet.topology.faces.size());
+  ASSERT_EQ(sheet.initial_area.size(), sheet.topology.faces.size());
+  for (std::size_t f = 0; f < sheet.topology.faces.size(); ++f) {
+    const auto& t = sheet.topology.faces[f];
+    const Eigen::Vector2d c = sheet.directions[0][f];
+    const Eigen::Vector3d back = c.x() * (sheet.positions[t[1]] - sheet.positions[t[0]]) + c.y() * (sheet.positions[t[2]] - sheet.positions[t[0]]);
+    EXPECT_LT((back - d).norm(), 1e-12) << "face " << f;
+    EXPECT_NEAR(metric_area(sheet.rest.face_metric[f]) / sheet.initial_area[f], 4.0, 1e-9) << "face " << f;
+  }
+  EXPECT_NEAR(std::accumulate(sheet.initial_area.begin(), sheet.initial_area.end(), 0.0), initial, 1e-12 * initial);
 }
 
 TEST(GrowthRefinement, ARefinedUniformlyGrownDiskIsStillFlatAndUnstressed) {
