@@ -6,11 +6,13 @@
 // grown sheet.
 #include "api/session.hpp"
 #include "common/growth/face_growth.hpp"
+#include "common/mesh/ply_reader.hpp"
 #include "common/run/checkpoint.hpp"
 #include "common/shell/hinge_bending.hpp"
 #include "common/shell/rest_metric.hpp"
 #include "common/simulation/simulation_state.hpp"
 #include "opencl/runtime/compute_context.hpp"
+#include "killed_run.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -265,6 +267,34 @@ TEST(GrowthRun, AFailedSolveStopsTheRunKeepingTheLastConvergedSheet) {
   EXPECT_TRUE(std::filesystem::exists(dir.path / "out" / "fields_full.ply"));
 }
 
+// `physarum run --checkpoint-every` killed at a random moment and resumed writes the uninterrupted
+// run's bytes: the checkpoint holds the whole sheet (shape, rest state, refinement, records).
+TEST(GrowthRun, AKilledRunResumesToTheUninterruptedRunsBytes) {
+  TempDir dir;
+  json j = growth_scene();
+  j["schedule"]["growth_steps"] = 8;
+  j["refine"] = {{"max_edge", 0.12}};
+  std::ofstream(dir.path / "scene.json") << j.dump();
+  auto args = [&](const std::filesystem::path& out) {
+    return std::vector<std::string>{"run", (dir.path / "scene.json").string(), "--backend", "reference", "--out", out.string()};
+  };
+  std::string whole_args;
+  for (const std::string& a : args(dir.path / "whole")) whole_args += quoted(std::filesystem::path(a)) + " ";
+  ASSERT_EQ(run_physarum(whole_args).exit_code, 0);
+  const std::filesystem::path killed = dir.path / "killed";
+  std::vector<std::string> killed_args = args(killed);
+  killed_args.insert(killed_args.end(), {"--checkpoint-every", "4"});  // every 4 steps (time_step 1 s)
+  const unsigned seed = std::random_device{}();
+  ASSERT_TRUE(run_and_kill(killed_args, killed / "checkpoint.bin", seed)) << "finished before the kill (seed " << seed << ")";
+  const CommandResult resumed = run_physarum("run --resume " + quoted(killed));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  for (const char* file : {"morphogens.ply", "fields_full.ply", "stats.csv", "preview.png", "result.glb"})
+    EXPECT_TRUE(bytes_of(killed / file) == bytes_of(dir.path / "whole" / file)) << file << " (kill delay seed " << seed << ")";
+  const json run = json::parse(std::ifstream(killed / "run.json"));
+  EXPECT_GT(run["resumed_from_step"].get<long long>(), 0);
+  EXPECT_EQ(run["growth_steps"], 8);
+}
+
 // `physarum run` writes the grown sheet and the records DESIGN.md promises.
 TEST(GrowthRun, TheRunWritesTheGrownSheetAndItsRecords) {
   TempDir dir;
@@ -282,10 +312,18 @@ TEST(GrowthRun, TheRunWritesTheGrownSheetAndItsRecords) {
   for (const char* file : {"morphogens.ply", "fields_full.ply", "preview.png", "result.glb", "stats.csv",
                            "frames/frame_0003.png", "frames/frame_0003.ply", "frames.gif"})
     EXPECT_TRUE(std::filesystem::exists(dir.path / "out" / file)) << file;
-  // The outputs are the grown shape: not flat any more.
-  const CommandResult ply = run_command("grep -c '' " + quoted(dir.path / "out" / "fields_full.ply"));
-  EXPECT_EQ(ply.exit_code, 0);
-  // --steps does not apply: the schedule is the run's length.
+  // The outputs are the grown shape (no longer flat), with the area growth beside the morphogens.
+  const PlyFields ply = read_ply_fields((dir.path / "out" / "fields_full.ply").string());
+  double low = 0.0, high = 0.0;
+  for (const Eigen::Vector3d& p : ply.mesh.positions) low = std::min(low, p.z()), high = std::max(high, p.z());
+  EXPECT_GT(high - low, 0.01);
+  const std::vector<double>& area_growth = ply.property("area_growth");
+  EXPECT_GT(*std::max_element(area_growth.begin(), area_growth.end()), 1.1);
+  EXPECT_EQ(ply.property("u").size(), ply.mesh.positions.size());
+  // `physarum render` re-colours it.
+  EXPECT_EQ(run_physarum("render " + quoted(dir.path / "out") + " --out " + quoted(dir.path / "render")).exit_code, 0);
+  // --steps only restates the schedule, the run's length.
+  EXPECT_EQ(run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 33 --backend reference --out " + quoted(dir.path / "y")).exit_code, 0);
   const CommandResult steps = run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 5 --out " + quoted(dir.path / "x"));
   EXPECT_EQ(steps.exit_code, 2);
   EXPECT_NE(steps.err.find("schedule"), std::string::npos) << steps.err;

@@ -72,11 +72,13 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
     return std::max<long long>(1, std::llround(seconds / scene.time_step));
   };
   if (const GrowthSpec* growth = scene.growth()) {
-    if (o.steps || o.sim_time)
+    // --steps may only restate it (scripts that pass --steps to every run).
+    const long long schedule = growth->schedule.total_steps();
+    if ((o.steps && *o.steps != schedule) || o.sim_time)
       throw UsageError(std::string(o.steps ? "--steps" : "--sim-time") + ": a growth scene's length is its schedule (" +
-                       std::to_string(growth->schedule.total_steps()) + " steps here: --set schedule.growth_steps=G, "
+                       std::to_string(schedule) + " steps here: --set schedule.growth_steps=G, "
                        "--set schedule.reaction_steps=N)");
-    return growth->schedule.total_steps();
+    return schedule;
   }
   if (o.steps) return *o.steps;
   if (o.sim_time) return steps_for(*o.sim_time);

@@ -133,7 +133,10 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
   model.run_json = [&](nlohmann::ordered_json& j, double seconds) {
     j["model"] = "growth";
     j["morphogens"] = morphogens;
-    j["preview_morphogen"] = spec.reaction.preview_morphogen;
+    // The layer the pictures show and the unit its colours count in (what `physarum render` reads).
+    const auto shown = layers_now().front();
+    j["preview_morphogen"] = shown.first;
+    j["color_unit"] = color_unit(shown.second);
     j["time_step"] = scene.time_step;
     j["substeps"] = growth.substeps();
     j["seed"] = scene.seed;
