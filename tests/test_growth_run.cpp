@@ -7,6 +7,8 @@
 #include "api/session.hpp"
 #include "common/growth/face_growth.hpp"
 #include "common/mesh/ply_reader.hpp"
+#include "common/pattern/pattern_analysis.hpp"
+#include "common/setup/reaction_diffusion_build.hpp"
 #include "common/run/checkpoint.hpp"
 #include "common/shell/hinge_bending.hpp"
 #include "common/shell/rest_metric.hpp"
@@ -145,6 +147,52 @@ TEST(GrowthRun, ReactionDiffusionRunsOnTheGrownRestMetric) {
   ASSERT_EQ(after.laplacian.value.size(), before.laplacian.value.size());
   for (size_t k = 0; k < after.laplacian.value.size(); ++k)
     EXPECT_NEAR(after.laplacian.value[k], before.laplacian.value[k], 1e-9 * (1 + std::abs(before.laplacian.value[k])));
+}
+
+// A Gray-Scott spot pattern on the rest metric of a disk grown uniformly by 1.5 (before any pattern
+// forms) and on the ungrown unit disk: the spots keep their absolute spacing (set by the diffusion
+// rates and the kinetics) within 5 %, rather than spreading 1.5 times apart with the tissue; the
+// grown disk simply holds more of them.
+double mean_spot_spacing(double growth, const std::string& disk, double max_edge) {
+  // As many seed spots per unit area on either disk: both fill in the same time.
+  const json j = {{"model", "gray-scott"},
+                  {"mesh", disk},
+                  {"time_step", 1.0},
+                  {"seed", 4},
+                  {"parameters", {{"F", 0.035}, {"k", 0.065}}},  // spots that divide until they fill the disk
+                  {"morphogens", {{"u", {{"diffusion", 5e-5}}}, {"v", {{"diffusion", 2.5e-5}}}}},
+                  {"initial", {{"noise", 0.02}, {"spots", {{"count", static_cast<int>(40 * growth * growth)}, {"radius", 0.06}, {"values", {{"u", 0.5}, {"v", 0.25}}}}}}}};
+  const Scene scene = scene_from_json(j);
+  GrowingSheet sheet = initial_sheet(scene);
+  for (Eigen::Matrix2d& metric : sheet.rest.face_metric) metric *= growth * growth;
+  for (Eigen::Vector3d& p : sheet.positions) p *= growth;  // the equilibrium of a uniform growth
+  // Refined back to a fine resolution, as a growth run keeps it (refine.max_edge): the spots' spacing
+  // depends a little on the resolution (a few per cent between 6 and 10 edges across it).
+  refine_sheet(sheet, max_edge);
+  const PreparedSurface surface = sheet_surface(sheet, "disk");
+  auto backend = make_reaction_diffusion_backend(BackendChoice::Reference, nullptr, surface.domain,
+                                                 build_reaction_diffusion_system(scene, surface, EvaluatedMaps{}));
+  backend->run(16000);
+  const IntrinsicVertexData<double> v = backend->field_values(1);
+  PatternAnalysisOptions options;
+  options.min_area = 1e-3;
+  const PatternAnalysis analysis =
+      analyze_pattern(surface.input, InputVertexData<double>(std::vector<double>(v.begin(), v.end())), options);
+  std::vector<double> distances;
+  for (const SpotPair& pair : analysis.pairs) distances.push_back(pair.distance);
+  EXPECT_GT(distances.size(), 100u);  // about 140 pairs on the unit disk (spacing ~0.26 m), 300 grown
+  return mean_and_std(distances).mean;
+}
+
+// About four minutes on 2 cores (two fine disks, the grown one 2.25 times as large): in the
+// validation suite.
+TEST(ValidationGrowth, APatternKeepsItsAbsoluteSpacingOnAGrownSheet) {
+  // Both at about the same resolution (rest edges 0.017 to 0.02 m): the unit disk of 60 rings, and
+  // the disk of 40 rings grown by 1.5 and refined to edges of at most 0.02.
+  const double ungrown = mean_spot_spacing(1.0, "shape:disk-60", 1.0), grown = mean_spot_spacing(1.5, "shape:disk-40", 0.02);
+  RecordProperty("spacing_ungrown", std::to_string(ungrown));
+  RecordProperty("spacing_grown", std::to_string(grown));
+  EXPECT_NEAR(grown / ungrown, 1.0, 0.05) << "spacing " << ungrown << " on the unit disk, " << grown << " grown by 1.5";
 }
 
 // The pattern depends on the tissue, not on its shape: the same growth with a shell 5 times thinner
