@@ -57,11 +57,11 @@ bool gives_no_start(const ReactionDiffusionSpec& spec) {
 
 // ---- checkpoint layout (SimulationState::model_arrays) ----
 enum ModelArray : size_t { kHeader, kPositions, kFaces, kMetrics, kHingeAngles, kInitialArea, kRecords, kFirstValues };
-constexpr size_t kRecordFields = 11;
+constexpr size_t kRecordFields = 12;
 
 std::vector<double> record_numbers(const GrowthStepRecord& r) {
   return {double(r.growth_step), double(r.splits), double(r.vertices), double(r.faces), double(r.newton_iterations),
-          double(r.factorizations), r.residual, r.membrane_energy, r.bending_energy, r.rest_area, r.seconds};
+          double(r.factorizations), r.residual, r.membrane_energy, r.bending_energy, r.rest_area, r.seconds, double(r.pieces)};
 }
 
 GrowthStepRecord record_from(const double* x) {
@@ -69,6 +69,7 @@ GrowthStepRecord record_from(const double* x) {
   r.growth_step = int(x[0]), r.splits = int(x[1]), r.vertices = int(x[2]), r.faces = int(x[3]);
   r.newton_iterations = int(x[4]), r.factorizations = int(x[5]);
   r.residual = x[6], r.membrane_energy = x[7], r.bending_energy = x[8], r.rest_area = x[9], r.seconds = x[10];
+  r.pieces = int(x[11]);
   return r;
 }
 
@@ -114,8 +115,10 @@ void GrowthSimulation::step() {
     if (stopped_) --steps_;
     return;
   }
+  const auto start = std::chrono::steady_clock::now();
   if (!reaction_) rebuild_reaction();
   reaction_->step();
+  reaction_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void GrowthSimulation::finish() {
@@ -168,6 +171,36 @@ FaceGrowth GrowthSimulation::face_growth() const {
   return g;
 }
 
+namespace {
+
+// `growth` with every factor raised to 1 / pieces: one of `pieces` equal sub-steps of it.
+FaceGrowth piece_of(const FaceGrowth& growth, int pieces) {
+  FaceGrowth piece = growth;
+  for (double& x : piece.along) x = std::pow(x, 1.0 / pieces);
+  for (double& x : piece.across) x = std::pow(x, 1.0 / pieces);
+  return piece;
+}
+
+}  // namespace
+
+bool GrowthSimulation::grow_in_pieces(const FaceGrowth& growth, int pieces, std::uint32_t growth_step, GrowthStepRecord& record) {
+  const FaceGrowth piece = piece_of(growth, pieces);
+  for (int k = 0; k < pieces; ++k) {
+    grow_faces(sheet_.rest, piece);
+    if (k == 0)
+      perturb_out_of_plane(sheet_.topology, sheet_.positions, spec_.shell.perturbation * mean_rest_edge(sheet_.rest),
+                           scene_.seed, growth_step);
+    const NewtonReport report = equilibrium().solve(sheet_.positions, sheet_.rest, spec_.shell.newton);
+    record.newton_iterations += report.iterations;
+    record.factorizations += report.factorizations;
+    record.residual = report.residual();
+    record.membrane_energy = report.energy.membrane;
+    record.bending_energy = report.energy.bending;
+    if (!report.converged) return false;
+  }
+  return true;
+}
+
 void GrowthSimulation::grow() {
   const auto start = std::chrono::steady_clock::now();
   sync_values_from_backend();
@@ -179,19 +212,22 @@ void GrowthSimulation::grow() {
     if (record.splits > 0) equilibrium_.reset();
   }
   const std::vector<double> old_mass = rest_vertex_masses(sheet_.topology, sheet_.rest);
-  grow_faces(sheet_.rest, face_growth());
-  if (spec_.dilute) {
-    const std::vector<double> new_mass = rest_vertex_masses(sheet_.topology, sheet_.rest);
-    for (int m = 0; m < morphogens_; ++m) dilute(sheet_.values[static_cast<size_t>(m)], old_mass, new_mass);
+  const FaceGrowth growth = face_growth();
+  // A growth step the solve cannot follow is retried in 2, 4, ... equal sub-steps (each starting
+  // from the last one's equilibrium): a sheet about to fold may need the smaller increments.
+  const GrowingSheet refined = sheet_;
+  bool converged = false;
+  for (int pieces = 1; pieces <= kMaxGrowthPieces && !converged; pieces *= 2) {
+    sheet_ = refined;
+    record.pieces = pieces;
+    converged = grow_in_pieces(growth, pieces, static_cast<std::uint32_t>(record.growth_step), record);
   }
-  perturb_out_of_plane(sheet_.topology, sheet_.positions, spec_.shell.perturbation * mean_rest_edge(sheet_.rest),
-                       scene_.seed, static_cast<std::uint32_t>(record.growth_step));
-  const NewtonReport report = equilibrium().solve(sheet_.positions, sheet_.rest, spec_.shell.newton);
-  if (!report.converged) {
+  if (!converged) {
     std::ostringstream why;
     why << scene_.source << ": growth step " << record.growth_step << " of " << spec_.schedule.growth_steps
-        << ": Newton's method did not reach equilibrium in " << report.iterations << " iterations (residual "
-        << report.residual() << ", tolerance " << spec_.shell.newton.tolerance
+        << ": Newton's method did not reach equilibrium, not even in " << kMaxGrowthPieces << " sub-steps of "
+        << spec_.shell.newton.max_iterations << " iterations each (residual " << record.residual << ", tolerance "
+        << spec_.shell.newton.tolerance
         << "). Grow less per step: a smaller \"growth.rate\" (or stretch), more \"schedule.growth_steps\", or a larger "
            "\"shell.max_iterations\"; the outputs hold the last converged shape (after growth step "
         << record.growth_step - 1 << ")";
@@ -200,13 +236,12 @@ void GrowthSimulation::grow() {
     equilibrium_.reset();
     return;
   }
+  if (spec_.dilute) {
+    const std::vector<double> new_mass = rest_vertex_masses(sheet_.topology, sheet_.rest);
+    for (int m = 0; m < morphogens_; ++m) dilute(sheet_.values[static_cast<size_t>(m)], old_mass, new_mass);
+  }
   record.vertices = sheet_.topology.vertex_count;
   record.faces = static_cast<int>(sheet_.topology.faces.size());
-  record.newton_iterations = report.iterations;
-  record.factorizations = report.factorizations;
-  record.residual = report.residual();
-  record.membrane_energy = report.energy.membrane;
-  record.bending_energy = report.energy.bending;
   record.rest_area = rest_area(sheet_.rest);
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   records_.push_back(record);
@@ -282,7 +317,7 @@ SimulationState GrowthSimulation::save_state() const {
   std::vector<std::vector<double>>& a = state.model_arrays;
   a.resize(kFirstValues);
   a[kHeader] = {time_base_, inner_time, inner_steps, double(gauge_face_), double(sheet_.topology.vertex_count),
-                double(sheet_.values.size()), double(sheet_.directions.size())};
+                double(sheet_.values.size()), double(sheet_.directions.size()), reaction_seconds_};
   for (const Eigen::Vector3d& p : sheet_.positions) a[kPositions].insert(a[kPositions].end(), {p.x(), p.y(), p.z()});
   for (const auto& f : sheet_.topology.faces) a[kFaces].insert(a[kFaces].end(), {double(f[0]), double(f[1]), double(f[2])});
   for (const Eigen::Matrix2d& g : sheet_.rest.face_metric) a[kMetrics].insert(a[kMetrics].end(), {g(0, 0), g(0, 1), g(1, 1)});
@@ -304,7 +339,7 @@ SimulationState GrowthSimulation::save_state() const {
 void GrowthSimulation::restore_state(const SimulationState& state) {
   const std::string who = "growth simulation: restore_state";
   const auto& a = state.model_arrays;
-  if (a.size() < kFirstValues || a[kHeader].size() != 7)
+  if (a.size() < kFirstValues || a[kHeader].size() != 8)
     throw InputError(who + ": the state holds no growing sheet (a checkpoint of another model?)");
   const auto& h = a[kHeader];
   const size_t n = static_cast<size_t>(h[4]), values = static_cast<size_t>(h[5]), directions = static_cast<size_t>(h[6]);
@@ -353,6 +388,7 @@ void GrowthSimulation::restore_state(const SimulationState& state) {
   sheet_ = std::move(sheet);
   records_ = std::move(records);
   time_base_ = h[0];
+  reaction_seconds_ = h[7];
   gauge_face_ = static_cast<int>(h[3]);
   steps_ = state.steps_taken;
   stopped_.reset();

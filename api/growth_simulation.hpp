@@ -10,9 +10,10 @@
 //   2. grow: each face's rest metric grows (Eq. 6 or 7 of its mean concentrations, or the
 //      prescribed stretch; along and across a direction map when anisotropic);
 //   3. dilute (optional): concentrations scaled by old / new rest mass, so amounts are conserved;
-//   4. nudge the sheet out of its plane (seeded) and solve for static equilibrium (Newton).
-// A growth step whose Newton solve does not converge is undone (the sheet stays the last converged
-// one) and the simulation stops: stopped() says why, and later steps do nothing.
+//   4. nudge the sheet out of its plane (seeded) and solve for static equilibrium (Newton); a solve
+//      that does not converge is retried with the step's growth in 2, 4, 8 equal sub-steps.
+// A growth step that does not converge even so is undone (the sheet stays the last converged one)
+// and the simulation stops: stopped() says why, and later steps do nothing.
 //
 // The layers are the morphogens, per vertex of the sheet as it is now (their count grows with
 // refinement). Checkpoints hold the whole sheet (SimulationState::model_arrays), so a resumed run
@@ -44,7 +45,11 @@ struct GrowthStepRecord {
   double membrane_energy = 0.0, bending_energy = 0.0;  // joules, at equilibrium
   double rest_area = 0.0;                              // m^2, after the step
   double seconds = 0.0;                                // wall time of the step (not restored: a timing)
+  int pieces = 1;  // equal sub-steps the growth was applied in (more than 1 when the whole one failed)
 };
+
+// A growth step whose solve fails is retried in 2, 4, ... up to this many equal sub-steps.
+inline constexpr int kMaxGrowthPieces = 8;
 
 // Builds a reaction–diffusion backend for a domain (the chosen backend and device: api/backend_factory.hpp).
 using ReactionBackendMaker = std::function<std::unique_ptr<SimulationBackend>(const SurfaceDomain&, ReactionDiffusionSystem)>;
@@ -90,11 +95,16 @@ class GrowthSimulation final : public SimulationBackend {
   IntrinsicVertexData<double> area_growth() const;
   // Why the run stopped early (a Newton solve that did not converge), or nullopt.
   const std::optional<std::string>& stopped() const { return stopped_; }
+  // Wall seconds spent in reaction–diffusion steps (backend rebuilds included), for run.json.
+  double reaction_seconds() const { return reaction_seconds_; }
   // Explicit sub-steps per reaction–diffusion step on the current sheet.
   int substeps() const;
 
  private:
   void grow();
+  // Grows the sheet by `growth` in `pieces` equal sub-steps, each solved to equilibrium (the nudge
+  // before the first); false when a solve does not converge. Adds the solves to `record`.
+  bool grow_in_pieces(const FaceGrowth& growth, int pieces, std::uint32_t growth_step, GrowthStepRecord& record);
   void rebuild_reaction() const;  // the backend on the current sheet, from sheet_.values
   void sync_values_from_backend();
   ShellEquilibrium& equilibrium();
@@ -121,6 +131,7 @@ class GrowthSimulation final : public SimulationBackend {
   int gauge_face_ = 0;
 
   long long steps_ = 0;
+  double reaction_seconds_ = 0.0;  // a timing, kept through checkpoints like the records' seconds
   std::vector<GrowthStepRecord> records_;
   std::optional<std::string> stopped_;
 };

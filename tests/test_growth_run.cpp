@@ -236,12 +236,14 @@ TEST(GrowthRun, DilutionConservesEachMorphogensAmountThroughAGrowthStep) {
   EXPECT_GT(amounts(*plain.growth())[0], 1.01 * before[0]);
 }
 
-// A state's bytes without the growth steps' wall-clock seconds (model array 6, the step records, of
-// which the seconds are the last of 11 numbers each): they are timings, not results.
+// A state's bytes without the wall-clock seconds (model array 6, the step records, of which the
+// seconds are the 11th of 12 numbers each, and the header's 8th number, the reaction seconds): they
+// are timings, not results.
 std::string state_bytes(const Session& session) {
   SimulationState state = session.backend().save_state();
   std::vector<double>& records = state.model_arrays.at(6);
-  for (size_t k = 10; k < records.size(); k += 11) records[k] = 0.0;
+  for (size_t k = 10; k < records.size(); k += 12) records[k] = 0.0;
+  state.model_arrays.at(0).at(7) = 0.0;  // the header's reaction seconds: a timing too
   return checkpoint_bytes({}, state);
 }
 
@@ -304,6 +306,7 @@ TEST(GrowthRun, AFailedSolveStopsTheRunKeepingTheLastConvergedSheet) {
   const CommandResult r = run_physarum("run " + quoted(dir.path / "scene.json") + " --backend reference --out " + quoted(dir.path / "out"));
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("growth step 1 of 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("8 sub-steps"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("residual"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("schedule.growth_steps"), std::string::npos) << r.err;
   std::ifstream in(dir.path / "out" / "run.json");

@@ -35,7 +35,7 @@ struct ShellSpec {
   double perturbation = 1e-3;
   // Newton's stopping rule: a residual strain of 1e-8 (the library's default 1e-10 sits near the
   // rounding floor of a sheet of some thousand vertices, where a solve can stall a factor above it).
-  NewtonSettings newton{200, 1e-8};
+  NewtonSettings newton{100, 1e-8};
 };
 
 struct GrowthAnisotropySpec {

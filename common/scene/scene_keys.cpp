@@ -54,7 +54,7 @@ std::vector<SceneKey> build_keys() {
               "parameters, morphogens, initial, dirichlet, preview_morphogen, integrator; time_step here or at the top)",
               "{\"model\": ..., \"parameters\": {..}, \"morphogens\": {..}, \"initial\": {..}, ...}"),
       setting("shell", K::Object, false, {}, "m, Pa", "aluminium: 0.002 m, 7e10 Pa, 0.33; perturbation 1e-3, tolerance 1e-8, "
-              "200 iterations",
+              "100 iterations (then the step in 2, 4, 8 sub-steps)",
               "growth: the thin elastic sheet (St. Venant-Kirchhoff membrane, discrete-hinge bending), the out-of-plane "
               "nudge before each growth step (a fraction of the mean rest edge length) and Newton's stopping rule (a "
               "residual strain: largest free force / (Y h mean edge))",

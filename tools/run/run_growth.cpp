@@ -130,7 +130,7 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
     }
     if (!frame_meshes.empty()) written.push_back("frames/*.ply");
   };
-  model.run_json = [&](nlohmann::ordered_json& j, double seconds) {
+  model.run_json = [&](nlohmann::ordered_json& j, double /*seconds*/) {
     j["model"] = "growth";
     j["morphogens"] = morphogens;
     // The layer the pictures show and the unit its colours count in (what `physarum render` reads).
@@ -155,7 +155,7 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
       shell_seconds += r.seconds;
       steps_json.push_back({{"growth_step", r.growth_step}, {"splits", r.splits}, {"vertices", r.vertices},
                             {"faces", r.faces}, {"newton_iterations", r.newton_iterations},
-                            {"factorizations", r.factorizations}, {"residual", r.residual},
+                            {"factorizations", r.factorizations}, {"pieces", r.pieces}, {"residual", r.residual},
                             {"membrane_energy", r.membrane_energy}, {"bending_energy", r.bending_energy},
                             {"rest_area", r.rest_area}, {"seconds", r.seconds}});
     }
@@ -165,9 +165,9 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
     if (!records.empty())
       j["energy"] = {{"membrane", records.back().membrane_energy}, {"bending", records.back().bending_energy},
                      {"total", records.back().membrane_energy + records.back().bending_energy}};
-    // Where the time went: the shell's solves (growth steps) against the reaction–diffusion rest.
+    // Where the time went: the growth steps (the shell's solves) and the reaction–diffusion steps.
     j["growth_seconds"] = shell_seconds;
-    j["reaction_seconds"] = std::max(0.0, seconds - shell_seconds);
+    j["reaction_seconds"] = growth.reaction_seconds();
     j["growth_records"] = steps_json;
     j["growth"] = growth_json(spec);
     if (!scene.maps.empty()) j["maps"] = scene.maps_given;
