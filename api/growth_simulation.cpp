@@ -56,7 +56,7 @@ bool gives_no_start(const ReactionDiffusionSpec& spec) {
 }
 
 // ---- checkpoint layout (SimulationState::model_arrays) ----
-enum ModelArray : size_t { kHeader, kPositions, kFaces, kMetrics, kHingeAngles, kInitialArea, kRecords, kFirstValues };
+enum ModelArray : size_t { kHeader, kPositions, kFaces, kMetrics, kHingeAngles, kInitialArea, kRecords, kMotion, kFirstValues };
 constexpr size_t kRecordFields = 12;
 
 std::vector<double> record_numbers(const GrowthStepRecord& r) {
@@ -205,12 +205,32 @@ void GrowthSimulation::grow() {
   const auto start = std::chrono::steady_clock::now();
   sync_values_from_backend();
   const GrowingSheet before = sheet_;
+  const std::vector<Eigen::Vector3d> motion_before = motion_;
   GrowthStepRecord record;
   record.growth_step = growth_steps_done() + 1;
   if (spec_.max_edge) {
+    // The last step's motion rides along as three more values (a new vertex moved as its edge's middle).
+    const bool moving = !motion_.empty();
+    if (moving)
+      for (int c = 0; c < 3; ++c) {
+        std::vector<double> component;
+        for (const Eigen::Vector3d& d : motion_) component.push_back(d[c]);
+        sheet_.values.push_back(std::move(component));
+      }
     record.splits = refine_sheet(sheet_, *spec_.max_edge);
     if (record.splits > 0) equilibrium_.reset();
+    if (moving) {
+      const size_t first = sheet_.values.size() - 3;
+      motion_.assign(sheet_.positions.size(), Eigen::Vector3d::Zero());
+      for (size_t i = 0; i < motion_.size(); ++i)
+        motion_[i] = {sheet_.values[first][i], sheet_.values[first + 1][i], sheet_.values[first + 2][i]};
+      sheet_.values.resize(first);
+    }
   }
+  // The predictor: the sheet starts where the last step's motion would carry it (growth steps change
+  // the shape smoothly, and Newton then starts near the answer).
+  const std::vector<Eigen::Vector3d> start_positions = sheet_.positions;
+  for (size_t i = 0; i < motion_.size(); ++i) sheet_.positions[i] += motion_[i];
   const std::vector<double> old_mass = rest_vertex_masses(sheet_.topology, sheet_.rest);
   const FaceGrowth growth = face_growth();
   // A growth step the solve cannot follow is retried in 2, 4, ... equal sub-steps (each starting
@@ -219,6 +239,7 @@ void GrowthSimulation::grow() {
   bool converged = false;
   for (int pieces = 1; pieces <= kMaxGrowthPieces && !converged; pieces *= 2) {
     sheet_ = refined;
+    if (pieces > 1) sheet_.positions = start_positions;  // a retry starts where the last step ended
     record.pieces = pieces;
     converged = grow_in_pieces(growth, pieces, static_cast<std::uint32_t>(record.growth_step), record);
   }
@@ -233,6 +254,7 @@ void GrowthSimulation::grow() {
         << record.growth_step - 1 << ")";
     stopped_ = why.str();
     sheet_ = before;
+    motion_ = motion_before;
     equilibrium_.reset();
     return;
   }
@@ -240,6 +262,8 @@ void GrowthSimulation::grow() {
     const std::vector<double> new_mass = rest_vertex_masses(sheet_.topology, sheet_.rest);
     for (int m = 0; m < morphogens_; ++m) dilute(sheet_.values[static_cast<size_t>(m)], old_mass, new_mass);
   }
+  motion_.resize(sheet_.positions.size());
+  for (size_t i = 0; i < motion_.size(); ++i) motion_[i] = sheet_.positions[i] - start_positions[i];
   record.vertices = sheet_.topology.vertex_count;
   record.faces = static_cast<int>(sheet_.topology.faces.size());
   record.rest_area = rest_area(sheet_.rest);
@@ -327,6 +351,7 @@ SimulationState GrowthSimulation::save_state() const {
     const std::vector<double> x = record_numbers(r);
     a[kRecords].insert(a[kRecords].end(), x.begin(), x.end());
   }
+  for (const Eigen::Vector3d& d : motion_) a[kMotion].insert(a[kMotion].end(), {d.x(), d.y(), d.z()});
   for (size_t v = static_cast<size_t>(morphogens_); v < sheet_.values.size(); ++v) a.push_back(sheet_.values[v]);
   for (const std::vector<Eigen::Vector2d>& field : sheet_.directions) {
     std::vector<double> flat;
@@ -347,7 +372,8 @@ void GrowthSimulation::restore_state(const SimulationState& state) {
   if (values != sheet_.values.size() || directions != sheet_.directions.size() ||
       a.size() != kFirstValues + (values - static_cast<size_t>(morphogens_)) + directions ||
       a[kPositions].size() != 3 * n || a[kMetrics].size() != 3 * faces || a[kInitialArea].size() != faces ||
-      a[kRecords].size() % kRecordFields != 0 || state.layers.size() != static_cast<size_t>(morphogens_))
+      a[kRecords].size() % kRecordFields != 0 || state.layers.size() != static_cast<size_t>(morphogens_) ||
+      (!a[kMotion].empty() && a[kMotion].size() != 3 * n))
     throw InputError(who + ": the sheet's arrays do not fit this scene's growth model");
   GrowingSheet sheet;
   std::vector<std::array<int, 3>> triangles(faces);
@@ -387,6 +413,8 @@ void GrowthSimulation::restore_state(const SimulationState& state) {
 
   sheet_ = std::move(sheet);
   records_ = std::move(records);
+  motion_.clear();
+  for (size_t i = 0; i < a[kMotion].size(); i += 3) motion_.emplace_back(a[kMotion][i], a[kMotion][i + 1], a[kMotion][i + 2]);
   time_base_ = h[0];
   reaction_seconds_ = h[7];
   gauge_face_ = static_cast<int>(h[3]);

@@ -10,7 +10,8 @@
 //   2. grow: each face's rest metric grows (Eq. 6 or 7 of its mean concentrations, or the
 //      prescribed stretch; along and across a direction map when anisotropic);
 //   3. dilute (optional): concentrations scaled by old / new rest mass, so amounts are conserved;
-//   4. nudge the sheet out of its plane (seeded) and solve for static equilibrium (Newton); a solve
+//   4. start from the last step's shape moved on by that step's motion (a predictor), nudge the sheet
+//      out of its plane (seeded) and solve for static equilibrium (Newton); a solve
 //      that does not converge is retried with the step's growth in 2, 4, 8 equal sub-steps.
 // A growth step that does not converge even so is undone (the sheet stays the last converged one)
 // and the simulation stops: stopped() says why, and later steps do nothing.
@@ -130,6 +131,8 @@ class GrowthSimulation final : public SimulationBackend {
   // split face keeps its index for its first child), so a resumed run gauges as the original did.
   int gauge_face_ = 0;
 
+  // Each vertex's motion in the last growth step (empty before the first): the predictor of the next.
+  std::vector<Eigen::Vector3d> motion_;
   long long steps_ = 0;
   double reaction_seconds_ = 0.0;  // a timing, kept through checkpoints like the records' seconds
   std::vector<GrowthStepRecord> records_;

@@ -3,7 +3,9 @@
 // hardest step, the buckling) solved to equilibrium by Newton's method, and a whole shape (30 steps
 // to the cap). Counters: Newton iterations, and seconds per iteration (the Hessian's assembly and
 // projection, CHOLMOD's factorization, the solve and the line search).
+#include "api/session.hpp"
 #include "common/mesh/shapes.hpp"
+#include "common/scene/scene.hpp"
 #include "common/shell/rest_metric.hpp"
 #include "common/shell/sheet_perturbation.hpp"
 #include "common/numerics/shared_cholesky.hpp"
@@ -11,6 +13,9 @@
 
 #include <Eigen/OrderingMethods>
 #include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
 
 namespace physarum {
 namespace {
@@ -145,5 +150,32 @@ void BM_ShellIterationParts(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ShellIterationParts)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->UseRealTime();
+}  // namespace
+}  // namespace physarum
+
+// The whole growth model through the library, on each backend: a 9,241-vertex disk's 4,000
+// reaction–diffusion steps (Fig. 9's rings) and its first growth steps (arg 1), reporting where the
+// time goes: the reaction–diffusion steps against the shell's solves (counters, seconds).
+namespace physarum {
+namespace {
+void BM_GrowthModelShares(benchmark::State& state) {
+  nlohmann::json scene;
+  std::ifstream(std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/growth_rings.json") >> scene;
+  scene["schedule"]["growth_steps"] = state.range(1);
+  SessionOptions options;
+  options.backend = state.range(0) == 0 ? "reference" : "opencl";
+  options.use_map_cache = false;
+  for (auto _ : state) {
+    Session session(scene_from_json(scene), options);
+    const GrowthSimulation& growth = *session.growth();
+    session.step(4000 + state.range(1));
+    double shell = 0.0;
+    for (const GrowthStepRecord& r : growth.records()) shell += r.seconds;
+    state.counters["reaction_seconds"] = growth.reaction_seconds();
+    state.counters["growth_seconds"] = shell;
+    state.counters["newton_iterations"] = growth.records().empty() ? 0 : growth.records().front().newton_iterations;
+  }
+}
+BENCHMARK(BM_GrowthModelShares)->Args({0, 3})->Args({1, 3})->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 }  // namespace
 }  // namespace physarum

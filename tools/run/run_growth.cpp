@@ -27,12 +27,10 @@ std::vector<IntrinsicVertexData<double>> morphogen_layers(const SimulationBacken
   return all;
 }
 
-// Colours over 0 .. the layer's largest value (levels in multiples of half of it), as a
-// reaction–diffusion run colours its preview morphogen.
+// Colours over 0 .. the layer's largest value, as a reaction–diffusion run colours its preview morphogen.
 template <class Values>
 double color_unit(const Values& values) {
-  const double top = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
-  return top > 0.0 ? top / 2.0 : 1.0;
+  return morphogen_color_unit(values.values());
 }
 
 // A frame's sheet, kept until the outputs are written (as the time-lapse keeps its pictures).
@@ -101,13 +99,7 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
     frame_meshes.push_back(std::move(kept));
     return render_preview(now.input, frame_meshes.back().fields.front().second, preview);
   };
-  model.check_end = [&] {
-    for (int m = 0; m < growth.dynamic_layer_count(); ++m)
-      for (const double x : growth.field_values(m))
-        if (!std::isfinite(x))
-          throw InputError(scene.source + ": morphogen '" + morphogens[static_cast<size_t>(m)] +
-                           "' is no longer finite: the run diverged (a smaller time_step, or \"integrator\": \"imex\")");
-  };
+  model.check_end = [&] { check_morphogens_finite(growth, morphogens, scene.source); };
   std::optional<FullResolutionMesh> final_full;
   model.result = [&] {
     ModelResult r;

@@ -29,8 +29,11 @@ std::string number(double x) {
   return buffer;
 }
 
+}  // namespace
+
 // The run diverged when a morphogen is no longer finite: an error, not a result.
-void check_finite(const SimulationBackend& simulation, const std::vector<std::string>& morphogens, const std::string& source) {
+void check_morphogens_finite(const SimulationBackend& simulation, const std::vector<std::string>& morphogens,
+                             const std::string& source) {
   for (int m = 0; m < simulation.dynamic_layer_count(); ++m)
     for (const double x : simulation.field_values(m))
       if (!std::isfinite(x))
@@ -38,7 +41,10 @@ void check_finite(const SimulationBackend& simulation, const std::vector<std::st
                          "' is no longer finite: the run diverged (a smaller time_step, or \"integrator\": \"imex\")");
 }
 
-}  // namespace
+double morphogen_color_unit(const std::vector<double>& values) {
+  const double top = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  return top > 0.0 ? top / 2.0 : 1.0;
+}
 
 std::string morphogen_stats_header(const std::vector<std::string>& morphogens) {
   std::string header = "time";
@@ -92,12 +98,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
     for (int m = 0; m < simulation.dynamic_layer_count(); ++m) all.push_back(simulation.field_values(m));
     return all;
   };
-  // Colours over 0 .. the preview morphogen's largest value (levels in multiples of half of it), so
-  // the picture uses the whole colour map whatever the model's units.
-  auto color_unit = [](const IntrinsicVertexData<double>& values) {
-    const double top = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
-    return top > 0.0 ? top / 2.0 : 1.0;
-  };
+  auto color_unit = [](const IntrinsicVertexData<double>& values) { return morphogen_color_unit(values.values()); };
 
   // ---- what a reaction-diffusion system writes (the run itself is the one run loop's) ----
   ModelRun model;
@@ -111,7 +112,7 @@ int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long st
     preview.coloring = scene.color_map.mapping(color_unit(values));
     return render_preview(full.mesh, full.vertex_values(values), preview);
   };
-  model.check_end = [&] { check_finite(simulation, morphogens, scene.source); };
+  model.check_end = [&] { check_morphogens_finite(simulation, morphogens, scene.source); };
   model.result = [&] {
     // The preview morphogen first: the colours, the preview and the exports show the first layer.
     ModelResult r;

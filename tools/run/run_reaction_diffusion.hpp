@@ -19,6 +19,7 @@
 // every file is written under a temporary name and renamed.
 #include "common/base/element_data.hpp"
 #include "common/scene/scene.hpp"
+#include "common/simulation/simulation_backend.hpp"
 #include "tools/run/resume_point.hpp"
 #include "tools/run/run_options.hpp"
 
@@ -33,6 +34,15 @@ namespace physarum::cli {
 // resolved; `resume` is the checkpoint to continue from (the options are then the checkpoint's).
 int run_reaction_diffusion(const Scene& scene, const RunOptions& options, long long steps,
                            const std::optional<ResumePoint>& resume);
+
+// The colours' unit of a layer: half its largest value (levels in multiples of it), so the picture
+// uses the whole colour map whatever the model's units; 1 for a layer with nothing above zero.
+double morphogen_color_unit(const std::vector<double>& values);
+
+// InputError naming `source` and the morphogen when a dynamic layer is no longer finite (the run
+// diverged), with what to change.
+void check_morphogens_finite(const SimulationBackend& simulation, const std::vector<std::string>& morphogens,
+                             const std::string& source);
 
 // stats.csv's header and one row: the area-weighted mean and variance of every morphogen.
 std::string morphogen_stats_header(const std::vector<std::string>& morphogens);
