@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 physarum=${PHYSARUM:-./build/physarum}
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes sketch growth_rings growth_cap growth_saddle growth_anisotropic)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes sketch growth_rings growth_beads growth_interleaved growth_cap growth_saddle growth_anisotropic)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
@@ -85,6 +85,13 @@ for scene in "${scenes[@]}"; do
     "$physarum" sweep --collect "$work/pearson_map" > /dev/null
     cp "$work/pearson_map/contact_sheet.png" docs/gallery/pearson_map.png
     echo "docs/gallery/pearson_map.png"
+    continue
+  fi
+  if [ "$scene" = growth_interleaved ]; then  # two moments of the growth: the time-lapse's two frames
+    "$physarum" run tools/scenes/growth_interleaved.json --backend opencl --frames 2 --out "$work/$scene" > /dev/null
+    cp "$work/$scene/frames/frame_0001.png" docs/gallery/growth_interleaved_1.png
+    cp "$work/$scene/frames/frame_0002.png" docs/gallery/growth_interleaved_2.png
+    echo "docs/gallery/growth_interleaved_1.png docs/gallery/growth_interleaved_2.png"
     continue
   fi
   "$physarum" run "tools/scenes/$scene.json" --backend opencl --texture-size 1024 --out "$work/$scene" > /dev/null
