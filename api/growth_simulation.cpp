@@ -206,6 +206,39 @@ bool GrowthSimulation::grow_in_pieces(const FaceGrowth& growth, int pieces, std:
   return true;
 }
 
+std::string GrowthSimulation::failure_message(const GrowthStepRecord& record) const {
+  std::ostringstream why;
+  why << scene_.source << ": growth step " << record.growth_step << " of " << spec_.schedule.growth_steps
+      << ": Newton's method did not reach equilibrium, not even in " << kMaxGrowthPieces << " sub-steps of "
+      << spec_.shell.newton.max_iterations << " iterations each (residual " << record.residual << ", tolerance "
+      << spec_.shell.newton.tolerance
+      << "). Grow less per step: a smaller \"growth.rate\" (or stretch), more \"schedule.growth_steps\", or a larger "
+         "\"shell.max_iterations\"; the outputs hold the last converged shape (after growth step "
+      << record.growth_step - 1 << ")";
+  return why.str();
+}
+
+int GrowthSimulation::refine(double max_edge) {
+  // The last step's motion rides along as three more values (a new vertex moves as its edge's middle).
+  const bool moving = !motion_.empty();
+  if (moving)
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> component;
+      for (const Eigen::Vector3d& d : motion_) component.push_back(d[c]);
+      sheet_.values.push_back(std::move(component));
+    }
+  const int splits = refine_sheet(sheet_, max_edge);
+  if (splits > 0) equilibrium_.reset();
+  if (moving) {
+    const size_t first = sheet_.values.size() - 3;
+    motion_.assign(sheet_.positions.size(), Eigen::Vector3d::Zero());
+    for (size_t i = 0; i < motion_.size(); ++i)
+      motion_[i] = {sheet_.values[first][i], sheet_.values[first + 1][i], sheet_.values[first + 2][i]};
+    sheet_.values.resize(first);
+  }
+  return splits;
+}
+
 void GrowthSimulation::grow() {
   finish();
   const auto start = std::chrono::steady_clock::now();
@@ -214,25 +247,7 @@ void GrowthSimulation::grow() {
   const std::vector<Eigen::Vector3d> motion_before = motion_;
   GrowthStepRecord record;
   record.growth_step = growth_steps_done() + 1;
-  if (spec_.max_edge) {
-    // The last step's motion rides along as three more values (a new vertex moved as its edge's middle).
-    const bool moving = !motion_.empty();
-    if (moving)
-      for (int c = 0; c < 3; ++c) {
-        std::vector<double> component;
-        for (const Eigen::Vector3d& d : motion_) component.push_back(d[c]);
-        sheet_.values.push_back(std::move(component));
-      }
-    record.splits = refine_sheet(sheet_, *spec_.max_edge);
-    if (record.splits > 0) equilibrium_.reset();
-    if (moving) {
-      const size_t first = sheet_.values.size() - 3;
-      motion_.assign(sheet_.positions.size(), Eigen::Vector3d::Zero());
-      for (size_t i = 0; i < motion_.size(); ++i)
-        motion_[i] = {sheet_.values[first][i], sheet_.values[first + 1][i], sheet_.values[first + 2][i]};
-      sheet_.values.resize(first);
-    }
-  }
+  if (spec_.max_edge) record.splits = refine(*spec_.max_edge);
   // The predictor: the sheet starts where the last step's motion would carry it (growth steps change
   // the shape smoothly, and Newton then starts near the answer).
   const std::vector<Eigen::Vector3d> start_positions = sheet_.positions;
@@ -250,15 +265,7 @@ void GrowthSimulation::grow() {
     converged = grow_in_pieces(growth, pieces, static_cast<std::uint32_t>(record.growth_step), record);
   }
   if (!converged) {
-    std::ostringstream why;
-    why << scene_.source << ": growth step " << record.growth_step << " of " << spec_.schedule.growth_steps
-        << ": Newton's method did not reach equilibrium, not even in " << kMaxGrowthPieces << " sub-steps of "
-        << spec_.shell.newton.max_iterations << " iterations each (residual " << record.residual << ", tolerance "
-        << spec_.shell.newton.tolerance
-        << "). Grow less per step: a smaller \"growth.rate\" (or stretch), more \"schedule.growth_steps\", or a larger "
-           "\"shell.max_iterations\"; the outputs hold the last converged shape (after growth step "
-        << record.growth_step - 1 << ")";
-    stopped_ = why.str();
+    stopped_ = failure_message(record);
     sheet_ = before;
     motion_ = motion_before;
     equilibrium_.reset();

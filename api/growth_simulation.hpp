@@ -103,6 +103,11 @@ class GrowthSimulation final : public SimulationBackend {
 
  private:
   void grow();
+  // Splits the rest edges longer than `max_edge` (the sheet's fields and the last step's motion
+  // carried onto new vertices); returns the splits.
+  int refine(double max_edge);
+  // What stopped() says when growth step `record` could not be solved, with what to change.
+  std::string failure_message(const GrowthStepRecord& record) const;
   // Grows the sheet by `growth` in `pieces` equal sub-steps, each solved to equilibrium (the nudge
   // before the first); false when a solve does not converge. Adds the solves to `record`.
   bool grow_in_pieces(const FaceGrowth& growth, int pieces, std::uint32_t growth_step, GrowthStepRecord& record);

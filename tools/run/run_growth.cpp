@@ -39,6 +39,39 @@ struct FrameMesh {
   std::vector<std::pair<std::string, InputVertexData<double>>> fields;
 };
 
+// run.json's growth keys: the growth steps done, the area growth, per step the Newton iterations
+// and vertices, the final energy, where the time went, and every step's record.
+void growth_records_json(nlohmann::ordered_json& j, const GrowthSimulation& growth) {
+  const std::vector<GrowthStepRecord>& records = growth.records();
+  j["growth_steps"] = growth.growth_steps_done();
+  const double area_now = rest_area(growth.sheet().rest);
+  j["area_growth"] = area_now / growth.initial_rest_area();
+  j["initial_rest_area"] = growth.initial_rest_area();
+  j["rest_area"] = area_now;
+  nlohmann::ordered_json iterations = nlohmann::ordered_json::array(), vertices = nlohmann::ordered_json::array(),
+                         steps_json = nlohmann::ordered_json::array();
+  double shell_seconds = 0.0;
+  for (const GrowthStepRecord& r : records) {
+    iterations.push_back(r.newton_iterations);
+    vertices.push_back(r.vertices);
+    shell_seconds += r.seconds;
+    steps_json.push_back({{"growth_step", r.growth_step}, {"splits", r.splits}, {"vertices", r.vertices},
+                          {"faces", r.faces}, {"newton_iterations", r.newton_iterations},
+                          {"factorizations", r.factorizations}, {"pieces", r.pieces}, {"residual", r.residual},
+                          {"membrane_energy", r.membrane_energy}, {"bending_energy", r.bending_energy},
+                          {"rest_area", r.rest_area}, {"seconds", r.seconds}});
+  }
+  j["newton_iterations"] = iterations;
+  j["vertices"] = vertices;
+  if (!records.empty())
+    j["energy"] = {{"membrane", records.back().membrane_energy}, {"bending", records.back().bending_energy},
+                   {"total", records.back().membrane_energy + records.back().bending_energy}};
+  // Where the time went: the growth steps (the shell's solves) and the reaction–diffusion steps.
+  j["growth_seconds"] = shell_seconds;
+  j["reaction_seconds"] = growth.reaction_seconds();
+  j["growth_records"] = steps_json;
+}
+
 }  // namespace
 
 int run_growth(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
@@ -132,35 +165,8 @@ int run_growth(const Scene& scene, const RunOptions& o, long long steps, const s
     j["time_step"] = scene.time_step;
     j["substeps"] = growth.substeps();
     j["seed"] = scene.seed;
-    const std::vector<GrowthStepRecord>& records = growth.records();
-    j["growth_steps"] = growth.growth_steps_done();
-    const double area_now = rest_area(growth.sheet().rest);
-    j["area_growth"] = area_now / growth.initial_rest_area();
-    j["initial_rest_area"] = growth.initial_rest_area();
-    j["rest_area"] = area_now;
-    nlohmann::ordered_json iterations = nlohmann::ordered_json::array(), vertices = nlohmann::ordered_json::array(),
-                           steps_json = nlohmann::ordered_json::array();
-    double shell_seconds = 0.0;
-    for (const GrowthStepRecord& r : records) {
-      iterations.push_back(r.newton_iterations);
-      vertices.push_back(r.vertices);
-      shell_seconds += r.seconds;
-      steps_json.push_back({{"growth_step", r.growth_step}, {"splits", r.splits}, {"vertices", r.vertices},
-                            {"faces", r.faces}, {"newton_iterations", r.newton_iterations},
-                            {"factorizations", r.factorizations}, {"pieces", r.pieces}, {"residual", r.residual},
-                            {"membrane_energy", r.membrane_energy}, {"bending_energy", r.bending_energy},
-                            {"rest_area", r.rest_area}, {"seconds", r.seconds}});
-    }
-    j["newton_iterations"] = iterations;
-    j["vertices"] = vertices;
+    growth_records_json(j, growth);
     j["initial_vertices"] = start.domain.vertex_count;
-    if (!records.empty())
-      j["energy"] = {{"membrane", records.back().membrane_energy}, {"bending", records.back().bending_energy},
-                     {"total", records.back().membrane_energy + records.back().bending_energy}};
-    // Where the time went: the growth steps (the shell's solves) and the reaction–diffusion steps.
-    j["growth_seconds"] = shell_seconds;
-    j["reaction_seconds"] = growth.reaction_seconds();
-    j["growth_records"] = steps_json;
     j["growth"] = growth_json(spec);
     if (!scene.maps.empty()) j["maps"] = scene.maps_given;
   };
