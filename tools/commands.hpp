@@ -5,6 +5,8 @@
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace physarum::cli {
 
@@ -25,5 +27,14 @@ Command add_map_command(CLI::App& parent);
 Command add_analyze_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);
 Command add_sketch_command(CLI::App& parent);
+
+// Every command above, in the order `physarum --help` lists them (tools/command_table.cpp).
+std::vector<Command> add_all_commands(CLI::App& parent);
+
+// `args` (the words after `physarum`) parsed and run in this process as the program runs them, for
+// the Python module: returns the exit code; a malformed command line throws UsageError with CLI11's
+// message, and the command's own exceptions (InputError, DeviceError, ...) pass through. --help
+// prints the help and returns 0.
+int run_command_line(const std::vector<std::string>& args);
 
 }  // namespace physarum::cli

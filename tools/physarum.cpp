@@ -32,19 +32,7 @@ int main(int argc, char** argv) {
   app.formatter(std::make_shared<OneLineCommandList>());
   app.footer("Each command's own --help has the details; docs/commands.md is the manual.\n");
 
-  std::vector<physarum::cli::Command> commands;
-  commands.push_back(physarum::cli::add_mesh_command(app));
-  commands.push_back(physarum::cli::add_devices_command(app));
-  commands.push_back(physarum::cli::add_run_command(app));
-  commands.push_back(physarum::cli::add_compare_command(app));
-  commands.push_back(physarum::cli::add_bench_command(app));
-  commands.push_back(physarum::cli::add_scene_keys_command(app));
-  commands.push_back(physarum::cli::add_render_command(app));
-  commands.push_back(physarum::cli::add_color_map_command(app));
-  commands.push_back(physarum::cli::add_map_command(app));
-  commands.push_back(physarum::cli::add_analyze_command(app));
-  commands.push_back(physarum::cli::add_sweep_command(app));
-  commands.push_back(physarum::cli::add_sketch_command(app));
+  const std::vector<physarum::cli::Command> commands = physarum::cli::add_all_commands(app);
 
   try {
     app.parse(argc, argv);

@@ -178,6 +178,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (!file) throw InputError(path + ": cannot open the checkpoint");
   const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   if (file.bad()) throw InputError(path + ": cannot read the checkpoint");
+  return parse_checkpoint(bytes, path);
+}
+
+Checkpoint parse_checkpoint(const std::string& bytes, const std::string& path) {
   if (bytes.size() < kFixedBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
     throw InputError(path + ": not a physarum checkpoint (no PHYSCKPT magic at its start)");
   const auto version = get<std::uint32_t>(bytes, 8);

@@ -55,6 +55,8 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& header, c
 // Reads and verifies `path`: InputError naming the file when it cannot be read, is not a
 // checkpoint, is of another format version, is truncated, or its checksum does not match (corrupted).
 Checkpoint read_checkpoint(const std::string& path);
+// The same checks on a checkpoint's bytes (checkpoint_bytes'), `path` naming them in messages.
+Checkpoint parse_checkpoint(const std::string& bytes, const std::string& path);
 
 // Throws InputError naming `path` and the first of build, backend, device and scene that differs
 // between the checkpoint (`saved`) and the run that wants to resume from it (`resuming`).

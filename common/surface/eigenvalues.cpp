@@ -73,17 +73,22 @@ Eigenpairs smallest_eigenpairs(const CsrMatrix& laplacian, const IntrinsicVertex
   const double sigma = -1e-8 * std::max(scale, 1e-300);
 
   ShiftedInverse op(std::move(a));
-  const int ncv = std::min(n, std::max(2 * count + 1, count + 20));
-  Spectra::SymEigsShiftSolver<ShiftedInverse> solver(op, count, ncv, sigma);
+  // A few more eigenpairs than asked: a Krylov method can converge to the next eigenvalue before the
+  // last copy of a repeated one (the unit sphere's fifth l = 2 pair when 9 are asked), and a copy
+  // missed inside the wanted range shows up once the range ends beyond it. The extra ones are dropped.
+  const int wanted = std::min(n - 1, count + std::max(10, count / 10));
+  const int ncv = std::min(n, std::max(2 * wanted + 1, wanted + 20));
+  Spectra::SymEigsShiftSolver<ShiftedInverse> solver(op, wanted, ncv, sigma);
   solver.init();
   solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-12, Spectra::SortRule::SmallestAlge);
   if (solver.info() != Spectra::CompInfo::Successful)
     throw InputError("eigenvalues: the eigensolver did not converge for the " + std::to_string(count) +
                      " smallest eigenvalues");
 
-  out.values = solver.eigenvalues();
+  out.values = solver.eigenvalues().head(count);  // ascending (SmallestAlge)
   if (want_vectors) {
-    out.vectors = inv_sqrt_mass.asDiagonal() * solver.eigenvectors();  // y^T y = 1  =>  x^T M x = 1
+    // y^T y = 1  =>  x^T M x = 1
+    out.vectors = inv_sqrt_mass.asDiagonal() * solver.eigenvectors().leftCols(count);
   }
   return out;
 }

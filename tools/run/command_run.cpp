@@ -43,7 +43,7 @@
 #include "tools/run/run_checkpoints.hpp"
 #include "api/session.hpp"
 #include "tools/run/run_loop.hpp"
-#include "tools/run/run_growth.hpp"
+#include "tools/run/prepared_run.hpp"
 #include "tools/run/run_reaction_diffusion.hpp"
 #include "tools/run/surface_exports.hpp"
 
@@ -65,27 +65,6 @@
 namespace physarum::cli {
 namespace {
 
-
-long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
-  auto steps_for = [&](double seconds) {
-    // Nearest whole step: T / dt often lands a rounding error away from an integer.
-    return std::max<long long>(1, std::llround(seconds / scene.time_step));
-  };
-  if (const GrowthSpec* growth = scene.growth()) {
-    // --steps may only restate it (scripts that pass --steps to every run).
-    const long long schedule = growth->schedule.total_steps();
-    if ((o.steps && *o.steps != schedule) || o.sim_time)
-      throw UsageError(std::string(o.steps ? "--steps" : "--sim-time") + ": a growth scene's length is its schedule (" +
-                       std::to_string(schedule) + " steps here: --set schedule.growth_steps=G, "
-                       "--set schedule.reaction_steps=N)");
-    return schedule;
-  }
-  if (o.steps) return *o.steps;
-  if (o.sim_time) return steps_for(*o.sim_time);
-  if (scene.steps) return *scene.steps;
-  if (scene.sim_time) return steps_for(*scene.sim_time);
-  throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
-}
 
 // The agent model's run.json keys: throughput, Eq. 5's U and the final statistics, per species its
 // own, and the parameters as run.
@@ -138,85 +117,101 @@ void check_run_options(const RunOptions& o) {
 }
 
 // The agent model's run: its surface, maps and backend, and what it writes.
-int run_agents(const Scene& given_scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
-  TimeLapse time_lapse(o.frames, steps);
+class AgentRun final : public PreparedRun {
+ public:
+  AgentRun(const Scene& given_scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume)
+      : PreparedRun(given_scene, o, steps, resume),
+        simulation_(session_.backend()),
+        full_(build_full_resolution_mesh(session_.surface().input, session_.surface().domain)) {
+    // The surface, the maps (evaluated once, through the map cache) and the backend are the
+    // session's. Its scene summarises each mapped parameter by its mean (U, run.json).
+    const Scene& scene = session_.scene();
+    const SurfaceDomain& domain = session_.surface().domain;
+    std::optional<TexelLocations> texels = texels_for_run(session_.surface().input, domain, o.texture, "physarum run");
+    U_ = uniform_steady_state(scene, domain.total_area);
+    // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
+    // columns talk about), so pictures of different runs of one scene (and the frames of one run) are
+    // comparable; the value itself is in the PLY property.
+    coloring_ = scene.color_map.mapping(U_);
+    preview_.coloring = coloring_;
+    // Competing species (common/setup/species_statistics.hpp): each species' U and layer statistics beside
+    // the existing columns (which stay layer 0's, with the scene's U), and pictures in one colour per
+    // species, each layer coloured over its own species' levels.
+    species_layers_ = simulation_.dynamic_layer_count();
+    if (species_layers_ > 1) species_U_ = species_steady_states(scene, session_.agent_arrays()->species, domain);
+    for (const double Us : species_U_) species_colorings_.push_back(scene.color_map.mapping(Us));
+    describe_outputs(steps);
+    start(session_.surface(), full_, std::move(texels));
+  }
 
-  // The surface, the maps (evaluated once, through the map cache) and the backend. `scene`
-  // summarises each mapped parameter by its mean (U, run.json).
-  Session session(given_scene, session_options(o, steps));
-  const Scene& scene = session.scene();
-  const PreparedSurface& surface = session.surface();
-  const SurfaceDomain& domain = surface.domain;
-  const SceneArrays& arrays = *session.agent_arrays();
-  const InputMesh& input = surface.input;
-  const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
-  const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
-  SimulationBackend& simulation = session.backend();
-  // Written now, not with the results: a user checking the maps of a long run sees them at once.
-  if (!o.maps_out.empty())
-    write_maps_ply(o.maps_out, input, maps_on_input(given_scene.maps, surface, session.maps(), o.scene));
-  const double U = uniform_steady_state(scene, domain.total_area);
-  // Colours span the scene's levels in multiples of U (default 0 .. 2U, the range the coverage
-  // columns talk about), so pictures of different runs of one scene (and the frames of one run) are
-  // comparable; the value itself is in the PLY property.
-  const FieldColoring coloring = scene.color_map.mapping(U);
-  PreviewOptions preview;
-  preview.coloring = coloring;
-  // Competing species (common/setup/species_statistics.hpp): each species' U and layer statistics beside
-  // the existing columns (which stay layer 0's, with the scene's U), and pictures in one colour per
-  // species, each layer coloured over its own species' levels.
-  const int species_layers = simulation.dynamic_layer_count();
-  const std::vector<double> species_U =
-      species_layers > 1 ? species_steady_states(scene, arrays.species, domain) : std::vector<double>{};
-  std::vector<FieldColoring> species_colorings;
-  for (const double Us : species_U) species_colorings.push_back(scene.color_map.mapping(Us));
-  auto species_statistics = [&] {
+ private:
+  std::vector<FieldStatistics> species_statistics() const {
     std::vector<FieldStatistics> per_species;
-    for (int layer = 0; layer < static_cast<int>(species_U.size()); ++layer)
-      per_species.push_back(simulation.field_statistics(species_U[static_cast<size_t>(layer)], layer));
+    for (int layer = 0; layer < static_cast<int>(species_U_.size()); ++layer)
+      per_species.push_back(simulation_.field_statistics(species_U_[static_cast<size_t>(layer)], layer));
     return per_species;
-  };
-  auto stats_row = [&] {
-    return stats_csv_row(simulation.time(), simulation.field_statistics(U)) + species_stats_csv_values(species_statistics());
-  };
+  }
   // Pictures (preview and time-lapse frames) are drawn from the full-resolution mesh: every detail
   // the simulation resolved, not only its values at the input vertices.
-  auto picture = [&] {
-    if (species_layers <= 1) return render_preview(full.mesh, full.vertex_values(simulation.field_values()), preview);
+  RgbImage picture() const {
+    if (species_layers_ <= 1) return render_preview(full_.mesh, full_.vertex_values(simulation_.field_values()), preview_);
     std::vector<InputVertexData<double>> layers;
-    for (int layer = 0; layer < species_layers; ++layer) layers.push_back(full.vertex_values(simulation.field_values(layer)));
-    return render_species_preview(full.mesh, layers, species_colorings, preview);
-  };
+    for (int layer = 0; layer < species_layers_; ++layer) layers.push_back(full_.vertex_values(simulation_.field_values(layer)));
+    return render_species_preview(full_.mesh, layers, species_colorings_, preview_);
+  }
 
   // ---- what the agent model writes (the run itself is the one run loop's) ----
-  ModelRun model;
-  model.fields_file = "pheromone.ply";
-  model.fields_description = "pheromone";
-  model.stats_header = stats_csv_header() + species_stats_csv_columns(species_layers);
-  model.stats_row = stats_row;
-  model.frame = picture;
-  model.result = [&] {
-    ModelResult r;
-    r.coloring = coloring;
-    // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
-    // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
-    r.layers.emplace_back("pheromone", simulation.field_values());
-    for (int layer = 0; species_layers > 1 && layer < species_layers; ++layer)
-      r.layers.emplace_back("pheromone_" + std::to_string(layer), simulation.field_values(layer));
-    if (species_layers > 1) r.preview = picture();
-    return r;
-  };
-  model.run_json = [&](nlohmann::ordered_json& j, double seconds) { agent_run_json(j, simulation, scene, arrays, U, species_U, seconds); };
-  model.summary = [&](double seconds) {
-    const SimulationCounters c = simulation.counters();
-    std::ostringstream line;
-    line << steps << " steps (" << simulation.time() << " s simulated) in " << seconds << " s, "
-         << (seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0) << " agent-steps/s; mean "
-         << simulation.field_statistics(U).mean << ", U " << U;
-    return line.str();
-  };
-  return run_and_write(simulation, RunSetup{o, scene, steps, resume, surface, full, texels, time_lapse}, model);
+  void describe_outputs(long long steps) {
+    model_.fields_file = "pheromone.ply";
+    model_.fields_description = "pheromone";
+    model_.stats_header = stats_csv_header() + species_stats_csv_columns(species_layers_);
+    model_.stats_row = [this] {
+      return stats_csv_row(simulation_.time(), simulation_.field_statistics(U_)) +
+             species_stats_csv_values(species_statistics());
+    };
+    model_.frame = [this] { return picture(); };
+    model_.result = [this] {
+      ModelResult r;
+      r.coloring = coloring_;
+      // Competing species: one property per species' layer, pheromone_0, pheromone_1, ..., beside
+      // "pheromone" (= layer 0, kept so readers of one-species outputs still find it).
+      r.layers.emplace_back("pheromone", simulation_.field_values());
+      for (int layer = 0; species_layers_ > 1 && layer < species_layers_; ++layer)
+        r.layers.emplace_back("pheromone_" + std::to_string(layer), simulation_.field_values(layer));
+      if (species_layers_ > 1) r.preview = picture();
+      return r;
+    };
+    model_.run_json = [this](nlohmann::ordered_json& j, double seconds) {
+      agent_run_json(j, simulation_, session_.scene(), *session_.agent_arrays(), U_, species_U_, seconds);
+    };
+    model_.summary = [this, steps](double seconds) {
+      const SimulationCounters c = simulation_.counters();
+      std::ostringstream line;
+      line << steps << " steps (" << simulation_.time() << " s simulated) in " << seconds << " s, "
+           << (seconds > 0 ? static_cast<double>(c.agent_steps) / seconds : 0.0) << " agent-steps/s; mean "
+           << simulation_.field_statistics(U_).mean << ", U " << U_;
+      return line.str();
+    };
+  }
+
+  SimulationBackend& simulation_;
+  const FullResolutionMesh full_;
+  double U_ = 0.0;
+  FieldColoring coloring_;
+  PreviewOptions preview_;
+  int species_layers_ = 1;
+  std::vector<double> species_U_;
+  std::vector<FieldColoring> species_colorings_;
+};
+
+}  // namespace
+
+std::unique_ptr<PreparedRun> prepare_agent_run(const Scene& scene, const RunOptions& options, long long steps,
+                                               const std::optional<ResumePoint>& resume) {
+  return std::make_unique<AgentRun>(scene, options, steps, resume);
 }
+
+namespace {
 
 // Reads the scene (with the options' overrides and seed) and dispatches once, on its model.
 int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume) {
@@ -226,10 +221,8 @@ int run_simulation(const RunOptions& o, const std::optional<ResumePoint>& resume
   if (o.seed) scene.seed = *o.seed;
   if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
   const long long steps = run_length_in_steps(o, scene);
-  return std::visit(overloaded{[&](const AgentModelSpec&) { return run_agents(scene, o, steps, resume); },
-                               [&](const ReactionDiffusionSpec&) { return run_reaction_diffusion(scene, o, steps, resume); },
-                               [&](const GrowthSpec&) { return run_growth(scene, o, steps, resume); }},
-                    scene.model);
+  std::unique_ptr<PreparedRun> run = prepare_run(scene, o, steps, resume);
+  return run->finish_and_write();
 }
 
 int run_run(const RunOptions& given) {

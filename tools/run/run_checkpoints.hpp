@@ -43,6 +43,10 @@ class RunCheckpoints {
   // of the loop, given its side seconds.
   double simulation_seconds(double side_seconds) const;
 
+  // What identifies this run in a checkpoint (build, backend, device, scene), for a caller that keeps
+  // the state itself (the Python module's save_state / restore_state).
+  const CheckpointHeader& identity() const { return identity_; }
+
   // "resumed_from_step" and "checkpoints" into run.json, then the checkpoint removed: the outputs are
   // complete, so it has nothing left to protect.
   void record(nlohmann::ordered_json& run_json) const;

@@ -1,4 +1,20 @@
-#include "tools/run/run_growth.hpp"
+// `physarum run` for a growth scene (common/scene/scene_growth.hpp, paper 003; prepare_growth_run in
+// tools/run/prepared_run.hpp): the same command, flags, run loop (tools/run/run_loop.hpp) and file
+// names as for a reaction–diffusion scene, on the sheet as it has grown (api/growth_simulation.hpp):
+//   DIR/morphogens.ply, DIR/fields_full.ply   the grown, deformed sheet (its own vertices: the two
+//                         files hold the same mesh) with every morphogen, "area_growth" (rest area
+//                         now / at the start, per vertex) and "stretch" (its square root: the linear
+//                         growth) as float vertex properties; the colours are the preview morphogen's
+//   DIR/preview.png, DIR/result.glb   the grown shape coloured by the preview morphogen, or by the
+//                         area growth when the growth is prescribed and nothing reacts
+//   DIR/stats.csv         time, growth_step, vertices, rest_area, then each morphogen's area-weighted
+//                         mean and variance on the rest metric
+//   DIR/run.json          growth_steps, area_growth, newton_iterations (per growth step), energy,
+//                         vertices (per growth step), the growth records, the spec as run
+//   with --frames K: DIR/frames/frame_NNNN.png and .ply (the sheet at that frame) and DIR/frames.gif.
+// A growth step whose equilibrium solve fails stops the run: the outputs are written for the last
+// converged sheet, the error says which step and what to change, and the exit status is 1.
+#include "tools/run/prepared_run.hpp"
 
 #include "api/session.hpp"
 #include "common/base/errors.hpp"
@@ -72,113 +88,132 @@ void growth_records_json(nlohmann::ordered_json& j, const GrowthSimulation& grow
   j["growth_records"] = steps_json;
 }
 
-}  // namespace
 
-int run_growth(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
-  const GrowthSpec& spec = *scene.growth();
-  TimeLapse time_lapse(o.frames, steps);
+// The growth model's run: the sheet's session, and what it writes on the grown sheet.
+class GrowthRun final : public PreparedRun {
+ public:
+  GrowthRun(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume)
+      : PreparedRun(scene, o, steps, resume),
+        growth_(*session_.growth()),
+        start_full_(build_full_resolution_mesh(session_.surface().input, session_.surface().domain)) {
+    const GrowthSpec& spec = *scene.growth();
+    // With a prescribed growth and no reaction steps the morphogens never change: the picture shows
+    // where the sheet grew instead.
+    show_growth_ = spec.growth.stretch && spec.schedule.reaction_steps == 0;
+    describe_outputs();
+    // The grown sheet has no UV layout: result.glb carries vertex colours.
+    start(session_.surface(), start_full_, std::nullopt);
+  }
 
-  // ---- everything that can reject the input, before any output exists ----
-  Session session(scene, session_options(o, steps));
-  GrowthSimulation& growth = *session.growth();
-  const PreparedSurface& start = session.surface();
-  const FullResolutionMesh start_full = build_full_resolution_mesh(start.input, start.domain);
-  const std::vector<std::string>& morphogens = session.layer_names();
-  const int preview_layer = session.preview_layer();
-  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, start.input, maps_on_input(scene.maps, start, session.maps(), o.scene));
-  // With a prescribed growth and no reaction steps the morphogens never change: the picture shows
-  // where the sheet grew instead.
-  const bool show_growth = spec.growth.stretch && spec.schedule.reaction_steps == 0;
-
+ private:
   // The layers as written: the preview one first, then the other morphogens, the area growth and the stretch.
-  auto layers_now = [&] {
+  std::vector<std::pair<std::string, IntrinsicVertexData<double>>> layers_now() const {
+    const std::vector<std::string>& morphogens = session_.layer_names();
+    const int preview_layer = session_.preview_layer();
     std::vector<std::pair<std::string, IntrinsicVertexData<double>>> layers;
-    const std::vector<IntrinsicVertexData<double>> u = morphogen_layers(growth);
-    const IntrinsicVertexData<double> area = growth.area_growth();
+    const std::vector<IntrinsicVertexData<double>> u = morphogen_layers(growth_);
+    const IntrinsicVertexData<double> area = growth_.area_growth();
     IntrinsicVertexData<double> stretch(area.size());
     for (size_t i = 0; i < area.size(); ++i) stretch[i] = std::sqrt(area[i]);
-    if (show_growth) layers.emplace_back("area_growth", area);
+    if (show_growth_) layers.emplace_back("area_growth", area);
     layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], u[static_cast<size_t>(preview_layer)]);
     for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
       if (m != preview_layer) layers.emplace_back(morphogens[static_cast<size_t>(m)], u[static_cast<size_t>(m)]);
-    if (!show_growth) layers.emplace_back("area_growth", area);
+    if (!show_growth_) layers.emplace_back("area_growth", area);
     layers.emplace_back("stretch", stretch);
     return layers;
-  };
-  auto coloring_of = [&](const auto& shown) { return scene.color_map.mapping(color_unit(shown)); };
-  std::vector<FrameMesh> frame_meshes;
+  }
+  template <class Values>
+  ColorMapping coloring_of(const Values& shown) const {
+    return session_.scene().color_map.mapping(color_unit(shown));
+  }
 
-  ModelRun model;
-  model.fields_file = "morphogens.ply";
-  model.fields_description = "growth model: morphogens, area growth and stretch on the grown sheet";
-  model.stats_header = "time,growth_step,vertices,rest_area," + morphogen_stats_header(morphogens).substr(5);
-  model.stats_row = [&] {
-    const GrowingSheet& sheet = growth.sheet();
-    std::ostringstream head;
-    head.precision(17);
-    head << growth.time() << "," << growth.growth_steps_done() << "," << sheet.topology.vertex_count << ","
-         << rest_area(sheet.rest);
-    const std::string row = morphogen_stats_row(growth.time(), morphogen_layers(growth), growth.surface().domain.vertex_mass);
-    return head.str() + row.substr(row.find(','));
-  };
-  model.frame = [&] {
-    const PreparedSurface& now = growth.surface();
-    const auto layers = layers_now();
-    PreviewOptions preview;
-    preview.coloring = coloring_of(layers.front().second);
-    FrameMesh kept{now.input, {}};
-    for (const auto& [name, values] : layers)
-      kept.fields.emplace_back(name, InputVertexData<double>(std::vector<double>(values.begin(), values.end())));
-    frame_meshes.push_back(std::move(kept));
-    return render_preview(now.input, frame_meshes.back().fields.front().second, preview);
-  };
-  model.check_end = [&] { check_morphogens_finite(growth, morphogens, scene.source); };
-  std::optional<FullResolutionMesh> final_full;
-  model.result = [&] {
-    ModelResult r;
-    r.layers = layers_now();
-    r.coloring = coloring_of(r.layers.front().second);
-    r.surface = &growth.surface();
-    final_full = build_full_resolution_mesh(r.surface->input, r.surface->domain);
-    r.full = &*final_full;
-    return r;
-  };
-  model.stopped = [&] { return growth.stopped(); };
-  model.write_extra = [&](const std::filesystem::path& out, std::vector<std::string>& written) {
-    for (size_t k = 0; k < frame_meshes.size(); ++k) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%04zu.ply", k + 1);
-      std::vector<PlyField> fields;
-      for (const auto& [field, values] : frame_meshes[k].fields) fields.push_back(PlyField{field, values});
-      write_fields_ply((out / "frames" / name).string(), frame_meshes[k].mesh, fields, coloring_of(fields.front().values),
-                       "growth model: the sheet at a time-lapse frame");
-    }
-    if (!frame_meshes.empty()) written.push_back("frames/*.ply");
-  };
-  model.run_json = [&](nlohmann::ordered_json& j, double /*seconds*/) {
-    j["model"] = "growth";
-    j["morphogens"] = morphogens;
-    // The layer the pictures show and the unit its colours count in (what `physarum render` reads).
-    const auto shown = layers_now().front();
-    j["preview_morphogen"] = shown.first;
-    j["color_unit"] = color_unit(shown.second);
-    j["time_step"] = scene.time_step;
-    j["substeps"] = growth.substeps();
-    j["seed"] = scene.seed;
-    growth_records_json(j, growth);
-    j["initial_vertices"] = start.domain.vertex_count;
-    j["growth"] = growth_json(spec);
-    if (!scene.maps.empty()) j["maps"] = scene.maps_given;
-  };
-  model.summary = [&](double seconds) {
-    std::ostringstream line;
-    line << "growth, " << growth.steps_taken() << " steps (" << growth.growth_steps_done() << " growth steps, "
-         << growth.sheet().topology.vertex_count << " vertices, area x" << rest_area(growth.sheet().rest) / growth.initial_rest_area()
-         << ") in " << seconds << " s";
-    return line.str();
-  };
-  const std::optional<TexelLocations> no_texture;  // the grown sheet has no UV layout: result.glb carries vertex colours
-  return run_and_write(growth, RunSetup{o, scene, steps, resume, start, start_full, no_texture, time_lapse}, model);
+  void describe_outputs() {
+    const Scene& scene = session_.scene();
+    const GrowthSpec& spec = *scene.growth();
+    const std::vector<std::string>& morphogens = session_.layer_names();
+    model_.fields_file = "morphogens.ply";
+    model_.fields_description = "growth model: morphogens, area growth and stretch on the grown sheet";
+    model_.stats_header = "time,growth_step,vertices,rest_area," + morphogen_stats_header(morphogens).substr(5);
+    model_.stats_row = [this] {
+      const GrowingSheet& sheet = growth_.sheet();
+      std::ostringstream head;
+      head.precision(17);
+      head << growth_.time() << "," << growth_.growth_steps_done() << "," << sheet.topology.vertex_count << ","
+           << rest_area(sheet.rest);
+      const std::string row =
+          morphogen_stats_row(growth_.time(), morphogen_layers(growth_), growth_.surface().domain.vertex_mass);
+      return head.str() + row.substr(row.find(','));
+    };
+    model_.frame = [this] {
+      const PreparedSurface& now = growth_.surface();
+      const auto layers = layers_now();
+      PreviewOptions preview;
+      preview.coloring = coloring_of(layers.front().second);
+      FrameMesh kept{now.input, {}};
+      for (const auto& [name, values] : layers)
+        kept.fields.emplace_back(name, InputVertexData<double>(std::vector<double>(values.begin(), values.end())));
+      frame_meshes_.push_back(std::move(kept));
+      return render_preview(now.input, frame_meshes_.back().fields.front().second, preview);
+    };
+    model_.check_end = [this, &morphogens, &scene] { check_morphogens_finite(growth_, morphogens, scene.source); };
+    model_.result = [this] {
+      ModelResult r;
+      r.layers = layers_now();
+      r.coloring = coloring_of(r.layers.front().second);
+      r.surface = &growth_.surface();
+      final_full_ = build_full_resolution_mesh(r.surface->input, r.surface->domain);
+      r.full = &*final_full_;
+      return r;
+    };
+    model_.stopped = [this] { return growth_.stopped(); };
+    model_.write_extra = [this](const std::filesystem::path& out, std::vector<std::string>& written) {
+      for (size_t k = 0; k < frame_meshes_.size(); ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%04zu.ply", k + 1);
+        std::vector<PlyField> fields;
+        for (const auto& [field, values] : frame_meshes_[k].fields) fields.push_back(PlyField{field, values});
+        write_fields_ply((out / "frames" / name).string(), frame_meshes_[k].mesh, fields,
+                         coloring_of(fields.front().values), "growth model: the sheet at a time-lapse frame");
+      }
+      if (!frame_meshes_.empty()) written.push_back("frames/*.ply");
+    };
+    model_.run_json = [this, &scene, &spec, &morphogens](nlohmann::ordered_json& j, double /*seconds*/) {
+      j["model"] = "growth";
+      j["morphogens"] = morphogens;
+      // The layer the pictures show and the unit its colours count in (what `physarum render` reads).
+      const auto shown = layers_now().front();
+      j["preview_morphogen"] = shown.first;
+      j["color_unit"] = color_unit(shown.second);
+      j["time_step"] = scene.time_step;
+      j["substeps"] = growth_.substeps();
+      j["seed"] = scene.seed;
+      growth_records_json(j, growth_);
+      j["initial_vertices"] = session_.surface().domain.vertex_count;
+      j["growth"] = growth_json(spec);
+      if (!scene.maps.empty()) j["maps"] = scene.maps_given;
+    };
+    model_.summary = [this](double seconds) {
+      std::ostringstream line;
+      line << "growth, " << growth_.steps_taken() << " steps (" << growth_.growth_steps_done() << " growth steps, "
+           << growth_.sheet().topology.vertex_count << " vertices, area x"
+           << rest_area(growth_.sheet().rest) / growth_.initial_rest_area() << ") in " << seconds << " s";
+      return line.str();
+    };
+  }
+
+  GrowthSimulation& growth_;
+  const FullResolutionMesh start_full_;
+  bool show_growth_ = false;
+  std::vector<FrameMesh> frame_meshes_;  // a frame's sheet, kept until the outputs are written
+  std::optional<FullResolutionMesh> final_full_;
+};
+
+}  // namespace
+
+std::unique_ptr<PreparedRun> prepare_growth_run(const Scene& scene, const RunOptions& options, long long steps,
+                                                const std::optional<ResumePoint>& resume) {
+  return std::make_unique<GrowthRun>(scene, options, steps, resume);
 }
 
 }  // namespace physarum::cli

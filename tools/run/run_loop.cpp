@@ -1,6 +1,8 @@
 #include "tools/run/run_loop.hpp"
 
 #include "common/base/atomic_write.hpp"
+#include "common/base/errors.hpp"
+#include "common/run/checkpoint.hpp"
 #include "common/color/color_map_json.hpp"
 #include "common/output/ply_writer.hpp"
 #include "common/setup/scene_surface.hpp"
@@ -48,35 +50,6 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_draw_{};
 };
 
-// The timed loop: returns the simulation seconds (statistics rows, frames and checkpoints left out;
-// a resumed run adds the seconds before its checkpoint) and leaves the statistics text in `stats`.
-double simulate(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model, RunCheckpoints& checkpoints,
-                std::string& stats) {
-  if (const std::string* resumed = checkpoints.resumed_stats()) stats = *resumed;
-  else stats = model.stats_header + "\n" + model.stats_row() + "\n";
-  const long long steps = setup.steps;
-  const long long stats_every = std::max<long long>(1, steps / kStatsRows);
-  ProgressBar progress(steps);
-  checkpoints.start();
-  double side_seconds = 0.0;  // statistics rows and frames: not simulation
-  for (long long s = checkpoints.first_step(); s <= steps; ++s) {
-    simulation.step();
-    const bool row = s % stats_every == 0 || s == steps;
-    if (row || setup.time_lapse.due(s)) {
-      simulation.finish();  // the steps enqueued so far count as simulation, not as the reading below
-      const auto t = std::chrono::steady_clock::now();
-      if (row) stats += model.stats_row() + "\n";
-      if (setup.time_lapse.due(s)) setup.time_lapse.add(model.frame());
-      side_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    }
-    if (model.stopped && model.stopped()) break;
-    checkpoints.after_step(s, simulation, stats, side_seconds);
-    progress.update(s);
-  }
-  simulation.finish();
-  return checkpoints.simulation_seconds(side_seconds);
-}
-
 // The fields on the input mesh and at full resolution, preview.png, texture and result.glb; appends
 // the names written, in order, to `written`.
 SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSetup& setup, const ModelRun& model,
@@ -111,21 +84,102 @@ SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSe
 
 }  // namespace
 
-int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model) {
-  const RunOptions& o = setup.options;
-  RunCheckpoints checkpoints(simulation, o, setup.scene.mesh, setup.scene.time_step, setup.steps, setup.resume);
+RunLoop::RunLoop(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model)
+    : simulation_(simulation),
+      setup_(setup),
+      model_(model),
+      checkpoints_(std::make_unique<RunCheckpoints>(simulation, setup.options, setup.scene.mesh, setup.scene.time_step,
+                                                    setup.steps, setup.resume)),
+      next_step_(checkpoints_->first_step()),
+      stats_every_(std::max<long long>(1, setup.steps / kStatsRows)),
+      last_row_(next_step_ - 1) {
+  if (const std::string* resumed = checkpoints_->resumed_stats()) stats_ = *resumed;
+  else stats_ = model.stats_header + "\n" + model.stats_row() + "\n";
+  checkpoints_->start();
+  returned_ = std::chrono::steady_clock::now();
+}
+
+RunLoop::~RunLoop() = default;
+
+long long RunLoop::planned_steps() const { return setup_.steps; }
+const RunOptions& RunLoop::options() const { return setup_.options; }
+
+bool RunLoop::over() const { return next_step_ > setup_.steps || (model_.stopped && model_.stopped()); }
+
+bool RunLoop::step() {
+  if (over()) return false;
+  // The caller's time since the last step is not simulation.
+  side_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - returned_).count();
+  const long long s = next_step_++;
+  simulation_.step();
+  const bool row = s % stats_every_ == 0 || s == setup_.steps;
+  if (row || setup_.time_lapse.due(s)) {
+    simulation_.finish();  // the steps enqueued so far count as simulation, not as the reading below
+    const auto t = std::chrono::steady_clock::now();
+    if (row) {
+      stats_ += model_.stats_row() + "\n";
+      last_row_ = s;
+    }
+    if (setup_.time_lapse.due(s)) setup_.time_lapse.add(model_.frame());
+    side_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  }
+  if (!(model_.stopped && model_.stopped())) checkpoints_->after_step(s, simulation_, stats_, side_seconds_);
+  returned_ = std::chrono::steady_clock::now();
+  return true;
+}
+
+std::string RunLoop::save_state() const {
+  CheckpointHeader header = checkpoints_->identity();
+  header.step = steps_taken();
+  header.run = {{"stats", stats_}, {"last_row", last_row_}, {"seconds", simulation_seconds()}};
+  return checkpoint_bytes(header, simulation_.save_state());
+}
+
+void RunLoop::restore_state(const std::string& bytes, const std::string& where) {
+  const Checkpoint checkpoint = parse_checkpoint(bytes, where);
+  check_checkpoint_matches(checkpoint.header, checkpoints_->identity(), where);
+  if (checkpoint.header.step > setup_.steps)
+    throw InputError(where + ": the state is at step " + std::to_string(checkpoint.header.step) + ", past this run's " +
+                     std::to_string(setup_.steps) + " steps");
   std::string stats;
-  const double seconds = simulate(simulation, setup, model, checkpoints, stats);
+  long long last_row = 0;
+  try {
+    stats = checkpoint.header.run.at("stats").get<std::string>();
+    last_row = checkpoint.header.run.at("last_row").get<long long>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where + ": not a saved run state (" + e.what() + ")");
+  }
+  simulation_.restore_state(checkpoint.state);
+  stats_ = std::move(stats);
+  last_row_ = last_row;
+  next_step_ = checkpoint.header.step + 1;
+}
+
+double RunLoop::simulation_seconds() const { return checkpoints_->simulation_seconds(side_seconds_); }
+
+int RunLoop::write(const std::string& folder) {
+  simulation_.finish();
+  const double seconds = simulation_seconds();
+  if (last_row_ != steps_taken()) {
+    stats_ += model_.stats_row() + "\n";
+    last_row_ = steps_taken();
+  }
+  const RunSetup& setup = setup_;
+  const ModelRun& model = model_;
+  SimulationBackend& simulation = simulation_;
+  RunCheckpoints& checkpoints = *checkpoints_;
+  const std::string& stats = stats_;
+  const RunOptions& o = setup.options;
   if (model.check_end) model.check_end();
   const ModelResult result = model.result();
 
-  create_output_folder(o.out);
-  const std::filesystem::path out(o.out);
+  create_output_folder(folder);
+  const std::filesystem::path out(folder);
   std::vector<std::string> written;
   const SurfaceExportsWritten exports = write_fields(out, setup, model, result, written);
   write_text_file_atomically((out / "stats.csv").string(), stats);
   written.insert(written.end(), {"stats.csv", "run.json"});
-  setup.time_lapse.write(o.out);
+  setup.time_lapse.write(folder);
   if (setup.time_lapse.enabled()) written.insert(written.end(), {"frames/", "frames.gif"});
   if (model.write_extra) model.write_extra(out, written);
   const std::optional<std::string> stopped = model.stopped ? model.stopped() : std::nullopt;
@@ -134,7 +188,7 @@ int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const Mo
   j["backend"] = simulation.backend_name();
   j["backend_requested"] = o.backend;
   j["device"] = simulation.device_name();
-  j["steps"] = stopped ? simulation.steps_taken() : setup.steps;
+  j["steps"] = stopped ? simulation.steps_taken() : steps_taken();
   if (stopped) j["stopped"] = *stopped;
   j["sim_time"] = simulation.time();
   j["seconds"] = seconds;
@@ -166,6 +220,16 @@ int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const Mo
     return 1;
   }
   return 0;
+}
+
+}  // namespace physarum::cli
+
+namespace physarum::cli {
+
+int run_to_end_and_write(RunLoop& loop) {
+  ProgressBar progress(loop.planned_steps());
+  while (loop.step()) progress.update(loop.steps_taken());
+  return loop.write(loop.options().out);
 }
 
 }  // namespace physarum::cli

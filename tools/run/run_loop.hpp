@@ -18,7 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
+#include <memory>
 #include <functional>
 #include <optional>
 #include <string>
@@ -76,7 +78,52 @@ struct RunSetup {
   TimeLapse& time_lapse;  // built (and its --frames checked) before the surface
 };
 
-// Runs `simulation` for setup.steps steps as described and writes the outputs; returns the exit code.
-int run_and_write(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model);
+class RunCheckpoints;  // tools/run/run_checkpoints.hpp
+
+// The one run loop, a step at a time: `physarum run` runs it to the end (run_to_end_and_write); the Python
+// module's Simulation steps it as its caller asks and writes when asked. Both give the same
+// statistics rows, frames, checkpoints and files for the same steps.
+class RunLoop {
+ public:
+  // Restores a resumed run's checkpoint (setup.resume) and takes stats.csv's first row.
+  RunLoop(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model);
+  ~RunLoop();
+
+  // The next step of the run and what is due after it: a statistics row, a time-lapse frame, a
+  // checkpoint. False, taking no step, once the run is over (its last step taken, or the model stopped).
+  bool step();
+  long long steps_taken() const { return next_step_ - 1; }
+  long long planned_steps() const;
+  const RunOptions& options() const;
+  bool over() const;
+  // The seconds spent in step() simulating (statistics rows and frames left out; a resumed run's
+  // seconds before its checkpoint included).
+  double simulation_seconds() const;
+  // stats.csv's text so far (its header and every row taken).
+  const std::string& statistics() const { return stats_; }
+  // The run's whole state now as checkpoint bytes (common/run/checkpoint.hpp: the backend's state, the
+  // steps taken, the statistics text), and back: restore_state refuses (InputError naming `where`) the
+  // state of another build, backend, device or scene, or corrupted bytes, and changes nothing then.
+  std::string save_state() const;
+  void restore_state(const std::string& bytes, const std::string& where);
+  // Ends the run where it stands and writes every output into `folder` (options().out for the command
+  // line); returns the exit code (1: the model stopped early). A run written before its last step
+  // records the steps taken and closes stats.csv with a row.
+  int write(const std::string& folder);
+
+ private:
+  SimulationBackend& simulation_;
+  const RunSetup& setup_;
+  const ModelRun& model_;
+  std::unique_ptr<RunCheckpoints> checkpoints_;
+  std::string stats_;
+  long long next_step_ = 1, stats_every_ = 1, last_row_ = 0;
+  double side_seconds_ = 0.0;  // statistics rows, frames and the caller's time between steps
+  std::chrono::steady_clock::time_point returned_;
+};
+
+// `physarum run`'s way: steps `loop` to its end (a progress bar on a terminal) and writes the outputs;
+// returns the exit code.
+int run_to_end_and_write(RunLoop& loop);
 
 }  // namespace physarum::cli

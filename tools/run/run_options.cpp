@@ -59,7 +59,7 @@ RunOptions run_options_from_json(const nlohmann::json& j, const std::string& whe
 
 std::string scene_identity_hash(const RunOptions& o, const std::string& mesh) {
   ContentHasher h;
-  h.add(hex64(file_content_hash(o.scene)));
+  h.add(hex64(o.scene_text.empty() ? file_content_hash(o.scene) : content_hash(o.scene_text)));
   h.add("\noverrides ");
   h.add(o.overrides().dump());
   h.add("\nseed ");

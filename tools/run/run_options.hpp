@@ -18,6 +18,9 @@ namespace physarum::cli {
 
 struct RunOptions {
   std::string scene;
+  // The scene as JSON text when it comes from code, not from a file (the Python module's Scene): what
+  // the identity hash covers instead of the file's bytes. "" for a file.
+  std::string scene_text;
   std::vector<std::string> sets;  // --set KEY=VALUE (common/scene/scene_overrides.hpp), in the order given
   std::string backend = "auto";
   std::string device;  // --device SPEC (auto or opencl); "" = $PHYSARUM_DEVICE or the default choice

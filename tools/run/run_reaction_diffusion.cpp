@@ -7,6 +7,7 @@
 #include "common/output/texture_bake.hpp"
 #include "common/output/time_lapse.hpp"
 #include "api/session.hpp"
+#include "tools/run/prepared_run.hpp"
 #include "tools/run/run_loop.hpp"
 #include "tools/run/surface_exports.hpp"
 
@@ -72,84 +73,99 @@ std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexDa
   return row;
 }
 
-int run_reaction_diffusion(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume) {
-  const ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
-  TimeLapse time_lapse(o.frames, steps);
+namespace {
 
-  // ---- everything that can reject the input, before any output exists ----
-  // The surface, the maps (through the map cache, as the agent model's: a geodesic distance or a
-  // direction field is the slow part of a flower scene's start, and a sweep runs the same maps
-  // many times) and the system's backend.
-  Session session(scene, session_options(o, steps));
-  const PreparedSurface& surface = session.surface();
-  const SurfaceDomain& domain = surface.domain;
-  const std::vector<std::string>& morphogens = session.layer_names();
-  const int preview_layer = session.preview_layer();
-  const int substeps = session.substeps();
-  const InputMesh& input = surface.input;
-  const FullResolutionMesh full = build_full_resolution_mesh(input, domain);
-  const std::optional<TexelLocations> texels = texels_for_run(input, domain, o.texture, "physarum run");
-  SimulationBackend& simulation = session.backend();
-  // Written now, not with the results: a user checking the maps of a long run sees them at once.
-  if (!o.maps_out.empty()) write_maps_ply(o.maps_out, input, maps_on_input(scene.maps, surface, session.maps(), o.scene));
+// A reaction-diffusion system's run: its surface, maps and backend, and what it writes.
+class ReactionDiffusionRun final : public PreparedRun {
+ public:
+  ReactionDiffusionRun(const Scene& scene, const RunOptions& o, long long steps, const std::optional<ResumePoint>& resume)
+      : PreparedRun(scene, o, steps, resume),
+        simulation_(session_.backend()),
+        full_(build_full_resolution_mesh(session_.surface().input, session_.surface().domain)) {
+    // The maps go through the map cache, as the agent model's: a geodesic distance or a direction
+    // field is the slow part of a flower scene's start, and a sweep runs the same maps many times.
+    std::optional<TexelLocations> texels =
+        texels_for_run(session_.surface().input, session_.surface().domain, o.texture, "physarum run");
+    describe_outputs(steps);
+    start(session_.surface(), full_, std::move(texels));
+  }
 
-  auto layers = [&] {
+ private:
+  std::vector<IntrinsicVertexData<double>> layers() const {
     std::vector<IntrinsicVertexData<double>> all;
-    for (int m = 0; m < simulation.dynamic_layer_count(); ++m) all.push_back(simulation.field_values(m));
+    for (int m = 0; m < simulation_.dynamic_layer_count(); ++m) all.push_back(simulation_.field_values(m));
     return all;
-  };
-  auto color_unit = [](const IntrinsicVertexData<double>& values) { return morphogen_color_unit(values.values()); };
+  }
+  static double color_unit(const IntrinsicVertexData<double>& values) { return morphogen_color_unit(values.values()); }
 
   // ---- what a reaction-diffusion system writes (the run itself is the one run loop's) ----
-  ModelRun model;
-  model.fields_file = "morphogens.ply";
-  model.fields_description = "morphogens";
-  model.stats_header = morphogen_stats_header(morphogens);
-  model.stats_row = [&] { return morphogen_stats_row(simulation.time(), layers(), domain.vertex_mass); };
-  model.frame = [&] {
-    const IntrinsicVertexData<double> values = simulation.field_values(preview_layer);
-    PreviewOptions preview;
-    preview.coloring = scene.color_map.mapping(color_unit(values));
-    return render_preview(full.mesh, full.vertex_values(values), preview);
-  };
-  model.check_end = [&] { check_morphogens_finite(simulation, morphogens, scene.source); };
-  model.result = [&] {
-    // The preview morphogen first: the colours, the preview and the exports show the first layer.
-    ModelResult r;
-    r.layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], simulation.field_values(preview_layer));
-    for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
-      if (m != preview_layer) r.layers.emplace_back(morphogens[static_cast<size_t>(m)], simulation.field_values(m));
-    r.coloring = scene.color_map.mapping(color_unit(r.layers.front().second));
-    return r;
-  };
-  model.run_json = [&](nlohmann::ordered_json& j, double seconds) {
-    j["model"] = spec.model;
-    j["morphogens"] = morphogens;
-    j["preview_morphogen"] = spec.preview_morphogen;
-    j["time_step"] = scene.time_step;
-    j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
-    j["integrator"] = integrator_name(spec.integrator);
-    j["substeps"] = substeps;
-    j["seed"] = scene.seed;
-    const std::vector<IntrinsicVertexData<double>> final_layers = layers();
-    for (size_t m = 0; m < final_layers.size(); ++m) {
-      const auto& u = final_layers[m];
-      j["final"][morphogens[m]] = {{"min", *std::min_element(u.begin(), u.end())},
-                                   {"max", *std::max_element(u.begin(), u.end())}};
-    }
-    // What `physarum render` recolours by: the unit the colour map's levels count in (half the
-    // preview morphogen's largest value; an agent run's unit is U).
-    j["color_unit"] = color_unit(final_layers[static_cast<size_t>(preview_layer)]);
-    j["reaction_diffusion"] = reaction_diffusion_json(spec);
-    if (!scene.maps.empty()) j["maps"] = scene.maps_given;
-  };
-  model.summary = [&](double seconds) {
-    std::ostringstream line;
-    line << spec.model << ", " << steps << " steps (" << simulation.time() << " s simulated, " << substeps << " sub-step"
-         << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s";
-    return line.str();
-  };
-  return run_and_write(simulation, RunSetup{o, scene, steps, resume, surface, full, texels, time_lapse}, model);
+  void describe_outputs(long long steps) {
+    const Scene& scene = session_.scene();
+    const ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
+    const std::vector<std::string>& morphogens = session_.layer_names();
+    const int preview_layer = session_.preview_layer();
+    const int substeps = session_.substeps();
+    model_.fields_file = "morphogens.ply";
+    model_.fields_description = "morphogens";
+    model_.stats_header = morphogen_stats_header(morphogens);
+    model_.stats_row = [this] {
+      return morphogen_stats_row(simulation_.time(), layers(), session_.surface().domain.vertex_mass);
+    };
+    model_.frame = [this, &scene, preview_layer] {
+      const IntrinsicVertexData<double> values = simulation_.field_values(preview_layer);
+      PreviewOptions preview;
+      preview.coloring = scene.color_map.mapping(color_unit(values));
+      return render_preview(full_.mesh, full_.vertex_values(values), preview);
+    };
+    model_.check_end = [this, &morphogens, &scene] { check_morphogens_finite(simulation_, morphogens, scene.source); };
+    model_.result = [this, &scene, &morphogens, preview_layer] {
+      // The preview morphogen first: the colours, the preview and the exports show the first layer.
+      ModelResult r;
+      r.layers.emplace_back(morphogens[static_cast<size_t>(preview_layer)], simulation_.field_values(preview_layer));
+      for (int m = 0; m < static_cast<int>(morphogens.size()); ++m)
+        if (m != preview_layer) r.layers.emplace_back(morphogens[static_cast<size_t>(m)], simulation_.field_values(m));
+      r.coloring = scene.color_map.mapping(color_unit(r.layers.front().second));
+      return r;
+    };
+    model_.run_json = [this, &scene, &spec, &morphogens, preview_layer, substeps, steps](nlohmann::ordered_json& j,
+                                                                                       double seconds) {
+      j["model"] = spec.model;
+      j["morphogens"] = morphogens;
+      j["preview_morphogen"] = spec.preview_morphogen;
+      j["time_step"] = scene.time_step;
+      j["steps_per_second"] = seconds > 0 ? static_cast<double>(steps) / seconds : 0.0;
+      j["integrator"] = integrator_name(spec.integrator);
+      j["substeps"] = substeps;
+      j["seed"] = scene.seed;
+      const std::vector<IntrinsicVertexData<double>> final_layers = layers();
+      for (size_t m = 0; m < final_layers.size(); ++m) {
+        const auto& u = final_layers[m];
+        j["final"][morphogens[m]] = {{"min", *std::min_element(u.begin(), u.end())},
+                                     {"max", *std::max_element(u.begin(), u.end())}};
+      }
+      // What `physarum render` recolours by: the unit the colour map's levels count in (half the
+      // preview morphogen's largest value; an agent run's unit is U).
+      j["color_unit"] = color_unit(final_layers[static_cast<size_t>(preview_layer)]);
+      j["reaction_diffusion"] = reaction_diffusion_json(spec);
+      if (!scene.maps.empty()) j["maps"] = scene.maps_given;
+    };
+    model_.summary = [this, &spec, substeps, steps](double seconds) {
+      std::ostringstream line;
+      line << spec.model << ", " << steps << " steps (" << simulation_.time() << " s simulated, " << substeps
+           << " sub-step" << (substeps > 1 ? "s" : "") << " each) in " << seconds << " s";
+      return line.str();
+    };
+  }
+
+  SimulationBackend& simulation_;
+  const FullResolutionMesh full_;
+};
+
+}  // namespace
+
+std::unique_ptr<PreparedRun> prepare_reaction_diffusion_run(const Scene& scene, const RunOptions& options,
+                                                            long long steps, const std::optional<ResumePoint>& resume) {
+  return std::make_unique<ReactionDiffusionRun>(scene, options, steps, resume);
 }
 
 }  // namespace physarum::cli

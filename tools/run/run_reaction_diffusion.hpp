@@ -1,5 +1,6 @@
 #pragma once
-// `physarum run` for a reaction-diffusion scene (common/scene/scene_reaction_diffusion.hpp): the same
+// `physarum run` for a reaction-diffusion scene (common/scene/scene_reaction_diffusion.hpp; its
+// preparation is prepare_reaction_diffusion_run in tools/run/prepared_run.hpp): the same
 // command, flags, run loop (tools/run/run_loop.hpp) and output files as for the agent model, with the
 // morphogens as the fields:
 //   DIR/morphogens.ply    the input mesh with every morphogen as a float vertex property of its name
@@ -29,11 +30,6 @@
 #include <vector>
 
 namespace physarum::cli {
-
-// `scene` is loaded with the options' overrides and seed applied; `steps` is the run length already
-// resolved; `resume` is the checkpoint to continue from (the options are then the checkpoint's).
-int run_reaction_diffusion(const Scene& scene, const RunOptions& options, long long steps,
-                           const std::optional<ResumePoint>& resume);
 
 // The colours' unit of a layer: half its largest value (levels in multiples of it), so the picture
 // uses the whole colour map whatever the model's units; 1 for a layer with nothing above zero.

@@ -1,0 +1,64 @@
+#include "tools/run/prepared_run.hpp"
+
+#include "common/base/errors.hpp"
+#include "common/base/overloaded.hpp"
+#include "common/output/maps_ply.hpp"
+#include "common/setup/scene_maps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace physarum::cli {
+
+PreparedRun::PreparedRun(const Scene& scene, const RunOptions& options, long long steps,
+                         const std::optional<ResumePoint>& resume)
+    : options_(options),
+      steps_(steps),
+      resume_(resume),
+      time_lapse_(options.frames, steps),
+      session_(scene, session_options(options, steps)) {
+  if (!options_.maps_out.empty())
+    write_maps_ply(options_.maps_out, session_.surface().input,
+                   maps_on_input(scene.maps, session_.surface(), session_.maps(), options_.scene));
+}
+
+PreparedRun::~PreparedRun() = default;
+
+void PreparedRun::start(const PreparedSurface& surface, const FullResolutionMesh& full,
+                        std::optional<TexelLocations> texels) {
+  texels_ = std::move(texels);
+  setup_.emplace(RunSetup{options_, session_.scene(), steps_, resume_, surface, full, texels_, time_lapse_});
+  loop_ = std::make_unique<RunLoop>(session_.backend(), *setup_, model_);
+}
+
+long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
+  auto steps_for = [&](double seconds) {
+    // Nearest whole step: T / dt often lands a rounding error away from an integer.
+    return std::max<long long>(1, std::llround(seconds / scene.time_step));
+  };
+  if (const GrowthSpec* growth = scene.growth()) {
+    // --steps may only restate it (scripts that pass --steps to every run).
+    const long long schedule = growth->schedule.total_steps();
+    if ((o.steps && *o.steps != schedule) || o.sim_time)
+      throw UsageError(std::string(o.steps ? "--steps" : "--sim-time") + ": a growth scene's length is its schedule (" +
+                       std::to_string(schedule) + " steps here: --set schedule.growth_steps=G, "
+                       "--set schedule.reaction_steps=N)");
+    return schedule;
+  }
+  if (o.steps) return *o.steps;
+  if (o.sim_time) return steps_for(*o.sim_time);
+  if (scene.steps) return *scene.steps;
+  if (scene.sim_time) return steps_for(*scene.sim_time);
+  throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
+}
+
+std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& options, long long steps,
+                                         const std::optional<ResumePoint>& resume) {
+  return std::visit(
+      overloaded{[&](const AgentModelSpec&) { return prepare_agent_run(scene, options, steps, resume); },
+                 [&](const ReactionDiffusionSpec&) { return prepare_reaction_diffusion_run(scene, options, steps, resume); },
+                 [&](const GrowthSpec&) { return prepare_growth_run(scene, options, steps, resume); }},
+      scene.model);
+}
+
+}  // namespace physarum::cli
