@@ -6,12 +6,14 @@ viewer or script would, and checks that the files say what the run wrote.
 
 - result.glb, loaded twice: with trimesh (a widely used glTF loader) and with the small GLB parser
   below (the binary container and accessors read straight from the specification), which must agree.
-  Its vertices are pheromone.ply's vertices in order followed by the copies made along UV seams
-  (run.json's result_glb_vertices and result_glb_seam_splits); every triangle, position and value is
-  pheromone.ply's; COLOR_0 (or _FIELD_COLOR when a texture is embedded) is the PLY's sRGB colours
-  converted to linear light by the sRGB transfer function; POSITION carries its min/max; normals are
+  Its mesh is the PLY's that carries the run's detail: with a baked texture (a mesh with UVs) the
+  input mesh's (pheromone.ply or morphogens.ply), its vertices in order followed by the copies made
+  along UV seams (run.json's result_glb_vertices and result_glb_seam_splits); without, fields_full.ply's
+  (every intrinsic vertex). Every triangle, position and value is that PLY's; COLOR_0 (or
+  _FIELD_COLOR when a texture is embedded) is the PLY's sRGB colours converted to linear light by the
+  sRGB transfer function; POSITION carries its min/max; normals are
   unit length; an embedded texture decodes (through Pillow) to texture.png's size when that exists.
-- pheromone.ply and, when present, fields_full.ply, loaded with trimesh and with the PLY parser
+- pheromone.ply (or morphogens.ply) and, when present, fields_full.ply, loaded with trimesh and with the PLY parser
   below: same vertex count as the header, same positions and vertex colours.
 
 Exits 1 with one line per failed check; prints a summary ending in 'N passed, N failed'.
@@ -169,7 +171,7 @@ def check_glb(checks, run_dir, ply_vertices, ply_faces, run):
     n = len(ply_vertices)
     expected = n + run["result_glb_seam_splits"]
     checks.check(run["result_glb_vertices"] == expected, f"run.json: result_glb_vertices {run['result_glb_vertices']} != {n} + seam splits")
-    checks.check(len(position) == expected, f"result.glb: {len(position)} vertices, expected {n} input vertices + {run['result_glb_seam_splits']} seam splits")
+    checks.check(len(position) == expected, f"result.glb: {len(position)} vertices, expected {n} PLY vertices + {run['result_glb_seam_splits']} seam splits")
 
     # trimesh, as a viewer loads it, sees the same arrays.
     scene = trimesh.load(path, process=False)
@@ -195,7 +197,7 @@ def check_glb(checks, run_dir, ply_vertices, ply_faces, run):
                         checks.check(image.size == baked.size, f"result.glb texture is {image.size}, texture.png {baked.size}")
                 checks.check(image.size[0] > 0 and image.size[1] > 0, "result.glb: empty texture")
 
-    # Each file vertex is an input vertex: the first n in order, the copies found by position and value.
+    # Each file vertex is an PLY vertex: the first n in order, the copies found by position and value.
     ply_xyz = np.column_stack([ply_vertices["x"], ply_vertices["y"], ply_vertices["z"]]).astype(np.float32)
     ply_value = ply_vertices[[p for p in ply_vertices.dtype.names if p not in ("x", "y", "z", "red", "green", "blue")][0]]
     source = np.arange(len(position))
@@ -203,27 +205,29 @@ def check_glb(checks, run_dir, ply_vertices, ply_faces, run):
         by_key = {ply_xyz[v].tobytes() + ply_value[v].tobytes(): v for v in range(n)}
         for i in range(n, len(position)):
             source[i] = by_key.get(position[i].tobytes() + value[i].tobytes(), -1)
-        checks.check(np.all(source >= 0), "result.glb: seam copies that are no input vertex")
+        checks.check(np.all(source >= 0), "result.glb: seam copies that are no PLY vertex")
         source = np.maximum(source, 0)
-        checks.check(np.array_equal(position[:n], ply_xyz), "result.glb: first vertices are not pheromone.ply's, in order")
-        checks.check(np.array_equal(value, ply_value[source]), "result.glb: _PHEROMONE differs from pheromone.ply's values")
-        checks.check(len(faces) == len(ply_faces) and np.array_equal(source[faces], ply_faces), "result.glb: triangles differ from pheromone.ply's")
+        checks.check(np.array_equal(position[:n], ply_xyz), "result.glb: first vertices are not the PLY's, in order")
+        checks.check(np.array_equal(value, ply_value[source]), "result.glb: _PHEROMONE differs from the PLY's values")
+        checks.check(len(faces) == len(ply_faces) and np.array_equal(source[faces], ply_faces), "result.glb: triangles differ from the PLY's")
         rgb = np.column_stack([ply_vertices["red"], ply_vertices["green"], ply_vertices["blue"]])[source]
         expected_linear = srgb_to_linear(rgb / 255.0)
         error = np.abs(color - expected_linear).max() if len(color) else 0.0
-        checks.check(error < 1e-6, f"result.glb: {color_name} is not pheromone.ply's colours in linear light (max error {error:.3g})")
+        checks.check(error < 1e-6, f"result.glb: {color_name} is not the PLY's colours in linear light (max error {error:.3g})")
 
 
 def check_run(checks, run_dir):
     run_dir = Path(run_dir)
     run = json.loads((run_dir / "run.json").read_text())
-    ply_vertices, ply_faces = check_ply(checks, run_dir / "pheromone.ply")
-    check_glb(checks, run_dir, ply_vertices, ply_faces, run)
+    on_input = check_ply(checks, run_dir / run.get("fields_file", "pheromone.ply"))
     full = run_dir / "fields_full.ply"
-    if full.exists():
-        check_ply(checks, full)
-    else:
+    full_mesh = check_ply(checks, full) if full.exists() else None
+    if full_mesh is None:
         print(f"read_exports: {full} absent, not checked")
+    # result.glb is the input mesh where a baked texture carries the detail, else the full-resolution mesh.
+    textured = "texture" in run
+    checks.check(textured or full_mesh is not None, f"{run_dir}: no texture and no fields_full.ply for result.glb")
+    check_glb(checks, run_dir, *(on_input if textured or full_mesh is None else full_mesh), run)
 
 
 def main(argv):

@@ -2,12 +2,13 @@
 # Installs every Debian package physarum needs (idempotent, as root) and builds the `physarum`
 # program in Release into ./build: what a first run needs, nothing more.
 #   bash tools/setup.sh           the program only (the README's first command)
-#   bash tools/setup.sh --tests   also the Python environment .venv that the independent reader test
-#                                 uses (tests/read_exports.py: trimesh, numpy, pillow at pinned
-#                                 versions), the schedulers the sweep tests use (Slurm, munge, GNU
-#                                 parallel; no daemon is started or configured system-wide) and every
-#                                 target: the test program, the benchmarks, the device check (the
-#                                 README's second command, CI)
+#   bash tools/setup.sh --tests   also the Python environment .venv (pinned versions: trimesh, numpy,
+#                                 pillow for tests/read_exports.py; nanobind, scikit-build-core and
+#                                 pytest for the Python module and its tests), the schedulers the sweep
+#                                 tests use (Slurm, munge, GNU parallel; no daemon is started or
+#                                 configured system-wide), Blender for tests/blender_exports.py, and
+#                                 every target: the test program, the benchmarks, the device check,
+#                                 the Python module (the README's second command, CI)
 # Safe to run again: packages already present are not reinstalled, a .venv that already holds the
 # pinned versions is kept, and the build is incremental.
 set -euo pipefail
@@ -29,8 +30,9 @@ packages=(
 )
 
 # Only the tests use these: the schedulers the sweep tests submit to (a private Slurm the tests start
-# and stop themselves, GNU parallel).
-test_packages=(slurm-wlm munge parallel)
+# and stop themselves, GNU parallel); Blender (headless, with the numpy its importers need) as the
+# independent reader of result.glb; the Python headers the Python module is built against.
+test_packages=(slurm-wlm munge parallel blender python3-numpy python3-dev)
 if $with_tests; then packages+=("${test_packages[@]}"); fi
 
 missing=()
@@ -48,9 +50,11 @@ if ((${#missing[@]})); then
   apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# The reader test's own Python (not the system's: Debian's pip refuses to install into it, and the
-# versions must be the ones the test was written against).
-python_packages=(trimesh==5.2.0 numpy==2.4.6 pillow==13.0.0)
+# The tests' own Python (not the system's: Debian's pip refuses to install into it, and the versions
+# must be the ones the tests were written against): the reader test's trimesh, numpy and pillow, and
+# the Python module's nanobind (CMake builds the module when .venv has it), scikit-build-core (for
+# `.venv/bin/pip install --no-build-isolation .`) and pytest (its tests).
+python_packages=(trimesh==5.2.0 numpy==2.4.6 pillow==13.0.0 nanobind==2.9.2 scikit-build-core==0.11.6 pytest==8.4.2)
 venv=.venv
 venv_is_current() {
   [[ -x $venv/bin/python ]] && "$venv/bin/python" - "${python_packages[@]}" <<'PY'

@@ -19,7 +19,7 @@ REFUSALS = {
     "NaN in V": ("physarum.Surface(np.array([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]]), np.array([[0, 1, 2]]))",
                  "ValueError", "V: value at (2, 1) is not finite"),
     "a non-manifold mesh": ("physarum.Surface(np.array([[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0,-1,0.]]), "
-                            "np.array([[0,1,2],[0,1,3],[0,1,4]]))", "ValueError", "mesh"),
+                            "np.array([[0,1,2],[0,1,3],[0,1,4]]))", "ValueError", "V, F: non-manifold edge"),
     "an unknown scene key": ("physarum.Scene(BASE, sensor_angel=20).check()",
                              "ValueError", "sensor_angel"),
     "a bad scene value": ("physarum.Simulation(dict(BASE, agents=-5))", "ValueError", "agents"),

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import physarum
-from conftest import GRAY_SCOTT_SCENE, parse_ply, physarum_command, write_scene
+from conftest import GRAY_SCOTT_SCENE, SOURCE, parse_ply, physarum_command, write_scene
 
 
 def test_a_surface_has_the_counts_physarum_mesh_reports():
@@ -102,3 +102,16 @@ def test_devices_lists_what_physarum_devices_lists():
     listed = physarum_command("devices", check=False)
     devices = physarum.devices()
     assert [d["description"] for d in devices] == [line for line in listed.stdout.splitlines() if line]
+
+
+def test_compare_returns_the_commands_verdict(tmp_path):
+    scene = SOURCE / "tools" / "scenes" / "compare" / "gray_scott_square.json"
+    arms = ["backend=reference", "backend=reference,parameters.F=0.036"]
+    physarum_command("compare", scene, "--max-seeds", 4, "--arm", arms[0], "--arm", arms[1], "--out", tmp_path / "cmd",
+                     check=False)
+    command = json.loads((tmp_path / "cmd" / "verdict.json").read_text())
+    python = physarum.compare(physarum.Scene(scene), arms=arms, seeds=4)
+    for verdict in (command, python):
+        del verdict["run"]["seconds"]  # the only entry that depends on the machine's load
+    assert python == command
+    assert python["seeds"] == {arms[0]: 4, arms[1]: 4}

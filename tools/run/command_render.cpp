@@ -171,8 +171,8 @@ int run_render(const RenderOptions& o) {
     write_preview_png((out / name).string(), picture_source.ply.mesh, picture_source.values, preview);
     note(name);
   }
-  // result.glb, and texture.png where the run baked one. Without a texture the glb needs only the
-  // input mesh, which pheromone.ply is (positions and triangles; a mesh without UVs has no more).
+  // result.glb, and texture.png where the run baked one. Without a texture the glb is
+  // fields_full.ply's mesh (or, for a run without one, the input mesh, which pheromone.ply is).
   if (on_input) {
     const InputMesh& mesh = rebuilt ? rebuilt->surface.input : on_input->ply.mesh;
     const SurfaceDomain empty_domain;
@@ -180,7 +180,7 @@ int run_render(const RenderOptions& o) {
         out, mesh, rebuilt ? rebuilt->surface.domain : empty_domain,
         rebuilt ? std::optional<TexelLocations>(std::move(rebuilt->texels)) : std::nullopt,
         IntrinsicVertexData<double>(full ? full->values.values() : std::vector<double>{}), on_input->values, coloring,
-        run.texture.value_or(TextureSettings{}));
+        run.texture.value_or(TextureSettings{}), full ? &full->ply.mesh : nullptr);
     for (const std::string& name : exports.files) note(name);
   }
   std::cout << "physarum render: " << picture_source.name << " (" << picture_source.ply.mesh.vertex_count()

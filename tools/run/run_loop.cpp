@@ -77,7 +77,7 @@ SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSe
   written.insert(written.end(), {model.fields_file, "fields_full.ply", "preview.png"});
   const SurfaceExportsWritten exports =
       write_surface_exports(out, surface.input, surface.domain, setup.texels, result.layers.front().second,
-                            on_input.front(), result.coloring, setup.options.texture);
+                            on_input.front(), result.coloring, setup.options.texture, &full.mesh);
   written.insert(written.end(), exports.files.begin(), exports.files.end());
   return exports;
 }

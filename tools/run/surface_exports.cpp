@@ -83,7 +83,7 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
                                             const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
                                             const IntrinsicVertexData<double>& field,
                                             const InputVertexData<double>& on_input, const ColorMapping& coloring,
-                                            const TextureSettings& texture) {
+                                            const TextureSettings& texture, const InputMesh* full_mesh) {
   SurfaceExportsWritten written;
   std::optional<GltfTexture> glb_texture;
   if (texels) {
@@ -97,11 +97,25 @@ SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, co
     glb_texture = GltfTexture{baked.width, baked.height, texture_rgb8(baked, 0, colouring)};
     write_exr_if_asked(out, baked, texture, written);
   }
-  // result.glb carries pheromone.ply's colours (the same map over the same range) and the texture.
-  InputVertexData<Rgb8> colors(on_input.size());
-  const double upper_end = coloring.upper(on_input);
-  for (size_t v = 0; v < on_input.size(); ++v) colors[v] = coloring.color(on_input[v], upper_end);
-  written.glb = write_result_glb((out / "result.glb").string(), input, on_input, colors, glb_texture);
+  // result.glb keeps the run's whole detail in any viewer. With UVs: the input mesh and the baked
+  // texture, which carries the detail between its vertices. Without: the full-resolution mesh (every
+  // intrinsic vertex on the input surface, fields_full.ply's mesh) with its colours and values — the
+  // input's vertex colours alone would show triangle-sized blotches where the run resolved strands
+  // (a generated chart atlas would need a parametrization of arbitrary meshes, and resample the
+  // field once more). The colours are the PLYs' (the same map over the same range).
+  auto colours_of = [&](const InputVertexData<double>& values) {
+    InputVertexData<Rgb8> colors(values.size());
+    const double upper_end = coloring.upper(values);
+    for (size_t v = 0; v < values.size(); ++v) colors[v] = coloring.color(values[v], upper_end);
+    return colors;
+  };
+  const std::string glb = (out / "result.glb").string();
+  if (glb_texture || !full_mesh) {
+    written.glb = write_result_glb(glb, input, on_input, colours_of(on_input), glb_texture);
+  } else {
+    const InputVertexData<double> on_full(field.values());
+    written.glb = write_result_glb(glb, *full_mesh, on_full, colours_of(on_full), std::nullopt);
+  }
   written.files.push_back("result.glb");
   return written;
 }

@@ -1,9 +1,10 @@
 #pragma once
 // The outputs of a run that need the surface itself, not only the values on a mesh: the field baked
 // onto the input's UVs (texture.png, and texture.exr on request) and result.glb, which embeds that
-// texture. `physarum run` writes them after simulating; `physarum render` writes them again with
-// other colours, rebuilding the surface from what run.json records (so both go through this one
-// function and a re-coloured texture is made exactly as the run's was).
+// texture (or, without UVs, is the full-resolution mesh). `physarum run` writes them after
+// simulating; `physarum render` writes them again with other colours, rebuilding the surface from
+// what run.json records (so both go through this one function and a re-coloured texture is made
+// exactly as the run's was).
 #include "common/color/color_mapping.hpp"
 #include "common/base/element_data.hpp"
 #include "common/output/gltf_writer.hpp"
@@ -55,19 +56,22 @@ struct SurfaceExportsWritten {
 };
 
 // Writes into `out`: texture.png (and texture.exr) when `texels` are given (the input has UVs),
-// then result.glb. `field` is on the intrinsic vertices (the texture samples it), `on_input` the same
-// field on the input's vertices (result.glb's values and vertex colours); both are coloured by
-// `coloring` with the upper end of pheromone.ply's and fields_full.ply's colours.
+// then result.glb: with a texture, the input mesh with `on_input` (the field on the input's vertices)
+// as its values and vertex colours; without, `full_mesh` (fields_full.ply's mesh, whose vertex v is
+// intrinsic vertex v) with `field` (on the intrinsic vertices: the texture samples it too) as its
+// values and colours, or the input mesh again when `full_mesh` is null (a run folder from before
+// fields_full.ply). Both are coloured by `coloring` as pheromone.ply and fields_full.ply are.
 SurfaceExportsWritten write_surface_exports(const std::filesystem::path& out, const InputMesh& input,
                                             const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
                                             const IntrinsicVertexData<double>& field,
                                             const InputVertexData<double>& on_input, const ColorMapping& coloring,
-                                            const TextureSettings& texture);
+                                            const TextureSettings& texture, const InputMesh* full_mesh);
 
 // A composite of several fields (a two-layer sketch's colour sets, common/color/layer_colours.hpp): as
 // write_surface_exports, with `fields` (on the intrinsic vertices) baked together and each texel
 // coloured by `texel_colour` from its channel values, result.glb's vertex colours `vertex_colours`
-// and its values `on_input`; texture.png is 8-bit whatever the format (texture.exr still on request).
+// and its values `on_input` on `input` — the caller passes the full-resolution mesh and its values
+// when there are no texels; texture.png is 8-bit whatever the format (texture.exr still on request).
 SurfaceExportsWritten write_composed_exports(const std::filesystem::path& out, const InputMesh& input,
                                              const SurfaceDomain& domain, const std::optional<TexelLocations>& texels,
                                              const std::vector<BakeField>& fields,

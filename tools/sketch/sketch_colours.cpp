@@ -80,16 +80,21 @@ std::vector<std::string> write_layer_colours(const fs::path& folder, const std::
                   render_layers_preview(last.full.mesh, first_full, last_full, share_full, colours, options));
     written.push_back(name);
   }
-  InputVertexData<Rgb8> vertex_colours(last_on_input.size());
-  for (size_t v = 0; v < last_on_input.size(); ++v)
-    vertex_colours[v] = to_rgb8(colours.at(first_on_input[v], last_on_input[v], share_on_input[v]));
+  // result.glb as a run's (surface_exports.hpp): the input mesh and the baked texture where there are
+  // UVs, else the full-resolution mesh with its own colours, so a viewer shows every resolved detail.
+  const bool textured = rebuilt.has_value();
+  const std::vector<double>& glb_first = textured ? first_on_input : first_full.values();
+  const std::vector<double>& glb_last = textured ? last_on_input : last_full.values();
+  const std::vector<double>& glb_share = textured ? share_on_input : share_full.values();
+  InputVertexData<Rgb8> vertex_colours(glb_last.size());
+  for (size_t v = 0; v < glb_last.size(); ++v) vertex_colours[v] = to_rgb8(colours.at(glb_first[v], glb_last[v], glb_share[v]));
   const IntrinsicVertexData<double> first_i(first_full.values()), last_i(last_full.values()), share_i(share_full.values());
   const SurfaceDomain no_domain;
   const SurfaceExportsWritten exports = write_composed_exports(
-      folder, rebuilt ? rebuilt->surface.input : last.on_input.mesh, rebuilt ? rebuilt->surface.domain : no_domain,
-      rebuilt ? std::optional<TexelLocations>(std::move(rebuilt->texels)) : std::nullopt,
+      folder, textured ? rebuilt->surface.input : last.full.mesh, textured ? rebuilt->surface.domain : no_domain,
+      textured ? std::optional<TexelLocations>(std::move(rebuilt->texels)) : std::nullopt,
       {BakeField{"first", first_i}, BakeField{"last", last_i}, BakeField{"first_share", share_i}},
-      [&](const float* c) { return colours.at(c[0], c[1], c[2]); }, InputVertexData<double>(last_on_input), vertex_colours,
+      [&](const float* c) { return colours.at(c[0], c[1], c[2]); }, InputVertexData<double>(glb_last), vertex_colours,
       texture);
   written.insert(written.end(), exports.files.begin(), exports.files.end());
   return written;
