@@ -115,3 +115,13 @@ def test_compare_returns_the_commands_verdict(tmp_path):
         del verdict["run"]["seconds"]  # the only entry that depends on the machine's load
     assert python == command
     assert python["seeds"] == {arms[0]: 4, arms[1]: 4}
+
+
+def test_the_type_stubs_are_the_modules_own(tmp_path):
+    # tools/python/physarum/_physarum.pyi is committed for editors; it must be what stubgen makes of the
+    # module as built (regenerate: python -m nanobind.stubgen -m physarum._physarum -o tools/python/physarum/_physarum.pyi).
+    import subprocess
+    import sys
+    out = tmp_path / "_physarum.pyi"
+    subprocess.run([sys.executable, "-m", "nanobind.stubgen", "-q", "-m", "physarum._physarum", "-o", str(out)], check=True)
+    assert out.read_text() == (SOURCE / "tools" / "python" / "physarum" / "_physarum.pyi").read_text()

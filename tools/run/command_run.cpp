@@ -9,7 +9,8 @@
 //   DIR/texture.png      the field baked onto the input's UVs with padded seams (texture_bake.hpp),
 //                        8-bit, or 16-bit with --texture-format png16; with exr also DIR/texture.exr
 //                        (raw float values); skipped, with a note, when the mesh has no UVs,
-//   DIR/result.glb       glTF 2.0 binary of the input mesh (colours, values, UVs, the texture),
+//   DIR/result.glb       glTF 2.0 binary: the input mesh with UVs and the baked texture, or without
+//                        UVs the full-resolution mesh with its colours (surface_exports.hpp),
 //   DIR/stats.csv and DIR/run.json;
 // with --frames K also a time-lapse, DIR/frames/frame_NNNN.png and DIR/frames.gif.
 //
@@ -260,7 +261,7 @@ Command add_run_command(CLI::App& parent) {
       "Grow a slime-mold pattern on a surface and write DIR/pheromone.ply (the input mesh with the per-vertex "
       "pheromone), DIR/fields_full.ply (the result at full resolution: every intrinsic vertex on the input surface, "
       "exact values), DIR/texture.png (the pheromone baked onto the mesh's UVs; not for meshes without UVs), "
-      "DIR/result.glb (glTF 2.0 binary of the input mesh for any 3D viewer: linear vertex colours, the values as _PHEROMONE, UVs and the baked texture where the mesh has UVs), "
+      "DIR/result.glb (glTF 2.0 binary for any 3D viewer with the run's whole detail: the input mesh, its UVs and the baked texture where the mesh has UVs, else the full-resolution mesh with linear vertex colours; the values as _PHEROMONE), "
       "DIR/stats.csv (time,mean,U,coverage_0.5U,coverage_1U,coverage_2U), DIR/preview.png (from the full-resolution "
       "mesh) and DIR/run.json (parameters, device, timings). Competing species ('species'): pheromone_0, pheromone_1, "
       "... in the PLYs, stats.csv columns mean_i,U_i, run.json 'species_layers', one colour per species in the "
