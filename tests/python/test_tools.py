@@ -125,3 +125,11 @@ def test_the_type_stubs_are_the_modules_own(tmp_path):
     out = tmp_path / "_physarum.pyi"
     subprocess.run([sys.executable, "-m", "nanobind.stubgen", "-q", "-m", "physarum._physarum", "-o", str(out)], check=True)
     assert out.read_text() == (SOURCE / "tools" / "python" / "physarum" / "_physarum.pyi").read_text()
+
+
+def test_colormap_is_the_commands_map(tmp_path):
+    exemplar = SOURCE / "tools" / "colormaps" / "exemplar_lichen.png"
+    physarum_command("colormap", exemplar, "--out", tmp_path / "command.json")
+    python = physarum.colormap(exemplar, tmp_path / "python.json")
+    assert python == json.loads((tmp_path / "command.json").read_text())
+    assert (tmp_path / "python.png").exists()  # its strip picture beside it

@@ -16,16 +16,18 @@ PreparedRun::PreparedRun(const Scene& scene, const RunOptions& options, long lon
       steps_(steps),
       resume_(resume),
       time_lapse_(options.frames, steps),
-      session_(scene, session_options(options, steps)) {
-  if (!options_.maps_out.empty())
-    write_maps_ply(options_.maps_out, session_.surface().input,
-                   maps_on_input(scene.maps, session_.surface(), session_.maps(), options_.scene));
-}
+      session_(scene, session_options(options, steps)) {}
 
 PreparedRun::~PreparedRun() = default;
 
 void PreparedRun::start(const PreparedSurface& surface, const FullResolutionMesh& full,
                         std::optional<TexelLocations> texels) {
+  // Everything that could refuse the input has run (the model's preparation too): --maps-out is
+  // written now, before simulating, so a user checking a long run's maps sees them at once.
+  const Scene& scene = session_.scene();
+  if (!options_.maps_out.empty())
+    write_maps_ply(options_.maps_out, session_.surface().input,
+                   maps_on_input(scene.maps, session_.surface(), session_.maps(), options_.scene));
   texels_ = std::move(texels);
   setup_.emplace(RunSetup{options_, session_.scene(), steps_, resume_, surface, full, texels_, time_lapse_});
   loop_ = std::make_unique<RunLoop>(session_.backend(), *setup_, model_);

@@ -33,11 +33,11 @@ class PreparedRun {
   int finish_and_write() { return run_to_end_and_write(*loop_); }
 
  protected:
-  // Builds the session (everything that can refuse the scene happens here, before any output) and
-  // the time-lapse; writes --maps-out at once (a user checking a long run's maps sees them first).
+  // Builds the time-lapse and the session (everything that can refuse the scene happens here or in
+  // the model's preparation, before any output).
   PreparedRun(const Scene& scene, const RunOptions& options, long long steps, const std::optional<ResumePoint>& resume);
-  // A model's preparation ends here, its ModelRun filled in: the loop starts on `surface` (a resumed
-  // run's checkpoint is restored).
+  // A model's preparation ends here, its ModelRun filled in: --maps-out is written, and the loop
+  // starts on `surface` (a resumed run's checkpoint is restored).
   void start(const PreparedSurface& surface, const FullResolutionMesh& full, std::optional<TexelLocations> texels);
 
   const RunOptions options_;

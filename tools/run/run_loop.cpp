@@ -155,7 +155,11 @@ void RunLoop::restore_state(const std::string& bytes, const std::string& where) 
   next_step_ = checkpoint.header.step + 1;
 }
 
-double RunLoop::simulation_seconds() const { return checkpoints_->simulation_seconds(side_seconds_); }
+double RunLoop::simulation_seconds() const {
+  // The time since the last step is the caller's, not simulation.
+  const double since_last_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - returned_).count();
+  return checkpoints_->simulation_seconds(side_seconds_ + since_last_step);
+}
 
 int RunLoop::write(const std::string& folder) {
   simulation_.finish();
