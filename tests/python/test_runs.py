@@ -146,3 +146,16 @@ def test_a_growth_run_from_python_grows_the_sheet(tmp_path):
 def physarum_source():
     from conftest import SOURCE
     return SOURCE
+
+
+def test_an_array_as_an_operand_inside_a_map_definition():
+    V, _ = physarum.read_mesh("shape:sphere")
+    height = (V[:, 2] - V[:, 2].min()) / np.ptp(V[:, 2])
+    inside = physarum.Scene(dict(AGENT_SCENE, maps={"angle": {"map": height, "range": [15.0, 30.0]}},
+                                 sensor_angle="angle"))
+    direct = physarum.Scene(dict(AGENT_SCENE, sensor_angle=15.0 + 15.0 * height))
+    runs = [physarum.Simulation(scene, backend="reference") for scene in (inside, direct)]
+    for simulation in runs:
+        simulation.step(20)
+    # lo + (hi - lo) * value rounds as 15 + 15 * value does: the same run
+    np.testing.assert_allclose(runs[0].fields()["pheromone"], runs[1].fields()["pheromone"], rtol=0, atol=0)

@@ -82,6 +82,37 @@ SurfaceExportsWritten write_fields(const std::filesystem::path& out, const RunSe
   return exports;
 }
 
+// run.json: the run as it went (backend, steps, time, seconds), the model's own keys, the surface,
+// what readers of result.glb need and what `physarum render` needs.
+nlohmann::ordered_json run_record(const SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model,
+                                  long long steps, double seconds, const ModelResult& result,
+                                  const GltfExportSummary& glb) {
+  const RunOptions& o = setup.options;
+  nlohmann::ordered_json j;
+  j["backend"] = simulation.backend_name();
+  j["backend_requested"] = o.backend;
+  j["device"] = simulation.device_name();
+  j["steps"] = steps;
+  j["sim_time"] = simulation.time();
+  j["seconds"] = seconds;
+  j["fields_file"] = model.fields_file;
+  model.run_json(j, seconds);
+  const PreparedSurface& final_surface = result.surface ? *result.surface : setup.surface;
+  j["intrinsic_vertices"] = final_surface.domain.vertex_count;
+  j["intrinsic_faces"] = final_surface.domain.face_count;
+  j["area"] = final_surface.domain.total_area;
+  // For readers that check result.glb: its vertex count and the copies made along UV seams.
+  j["result_glb_vertices"] = glb.vertices;
+  j["result_glb_seam_splits"] = glb.seam_splits;
+  j["scene_file"] = o.scene;
+  // What `physarum render` needs to rebuild the surface and bake the texture again.
+  j["surface"] = surface_spec_json(surface_spec(setup.scene));
+  if (setup.texels) j["texture"] = o.texture.to_json();
+  // The colours as used: `physarum render` re-colours with them.
+  j["colormap"] = color_map_settings_json(setup.scene.color_map);
+  return j;
+}
+
 }  // namespace
 
 RunLoop::RunLoop(SimulationBackend& simulation, const RunSetup& setup, const ModelRun& model)
@@ -168,56 +199,31 @@ int RunLoop::write(const std::string& folder) {
     stats_ += model_.stats_row() + "\n";
     last_row_ = steps_taken();
   }
-  const RunSetup& setup = setup_;
-  const ModelRun& model = model_;
-  SimulationBackend& simulation = simulation_;
-  RunCheckpoints& checkpoints = *checkpoints_;
-  const std::string& stats = stats_;
-  const RunOptions& o = setup.options;
-  if (model.check_end) model.check_end();
-  const ModelResult result = model.result();
+  if (model_.check_end) model_.check_end();
+  const ModelResult result = model_.result();
 
   create_output_folder(folder);
   const std::filesystem::path out(folder);
   std::vector<std::string> written;
-  const SurfaceExportsWritten exports = write_fields(out, setup, model, result, written);
-  write_text_file_atomically((out / "stats.csv").string(), stats);
+  const SurfaceExportsWritten exports = write_fields(out, setup_, model_, result, written);
+  write_text_file_atomically((out / "stats.csv").string(), stats_);
   written.insert(written.end(), {"stats.csv", "run.json"});
-  setup.time_lapse.write(folder);
-  if (setup.time_lapse.enabled()) written.insert(written.end(), {"frames/", "frames.gif"});
-  if (model.write_extra) model.write_extra(out, written);
-  const std::optional<std::string> stopped = model.stopped ? model.stopped() : std::nullopt;
+  setup_.time_lapse.write(folder);
+  if (setup_.time_lapse.enabled()) written.insert(written.end(), {"frames/", "frames.gif"});
+  if (model_.write_extra) model_.write_extra(out, written);
+  const std::optional<std::string> stopped = model_.stopped ? model_.stopped() : std::nullopt;
 
-  nlohmann::ordered_json j;
-  j["backend"] = simulation.backend_name();
-  j["backend_requested"] = o.backend;
-  j["device"] = simulation.device_name();
-  j["steps"] = stopped ? simulation.steps_taken() : steps_taken();
+  const long long steps = stopped ? simulation_.steps_taken() : steps_taken();
+  nlohmann::ordered_json j = run_record(simulation_, setup_, model_, steps, seconds, result, exports.glb);
   if (stopped) j["stopped"] = *stopped;
-  j["sim_time"] = simulation.time();
-  j["seconds"] = seconds;
-  j["fields_file"] = model.fields_file;
-  model.run_json(j, seconds);
-  const PreparedSurface& final_surface = result.surface ? *result.surface : setup.surface;
-  j["intrinsic_vertices"] = final_surface.domain.vertex_count;
-  j["intrinsic_faces"] = final_surface.domain.face_count;
-  j["area"] = final_surface.domain.total_area;
-  // For readers that check result.glb: its vertices are the input's plus copies along UV seams.
-  j["result_glb_vertices"] = exports.glb.vertices;
-  j["result_glb_seam_splits"] = exports.glb.seam_splits;
-  j["scene_file"] = o.scene;
-  // What `physarum render` needs to rebuild the surface and bake the texture again.
-  j["surface"] = surface_spec_json(surface_spec(setup.scene));
-  if (setup.texels) j["texture"] = o.texture.to_json();
-  // The colours as used: `physarum render` re-colours with them.
-  j["colormap"] = color_map_settings_json(setup.scene.color_map);
-  checkpoints.record(j);
+  checkpoints_->record(j);
   write_text_file_atomically((out / "run.json").string(), j.dump(2) + "\n");
-  checkpoints.remove_file();
+  checkpoints_->remove_file();
 
   std::string files;
   for (const std::string& name : written) files += (files.empty() ? "" : ", ") + name;
-  std::cout << "physarum run: " << model.summary(seconds) << "; wrote " << out.string() << "/{" << files << "}"
+  const RunOptions& o = setup_.options;
+  std::cout << "physarum run: " << model_.summary(seconds) << "; wrote " << out.string() << "/{" << files << "}"
             << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
   if (stopped) {
     std::cerr << "physarum: error: " << *stopped << "\n";
@@ -225,10 +231,6 @@ int RunLoop::write(const std::string& folder) {
   }
   return 0;
 }
-
-}  // namespace physarum::cli
-
-namespace physarum::cli {
 
 int run_to_end_and_write(RunLoop& loop) {
   ProgressBar progress(loop.planned_steps());

@@ -76,9 +76,11 @@ class Scene:
                 return [replace(v, f"{where}.{i}") for i, v in enumerate(value)]
             return value
 
-        for name in list(maps):  # an array as a map's whole definition keeps the map's name
-            if isinstance(maps[name], np.ndarray):
+        for name in list(maps):
+            if isinstance(maps[name], np.ndarray):  # an array as a map's whole definition keeps the map's name
                 maps[name] = self._array_map(maps[name], f"maps.{name}")
+            else:  # an array as an operand inside a definition becomes a map of its own
+                maps[name] = replace(maps[name], f"maps.{name}")
         scene.update({k: replace(v, k) for k, v in scene.items() if k != "maps"})
         if not maps:
             del scene["maps"]

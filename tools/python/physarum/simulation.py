@@ -52,6 +52,7 @@ class Simulation:
 
     @property
     def steps_taken(self) -> int:
+        """Steps taken so far (a restored state's included)."""
         return self._simulation.steps_taken
 
     @property
@@ -66,10 +67,12 @@ class Simulation:
 
     @property
     def backend(self) -> str:
+        """The backend that runs: "reference" or "opencl" (what "auto" chose)."""
         return self._simulation.backend
 
     @property
     def device(self) -> str:
+        """The device it runs on ("host" for the reference backend)."""
         return self._simulation.device
 
     @property

@@ -62,10 +62,12 @@ class Surface:
 
     @property
     def input_vertex_count(self) -> int:
+        """Vertices of the input mesh as loaded and repaired (what per-input-vertex arrays have)."""
         return self._surface.input_vertex_count
 
     @property
     def input_face_count(self) -> int:
+        """Triangles of the input mesh (what per-input-face arrays have)."""
         return self._surface.input_face_count
 
     @property
