@@ -23,7 +23,6 @@
 // is touched, so a bad scene exits 1 with its message and writes nothing; every file is written under
 // a temporary name and renamed, so a reader never sees a half-written one.
 #include "common/setup/agent_inputs.hpp"
-#include "common/output/maps_ply.hpp"
 #include "common/color/color_map_json.hpp"
 #include "common/base/errors.hpp"
 #include "common/base/overloaded.hpp"
@@ -33,11 +32,9 @@
 #include "common/output/preview_image.hpp"
 #include "common/scene/scene.hpp"
 #include "common/scene/scene_json.hpp"
-#include "common/setup/scene_maps.hpp"
 #include "common/setup/species_statistics.hpp"
 #include "common/surface/surface_domain.hpp"
 #include "common/output/texture_bake.hpp"
-#include "common/output/time_lapse.hpp"
 #include "tools/commands.hpp"
 #include "tools/run/run_options.hpp"
 #include "tools/run/resume_point.hpp"

@@ -18,10 +18,8 @@
 
 #include "api/session.hpp"
 #include "common/base/errors.hpp"
-#include "common/output/maps_ply.hpp"
 #include "common/output/ply_writer.hpp"
 #include "common/output/preview_image.hpp"
-#include "common/output/time_lapse.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 #include "tools/run/run_loop.hpp"
 #include "tools/run/run_reaction_diffusion.hpp"

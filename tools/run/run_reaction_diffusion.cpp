@@ -1,11 +1,9 @@
 #include "tools/run/run_reaction_diffusion.hpp"
 
-#include "common/output/maps_ply.hpp"
 #include "common/base/errors.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 #include "common/output/preview_image.hpp"
 #include "common/output/texture_bake.hpp"
-#include "common/output/time_lapse.hpp"
 #include "api/session.hpp"
 #include "tools/run/prepared_run.hpp"
 #include "tools/run/run_loop.hpp"
