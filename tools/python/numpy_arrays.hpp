@@ -1,13 +1,12 @@
 #pragma once
-// The module's one place where engine containers become numpy arrays and numpy arrays become engine
-// containers: results are handed over without a copy (the vector moves into the array's owner), and
-// every argument's dtype, shape and values are checked with a message naming the argument.
+// The module's one place where engine containers become numpy arrays: results are handed over
+// without a copy (the vector moves into the array's owner). Arguments are checked on the Python side
+// (physarum/_arrays.py), with messages naming the argument.
 #include "common/mesh/input_mesh.hpp"
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
-#include <string>
 #include <vector>
 
 namespace physarum::python {
@@ -24,10 +23,5 @@ Int64Array to_numpy(std::vector<std::int64_t>&& values, size_t columns);
 
 // A mesh as the pair (V: (n, 3) float64, F: (m, 3) int64).
 nb::tuple mesh_arrays(const InputMesh& mesh);
-
-// The values of a 1-D array-like of numbers (any real dtype, C or strided), checked: ValueError
-// naming `argument` for another shape, `length` (when >= 0) not matched, or a value that is not
-// finite.
-std::vector<double> finite_values(const nb::handle& array, const std::string& argument, long long length = -1);
 
 }  // namespace physarum::python

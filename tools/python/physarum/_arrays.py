@@ -73,3 +73,10 @@ def write_ply(path: str | os.PathLike, V: np.ndarray, F: np.ndarray | None = Non
         out.write(("\n".join(header) + "\n").encode("ascii"))
         out.write(vertex.tobytes())
         out.write(face.tobytes())
+
+
+def vertex_values_map(path: str | os.PathLike, values: np.ndarray) -> dict:
+    """Per input vertex `values` written to `path` as a PLY, and the scalar map that reads them
+    (``{"ply": FILE, "property": "values"}``, as a scene file would name it)."""
+    write_ply(path, np.zeros((len(values), 3)), vertex_values={"values": values})
+    return {"ply": os.fspath(path), "property": "values"}

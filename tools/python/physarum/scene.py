@@ -9,7 +9,7 @@ import tempfile
 
 import numpy as np
 
-from ._arrays import float_array, write_ply
+from ._arrays import float_array, vertex_values_map, write_ply
 
 
 class Scene:
@@ -94,9 +94,7 @@ class Scene:
             self._folder = tempfile.TemporaryDirectory(prefix="physarum-scene-")
         path = os.path.join(self._folder.name, where.replace("/", "_") + ".ply")
         if array.ndim == 1:
-            values = float_array(array, where, (-1,))
-            write_ply(path, np.zeros((len(values), 3)), vertex_values={"values": values})
-            return {"ply": path, "property": "values"}
+            return vertex_values_map(path, float_array(array, where, (-1,)))
         vectors = float_array(array, where, (-1, 3))
         faces = np.zeros((len(vectors), 3), np.int64)
         write_ply(path, np.zeros((1, 3)), faces,

@@ -11,7 +11,7 @@ import tempfile
 import numpy as np
 
 from . import _physarum as _engine
-from ._arrays import float_array, index_array, write_ply
+from ._arrays import float_array, index_array, vertex_values_map
 from .scene import Scene
 from .surface import Surface
 
@@ -98,9 +98,7 @@ def _evaluate(surface: Surface, maps: dict, on: str, arrays: dict | None = None)
     with tempfile.TemporaryDirectory(prefix="physarum-maps-") as folder:
         for name, values in (arrays or {}).items():
             values = float_array(values, name, (surface.input_vertex_count,))
-            path = os.path.join(folder, name + ".ply")
-            write_ply(path, np.zeros((len(values), 3)), vertex_values={"values": values})
-            maps[name] = {"ply": path, "property": "values"}
+            maps[name] = vertex_values_map(os.path.join(folder, name + ".ply"), values)
         return surface._surface.evaluate_maps(json.dumps(maps), folder, on == "input")
 
 
