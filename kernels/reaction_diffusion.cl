@@ -44,9 +44,13 @@
 #ifdef RD_INTERLEAVED
 #define RD_AT(m, i) ((size_t)(i) * RD_MORPHOGENS + (size_t)(m))
 #define RD_INDEX(i) ((size_t)(i) * RD_MORPHOGENS)
+/* The host stores an interleaved run's ELL columns already multiplied by RD_MORPHOGENS (the offset of
+ * the neighbour's first value): one multiplication per slot fewer in the sub-step's inner loop. */
+#define RD_SLOT_INDEX(j) ((size_t)(j))
 #else
 #define RD_AT(m, i) ((size_t)(m) * stride + (size_t)(i))
 #define RD_INDEX(i) (i)
+#define RD_SLOT_INDEX(j) (j)
 #endif
 
 /* A neighbour's contribution to row i's diffusion sum of morphogen m. With RD_ZERO_ROW_SUMS the
@@ -82,19 +86,22 @@ typedef float4 rd_vector;
 #define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z, (a)[3] = (v).w)
 #elif RD_MORPHOGENS <= 8
 /* Five to eight (Meinhardt's stripe system has five): a float8 whose lanes past the last morphogen
- * repeat it. They are computed and never kept: RD_VECTOR_TO writes the lanes from the last to the
- * first, so each morphogen's own lane is written last. */
+ * repeat it (a gathered neighbour's hold whatever follows it, see below). They are computed and
+ * never kept: RD_VECTOR_TO writes the lanes from the last to the first, so each morphogen's own lane
+ * is written last. */
 typedef float8 rd_vector;
 #define RD_LANE(k) ((k) < RD_MORPHOGENS ? (k) : RD_MORPHOGENS - 1)
 #define RD_VECTOR_OF(a)                                                                              \
   ((float8)((a)[RD_LANE(0)], (a)[RD_LANE(1)], (a)[RD_LANE(2)], (a)[RD_LANE(3)], (a)[RD_LANE(4)], \
             (a)[RD_LANE(5)], (a)[RD_LANE(6)], (a)[RD_LANE(7)]))
 #ifdef RD_INTERLEAVED
-/* A vertex's values are contiguous: its first four one 16-byte load (vload4 needs only a float's
- * alignment), the rest single floats. */
-#define RD_GATHER(p, j)                                                                               \
-  ((float8)(vload4(0, (p)[0] + (j)), (p)[0][(j) + RD_LANE(4)], (p)[0][(j) + RD_LANE(5)], (p)[0][(j) + RD_LANE(6)], \
-            (p)[0][(j) + RD_LANE(7)]))
+/* A vertex's values are contiguous: one load of eight floats from its first (vload8 needs only a
+ * float's alignment). With fewer than eight morphogens the lanes past the last hold the next
+ * vertex's first values, computed with and never kept (RD_VECTOR_TO); the host allocates the state
+ * 8 - RD_MORPHOGENS floats longer so that the last vertex's load stays inside the buffer. One load
+ * instead of a 16-byte load, a float and a shuffle: with the columns pre-multiplied, a slot is four
+ * instructions on a CPU (bench/README.md, "Five morphogens in one load"). */
+#define RD_GATHER(p, j) vload8(0, (p)[0] + (j))
 #else
 #define RD_GATHER(p, j)                                                                                      \
   ((float8)((p)[RD_LANE(0)][j], (p)[RD_LANE(1)][j], (p)[RD_LANE(2)][j], (p)[RD_LANE(3)][j], (p)[RD_LANE(4)][j], \
@@ -173,7 +180,7 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
     }
     const rd_vector w = RD_VECTOR_OF(rd_w);
 #endif
-    const rd_vector neighbour = RD_GATHER(rd_in, RD_INDEX(j));
+    const rd_vector neighbour = RD_GATHER(rd_in, RD_SLOT_INDEX(j));
 #ifdef RD_ZERO_ROW_SUMS
     sum += w * (neighbour - own);
 #else
@@ -204,11 +211,12 @@ __kernel void rd_explicit_substep(const uint n, const uint stride, __global cons
   (void)fixed;
 #endif
 #if defined(RD_INTERLEAVED)
-  /* The vertex's values are contiguous: the first four one 16-byte store. */
+  /* The update of every morphogen as one vector (the same operations, in the same order, as the
+   * scalar form below), and the vertex's values are contiguous: the first four one 16-byte store. */
+  const rd_vector updated = own + RD_VECTOR_OF(diffusion) + h * RD_VECTOR_OF(rd_r);
   float rd_new[RD_MORPHOGENS];
-#pragma unroll
-  for (uint m = 0; m < RD_MORPHOGENS; ++m) rd_new[m] = rd_u[m] + diffusion[m] + h * rd_r[m];
-  vstore4((float4)(rd_new[0], rd_new[1], rd_new[2], rd_new[3]), 0, u_out + RD_INDEX(i));
+  RD_VECTOR_TO(rd_new, updated);
+  vstore4(updated.lo, 0, u_out + RD_INDEX(i));
 #pragma unroll
   for (uint m = 4; m < RD_MORPHOGENS; ++m) u_out[RD_AT(m, i)] = rd_new[m];
 #else

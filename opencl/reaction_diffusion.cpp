@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -280,7 +281,11 @@ void OpenCLReactionDiffusion::allocate_state(const ReactionDiffusionSystem& syst
   const size_t halves = integrator_ == Integrator::Forward ? 2 : 1;
   for (size_t half = 0; half < halves; ++half) {
     DeviceBuffer& u = state_[half];
-    u = allocate_written<cl_float>(compute_, half == 0 ? "morphogens" : "morphogens (second half)", M * stride_);
+    // An interleaved state ends in 8 - M spare floats: the sub-step loads a vertex's values as eight
+    // floats (RD_GATHER in kernels/reaction_diffusion.cl), the last vertex's too.
+    const size_t spare = interleaved_ ? 8 - M : 0;
+    u = allocate_written<cl_float>(compute_, half == 0 ? "morphogens" : "morphogens (second half)",
+                                   M * stride_ + spare);
     compute_.queue.enqueueFillBuffer(u.buffer, 0.0f, 0, u.payload_bytes);
     for (size_t m = 0; m < M && !interleaved_; ++m) {
       cl_buffer_region region{m * stride_ * sizeof(cl_float), un * sizeof(cl_float)};
@@ -331,10 +336,18 @@ void OpenCLReactionDiffusion::upload_explicit_operator(const Setup& setup) {
   // Each ELL slot's column beside morphogen 0's weight (its bits), one 8-byte pair per slot and
   // row (kernels/reaction_diffusion.cl says why); then a block of weights for each other
   // morphogen, none when the weights are shared.
+  // An interleaved state's columns are stored as the offset of the neighbour's first value (column
+  // times M: RD_SLOT_INDEX in the kernel), which must fit the kernel's 32-bit column.
   const HybridMatrix& shape = hybrid[0];
+  const size_t column_scale = interleaved_ ? M : 1;
+  if (column_scale * stride_ > static_cast<size_t>(std::numeric_limits<cl_int>::max()))
+    throw InputError("opencl reaction-diffusion: " + std::to_string(un) + " vertices with " + std::to_string(M) +
+                     " morphogens exceed the explicit sub-step's 32-bit offsets (at most " +
+                     std::to_string(std::numeric_limits<cl_int>::max() / column_scale) +
+                     " padded vertices); use \"integrator\": \"imex\" or a coarser surface");
   std::vector<cl_int> column_weight(2 * shape.column.size());
   for (size_t e = 0; e < shape.column.size(); ++e) {
-    column_weight[2 * e] = shape.column[e];
+    column_weight[2 * e] = static_cast<cl_int>(static_cast<size_t>(shape.column[e]) * column_scale);
     std::memcpy(&column_weight[2 * e + 1], &shape.value[e], sizeof(cl_float));
   }
   std::vector<float> values, overflow_values;
