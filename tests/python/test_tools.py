@@ -133,3 +133,34 @@ def test_colormap_is_the_commands_map(tmp_path):
     python = physarum.colormap(exemplar, tmp_path / "python.json")
     assert python == json.loads((tmp_path / "command.json").read_text())
     assert (tmp_path / "python.png").exists()  # its strip picture beside it
+
+
+def _nine_spots() -> dict:
+    """A JSON sketch: a 3 x 3 lattice of round spots of area 0.0052 (window units), 0.17 apart."""
+    radius = (0.0052 / np.pi) ** 0.5
+    marks = [{"ellipse": {"center": [0.5 + 0.17 * i, 0.5 + 0.17 * j], "radii": [radius, radius], "angle": 0.0}}
+             for i in (-1, 0, 1) for j in (-1, 0, 1)]
+    return {"window": [1.0, 1.0], "marks": marks}
+
+
+def test_sketch_is_the_commands_sketch(tmp_path):
+    # One region on a 0.25 m^2 patch (about 3 s a run): the command from a file, Python from the dict.
+    sketch_file = tmp_path / "nine.json"
+    sketch_file.write_text(json.dumps(_nine_spots()))
+    physarum_command("sketch", sketch_file, "--regions", 1, "--area", 0.25, "--out", tmp_path / "cmd")
+    report = physarum.sketch(_nine_spots(), tmp_path / "py", regions=1, area=0.25)
+    assert report == json.loads((tmp_path / "cmd" / "report.json").read_text())
+    for name in ("scene.json", "sketch_maps.ply", "morphogens.ply"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cmd" / name).read_bytes(), name
+    region = report["regions"][0]
+    assert region["sketched"]["area"] == pytest.approx(0.0052, rel=1e-9)
+    assert region["verdict"]["area"] == "pass"  # the texture has the sketched spot size
+
+
+def test_a_refused_sketch_is_a_value_error_and_runs_nothing(tmp_path):
+    tiny = _nine_spots()
+    for mark in tiny["marks"]:
+        mark["ellipse"]["radii"] = [1e-4, 1e-4]
+    with pytest.raises(ValueError, match="sketch"):
+        physarum.sketch(tiny, tmp_path / "out", regions=1, area=0.25)
+    assert not (tmp_path / "out" / "morphogens.ply").exists()

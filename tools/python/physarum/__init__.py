@@ -15,8 +15,8 @@ from .scene import Scene
 from .simulation import Simulation
 from .surface import Surface
 from .tools import (analyze, colormap, compare, diffuse, elevation, geodesic_distance, gradient,
-                    laplace_interpolation, slope)
+                    laplace_interpolation, sketch, slope)
 
 __all__ = ["Scene", "Simulation", "Surface", "analyze", "colormap", "compare", "devices", "diffuse", "elevation",
-           "geodesic_distance", "gradient", "laplace_interpolation", "read_mesh", "slope"]
+           "geodesic_distance", "gradient", "laplace_interpolation", "read_mesh", "sketch", "slope"]
 __version__ = "0.1"

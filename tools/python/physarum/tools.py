@@ -170,6 +170,49 @@ def colormap(image: str | os.PathLike, out: str | os.PathLike, *, stops: int = 2
         return json.load(f)
 
 
+def sketch(sketch, out: str | os.PathLike | None = None, *, mesh: str | os.PathLike | None = None,
+           uv: bool = False, model: str | None = None, regions: int | None = None, area: float | None = None,
+           max_circumradius: float | None = None, refine: int | None = None, seed: int | None = None,
+           backend: str | None = None, device: int | str | None = None, layer2=None, rosettes: bool = False,
+           colors: list[str] | None = None) -> dict:
+    """``physarum sketch`` (paper 004): a reaction-diffusion texture grown from drawn spots and
+    strokes, measured against them. ``sketch`` (and ``layer2``) is a PNG or JSON sketch's path or a
+    JSON sketch as a dict ({"window": [w, h], "marks": [{"ellipse": ...}, {"stroke": ...}]},
+    docs/commands.md). Returns report.json's dict: per region the sketched and the generated area,
+    aspect, orientation, spacing (stripes: orientation and width) with a verdict each. ``out`` keeps
+    the command's files (the generated scene, the run's outputs, sketch.json); without it they go
+    with a temporary folder. Bad sketches raise ValueError with the command's message, before any run."""
+    with tempfile.TemporaryDirectory(prefix="physarum-sketch-") as folder:
+        def sketch_file(value, name):
+            if isinstance(value, dict):
+                path = os.path.join(folder, name)
+                with open(path, "w") as f:
+                    json.dump(value, f)
+                return path
+            return os.fspath(value)
+
+        target = os.fspath(out) if out is not None else os.path.join(folder, "out")
+        args = ["sketch", sketch_file(sketch, "sketch.json"), "--out", target]
+        options = {"--mesh": mesh, "--model": model, "--regions": regions, "--area": area,
+                   "--max-circumradius": max_circumradius, "--refine": refine, "--seed": seed,
+                   "--backend": backend, "--device": device}
+        for flag, value in options.items():
+            if value is not None:
+                args += [flag, os.fspath(value) if isinstance(value, os.PathLike) else value]
+        if uv:
+            args.append("--uv")
+        if layer2 is not None:
+            args += ["--layer2", sketch_file(layer2, "layer2.json")]
+        if rosettes:
+            args.append("--rosettes")
+        if colors:
+            args += ["--colors", *colors]
+        if _command(*args) != 0:
+            raise ValueError("sketch: the sketch was refused or could not be grown (the message is above)")
+        with open(os.path.join(target, "report.json")) as f:
+            return json.load(f)
+
+
 def _scene_file(scene: Scene, folder: str) -> str:
     """A dict scene as a file for a command: relative paths that name existing files (the mesh, map
     sources) made absolute, as the working directory resolves them for a Simulation."""
