@@ -1,10 +1,12 @@
 #include "common/numerics/shared_cholesky.hpp"
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace physarum {
@@ -27,6 +29,31 @@ cholmod_sparse view(const Eigen::SparseMatrix<double>& m) {
   s.packed = 1;
   return s;
 }
+
+// CHOLMOD's supernodal factorization opens OpenMP regions of CHOLMOD_OMP_NUM_THREADS threads, a
+// number fixed when the library was built (4 in Debian's). On a machine with fewer cores those
+// threads outnumber the cores and spin against each other and OpenBLAS's: on two cores the
+// factorization of a 9,241-vertex shell's Hessian took 219 ms with them and 134 ms without
+// (bench/README.md, "CHOLMOD's threads"). There, while this guard lives, the calling thread runs
+// CHOLMOD's regions alone (max-active-levels 0, an ICV of the calling thread: set around each call,
+// restored after it).
+class SerialOpenMpWhenOversubscribed {
+ public:
+  SerialOpenMpWhenOversubscribed() {
+    static const bool oversubscribed = std::thread::hardware_concurrency() < CHOLMOD_OMP_NUM_THREADS;
+    if (!oversubscribed) return;
+    previous_ = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+  }
+  ~SerialOpenMpWhenOversubscribed() {
+    if (previous_ >= 0) omp_set_max_active_levels(previous_);
+  }
+  SerialOpenMpWhenOversubscribed(const SerialOpenMpWhenOversubscribed&) = delete;
+  SerialOpenMpWhenOversubscribed& operator=(const SerialOpenMpWhenOversubscribed&) = delete;
+
+ private:
+  int previous_ = -1;
+};
 
 }  // namespace
 
@@ -65,6 +92,7 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const
   s.outer.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.outerSize() + 1);
   s.inner.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
   cholmod_sparse a = view(pattern);
+  const SerialOpenMpWhenOversubscribed serial;
   s.symbolic = ordering ? cholmod_analyze_p(&a, const_cast<int*>(ordering->data()), nullptr, 0, &s.common)
                         : cholmod_analyze(&a, &s.common);
   if (!s.symbolic || s.common.status != CHOLMOD_OK) {
@@ -89,7 +117,10 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
     throw std::invalid_argument(std::string("SharedCholesky: ") + what + " does not have the analysed pattern");
   cholmod_factor* f = cholmod_copy_factor(s.symbolic, &s.common);
   cholmod_sparse a = view(matrix);
-  cholmod_factorize(&a, f, &s.common);
+  {
+    const SerialOpenMpWhenOversubscribed serial;
+    cholmod_factorize(&a, f, &s.common);
+  }
   if (s.common.status != CHOLMOD_OK || f->minor != f->n) {
     cholmod_free_factor(&f, &s.common);
     throw std::runtime_error(std::string("the Cholesky factorization of ") + what + " failed (not positive definite)");
