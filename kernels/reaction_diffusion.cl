@@ -86,7 +86,7 @@ typedef float4 rd_vector;
 #define RD_VECTOR_TO(a, v) ((a)[0] = (v).x, (a)[1] = (v).y, (a)[2] = (v).z, (a)[3] = (v).w)
 #elif RD_MORPHOGENS <= 8
 /* Five to eight (Meinhardt's stripe system has five): a float8 whose lanes past the last morphogen
- * repeat it (a gathered neighbour's hold whatever follows it, see below). They are computed and
+ * repeat it (a gathered neighbour's lanes hold whatever follows it, see below). They are computed and
  * never kept: RD_VECTOR_TO writes the lanes from the last to the first, so each morphogen's own lane
  * is written last. */
 typedef float8 rd_vector;
