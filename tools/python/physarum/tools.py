@@ -198,7 +198,7 @@ def sketch(sketch, out: str | os.PathLike | None = None, *, mesh: str | os.PathL
                    "--backend": backend, "--device": device}
         for flag, value in options.items():
             if value is not None:
-                args += [flag, os.fspath(value) if isinstance(value, os.PathLike) else value]
+                args += [flag, value]  # _command writes every argument with str(), paths included
         if uv:
             args.append("--uv")
         if layer2 is not None:
