@@ -120,7 +120,8 @@ void BM_ShellIterationParts(benchmark::State& state) {
   const Eigen::VectorXd x = to_coordinates(positions);
   Eigen::SparseMatrix<double> h;
   energy.hessian(x, grown, true, h);
-  for (int i = 0; i < h.rows(); ++i) h.coeffRef(i, i) += 1e-3 * h.diagonal().maxCoeff();
+  const double shift = 1e-3 * h.diagonal().maxCoeff();
+  for (int i = 0; i < h.rows(); ++i) h.coeffRef(i, i) += shift;
   // Orderings: METIS on the 3n coordinates (SharedCholesky's default), or AMD on the n vertices with
   // each vertex's three coordinates kept together.
   std::vector<int> block_order;

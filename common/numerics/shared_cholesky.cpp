@@ -12,8 +12,9 @@
 namespace physarum {
 namespace {
 
-// CHOLMOD's view of an Eigen matrix (no copy): symmetric, lower triangle used.
-cholmod_sparse view(const Eigen::SparseMatrix<double>& m) {
+// CHOLMOD's view of an Eigen matrix (no copy), symmetric: `stype` -1 reads its lower triangle, +1
+// its upper one.
+cholmod_sparse view(const Eigen::SparseMatrix<double>& m, int stype) {
   cholmod_sparse s{};
   s.nrow = static_cast<size_t>(m.rows());
   s.ncol = static_cast<size_t>(m.cols());
@@ -21,7 +22,7 @@ cholmod_sparse view(const Eigen::SparseMatrix<double>& m) {
   s.p = const_cast<int*>(m.outerIndexPtr());
   s.i = const_cast<int*>(m.innerIndexPtr());
   s.x = const_cast<double*>(m.valuePtr());
-  s.stype = -1;
+  s.stype = stype;
   s.itype = CHOLMOD_INT;
   s.xtype = CHOLMOD_REAL;
   s.dtype = CHOLMOD_DOUBLE;
@@ -61,6 +62,10 @@ struct SharedCholesky::State {
   mutable cholmod_common common{};
   cholmod_factor* symbolic = nullptr;
   std::vector<cholmod_factor*> numeric;
+  // Factors released or refused, kept for the next factor(): CHOLMOD refactors into a numeric factor
+  // of the same analysis in place, so the values (5.4 M at a 9,241-vertex shell) are allocated once
+  // and not zeroed page by page by the kernel at every Newton iteration.
+  std::vector<cholmod_factor*> spare;
   std::vector<std::unique_ptr<SupernodalSolve>> solves;  // one per numeric factor
   std::vector<int> outer, inner;  // the pattern
   std::vector<int> identity;      // the permutation when CHOLMOD keeps none
@@ -91,7 +96,7 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const
   s.common.print = 0;
   s.outer.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.outerSize() + 1);
   s.inner.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
-  cholmod_sparse a = view(pattern);
+  cholmod_sparse a = view(pattern, -1);
   const SerialOpenMpWhenOversubscribed serial;
   s.symbolic = ordering ? cholmod_analyze_p(&a, const_cast<int*>(ordering->data()), nullptr, 0, &s.common)
                         : cholmod_analyze(&a, &s.common);
@@ -104,6 +109,7 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const
 SharedCholesky::~SharedCholesky() {
   State& s = *state_;
   for (cholmod_factor*& f : s.numeric) cholmod_free_factor(&f, &s.common);
+  for (cholmod_factor*& f : s.spare) cholmod_free_factor(&f, &s.common);
   cholmod_free_factor(&s.symbolic, &s.common);
   cholmod_finish(&s.common);
 }
@@ -115,14 +121,26 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
       matrix.nonZeros() != static_cast<Eigen::Index>(s.inner.size()) ||
       !std::equal(s.inner.begin(), s.inner.end(), matrix.innerIndexPtr()))
     throw std::invalid_argument(std::string("SharedCholesky: ") + what + " does not have the analysed pattern");
-  cholmod_factor* f = cholmod_copy_factor(s.symbolic, &s.common);
-  cholmod_sparse a = view(matrix);
+  cholmod_factor* f = nullptr;
+  if (s.spare.empty()) {
+    f = cholmod_copy_factor(s.symbolic, &s.common);
+    if (!f) throw std::runtime_error(std::string("SharedCholesky: no memory for the factor of ") + what);
+  } else {
+    f = s.spare.back();
+    s.spare.pop_back();
+  }
+  // The upper triangle: cholmod_factorize permutes a matrix given by it in one transpose, by the
+  // lower one in two (each a copy of the matrix).
+  cholmod_sparse a = view(matrix, 1);
   {
     const SerialOpenMpWhenOversubscribed serial;
     cholmod_factorize(&a, f, &s.common);
   }
   if (s.common.status != CHOLMOD_OK || f->minor != f->n) {
-    cholmod_free_factor(&f, &s.common);
+    if (s.common.status == CHOLMOD_NOT_POSDEF)
+      s.spare.push_back(f);  // still a whole numeric factor of the analysis (its last columns zero)
+    else
+      cholmod_free_factor(&f, &s.common);
     throw std::runtime_error(std::string("the Cholesky factorization of ") + what + " failed (not positive definite)");
   }
   // common.supernodal forces a supernodal LL' of doubles with int indices: the layout our solve reads.
@@ -151,7 +169,7 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
 void SharedCholesky::release_factors() {
   State& s = *state_;
   s.solves.clear();
-  for (cholmod_factor*& f : s.numeric) cholmod_free_factor(&f, &s.common);
+  s.spare.insert(s.spare.end(), s.numeric.begin(), s.numeric.end());
   s.numeric.clear();
 }
 

@@ -17,8 +17,8 @@ namespace physarum {
 
 class SharedCholesky {
  public:
-  // Analyses the pattern of `pattern` (compressed, column major, both triangles stored; only the lower
-  // one is read). Every matrix factored later must have exactly this pattern (explicit zeros count).
+  // Analyses the pattern of `pattern` (compressed, column major, both triangles stored; factor() reads
+  // the upper one). Every matrix factored later must have exactly this pattern (explicit zeros count).
   // With `ordering` (a permutation of the rows: ordering[k] is the k-th row eliminated), METIS is
   // skipped and that ordering is used: the symbolic analysis then costs a small fraction of it.
   // Factors storing at least `min_parallel_entries` entries are solved on several threads.
@@ -31,8 +31,9 @@ class SharedCholesky {
   // Factors `matrix` and returns its index for solve(). std::invalid_argument when the pattern
   // differs; std::runtime_error naming `what` when it is not positive definite.
   int factor(const Eigen::SparseMatrix<double>& matrix, const char* what);
-  // Frees every numeric factorization (their indices become invalid), keeping the analysis: an
-  // iteration that factors a new matrix of the same pattern each time (Newton's method) stays at one.
+  // Ends every numeric factorization (their indices become invalid), keeping the analysis and the
+  // factors' memory for the next factor() calls: an iteration that factors a new matrix of the same
+  // pattern each time (Newton's method) allocates one factor once. The memory goes with the object.
   void release_factors();
   // x with matrix(index) x = b: forward and backward substitution over the supernodal factor, by
   // subtrees of its elimination tree on several threads when it is large (common/numerics/supernodal_solve.hpp).

@@ -142,14 +142,14 @@ void ShellEnergy::hessian(const Eigen::VectorXd& x, const ShellRestState& rest, 
     const auto& f = topology_.faces[e];
     face_hessian[e] = membrane_element(vertex(x, f[0]), vertex(x, f[1]), vertex(x, f[2]), rest.face_metric[e],
                                        material_, true).hessian;
-    if (project) make_positive_semidefinite(face_hessian[e]);
+    if (project) make_positive_semidefinite<3>(face_hessian[e]);
   });
   for_elements(hinge_hessian.size(), [&](std::size_t e) {
     const ShellHinge& h = topology_.hinges[e];
     const auto& v = h.vertices;
     hinge_hessian[e] = hinge_element(vertex(x, v[0]), vertex(x, v[1]), vertex(x, v[2]), vertex(x, v[3]),
                                      rigidity * hinge_weight(h, rest), rest.hinge_angle[e], true).hessian;
-    if (project) make_positive_semidefinite(hinge_hessian[e]);
+    if (project) make_positive_semidefinite<4>(hinge_hessian[e]);
   });
   out = pattern_;
   double* values = out.valuePtr();

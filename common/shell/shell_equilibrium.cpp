@@ -131,13 +131,15 @@ int ShellEquilibrium::factor_hessian(const Eigen::VectorXd& x, const ShellRestSt
   diagonal = h.diagonal().cwiseAbs().maxCoeff();
   fix_coordinates(h, fixed, diagonal);
   ++report.projected_iterations;
+  Eigen::VectorXd unshifted_diagonal;
   for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 * diagonal : shift * 100.0) {
     ++report.factorizations;
-    Eigen::SparseMatrix<double> shifted = h;
-    if (shift > 0.0)
-      for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
+    if (shift > 0.0) {
+      if (unshifted_diagonal.size() == 0) unshifted_diagonal = h.diagonal();
+      for (int i = 0; i < h.rows(); ++i) h.coeffRef(i, i) = unshifted_diagonal(i) + shift;
+    }
     try {
-      return cholesky_->factor(shifted, "the shell's Hessian");
+      return cholesky_->factor(h, "the shell's Hessian");
     } catch (const std::runtime_error&) {
       if (shift > diagonal) throw;
     }
