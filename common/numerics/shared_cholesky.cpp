@@ -1,5 +1,7 @@
 #include "common/numerics/shared_cholesky.hpp"
 
+#include "common/numerics/blas_threads.hpp"
+
 #include <cholmod.h>
 #include <omp.h>
 
@@ -70,6 +72,7 @@ struct SharedCholesky::State {
   std::vector<int> outer, inner;  // the pattern
   std::vector<int> identity;      // the permutation when CHOLMOD keeps none
   std::size_t min_parallel_entries = kMinParallelSolveEntries;
+  double flops = 0.0;  // of one numeric factorization (CHOLMOD's count from the analysis)
 };
 
 SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>* ordering,
@@ -104,6 +107,7 @@ SharedCholesky::SharedCholesky(const Eigen::SparseMatrix<double>& pattern, const
     cholmod_finish(&s.common);
     throw std::runtime_error("SharedCholesky: CHOLMOD's analysis failed (status " + std::to_string(s.common.status) + ")");
   }
+  s.flops = s.common.fl;
 }
 
 SharedCholesky::~SharedCholesky() {
@@ -134,6 +138,7 @@ int SharedCholesky::factor(const Eigen::SparseMatrix<double>& matrix, const char
   cholmod_sparse a = view(matrix, 1);
   {
     const SerialOpenMpWhenOversubscribed serial;
+    const SerialBlasScope serial_blas(s.flops < kSerialBlasBelowFlops);
     cholmod_factorize(&a, f, &s.common);
   }
   if (s.common.status != CHOLMOD_OK || f->minor != f->n) {
