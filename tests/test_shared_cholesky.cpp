@@ -48,6 +48,37 @@ TEST(SharedCholesky, RefusesAnotherPatternAndIndefiniteMatrices) {
   EXPECT_THROW(shared.factor(indefinite, "indefinite"), std::runtime_error);
 }
 
+// Released and refused factors are refactored in place: what they held before (another matrix, or
+// a failed factorization's partial columns) leaves no trace in the next factorization's solve.
+TEST(SharedCholesky, AReusedFactorSolvesLikeAFreshOne) {
+  const Eigen::SparseMatrix<double> a = path(60, 0.1, 1.0), b = path(60, 2.0, 0.3);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(60, -1.0, 2.0);
+  SharedCholesky fresh(a), reused(a);
+  const Eigen::VectorXd expected = fresh.solve(fresh.factor(b, "b"), rhs);
+  reused.factor(a, "a");
+  reused.release_factors();
+  EXPECT_THROW(reused.factor(path(60, -5.0, 1.0), "indefinite"), std::runtime_error);
+  const Eigen::VectorXd after_refusal = reused.solve(reused.factor(b, "b"), rhs);
+  EXPECT_EQ(after_refusal, expected);  // the same arithmetic: bit for bit
+  reused.release_factors();
+  EXPECT_EQ(reused.solve(reused.factor(b, "b"), rhs), expected);
+  EXPECT_LT((expected - Eigen::MatrixXd(b).ldlt().solve(rhs)).norm(), 1e-10 * expected.norm());
+}
+
+// factor() reads the upper triangle: a matrix whose lower triangle disagrees is solved as the
+// symmetric matrix of its upper one.
+TEST(SharedCholesky, FactorReadsTheUpperTriangle) {
+  const Eigen::SparseMatrix<double> a = path(30, 0.5, 1.0);
+  Eigen::SparseMatrix<double> lower_spoiled = a;
+  for (int k = 0; k < lower_spoiled.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(lower_spoiled, k); it; ++it)
+      if (it.row() > it.col()) it.valueRef() = -0.25;
+  SharedCholesky shared(a);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(30, -1.0, 2.0);
+  const Eigen::VectorXd x = shared.solve(shared.factor(lower_spoiled, "spoiled"), rhs);
+  EXPECT_LT((x - Eigen::MatrixXd(a).ldlt().solve(rhs)).norm(), 1e-10 * x.norm());
+}
+
 // A given ordering is used as given (the factorization's ordering() is it, up to CHOLMOD's postorder
 // of the elimination tree, which a path's reversed order already is) and the solve is still exact;
 // a principal submatrix factors in the restricted order.

@@ -3,6 +3,7 @@
 // cylinder, and the topology's refusals.
 #include "common/base/errors.hpp"
 #include "common/mesh/mesh_loading.hpp"
+#include "common/numerics/positive_projection.hpp"
 #include "common/shell/hinge_bending.hpp"
 #include "common/shell/membrane_energy.hpp"
 #include "common/shell/rest_metric.hpp"
@@ -126,6 +127,40 @@ TEST(ShellHinge, GradientAndHessianMatchFiniteDifferencesOnRandomHinges) {
     EXPECT_LT(relative_error(element.gradient, numeric_gradient(energy, x, 1e-6)), 1e-6) << "trial " << trial;
     EXPECT_LT(relative_error(element.hessian, numeric_hessian(gradient, x, 1e-6)), 1e-4) << "trial " << trial;
   }
+}
+
+// The projection of an element Hessian through its non-translation part equals the textbook one,
+// the whole matrix's eigen-decomposition with the negative eigenvalues zeroed (computed here with
+// Eigen's dynamic-size solver), on hinges and compressed triangles whose Hessians are indefinite.
+template <int N>
+Eigen::MatrixXd clamped_by_full_decomposition(const Eigen::Matrix<double, N, N>& m) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen{Eigen::MatrixXd(m)};
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+TEST(ShellProjection, TheReducedProjectionIsTheNearestPositiveSemidefiniteMatrix) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> uniform(-0.3, 0.3);
+  int indefinite = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd x(12);
+    x << 0, 0, 0, 1, 0, 0, 0.4, 1, 0, 0.5, -1, 0;
+    for (int i = 0; i < 12; ++i) x(i) += uniform(random);
+    Matrix12d hinge =
+        hinge_element(corner(x, 0), corner(x, 1), corner(x, 2), corner(x, 3), 2.5, uniform(random), true).hessian;
+    // A triangle squeezed to 0.8 of its rest size in one direction: compressive stress.
+    const Eigen::Matrix2d rest = triangle_metric(corner(x, 0) / 0.8, corner(x, 1), corner(x, 2) / 0.8);
+    Matrix9d membrane = membrane_element(corner(x, 0), corner(x, 1), corner(x, 2), rest, steel_sheet(), true).hessian;
+    indefinite += (Eigen::SelfAdjointEigenSolver<Matrix12d>(hinge).eigenvalues().minCoeff() < 0) +
+                  (Eigen::SelfAdjointEigenSolver<Matrix9d>(membrane).eigenvalues().minCoeff() < 0);
+    const Eigen::MatrixXd hinge_expected = clamped_by_full_decomposition(hinge);
+    const Eigen::MatrixXd membrane_expected = clamped_by_full_decomposition(membrane);
+    make_positive_semidefinite<4>(hinge);
+    make_positive_semidefinite<3>(membrane);
+    EXPECT_LT(relative_error(hinge, hinge_expected), 1e-10) << "trial " << trial;
+    EXPECT_LT(relative_error(membrane, membrane_expected), 1e-10) << "trial " << trial;
+  }
+  EXPECT_GE(indefinite, 20);  // the projection had work to do
 }
 
 // The disk (817 vertices) lifted onto z = f(x, y) and jiggled: a curved, irregular sheet.
