@@ -3,9 +3,10 @@
 // factor of a few 10^9 flops (a 10^4-vertex shell's Hessian) the supernodes are too small for
 // OpenBLAS to split well, and after each parallel call its worker threads spin on sched_yield for a
 // while, taking the cores from whatever runs next (the shell's element Hessians). Measured on two
-// cores (bench/README.md, "OpenBLAS's threads"): a 9,241-vertex shell's factorization (1.9e9 flops)
-// 130 ms threaded, 97 ms serial, and a whole growth run 58 -> 52 s; a 10^5-vertex shell's (7.7e10
-// flops) and a 655k-vertex heat system's (2.0e10) are faster threaded (1.25x, 1.08x).
+// cores (bench/README.md, "Memory, the upper triangle and OpenBLAS's threads"): a 9,241-vertex
+// shell's factorization (1.9e9 flops) 130 ms threaded, 97 ms serial, and a whole growth run 58 ->
+// 47.5-53 s; a 10^5-vertex shell's (7.7e10 flops) and a 655k-vertex heat system's (2.0e10) are
+// faster threaded (1.25x, 1.08x): SharedCholesky decides by the factor's flops.
 //
 // Where the BLAS is not OpenBLAS (Debian's alternatives may select the reference BLAS or BLIS), or
 // OpenBLAS runs one thread anyway, this does nothing: the functions are looked up at run time.
@@ -22,8 +23,5 @@ class SerialBlasScope {
  private:
   bool active_ = false;
 };
-
-// Factors below this many flops (CHOLMOD's count from its analysis) are factored with serial BLAS.
-constexpr double kSerialBlasBelowFlops = 1e10;
 
 }  // namespace physarum

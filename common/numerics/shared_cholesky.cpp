@@ -58,6 +58,10 @@ class SerialOpenMpWhenOversubscribed {
   int previous_ = -1;
 };
 
+// Factors of fewer flops than this (CHOLMOD's count from the analysis) run on serial BLAS
+// (common/numerics/blas_threads.hpp has the measurements on either side).
+constexpr double kSerialBlasBelowFlops = 1e10;
+
 }  // namespace
 
 struct SharedCholesky::State {
