@@ -68,31 +68,33 @@ struct DiskSetup {
   bool only_last_converges = false;
 };
 
-InputMesh prepared_disk(const DiskSetup& setup, std::uint32_t seed) {
-  InputMesh disk = load_mesh(setup.mesh);
-  const ShellTopology topology = build_shell_topology(disk.vertex_count(), disk.triangles);
+// Moves the interior vertices in the plane by up to `jitter` edge lengths (seeded; the edge length
+// as the mean over the faces of their first edge).
+void jitter_interior(const ShellTopology& topology, std::vector<Eigen::Vector3d>& positions, double jitter,
+                     std::uint32_t seed) {
   double edge = 0.0;
-  for (const auto& t : topology.faces) edge += (disk.positions[t[1]] - disk.positions[t[0]]).norm();
+  for (const auto& t : topology.faces) edge += (positions[t[1]] - positions[t[0]]).norm();
   edge /= static_cast<double>(topology.faces.size());
-  for (std::size_t v = 0; v < disk.positions.size(); ++v) {
+  for (std::size_t v = 0; v < positions.size(); ++v) {
     if (topology.on_boundary[v]) continue;
     const PhiloxWords w = random_words(seed, static_cast<std::uint32_t>(v), 0, 0);
-    disk.positions[v].x() += setup.jitter * edge * (2 * uniform01_double(w[0], w[1]) - 1);
-    disk.positions[v].y() += setup.jitter * edge * (2 * uniform01_double(w[2], w[3]) - 1);
+    positions[v].x() += jitter * edge * (2 * uniform01_double(w[0], w[1]) - 1);
+    positions[v].y() += jitter * edge * (2 * uniform01_double(w[2], w[3]) - 1);
   }
-  return disk;
 }
 
 // The disk grown isotropically by stretch(rho) in `steps` equal steps, each solved from the last
 // with a tiny seeded out-of-plane nudge first (or the prepared waves, see DiskSetup).
 GrownDisk grow_disk(const std::function<double(double)>& stretch, const ShellMaterial& material, int steps,
                     std::uint32_t seed = 1, const DiskSetup& setup = {}) {
-  const InputMesh disk = prepared_disk(setup, seed);
-  GrownDisk grown{build_shell_topology(disk.vertex_count(), disk.triangles), disk.positions, disk.positions, {}};
-  const ShellEquilibrium solver(grown.topology, material, central_face(grown.topology, disk.positions));
+  const InputMesh disk = load_mesh(setup.mesh);
+  GrownDisk grown{build_shell_topology(disk.vertex_count(), disk.triangles), disk.positions, {}, {}};
+  jitter_interior(grown.topology, grown.initial, setup.jitter, seed);
+  grown.positions = grown.initial;
+  const ShellEquilibrium solver(grown.topology, material, central_face(grown.topology, grown.initial));
   for (int step = 1; step <= steps; ++step) {
     const double fraction = static_cast<double>(step) / steps;
-    const ShellRestState rest = metric_rest_state(grown.topology, disk.positions,
+    const ShellRestState rest = metric_rest_state(grown.topology, grown.initial,
                                                   [&](double rho) { return 1.0 + (stretch(rho) - 1.0) * fraction; });
     if (step == 1 && setup.waves > 0) {
       for (Eigen::Vector3d& p : grown.positions)
