@@ -13,13 +13,15 @@
 # pattern (face-on), cube_orientations.json on shape:cube's UV layout, sphere_marks.json (marks on the
 # surface), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
 # each layer in its own colour set, and four_sizes.json on the cow (needs ../shared/meshes).
+# growth_ruffles runs twice, on a 4 mm sheet and on the scene's 1 mm (growth_ruffles_4mm.png,
+# growth_ruffles.png).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
 # binary defaults to ./build/physarum).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 physarum=${PHYSARUM:-./build/physarum}
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes sketch growth_rings growth_beads growth_interleaved growth_cap growth_saddle growth_anisotropic)
+[ ${#scenes[@]} -gt 0 ] || scenes=(default repulsion torus_backward spot sign branching spot_scale sea_fan ginkgo species gray_scott fandisk_gray_scott petal_stripes petal_turing cascade pearson_map turing_spots meinhardt_spots meinhardt_stripes sketch growth_rings growth_beads growth_interleaved growth_cap growth_saddle growth_anisotropic growth_ruffles)
 mkdir -p docs/gallery
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for scene in "${scenes[@]}"; do
@@ -92,6 +94,14 @@ for scene in "${scenes[@]}"; do
     cp "$work/$scene/frames/frame_0001.png" docs/gallery/growth_interleaved_1.png
     cp "$work/$scene/frames/frame_0002.png" docs/gallery/growth_interleaved_2.png
     echo "docs/gallery/growth_interleaved_1.png docs/gallery/growth_interleaved_2.png"
+    continue
+  fi
+  if [ "$scene" = growth_ruffles ]; then  # the same rim growth on a 4 mm and a 1 mm sheet
+    "$physarum" run tools/scenes/growth_ruffles.json --backend opencl --set shell.thickness=0.004 --out "$work/${scene}_4mm" > /dev/null
+    "$physarum" run tools/scenes/growth_ruffles.json --backend opencl --out "$work/$scene" > /dev/null
+    cp "$work/${scene}_4mm/preview.png" docs/gallery/growth_ruffles_4mm.png
+    cp "$work/$scene/preview.png" docs/gallery/growth_ruffles.png
+    echo "docs/gallery/growth_ruffles_4mm.png docs/gallery/growth_ruffles.png"
     continue
   fi
   "$physarum" run "tools/scenes/$scene.json" --backend opencl --texture-size 1024 --out "$work/$scene" > /dev/null
