@@ -173,6 +173,11 @@ FaceGrowth GrowthSimulation::face_growth() const {
     g.across[f] = rule.anisotropy ? 1.0 + rule.anisotropy->across * (along - 1.0) : along;
   }
   if (rule.anisotropy) g.direction = sheet_.directions[static_cast<size_t>(index_of(layout_.vector, rule.anisotropy->direction))];
+  // A prescribed isotropic stretch map grows each edge by the map along it, so neighbouring faces
+  // keep agreeing on their shared edge and the rest state approximates the map's metric (per face,
+  // a shared edge would get two rest lengths: a strain of the map's gradient times the edge length
+  // that no shape relieves, which outweighs the bending of a thin sheet).
+  else if (stretch_map) g.edge = edge_stretches(sheet_.topology, *stretch_map, per_step);
   return g;
 }
 
@@ -183,6 +188,8 @@ FaceGrowth piece_of(const FaceGrowth& growth, int pieces) {
   FaceGrowth piece = growth;
   for (double& x : piece.along) x = std::pow(x, 1.0 / pieces);
   for (double& x : piece.across) x = std::pow(x, 1.0 / pieces);
+  for (auto& stretches : piece.edge)
+    for (double& x : stretches) x = std::pow(x, 1.0 / pieces);
   return piece;
 }
 

@@ -1,6 +1,6 @@
 // The growth step (common/growth/): the paper's growth functions at known points, their refusals,
-// dilution's conservation, and anisotropic growth's known shape (a disk grown uniformly along x
-// only becomes a flat, unstressed ellipse).
+// dilution's conservation, anisotropic growth's known shape (a disk grown uniformly along x only
+// becomes a flat, unstressed ellipse), and a stretch map grown per edge (one rest length per edge).
 #include "common/base/errors.hpp"
 #include "common/growth/face_growth.hpp"
 #include "common/growth/growth_law.hpp"
@@ -110,6 +110,40 @@ TEST(GrowthAnisotropy, ADiskGrownAlongXBecomesAFlatEllipse) {
   }
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(report.energy.total(), 1e-12 * 1e7 * 0.01);
+}
+
+// A stretch map given per edge (the mean of its ends' values: the trapezoid rule for the edge's
+// length in the metric stretch^2 |dx|^2) grows each rest edge by exactly that, and the two faces of
+// an edge agree on it; grown per face (by the mean of the face's three values), as a prescribed map
+// was before, they disagree by about the map's gradient times the edge length.
+TEST(GrowthPerEdge, AStretchMapGivesEachSharedEdgeOneGrownRestLength) {
+  const InputMesh disk = load_mesh("shape:disk");
+  const ShellTopology topology = build_shell_topology(disk.vertex_count(), disk.triangles);
+  std::vector<double> stretch;
+  for (const Eigen::Vector3d& p : disk.positions) stretch.push_back(1.5 - 0.5 * p.squaredNorm());
+  const ShellRestState initial = rest_state_of(topology, disk.positions);
+  ShellRestState by_edge = initial, by_face = initial;
+  FaceGrowth edge_growth;
+  edge_growth.edge = edge_stretches(topology, stretch, 1.0);
+  grow_faces(by_edge, edge_growth);
+  FaceGrowth face_growth;
+  for (const auto& t : topology.faces) face_growth.along.push_back((stretch[t[0]] + stretch[t[1]] + stretch[t[2]]) / 3);
+  face_growth.across = face_growth.along;
+  grow_faces(by_face, face_growth);
+  const auto length = [](const ShellRestState& rest, const ShellHinge& h, int side) {
+    return std::sqrt(rest_edge_length_squared(rest.face_metric[h.faces[side]], h.opposite_corner[side]));
+  };
+  double edge_mismatch = 0.0, face_mismatch = 0.0, known_answer_error = 0.0;
+  for (const ShellHinge& h : topology.hinges) {
+    const int a = h.vertices[0], b = h.vertices[1];
+    const double expected = (disk.positions[b] - disk.positions[a]).norm() * 0.5 * (stretch[a] + stretch[b]);
+    edge_mismatch = std::max(edge_mismatch, std::abs(length(by_edge, h, 0) - length(by_edge, h, 1)) / expected);
+    face_mismatch = std::max(face_mismatch, std::abs(length(by_face, h, 0) - length(by_face, h, 1)) / expected);
+    known_answer_error = std::max(known_answer_error, std::abs(length(by_edge, h, 0) - expected) / expected);
+  }
+  EXPECT_LT(edge_mismatch, 1e-12);
+  EXPECT_LT(known_answer_error, 1e-12);
+  EXPECT_GT(face_mismatch, 1e-2);  // what the per-edge growth removes (2.4 % on this disk)
 }
 
 // The unit disk grown uniformly by 2 (rest edges about 0.13, twice shape:disk's).

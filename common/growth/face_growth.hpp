@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace physarum {
@@ -17,10 +18,22 @@ struct FaceGrowth {
   // Per face, the direction of `along` as coefficients on the face's rest edge vectors
   // (face_directions gives them); empty: isotropic growth by `across`.
   std::vector<Eigen::Vector2d> direction;
+  // Isotropic growth given per edge instead: per face, the stretch of the edge opposite each corner
+  // (the same number in both faces of an edge, so they keep agreeing on its rest length). When not
+  // empty it replaces along, across and direction.
+  std::vector<std::array<double, 3>> edge;
 };
 
-// Each face's rest metric grown as `growth` says (common/shell/rest_metric.hpp: grown_metric).
+// Each face's rest metric grown as `growth` says (common/shell/rest_metric.hpp: grown_metric), or,
+// given per edge, rebuilt from its grown rest edge lengths (a face whose grown lengths would break
+// the triangle inequality, possible only where the stretch jumps across a sliver, grows by their
+// mean instead).
 void grow_faces(ShellRestState& rest, const FaceGrowth& growth);
+
+// Per-edge stretches from per-vertex ones: each edge's is the mean of its ends' (the trapezoid rule
+// for the edge's length in the metric stretch^2 |dx|^2), raised to `power`.
+std::vector<std::array<double, 3>> edge_stretches(const ShellTopology& topology, const std::vector<double>& vertex_stretch,
+                                                  double power);
 
 // Directions given as 3D vectors on the sheet's faces (e.g. a direction map on the initial sheet)
 // as coefficients on each face's edge vectors at `positions`: the least-squares solution of
