@@ -146,6 +146,24 @@ TEST(GrowthPerEdge, AStretchMapGivesEachSharedEdgeOneGrownRestLength) {
   EXPECT_GT(face_mismatch, 1e-2);  // what the per-edge growth removes (2.4 % on this disk)
 }
 
+// Where the stretch jumps across a sliver, the grown edges can break the triangle inequality: the
+// face then grows isotropically by the mean of its edges' stretches instead of becoming degenerate.
+// (Vertex 0 in the middle of a flat sliver: its long edge grows by (3 + 3) / 2, the two short ones by
+// (1 + 3) / 2, so 2 * 3 > 1 * 2 + 1 * 2.)
+TEST(GrowthPerEdge, AFaceThatWouldBreakTheTriangleInequalityGrowsByTheMeanInstead) {
+  const std::vector<Eigen::Vector3d> sliver = {{0, 0, 0}, {-1, 0.001, 0}, {1, 0.001, 0}};
+  const ShellTopology topology = build_shell_topology(3, {{0, 1, 2}});
+  ShellRestState rest = rest_state_of(topology, sliver);
+  const Eigen::Matrix2d before = rest.face_metric[0];
+  FaceGrowth growth;
+  growth.edge = edge_stretches(topology, {1.0, 3.0, 3.0}, 1.0);
+  ASSERT_EQ(growth.edge[0][0], 3.0);
+  grow_faces(rest, growth);
+  const double mean = (3.0 + 2.0 + 2.0) / 3.0;
+  EXPECT_GT(rest.face_metric[0].determinant(), 0.0);
+  EXPECT_NEAR((rest.face_metric[0] - mean * mean * before).norm(), 0.0, 1e-12);
+}
+
 // The unit disk grown uniformly by 2 (rest edges about 0.13, twice shape:disk's).
 GrowingSheet grown_disk() {
   const InputMesh disk = load_mesh("shape:disk");
