@@ -156,13 +156,21 @@ FaceGrowth GrowthSimulation::face_growth() const {
   const GrowthRuleSpec& rule = spec_.growth;
   const auto& faces = sheet_.topology.faces;
   FaceGrowth g;
-  g.along.resize(faces.size());
-  g.across.resize(faces.size());
   const double per_step = 1.0 / spec_.schedule.growth_steps;
   const std::vector<double>* stretch_map = nullptr;
   if (rule.stretch)
     if (const auto* name = std::get_if<std::string>(&*rule.stretch))
       stretch_map = &sheet_.values[static_cast<size_t>(layout_.first_value + index_of(layout_.scalar, *name))];
+  // A prescribed isotropic stretch map grows each edge by the map along it, so neighbouring faces
+  // keep agreeing on their shared edge and the rest state approximates the map's metric (per face,
+  // a shared edge would get two rest lengths: a strain of the map's gradient times the edge length
+  // that no shape relieves, which outweighs the bending of a thin sheet).
+  if (stretch_map && !rule.anisotropy) {
+    g.edge = edge_stretches(sheet_.topology, *stretch_map, per_step);
+    return g;
+  }
+  g.along.resize(faces.size());
+  g.across.resize(faces.size());
   const std::vector<double>& a = sheet_.values[static_cast<size_t>(spec_.reaction.morphogen_index(rule.a))];
   const std::vector<double>& b = sheet_.values[static_cast<size_t>(spec_.reaction.morphogen_index(rule.b))];
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -173,11 +181,6 @@ FaceGrowth GrowthSimulation::face_growth() const {
     g.across[f] = rule.anisotropy ? 1.0 + rule.anisotropy->across * (along - 1.0) : along;
   }
   if (rule.anisotropy) g.direction = sheet_.directions[static_cast<size_t>(index_of(layout_.vector, rule.anisotropy->direction))];
-  // A prescribed isotropic stretch map grows each edge by the map along it, so neighbouring faces
-  // keep agreeing on their shared edge and the rest state approximates the map's metric (per face,
-  // a shared edge would get two rest lengths: a strain of the map's gradient times the edge length
-  // that no shape relieves, which outweighs the bending of a thin sheet).
-  else if (stretch_map) g.edge = edge_stretches(sheet_.topology, *stretch_map, per_step);
   return g;
 }
 
