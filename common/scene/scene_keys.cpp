@@ -63,7 +63,8 @@ std::vector<SceneKey> build_keys() {
       setting("growth", K::Object, false, {}, "", "polynomial, m = 0, n = 1, gamma = 0.05, rate = 0.01",
               "growth: each face's rest lengths grow by 1 + rate g(a, b) per growth step, g = a^m b^n / gamma (Eq. 7) or "
               "lambda exp(a^m b^n / gamma - 1) (Eq. 6) of the face's mean morphogens a, b (default the first two); or a "
-              "prescribed target stretch of rest lengths (a scalar map or a number; 1 = none) reached in equal factors; "
+              "prescribed target stretch of rest lengths (a scalar map or a number; 1 = none) reached in equal factors, a "
+              "map growing each rest edge by the mean of its ends' values; "
               "either anisotropic along a vector map, growing `across` times as much across it",
               "{\"function\": \"polynomial\" or \"exponential\", \"m\", \"n\", \"gamma\", \"lambda\", \"rate\", \"a\": MORPHOGEN, "
               "\"b\": MORPHOGEN} or {\"stretch\": SCALAR_MAP or s > 0}, + \"anisotropy\": {\"direction\": VECTOR_MAP, "
