@@ -143,7 +143,9 @@ TEST(GrowthPerEdge, AStretchMapGivesEachSharedEdgeOneGrownRestLength) {
   }
   EXPECT_LT(edge_mismatch, 1e-12);
   EXPECT_LT(known_answer_error, 1e-12);
-  EXPECT_GT(face_mismatch, 1e-2);  // what the per-edge growth removes (2.4 % on this disk)
+  // What the per-edge growth removes: about the map's gradient (up to 1 here) times the edge length
+  // (1/16 on this disk) relative to the length; measured 3.7 % at worst.
+  EXPECT_GT(face_mismatch, 1e-2);
 }
 
 // Where the stretch jumps across a sliver, the grown edges can break the triangle inequality: the
