@@ -38,6 +38,11 @@
 
 namespace physarum {
 
+// The `--fault` name of the harness's own planted fault: two triangulations compared without their
+// common sampling, by mean and coverage alone (a test that the harness rejects a blurred arm must
+// fail with it).
+inline constexpr const char* kHarnessFault = "harness-mean-and-coverage";
+
 // One comparison, as `physarum compare` takes it from its command line.
 struct ComparisonRequest {
   std::string scene;              // the scene file

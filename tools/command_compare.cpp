@@ -28,7 +28,9 @@ Command add_compare_command(CLI::App& parent) {
   app->add_option("--device", options->device, "OpenCL device: index from `physarum devices` or a name substring");
   std::string faults;
   for (const opencl::PlantedFault& f : opencl::planted_faults()) faults += std::string("\n  ") + f.name + ": " + f.what;
-  app->add_option("--fault", options->fault, "Plant a deliberate bug in the OpenCL kernels:" + faults);
+  faults += std::string("\n  ") + kHarnessFault +
+            ": the harness's own: two triangulations compared by mean and coverage only (no common sampling)";
+  app->add_option("--fault", options->fault, "Plant a deliberate bug in the OpenCL kernels (or the harness):" + faults);
   app->add_option("--out", options->out, "Folder for verdict.json, seed_metrics.csv and spectra.png");
   app->add_option("--reference-stats", options->reference_stats,
                   "Stored per-seed reference metrics to use instead of running the reference arm");

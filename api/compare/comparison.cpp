@@ -11,6 +11,7 @@
 #include "api/comparison.hpp"
 #include "api/compare/comparison_arms.hpp"
 #include "api/compare/comparison_plot.hpp"
+#include "api/compare/pattern_checks.hpp"
 #include "api/compare/seed_runner.hpp"
 #include "api/compare/theory_check.hpp"
 
@@ -219,6 +220,12 @@ void refuse_what_cannot_be_compared(const ComparisonRequest& o) {
                      "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
   // A planted fault of the other model would change nothing, and the harness would rightly call
   // the arms equivalent: a power check that proves nothing.
+  if (o.fault == kHarnessFault) {
+    if (o.arms.size() != 2)
+      throw UsageError(std::string("--fault ") + kHarnessFault + " is a fault of the comparison of two triangulations: "
+                       "give two --arm (it would change nothing)");
+    return;
+  }
   const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
   if (!o.fault.empty() && rd != rd_fault)
     throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
@@ -248,6 +255,9 @@ struct SequentialRun {
   int max_seeds = 0;
   SequentialEquivalence test{1, 0.05, 2};
   Verdict verdict = Verdict::Continue;
+  // Pattern-scale metrics the coarser of two triangulations cannot represent (api/compare/pattern_checks.hpp).
+  std::vector<UnrepresentedScale> unrepresented;
+  std::string reason;  // why the verdict is not the sequential test's, when it is not
 };
 
 SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<Arm>& arms, int jobs) {
@@ -266,6 +276,7 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
     }
   }
   r.test = SequentialEquivalence(static_cast<int>(r.names.size()), kFamilyAlpha, r.max_seeds);
+  r.unrepresented = unrepresented_scales(arms);
   const auto start = std::chrono::steady_clock::now();
   while (r.verdict == Verdict::Continue) {
     const int n = static_cast<int>(r.a_values.size());
@@ -284,6 +295,11 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
               "look " + std::to_string(r.test.looks() + 1));
     const Look look = summarise(A.metrics, r.a_values, r.b_values);
     r.verdict = r.test.look(look.a, look.b, look.margins);
+    if (judge_unrepresented(r.unrepresented, arms, r.a_values, r.b_values)) {
+      r.verdict = Verdict::Different;
+      r.reason = "a pattern-scale metric is at a scale the coarser arm's triangulation cannot represent, and the finer "
+                 "arm has power there (see \"resolution\")";
+    }
     if (show_progress()) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const int done = static_cast<int>(r.a_values.size());
@@ -293,6 +309,11 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
         std::cerr << ", at most " << duration_text(elapsed / done * (r.max_seeds - done)) << " more";
       std::cerr << "\n";
     }
+  }
+  if (r.verdict == Verdict::Equivalent && !examines_pattern(A.metrics)) {
+    r.verdict = Verdict::Inconclusive;
+    r.reason = "no metric examined the pattern's scales (every detail energy and band is left out: see \"left_out\"); "
+               "mean and coverage alone are kept by a blurred pattern";
   }
   return r;
 }
@@ -340,6 +361,14 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
   for (size_t j = 0; j < r.names.size(); ++j) {
     const MetricLook& m = r.test.metrics()[j];
     rows.push_back(metric_row(r.names[j], &A.metrics[j], m, A.label, B.label));
+    if (A.metrics[j].pattern_scale()) rows.back()["scale"] = A.metrics[j].scale;
+    for (const UnrepresentedScale& u : r.unrepresented)
+      if (u.metric == j && u.decides) {
+        rows.back()["statistical_verdict"] = rows.back()["verdict"];
+        rows.back()["verdict"] = "different";
+        rows.back()["pass"] = false;
+        rows.back()["reason"] = u.reason;
+      }
     if (m.verdict != Verdict::Equivalent && m.verdict != Verdict::Different)
       unsettled.push_back({{"name", r.names[j]}, {"seeds_per_arm_to_settle", m.seeds_to_settle},
                            {"achieved_power", m.achieved_power}});
@@ -348,6 +377,7 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
 
   nlohmann::ordered_json report;
   report["verdict"] = to_string(r.verdict);
+  if (!r.reason.empty()) report["reason"] = r.reason;
   report["equivalent"] = r.verdict == Verdict::Equivalent && !drift;
   report["scene"] = o.scene;
   if (A.reaction_diffusion()) {
@@ -366,6 +396,11 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
   // How this run went (the rest of the report is the same whatever the threads and the machine's load).
   report["run"] = {{"jobs", jobs}, {"seconds", seconds}};
   report["left_out"] = A.left_out;
+  if (!r.unrepresented.empty()) {
+    nlohmann::ordered_json resolution = nlohmann::ordered_json::array();
+    for (const UnrepresentedScale& u : r.unrepresented) resolution.push_back(u.reason);
+    report["resolution"] = resolution;
+  }
   if (!unsettled.empty()) report["unsettled"] = unsettled;
   report["reference_source"] = stored ? o.reference_stats : "run here";
   if (stored) report["drift"] = {{"fresh_reference_seeds", r.fresh_reference.size()}, {"drift", drift}, {"metrics", drifted}};
@@ -374,7 +409,8 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
   return report;
 }
 
-// DIR/verdict.json, DIR/seed_metrics.csv and, when there are spectral bands to draw, DIR/spectra.png.
+// DIR/verdict.json, DIR/seed_metrics.csv, DIR/fields.png (api/compare/comparison_fields.hpp) and, when
+// there are spectral bands to draw, DIR/spectra.png.
 void write_compare_folder(const std::string& folder, const std::string& verdict_text, const std::vector<Arm>& arms,
                           const SequentialRun& r) {
   const Arm &A = arms[0], &B = arms[1];
@@ -393,6 +429,9 @@ void write_compare_folder(const std::string& folder, const std::string& verdict_
       csv << "\n";
     }
   write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
+  // The two patterns the verdict is about, side by side.
+  if (!write_comparison_fields((out / "fields.png").string(), arms))
+    std::cerr << "physarum compare: the arms' fields are uniform; " << (out / "fields.png").string() << " not written\n";
   // A verdict never turns into bad input: a scene without drawable bands gets no picture, and says so.
   const std::filesystem::path plot = out / "spectra.png";
   if (!write_comparison_plot(plot.string(), metric_names(A.metrics), r.b_values, r.a_values)) {
@@ -411,7 +450,9 @@ int run_comparison(const ComparisonRequest& o) {
   request.scene_path = o.scene;
   for (const std::string& a : o.arms) request.arms.push_back(parse_arm(a));
   request.device = o.device;
-  request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
+  request.planted_no_common_sampling = o.fault == kHarnessFault;
+  if (!request.planted_no_common_sampling)
+    request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
   request.reference_only = !o.store_reference.empty();
   const std::vector<Arm> arms = make_arms(request);
 
@@ -430,6 +471,9 @@ int run_comparison(const ComparisonRequest& o) {
   const SequentialRun r = run_sequential_test(o, arms, jobs);
   const std::vector<TheoryRow> theory = check_against_theory({&arms[0], &arms[1]}, {&r.a_values, &r.b_values}, kFamilyAlpha);
   for (const TheoryRow& row : theory) std::cerr << theory_line(row) << "\n";
+  for (const UnrepresentedScale& u : r.unrepresented)
+    if (u.decides) std::cerr << "physarum compare: different: " << u.reason << "\n";
+  if (!r.reason.empty() && r.verdict == Verdict::Inconclusive) std::cerr << "physarum compare: inconclusive: " << r.reason << "\n";
   bool drift = false;
   const nlohmann::ordered_json report =
       verdict_report(o, arms, r, theory, jobs, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), drift);

@@ -40,9 +40,24 @@ std::vector<std::string> names(const std::vector<MetricInfo>& metrics) {
   return n;
 }
 
+// What the arms' metrics can share: one discretisation, or a common sampling of two triangulations
+// of one input surface (or why there is none).
+ArmsShare arms_share(const std::vector<Arm>& arms, bool same_discretisation, bool planted_no_sampling) {
+  ArmsShare share;
+  share.discretisation = same_discretisation;
+  if (same_discretisation) return share;
+  if (planted_no_sampling) {
+    share.no_sampling = std::string("the planted fault ") + kHarnessFault + " withholds it";
+    return share;
+  }
+  if (same_input_surface(*arms[0].surface, *arms[1].surface, &share.no_sampling))
+    share.sampling = std::make_shared<const CommonSampling>(arms[0].surface, arms[1].surface);
+  return share;
+}
+
 // Agent-model arms: each arm's surface (checked for feasibility, built once where the arms share
 // one), its maps and per-vertex parameters evaluated once for all its seeds, and its metrics.
-void prepare_agent_model_arms(std::vector<Arm>& arms) {
+void prepare_agent_model_arms(std::vector<Arm>& arms, bool planted_no_sampling) {
   // Surfaces, built once where the arms share one, and the maps of each arm's scene on its surface,
   // evaluated once for all its seeds (through the map cache).
   const MapCache cache = MapCache::from_environment();
@@ -66,10 +81,10 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
   }
 
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
-  ArmsShare share;
-  share.discretisation =
-      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agent_model().agents == arms[1].scene.agent_model().agents);
-  for (const Arm& a : arms) share.coarsest_edge_length = std::max(share.coarsest_edge_length, mean_edge_length(a.surface->domain));
+  const ArmsShare share = arms_share(
+      arms,
+      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agent_model().agents == arms[1].scene.agent_model().agents),
+      planted_no_sampling);
   std::vector<std::shared_ptr<const ComparisonMetrics>> metrics(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
@@ -82,9 +97,10 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
     arms[i].metrics = metrics[i]->metrics();
     arms[i].left_out = metrics[i]->left_out();
     arms[i].measure = [arrays = arrays[i], metrics = metrics[i]](const Arm& arm, const Scene& seeded,
-                                                                 const opencl::ComputeContext* compute) {
+                                                                 const opencl::ComputeContext* compute,
+                                                                 IntrinsicVertexData<double>* final_field) {
       const auto sim = make_backend(arm.backend, compute, arm.surface->domain, seeded, *arrays, arm.options);
-      return metrics->measure_seed(*sim, seeded, arm.expected_mean_over_U.value_or(1.0));
+      return metrics->measure_seed(*sim, seeded, arm.expected_mean_over_U.value_or(1.0), final_field);
     };
   }
 }
@@ -93,7 +109,7 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
 // them, then per seed the system with that seed's noise and spots. The pattern scale that picks the
 // spectral metrics is the continuum system's, taken from the arm judged against, so that two arms
 // on different triangulations measure the same metric set.
-void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
+void prepare_reaction_diffusion_arms(std::vector<Arm>& arms, bool planted_no_sampling) {
   std::vector<std::shared_ptr<const EvaluatedMaps>> maps(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     Arm& a = arms[i];
@@ -117,8 +133,7 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
   }
   const double pattern_scale = reaction_diffusion_pattern_scale(baseline_system, baseline.surface->domain, uniform);
 
-  ArmsShare share;
-  share.discretisation = arms.size() == 1 || arms[0].surface == arms[1].surface;
+  const ArmsShare share = arms_share(arms, arms.size() == 1 || arms[0].surface == arms[1].surface, planted_no_sampling);
   std::vector<std::shared_ptr<const ReactionDiffusionMetrics>> metrics(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     const ComparisonSettings &c = arms[i].scene.comparison, &c0 = arms[0].scene.comparison;
@@ -130,10 +145,11 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
     arms[i].metrics = metrics[i]->metrics();
     arms[i].left_out = metrics[i]->left_out();
     arms[i].measure = [maps = maps[i], metrics = metrics[i]](const Arm& arm, const Scene& seeded,
-                                                             const opencl::ComputeContext* compute) {
+                                                             const opencl::ComputeContext* compute,
+                                                             IntrinsicVertexData<double>* final_field) {
       const auto sim = make_reaction_diffusion_backend(arm.backend, compute, arm.surface->domain,
                                                        build_reaction_diffusion_system(seeded, *arm.surface, *maps), arm.options);
-      return metrics->measure_seed(*sim, seeded);
+      return metrics->measure_seed(*sim, seeded, final_field);
     };
   }
 }
@@ -166,7 +182,10 @@ ArmSpec parse_arm(const std::string& text) {
 std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* stream) const {
   Scene s = scene;
   s.seed = seed(index);
-  return measure(*this, s, stream ? stream : compute ? &*compute : nullptr);
+  IntrinsicVertexData<double> final_field;
+  std::vector<double> metrics = measure(*this, s, stream ? stream : compute ? &*compute : nullptr, &final_field);
+  fields->add(index, final_field);
+  return metrics;
 }
 
 std::vector<Arm> make_arms(const ArmsRequest& request) {
@@ -213,8 +232,8 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   for (size_t i = 0; i < arms.size(); ++i)
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
 
-  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms);
-  else prepare_agent_model_arms(arms);
+  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms, request.planted_no_common_sampling);
+  else prepare_agent_model_arms(arms, request.planted_no_common_sampling);
   if (arms.size() == 2 && names(arms[0].metrics) != names(arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
                      "' measure different metric sets (their flatness or spectral reach differs); compare arms "

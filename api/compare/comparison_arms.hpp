@@ -10,6 +10,8 @@
 //
 // An arm's seeds never overlap the other's: arm 0 runs seeds scene.seed + i, arm 1 scene.seed +
 // 100000 + i (the reference arm's numbering, which stored statistics depend on).
+#include "api/compare/comparison_fields.hpp"
+#include "api/comparison.hpp"
 #include "common/harness/comparison_metrics.hpp"
 #include "common/scene/scene.hpp"
 #include "common/setup/scene_maps.hpp"
@@ -66,8 +68,13 @@ struct Arm {
   std::optional<double> expected_mean_over_U;
   // Builds a fresh simulation of `seeded` (the arm's scene with one seed) on `arm`'s backend, with
   // its planted faults (`compute`: the OpenCL context or queue to run it on, null for the reference),
-  // and returns its time-averaged metrics. Safe to call from several threads at once.
-  std::function<std::vector<double>(const Arm& arm, const Scene& seeded, const opencl::ComputeContext* compute)> measure;
+  // and returns its time-averaged metrics; `final_field` (when given) receives the field the seed
+  // ends with (the preview morphogen's, for reaction-diffusion). Safe to call from several threads at once.
+  std::function<std::vector<double>(const Arm& arm, const Scene& seeded, const opencl::ComputeContext* compute,
+                                    IntrinsicVertexData<double>* final_field)>
+      measure;
+  // Every seed's final field, for the picture of `compare --out` (api/compare/comparison_fields.hpp).
+  std::shared_ptr<SeedFields> fields = std::make_shared<SeedFields>();
 
   bool reaction_diffusion() const { return is_reaction_diffusion(scene); }
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
@@ -82,6 +89,9 @@ struct ArmsRequest {
   std::string device;         // default OpenCL device
   std::string fault_build_option;  // planted into every OpenCL arm
   bool reference_only = false;     // --store-reference: only the reference arm is built
+  // The harness's own planted fault (kHarnessFault): arms on two triangulations get no common
+  // sampling, so only mean and coverage compare them, as before the sampling existed.
+  bool planted_no_common_sampling = false;
 };
 
 // The arms in order (0: the arm judged, 1: the arm it is judged against, whose means set relative

@@ -27,10 +27,44 @@ std::string metres(double v) {
   return text;
 }
 
+std::string detail_name(double multiple) {
+  char name[32];
+  std::snprintf(name, sizeof name, "detail_%gd", multiple);
+  return name;
+}
+
 }  // namespace
 
-double mean_edge_length(const SurfaceDomain& domain) {
-  return std::sqrt(4.0 / std::sqrt(3.0) * domain.total_area / domain.face_count);
+void ComparisonMetrics::add_sampled_metrics(const PreparedSurface& surface, double d, const ArmsShare& share) {
+  const ComparisonSettings& c = settings_;
+  if (!share.sampling) {
+    left_out_.push_back("detail energies and scale bands: " + share.no_sampling + ", so there is no common sampling to measure them on");
+    return;
+  }
+  sampling_ = share.sampling;
+  to_samples_ = sampling_->from(surface);
+  const double h = sampling_->edge_length();
+  std::vector<double> scales, multiples;
+  for (double multiple : kDetailScales) {
+    const double scale = multiple * d;
+    if (scale < kSampledScaleInEdges * h) {
+      left_out_.push_back(detail_name(multiple) + ": its scale " + metres(scale) + " spans fewer than " +
+                          std::to_string(static_cast<int>(kSampledScaleInEdges)) + " edges of the finer arm's triangulation (" +
+                          metres(h) + " each, the common sampling): neither arm resolves it");
+      continue;
+    }
+    scales.push_back(scale);
+    multiples.push_back(multiple);
+    metrics_.push_back({detail_name(multiple), MarginKind::Relative, c.margin_detail, scale, true});
+  }
+  for (size_t k = 1; k < multiples.size(); ++k) {
+    char name[48];
+    std::snprintf(name, sizeof name, "scale_band_%gd_%gd", multiples[k - 1], multiples[k]);
+    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true});
+  }
+  if (scales.empty()) return;
+  spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);
+  scale_bands_ = true;
 }
 
 ComparisonMetrics::ComparisonMetrics(const PreparedSurface& surface, const Scene& scene, ArmsShare share)
@@ -76,34 +110,25 @@ ComparisonMetrics::ComparisonMetrics(const PreparedSurface& surface, const Scene
     } else {
       harmonic_band_of_mode_ = assignment.band_of_mode;
       for (int b = 1; b <= assignment.bands; ++b)
-        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum, pattern_scale});
       harmonic_bands_ = assignment.bands;
     }
   }
 
   // Detail energies at 1/4 .. 4 sensor distances (scene value; maps would use their mean): they see
   // the pattern at its own scale on any surface, with any number of eigenpairs, and average over
-  // many of the pattern's cells, so they vary little from seed to seed. They are continuum
-  // quantities, comparable between two triangulations of one surface.
-  const Eigen::SparseMatrix<double> L = domain_.laplacian.to_eigen();
-  for (double multiple : kDetailScales) {
-    const double scale = multiple * d;
-    char name[32];
-    std::snprintf(name, sizeof name, "detail_%gd", multiple);
-    if (!same_discretisation && scale < kResolvedScaleInEdges * share.coarsest_edge_length) {
-      left_out_.push_back(std::string(name) + ": its scale " + metres(scale) + " is below " +
-                          std::to_string(static_cast<int>(kResolvedScaleInEdges)) +
-                          " edge lengths of the coarser arm's triangulation (" + metres(share.coarsest_edge_length) +
-                          " each), where the two triangulations resolve the field differently");
-      continue;
+  // many of the pattern's cells, so they vary little from seed to seed. On one triangulation they are
+  // measured on it; between two, on the common sampling (ArmsShare), with band powers between
+  // consecutive scales as the spectrum.
+  if (same_discretisation) {
+    std::vector<double> scales;
+    for (double multiple : kDetailScales) {
+      scales.push_back(multiple * d);
+      metrics_.push_back({detail_name(multiple), MarginKind::Relative, c.margin_detail, multiple * d});
     }
-    const double t = (scale / (2.0 * kPi)) * (scale / (2.0 * kPi));
-    Eigen::SparseMatrix<double> S = t * L;
-    for (int i = 0; i < domain_.vertex_count; ++i) S.coeffRef(i, i) += domain_.vertex_mass[static_cast<size_t>(i)];
-    auto solver = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(S);
-    if (solver->info() != Eigen::Success) throw InputError("compare: cannot factorise the diffusion smoother");
-    smoothers_.push_back(solver);
-    metrics_.push_back({name, MarginKind::Relative, c.margin_detail});
+    spectrum_ = std::make_unique<SmoothingSpectrum>(domain_, scales);
+  } else {
+    add_sampled_metrics(surface, d, share);
   }
 
   // Radial bands on flat domains: the power spectrum on a grid independent of the triangulation.
@@ -125,7 +150,7 @@ ComparisonMetrics::ComparisonMetrics(const PreparedSurface& surface, const Scene
     } else {
       radial_bands_ = c.spectrum_bands;
       for (int b = 1; b <= radial_bands_; ++b)
-        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum, pattern_scale});
     }
   }
 
@@ -160,18 +185,22 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim, do
     for (double p : power) m.push_back(mean > 0.0 ? p / (domain_.total_area * mean * mean) : 0.0);
   }
 
-  {
-    Eigen::VectorXd u(domain_.vertex_count), mu(domain_.vertex_count);
-    for (int i = 0; i < domain_.vertex_count; ++i) {
-      u[i] = field[static_cast<size_t>(i)];
-      mu[i] = domain_.vertex_mass[static_cast<size_t>(i)] * u[i];
+  if (spectrum_) {
+    Eigen::VectorXd u(domain_.vertex_count);
+    for (int i = 0; i < domain_.vertex_count; ++i) u[i] = field[static_cast<size_t>(i)];
+    SmoothingSpectrum::Powers powers;
+    if (!sampling_) {
+      powers = spectrum_->of(u, mean > 0.0 ? domain_.total_area * mean * mean : 0.0);
+    } else {
+      const Eigen::VectorXd sampled = CommonSampling::read(to_samples_, u);
+      const SurfaceDomain& samples = sampling_->domain();
+      double weighted = 0.0;
+      for (int i = 0; i < samples.vertex_count; ++i) weighted += samples.vertex_mass[static_cast<size_t>(i)] * sampled[i];
+      const double sampled_mean = weighted / samples.total_area;
+      powers = spectrum_->of(sampled, sampled_mean > 0.0 ? samples.total_area * sampled_mean * sampled_mean : 0.0);
     }
-    for (const auto& smoother : smoothers_) {
-      const Eigen::VectorXd detail = u - smoother->solve(mu);
-      double energy = 0.0;
-      for (int i = 0; i < domain_.vertex_count; ++i) energy += domain_.vertex_mass[static_cast<size_t>(i)] * detail[i] * detail[i];
-      m.push_back(mean > 0.0 ? energy / (domain_.total_area * mean * mean) : 0.0);
-    }
+    m.insert(m.end(), powers.detail.begin(), powers.detail.end());
+    if (scale_bands_) m.insert(m.end(), powers.band.begin(), powers.band.end());
   }
 
   if (radial_bands_ > 0) {
@@ -190,8 +219,8 @@ std::vector<double> ComparisonMetrics::snapshot(const SimulationBackend& sim, do
   return m;
 }
 
-std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim, const Scene& scene,
-                                                     double steady_mean_over_U) const {
+std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim, const Scene& scene, double steady_mean_over_U,
+                                                     IntrinsicVertexData<double>* final_field) const {
   // Run length, time step and U from the measured arm's own scene: an arm that shares these metrics
   // with another of a different time step must still run the same SIMULATED time (with the other
   // arm's dt it ran burn_in and duration scaled by the ratio of the steps).
@@ -212,6 +241,7 @@ std::vector<double> ComparisonMetrics::measure_seed(SimulationBackend& sim, cons
     for (size_t i = 0; i < m.size(); ++i) sum[i] += m[i];
   }
   for (double& x : sum) x /= static_cast<double>(samples);
+  if (final_field) *final_field = sim.field_values();
   return sum;
 }
 

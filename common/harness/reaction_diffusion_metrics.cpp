@@ -87,6 +87,38 @@ double reaction_diffusion_pattern_scale(const ReactionDiffusionSystem& system, c
   return 2.0 * kPi * std::sqrt(d_max / rate);
 }
 
+void ReactionDiffusionMetrics::add_scale_bands(const PreparedSurface& surface, const ArmsShare& share,
+                                               const ComparisonSettings& c) {
+  if (!share.sampling) {
+    left_out_.push_back("scale bands: " + share.no_sampling + ", so there is no common sampling to measure them on");
+    return;
+  }
+  sampling_ = share.sampling;
+  to_samples_ = sampling_->from(surface);
+  const double h = sampling_->edge_length();
+  std::vector<double> scales, multiples;
+  for (double multiple : kScaleBandEdges) {
+    const double scale = multiple * pattern_scale_;
+    if (scale < kSampledScaleInEdges * h) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "scale bands at %g pattern scales (%.3g m): fewer than %g edges of the finer arm's triangulation "
+                    "(%.3g m each, the common sampling): neither arm resolves it",
+                    multiple, scale, kSampledScaleInEdges, h);
+      left_out_.push_back(text);
+      continue;
+    }
+    scales.push_back(scale);
+    multiples.push_back(multiple);
+  }
+  for (size_t k = 1; k < scales.size(); ++k) {
+    char name[48];
+    std::snprintf(name, sizeof name, "scale_band_%gl_%gl", multiples[k - 1], multiples[k]);
+    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true});
+  }
+  if (scales.size() >= 2) spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);
+}
+
 ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surface, const Scene& scene,
                                                    double pattern_scale, ArmsShare share)
     : domain_(surface.domain), pattern_scale_(pattern_scale) {
@@ -117,7 +149,9 @@ ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surfac
   // Harmonic band shares: modes at the coarsest pattern scale or finer, equal mode counts, whole
   // eigenspaces (common/harness/harmonic_bands.hpp). Only on one triangulation: two have different bases.
   if (!share.discretisation) {
-    left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ");
+    left_out_.push_back("harmonic bands: the arms run on different triangulations, whose eigenbases differ; scale "
+                        "bands on their common sampling take their place");
+    add_scale_bands(surface, share, c);
   } else {
     eigenpairs_ = smallest_eigenpairs(domain_, c.eigenpairs, true);
     const Eigen::VectorXd& lambda = eigenpairs_.values;
@@ -137,7 +171,7 @@ ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surfac
       harmonic_band_of_mode_ = assignment.band_of_mode;
       harmonic_bands_ = assignment.bands;
       for (int b = 1; b <= harmonic_bands_; ++b)
-        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+        metrics_.push_back({"harmonic_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum, coarsest});
     }
   }
 
@@ -161,7 +195,7 @@ ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surfac
     } else {
       radial_bands_ = std::min(c.spectrum_bands, top - radial_first_ + 1);
       for (int b = 1; b <= radial_bands_; ++b)
-        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum});
+        metrics_.push_back({"radial_band_" + std::to_string(b), MarginKind::Relative, c.margin_spectrum, coarsest});
     }
   }
 }
@@ -213,6 +247,21 @@ std::vector<double> ReactionDiffusionMetrics::snapshot(const std::vector<Intrins
     for (double p : power) m.push_back(variance > 0.0 ? p / (area * variance) : 0.0);
   }
 
+  if (spectrum_) {
+    // Shares of the variance on the common sampling, between consecutive scales.
+    Eigen::VectorXd field(static_cast<Eigen::Index>(u.size()));
+    for (size_t i = 0; i < u.size(); ++i) field[static_cast<Eigen::Index>(i)] = u[i];
+    const Eigen::VectorXd sampled = CommonSampling::read(to_samples_, field);
+    const SurfaceDomain& samples = sampling_->domain();
+    double mean = 0.0, spread = 0.0;
+    for (int i = 0; i < samples.vertex_count; ++i) mean += samples.vertex_mass[static_cast<size_t>(i)] * sampled[i];
+    mean /= samples.total_area;
+    for (int i = 0; i < samples.vertex_count; ++i)
+      spread += samples.vertex_mass[static_cast<size_t>(i)] * (sampled[i] - mean) * (sampled[i] - mean);
+    const SmoothingSpectrum::Powers powers = spectrum_->of(sampled, spread);
+    m.insert(m.end(), powers.band.begin(), powers.band.end());
+  }
+
   if (radial_bands_ > 0) {
     // The spectrum of the field shifted to a positive mean (radial_power_spectrum normalises by the
     // mean): a constant shift changes only radius 0, and the normalisation cancels in the shares.
@@ -232,7 +281,8 @@ std::vector<double> ReactionDiffusionMetrics::snapshot(const std::vector<Intrins
   return m;
 }
 
-std::vector<double> ReactionDiffusionMetrics::measure_seed(SimulationBackend& sim, const Scene& scene) const {
+std::vector<double> ReactionDiffusionMetrics::measure_seed(SimulationBackend& sim, const Scene& scene,
+                                                           IntrinsicVertexData<double>* final_field) const {
   const ComparisonSettings& run = scene.comparison;
   if (!(run.duration > 0.0))  // common/scene/scene.cpp: a reaction-diffusion scene without any run length
     throw InputError(scene.source + ": a reaction-diffusion scene needs a run length for physarum compare: 'steps' "
@@ -260,6 +310,7 @@ std::vector<double> ReactionDiffusionMetrics::measure_seed(SimulationBackend& si
     for (size_t i = 0; i < m.size(); ++i) sum[i] += m[i];
   }
   for (double& x : sum) x /= static_cast<double>(samples);
+  if (final_field) *final_field = layers[static_cast<size_t>(preview_)];
   return sum;
 }
 

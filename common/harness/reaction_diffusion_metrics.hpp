@@ -14,6 +14,10 @@
 //                         finer (only where the computed eigenpairs reach it)
 //   radial_band_k         the same share in radial bands of the FFT power        relative margin
 //                         spectrum (flat domains only)
+//   scale_band_{a}l_{b}l  between two triangulations, in place of the harmonic   relative margin
+//                         bands: the share of the variance between a and b
+//                         pattern scales l, measured on the arms' common sampling
+//                         (common/harness/smoothing_spectrum.hpp)
 //
 // Why each is there:
 //   * the means are mass balance: a wrong feed or decay moves them first (the fault rd-no-feed
@@ -43,6 +47,7 @@
 #include "common/simulation/simulation_backend.hpp"
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,6 +70,9 @@ double reaction_diffusion_pattern_scale(const ReactionDiffusionSystem& system, c
 // seed to seed more than any affordable number of seeds averages away).
 inline constexpr double kCoarsestBandScale = 2.0;
 
+// The scales, in pattern scales, between which the scale bands lie (up to kCoarsestBandScale).
+inline constexpr double kScaleBandEdges[] = {0.25, 0.5, 1.0, 2.0};
+
 // The fractions of the snapshot's range above which the preview morphogen's coverage is measured.
 inline constexpr double kCoverageRangeFractions[] = {0.25, 0.5, 0.75};
 
@@ -86,7 +94,9 @@ class ReactionDiffusionMetrics {
   // Runs `sim` (a fresh system of `scene`, the arm's own) for the scene's compare burn-in, then
   // samples every compare_sample_interval over compare_duration and returns the time averages.
   // InputError when a morphogen stops being finite (the run diverged: say which seed).
-  std::vector<double> measure_seed(SimulationBackend& sim, const Scene& scene) const;
+  // `final_field`, when given, receives the preview morphogen's field at the end.
+  std::vector<double> measure_seed(SimulationBackend& sim, const Scene& scene,
+                                   IntrinsicVertexData<double>* final_field = nullptr) const;
 
  private:
   const SurfaceDomain& domain_;
@@ -100,6 +110,11 @@ class ReactionDiffusionMetrics {
   int grid_size_ = 64;
   int radial_first_ = 1;  // the coarsest radius used (wavelength side / r at most the coarsest scale)
   int radial_bands_ = 0;
+  // Between two triangulations: the scale bands on the common sampling.
+  void add_scale_bands(const PreparedSurface& surface, const ArmsShare& share, const ComparisonSettings& c);
+  std::shared_ptr<const CommonSampling> sampling_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> to_samples_;
+  std::unique_ptr<SmoothingSpectrum> spectrum_;
   std::vector<MetricInfo> metrics_;
   std::vector<std::string> left_out_;
 };
