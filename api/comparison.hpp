@@ -17,6 +17,9 @@
 // them. Exit 0 equivalent, 3 different, 4 inconclusive; 1 on bad input or drift of stored
 // statistics, 2 on usage errors.
 //
+// Two triangulations of one input are measured on a common sampling (common/harness/common_sampling.hpp);
+// a verdict never rests on metrics that do not see the pattern (api/compare/pattern_checks.hpp).
+//
 // Apart from that verdict, each arm whose continuous mean is Eq. 5's U is checked against the
 // steady mean of the time-discrete model it runs (api/compare/theory_check.hpp): its own section of
 // verdict.json ("theory") and a line on stderr, never part of the verdict or the exit code.
@@ -51,7 +54,7 @@ struct ComparisonRequest {
   std::optional<int> max_seeds;   // seeds per arm at most (default: the scene's compare_seeds)
   int jobs = 0;                   // worker threads for reference seeds; 0: the cores
   std::string fault;              // a planted fault's name (opencl/planted_faults.hpp), or ""
-  std::string out;                // folder for verdict.json, seed_metrics.csv, spectra.png; "": none
+  std::string out;                // folder for verdict.json, seed_metrics.csv, fields.png, spectra.png; "": none
   std::string reference_stats;    // stored reference metrics instead of the reference arm
   int reference_seeds = 3;        // fresh reference seeds run against reference_stats (drift)
   std::string store_reference;    // run only the reference and store its per-seed metrics here

@@ -6,6 +6,7 @@
 //  * a Neumann cosine on the unit square is an eigenfunction of the Laplacian, k = 2 pi / lambda, so
 //    the smoother at scale s multiplies it by 1 / (1 + (s / lambda)^2): the detail and band energies
 //    are known in closed form.
+#include "common/base/errors.hpp"
 #include "common/harness/common_sampling.hpp"
 #include "common/harness/smoothing_spectrum.hpp"
 #include "common/surface/prepared_surface.hpp"

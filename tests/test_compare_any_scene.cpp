@@ -248,10 +248,21 @@ TEST(ValidationConvergence, TwoFineTriangulationsAreEquivalentAndACoarseOneIsNot
   ASSERT_TRUE(fine.json.is_object()) << fine.run.err;
   std::cout << "0.03 against 0.02: " << summary(fine) << "\n";
   EXPECT_EQ(fine.json["verdict"], "equivalent");
+  // The verdict looked at the pattern: a detail energy both arms resolve was decided.
+  int decided = 0;
+  for (const auto& m : fine.json["metrics"])
+    if (m["name"].get<std::string>().rfind("detail_", 0) == 0 && m["verdict"] == "equivalent" && !m.contains("difference_only"))
+      ++decided;
+  EXPECT_GE(decided, 1);
   const Verdict coarse = compare("resolved", "--arm max_circumradius=0.2 --arm max_circumradius=0.02");
   ASSERT_TRUE(coarse.json.is_object()) << coarse.run.err;
   std::cout << "0.2 against 0.02: " << summary(coarse) << "\n";
   EXPECT_EQ(coarse.json["verdict"], "different");
+  // ... and named the detail the coarse arm lost.
+  int lost = 0;
+  for (const auto& m : coarse.json["metrics"])
+    if (m["name"].get<std::string>().rfind("detail_", 0) == 0 && m["verdict"] == "different") ++lost;
+  EXPECT_GE(lost, 1);
 }
 
 TEST(ValidationConvergence, TwoSmallTimeStepsAreEquivalentAndAnAliasingOneIsNot) {

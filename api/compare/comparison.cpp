@@ -276,6 +276,7 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
     }
   }
   r.test = SequentialEquivalence(static_cast<int>(r.names.size()), kFamilyAlpha, r.max_seeds);
+  r.test.set_difference_only(difference_only_mask(A.metrics));
   r.unrepresented = unrepresented_scales(arms);
   const auto start = std::chrono::steady_clock::now();
   while (r.verdict == Verdict::Continue) {
@@ -312,8 +313,8 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
   }
   if (r.verdict == Verdict::Equivalent && !examines_pattern(A.metrics)) {
     r.verdict = Verdict::Inconclusive;
-    r.reason = "no metric examined the pattern's scales (every detail energy and band is left out: see \"left_out\"); "
-               "mean and coverage alone are kept by a blurred pattern";
+    r.reason = "no metric examined the pattern at a scale both arms resolve (every detail energy and band is left out, "
+               "see \"left_out\", or difference-only); mean and coverage alone are kept by a blurred pattern";
   }
   return r;
 }
@@ -362,6 +363,9 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
     const MetricLook& m = r.test.metrics()[j];
     rows.push_back(metric_row(r.names[j], &A.metrics[j], m, A.label, B.label));
     if (A.metrics[j].pattern_scale()) rows.back()["scale"] = A.metrics[j].scale;
+    if (A.metrics[j].difference_only)
+      rows.back()["difference_only"] = "only the finer arm resolves this scale: it can show a difference, and an "
+                                       "equivalent verdict rests on the other metrics";
     for (const UnrepresentedScale& u : r.unrepresented)
       if (u.metric == j && u.decides) {
         rows.back()["statistical_verdict"] = rows.back()["verdict"];

@@ -46,8 +46,14 @@ bool judge_unrepresented(std::vector<UnrepresentedScale>& scales, const std::vec
 
 bool examines_pattern(const std::vector<MetricInfo>& metrics) {
   for (const MetricInfo& m : metrics)
-    if (m.pattern_scale()) return true;
+    if (m.pattern_scale() && !m.difference_only) return true;
   return false;
+}
+
+std::vector<bool> difference_only_mask(const std::vector<MetricInfo>& metrics) {
+  std::vector<bool> mask;
+  for (const MetricInfo& m : metrics) mask.push_back(m.difference_only);
+  return mask;
 }
 
 }  // namespace physarum

@@ -5,9 +5,10 @@
 //    sampling at a scale the coarser arm's triangles cannot carry (kRepresentableScaleInEdges,
 //    common/harness/comparison_metrics.hpp) is Different, with that reason, as soon as the finer arm
 //    shows power there (kPatternPowerFloor): the coarser arm cannot have that pattern.
-//  * The pattern examined. A comparison none of whose metrics sees the pattern's scales (every detail
-//    energy and band left out: see the verdict's left_out) is Inconclusive, never Equivalent: mean
-//    and coverage alone are kept by a blurred pattern.
+//  * The pattern examined. A comparison none of whose metrics sees the pattern's scales at a scale
+//    both arms resolve (every detail energy and band left out, see the verdict's left_out, or only
+//    difference-only ones) is Inconclusive, never Equivalent: mean and coverage alone are kept by a
+//    blurred pattern.
 #include "api/compare/comparison_arms.hpp"
 
 #include <string>
@@ -32,7 +33,11 @@ std::vector<UnrepresentedScale> unrepresented_scales(const std::vector<Arm>& arm
 bool judge_unrepresented(std::vector<UnrepresentedScale>& scales, const std::vector<Arm>& arms,
                          const std::vector<std::vector<double>>& arm0, const std::vector<std::vector<double>>& arm1);
 
-// True when some metric of the set sees the pattern's scales.
+// True when some metric of the set sees the pattern's scales at a scale both arms resolve (one that
+// an Equivalent verdict can rest on: not difference-only).
 bool examines_pattern(const std::vector<MetricInfo>& metrics);
+
+// The metrics' difference_only flags, for SequentialEquivalence::set_difference_only.
+std::vector<bool> difference_only_mask(const std::vector<MetricInfo>& metrics);
 
 }  // namespace physarum

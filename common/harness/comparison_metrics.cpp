@@ -43,7 +43,7 @@ void ComparisonMetrics::add_sampled_metrics(const PreparedSurface& surface, doub
   }
   sampling_ = share.sampling;
   to_samples_ = sampling_->from(surface);
-  const double h = sampling_->edge_length();
+  const double h = sampling_->edge_length(), coarser = sampling_->coarser_edge_length();
   std::vector<double> scales, multiples;
   for (double multiple : kDetailScales) {
     const double scale = multiple * d;
@@ -55,12 +55,14 @@ void ComparisonMetrics::add_sampled_metrics(const PreparedSurface& surface, doub
     }
     scales.push_back(scale);
     multiples.push_back(multiple);
-    metrics_.push_back({detail_name(multiple), MarginKind::Relative, c.margin_detail, scale, true});
+    metrics_.push_back({detail_name(multiple), MarginKind::Relative, c.margin_detail, scale, true,
+                        scale < kResolvedScaleInEdges * coarser});
   }
   for (size_t k = 1; k < multiples.size(); ++k) {
     char name[48];
     std::snprintf(name, sizeof name, "scale_band_%gd_%gd", multiples[k - 1], multiples[k]);
-    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true});
+    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true,
+                        scales[k - 1] < kResolvedScaleInEdges * coarser});
   }
   if (scales.empty()) return;
   spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);

@@ -95,7 +95,7 @@ void ReactionDiffusionMetrics::add_scale_bands(const PreparedSurface& surface, c
   }
   sampling_ = share.sampling;
   to_samples_ = sampling_->from(surface);
-  const double h = sampling_->edge_length();
+  const double h = sampling_->edge_length(), coarser = sampling_->coarser_edge_length();
   std::vector<double> scales, multiples;
   for (double multiple : kScaleBandEdges) {
     const double scale = multiple * pattern_scale_;
@@ -114,7 +114,8 @@ void ReactionDiffusionMetrics::add_scale_bands(const PreparedSurface& surface, c
   for (size_t k = 1; k < scales.size(); ++k) {
     char name[48];
     std::snprintf(name, sizeof name, "scale_band_%gl_%gl", multiples[k - 1], multiples[k]);
-    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true});
+    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true,
+                        scales[k - 1] < kResolvedScaleInEdges * coarser});
   }
   if (scales.size() >= 2) spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);
 }

@@ -106,6 +106,14 @@ SequentialEquivalence::SequentialEquivalence(int metrics, double family_alpha, i
     throw InputError("sequential equivalence: the maximum of seeds per arm " + std::to_string(max_seeds_per_arm) +
                      " is not >= 2");
   metrics_.resize(metrics);
+  difference_only_.assign(static_cast<size_t>(metrics), false);
+}
+
+void SequentialEquivalence::set_difference_only(const std::vector<bool>& mask) {
+  if (mask.size() != difference_only_.size())
+    throw InputError("sequential equivalence: " + std::to_string(mask.size()) + " difference-only flags for " +
+                     std::to_string(difference_only_.size()) + " metrics");
+  difference_only_ = mask;
 }
 
 Verdict SequentialEquivalence::look(const std::vector<SampleSummary>& a, const std::vector<SampleSummary>& b,
@@ -163,7 +171,7 @@ Verdict SequentialEquivalence::look(const std::vector<SampleSummary>& a, const s
       }
     }
     any_different = any_different || metric.verdict == Verdict::Different;
-    all_equivalent = all_equivalent && metric.verdict == Verdict::Equivalent;
+    all_equivalent = all_equivalent && (metric.verdict == Verdict::Equivalent || difference_only_[i]);
   }
   if (any_different) verdict_ = Verdict::Different;
   else if (all_equivalent) verdict_ = Verdict::Equivalent;

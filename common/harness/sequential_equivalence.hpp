@@ -43,7 +43,8 @@
 // are tested again at later looks. So easy metrics drop out while hard ones gather seeds.
 //
 // Overall verdict after a look: Different as soon as any metric is Different; Equivalent once every
-// metric is Equivalent; otherwise Continue before N_max and Inconclusive at the last look.
+// metric is Equivalent (every metric not marked difference-only); otherwise Continue before N_max and
+// Inconclusive at the last look.
 //
 // For every metric a look also reports what the seeds would buy at the final look's level (the
 // level the look reaching N_max has, or would have if it came next): the achieved power
@@ -99,6 +100,11 @@ class SequentialEquivalence {
   Verdict look(const std::vector<SampleSummary>& a, const std::vector<SampleSummary>& b,
                const std::vector<double>& margins);
 
+  // Metrics that can make the comparison Different but are not needed for Equivalent (a scale only
+  // one of two triangulations resolves, common/harness/comparison_metrics.hpp): the overall verdict
+  // is Equivalent once every OTHER metric is. Default: none. InputError on a wrong size.
+  void set_difference_only(const std::vector<bool>& mask);
+
   const std::vector<MetricLook>& metrics() const { return metrics_; }
   int looks() const { return looks_; }
   int seeds_per_arm() const { return seeds_; }       // n of the latest look (the smaller arm)
@@ -116,6 +122,7 @@ class SequentialEquivalence {
   double spent_ = 0.0;
   Verdict verdict_ = Verdict::Continue;
   std::vector<MetricLook> metrics_;
+  std::vector<bool> difference_only_;
 };
 
 }  // namespace physarum
