@@ -85,7 +85,7 @@ TEST_P(EquivalentScene, OpenCLIsEquivalentToTheReference) {
     for (const char* key : {"name", "verdict", "reference_mean", "opencl_mean", "margin", "confidence_interval",
                             "p_value", "achieved_power", "pass"})
       EXPECT_TRUE(m.contains(key)) << key;
-  for (const char* file : {"verdict.json", "seed_metrics.csv", "spectra.png"})
+  for (const char* file : {"verdict.json", "seed_metrics.csv", "spectra.png", "fields.png"})
     EXPECT_TRUE(std::filesystem::exists(out.path / file)) << file;
   std::cout << scene << ": equivalent after " << v.json["seeds"]["opencl"] << " OpenCL seeds, "
             << v.json["sequential"]["looks"] << " looks\n";

@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <OpenImageIO/imageinput.h>
+#include <OpenImageIO/imageio.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,7 +61,7 @@ struct Verdict {
 
 Verdict compare(const std::string& scene, const std::string& extra) {
   Verdict v;
-  v.run = run_physarum("compare " + quoted(scene) + " " + extra);
+  v.run = run_physarum("compare " + testing::quoted(std::filesystem::path(scene)) + " " + extra);
   try {
     v.json = nlohmann::json::parse(v.run.out);
   } catch (const nlohmann::json::exception&) {
