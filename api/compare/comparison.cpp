@@ -454,8 +454,9 @@ int run_comparison(const ComparisonRequest& o) {
   request.scene_path = o.scene;
   for (const std::string& a : o.arms) request.arms.push_back(parse_arm(a));
   request.device = o.device;
-  request.planted_no_common_sampling = o.fault == kHarnessFault;
-  if (!request.planted_no_common_sampling)
+  request.withhold_common_sampling = o.fault == kHarnessFault;
+  request.keep_fields = !o.out.empty();
+  if (!request.withhold_common_sampling)
     request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
   request.reference_only = !o.store_reference.empty();
   const std::vector<Arm> arms = make_arms(request);

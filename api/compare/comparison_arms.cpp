@@ -42,11 +42,11 @@ std::vector<std::string> names(const std::vector<MetricInfo>& metrics) {
 
 // What the arms' metrics can share: one discretisation, or a common sampling of two triangulations
 // of one input surface (or why there is none).
-ArmsShare arms_share(const std::vector<Arm>& arms, bool same_discretisation, bool planted_no_sampling) {
+ArmsShare arms_share(const std::vector<Arm>& arms, bool same_discretisation) {
   ArmsShare share;
   share.discretisation = same_discretisation;
   if (same_discretisation) return share;
-  if (planted_no_sampling) {
+  if (arms[0].common_sampling_withheld) {
     share.no_sampling = std::string("the planted fault ") + kHarnessFault + " withholds it";
     return share;
   }
@@ -57,7 +57,7 @@ ArmsShare arms_share(const std::vector<Arm>& arms, bool same_discretisation, boo
 
 // Agent-model arms: each arm's surface (checked for feasibility, built once where the arms share
 // one), its maps and per-vertex parameters evaluated once for all its seeds, and its metrics.
-void prepare_agent_model_arms(std::vector<Arm>& arms, bool planted_no_sampling) {
+void prepare_agent_model_arms(std::vector<Arm>& arms) {
   // Surfaces, built once where the arms share one, and the maps of each arm's scene on its surface,
   // evaluated once for all its seeds (through the map cache).
   const MapCache cache = MapCache::from_environment();
@@ -78,13 +78,13 @@ void prepare_agent_model_arms(std::vector<Arm>& arms, bool planted_no_sampling) 
     a.scene = with_mean_parameters(a.scene, arrays[i]->parameters, a.surface->domain);
     if (steady_mean_is_U(a.scene))
       a.expected_mean_over_U = expected_mean_over_U(a.scene, arrays[i]->parameters, a.surface->domain);
+    a.field_levels = std::array<double, 2>{0.0, 2.0 * uniform_steady_state(a.scene, a.surface->domain.total_area)};
   }
 
   // Metrics, each arm on its own surface; the discretisation-bound ones only where both arms share it.
   const ArmsShare share = arms_share(
       arms,
-      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agent_model().agents == arms[1].scene.agent_model().agents),
-      planted_no_sampling);
+      arms.size() == 1 || (arms[0].surface == arms[1].surface && arms[0].scene.agent_model().agents == arms[1].scene.agent_model().agents));
   std::vector<std::shared_ptr<const ComparisonMetrics>> metrics(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     if (i > 0 && arms[i].surface == arms[0].surface && arms[i].scene.comparison.eigenpairs == arms[0].scene.comparison.eigenpairs &&
@@ -109,7 +109,7 @@ void prepare_agent_model_arms(std::vector<Arm>& arms, bool planted_no_sampling) 
 // them, then per seed the system with that seed's noise and spots. The pattern scale that picks the
 // spectral metrics is the continuum system's, taken from the arm judged against, so that two arms
 // on different triangulations measure the same metric set.
-void prepare_reaction_diffusion_arms(std::vector<Arm>& arms, bool planted_no_sampling) {
+void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
   std::vector<std::shared_ptr<const EvaluatedMaps>> maps(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     Arm& a = arms[i];
@@ -133,7 +133,7 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms, bool planted_no_sam
   }
   const double pattern_scale = reaction_diffusion_pattern_scale(baseline_system, baseline.surface->domain, uniform);
 
-  const ArmsShare share = arms_share(arms, arms.size() == 1 || arms[0].surface == arms[1].surface, planted_no_sampling);
+  const ArmsShare share = arms_share(arms, arms.size() == 1 || arms[0].surface == arms[1].surface);
   std::vector<std::shared_ptr<const ReactionDiffusionMetrics>> metrics(arms.size());
   for (size_t i = 0; i < arms.size(); ++i) {
     const ComparisonSettings &c = arms[i].scene.comparison, &c0 = arms[0].scene.comparison;
@@ -183,8 +183,9 @@ std::vector<double> Arm::run_seed(int index, const opencl::ComputeContext* strea
   Scene s = scene;
   s.seed = seed(index);
   IntrinsicVertexData<double> final_field;
-  std::vector<double> metrics = measure(*this, s, stream ? stream : compute ? &*compute : nullptr, &final_field);
-  fields->add(index, final_field);
+  std::vector<double> metrics =
+      measure(*this, s, stream ? stream : compute ? &*compute : nullptr, fields ? &final_field : nullptr);
+  if (fields) fields->add(index, final_field);
   return metrics;
 }
 
@@ -229,11 +230,14 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     }
   }
   // The second arm, and the reference alone when it is stored, number their seeds as the reference arm does.
-  for (size_t i = 0; i < arms.size(); ++i)
+  for (size_t i = 0; i < arms.size(); ++i) {
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
+    arms[i].common_sampling_withheld = request.withhold_common_sampling;
+    if (request.keep_fields) arms[i].fields = std::make_shared<SeedFields>();
+  }
 
-  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms, request.planted_no_common_sampling);
-  else prepare_agent_model_arms(arms, request.planted_no_common_sampling);
+  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms);
+  else prepare_agent_model_arms(arms);
   if (arms.size() == 2 && names(arms[0].metrics) != names(arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
                      "' measure different metric sets (their flatness or spectral reach differs); compare arms "

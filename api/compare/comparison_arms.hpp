@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -73,8 +74,15 @@ struct Arm {
   std::function<std::vector<double>(const Arm& arm, const Scene& seeded, const opencl::ComputeContext* compute,
                                     IntrinsicVertexData<double>* final_field)>
       measure;
-  // Every seed's final field, for the picture of `compare --out` (api/compare/comparison_fields.hpp).
-  std::shared_ptr<SeedFields> fields = std::make_shared<SeedFields>();
+  // Every seed's final field, for the picture of `compare --out` (api/compare/comparison_fields.hpp);
+  // null when no picture is asked for (no field is then read back).
+  std::shared_ptr<SeedFields> fields;
+  // The colour levels of its field in that picture (the agent model: 0 .. 2 U, as the gallery's
+  // previews); unset: the range of the fields.
+  std::optional<std::array<double, 2>> field_levels;
+  // The harness's own planted fault (kHarnessFault): this arm and the other, on two triangulations,
+  // get no common sampling, so only mean and coverage compare them, as before the sampling existed.
+  bool common_sampling_withheld = false;
 
   bool reaction_diffusion() const { return is_reaction_diffusion(scene); }
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
@@ -89,9 +97,8 @@ struct ArmsRequest {
   std::string device;         // default OpenCL device
   std::string fault_build_option;  // planted into every OpenCL arm
   bool reference_only = false;     // --store-reference: only the reference arm is built
-  // The harness's own planted fault (kHarnessFault): arms on two triangulations get no common
-  // sampling, so only mean and coverage compare them, as before the sampling existed.
-  bool planted_no_common_sampling = false;
+  bool withhold_common_sampling = false;  // the harness's planted fault (Arm::common_sampling_withheld)
+  bool keep_fields = false;               // keep every seed's final field (Arm::fields), for --out
 };
 
 // The arms in order (0: the arm judged, 1: the arm it is judged against, whose means set relative

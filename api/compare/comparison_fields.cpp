@@ -2,7 +2,6 @@
 
 #include "api/compare/comparison_arms.hpp"
 #include "common/output/labelled_panels.hpp"
-#include "common/setup/agent_inputs.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 
 #include <algorithm>
@@ -48,20 +47,19 @@ IntrinsicVertexData<double> SeedFields::mean() const {
 }
 
 bool write_comparison_fields(const std::string& path, const std::vector<Arm>& arms) {
-  // One colour scale for every panel: 0 .. 2 U for the agent model (as the gallery's previews), the
-  // range of the first seeds' fields for reaction-diffusion.
+  // One colour scale for every panel: the arms' own levels (Arm::field_levels) where they have them,
+  // else the range of their first seeds' fields.
   PreviewOptions options;
   options.width = kPanelWidth;
   options.height = kPanelHeight;
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (const Arm& arm : arms) {
     if (!arm.fields || arm.fields->count() == 0) continue;
-    if (arm.reaction_diffusion()) {
-      for (double x : arm.fields->first()) low = std::min(low, x), high = std::max(high, x);
-    } else {
-      low = 0.0;
-      high = std::max(high, 2.0 * uniform_steady_state(arm.scene, arm.surface->domain.total_area));
+    if (arm.field_levels) {
+      low = std::min(low, (*arm.field_levels)[0]), high = std::max(high, (*arm.field_levels)[1]);
+      continue;
     }
+    for (double x : arm.fields->first()) low = std::min(low, x), high = std::max(high, x);
   }
   if (!(high > low)) return false;
   options.coloring.low = low;

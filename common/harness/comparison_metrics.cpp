@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace physarum {
 namespace {
@@ -35,6 +36,41 @@ std::string detail_name(double multiple) {
 
 }  // namespace
 
+SampledScales sampled_scales(const CommonSampling& sampling, const std::vector<double>& multiples, double unit,
+                             const std::function<std::string(double multiple)>& label, std::vector<std::string>& left_out) {
+  SampledScales out;
+  const double h = sampling.edge_length();
+  for (double multiple : multiples) {
+    const double scale = multiple * unit;
+    if (scale < kSampledScaleInEdges * h) {
+      left_out.push_back(label(multiple) + ": its scale " + metres(scale) + " spans fewer than " +
+                         std::to_string(static_cast<int>(kSampledScaleInEdges)) + " edges of the finer arm's triangulation (" +
+                         metres(h) + " each, the common sampling): neither arm resolves it");
+      continue;
+    }
+    out.multiples.push_back(multiple);
+    out.scales.push_back(scale);
+  }
+  return out;
+}
+
+bool coarser_arm_resolves(const CommonSampling& sampling, double scale) {
+  return scale >= kResolvedScaleInEdges * sampling.coarser_edge_length();
+}
+
+std::vector<MetricInfo> scale_band_metrics(const SampledScales& sampled, const CommonSampling& sampling,
+                                           const std::string& unit, double margin) {
+  std::vector<MetricInfo> bands;
+  for (size_t k = 1; k < sampled.scales.size(); ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "scale_band_%g%s_%g%s", sampled.multiples[k - 1], unit.c_str(), sampled.multiples[k],
+                  unit.c_str());
+    bands.push_back({name, MarginKind::Relative, margin, sampled.scales[k], true,
+                     !coarser_arm_resolves(sampling, sampled.scales[k - 1])});
+  }
+  return bands;
+}
+
 void ComparisonMetrics::add_sampled_metrics(const PreparedSurface& surface, double d, const ArmsShare& share) {
   const ComparisonSettings& c = settings_;
   if (!share.sampling) {
@@ -43,29 +79,15 @@ void ComparisonMetrics::add_sampled_metrics(const PreparedSurface& surface, doub
   }
   sampling_ = share.sampling;
   to_samples_ = sampling_->from(surface);
-  const double h = sampling_->edge_length(), coarser = sampling_->coarser_edge_length();
-  std::vector<double> scales, multiples;
-  for (double multiple : kDetailScales) {
-    const double scale = multiple * d;
-    if (scale < kSampledScaleInEdges * h) {
-      left_out_.push_back(detail_name(multiple) + ": its scale " + metres(scale) + " spans fewer than " +
-                          std::to_string(static_cast<int>(kSampledScaleInEdges)) + " edges of the finer arm's triangulation (" +
-                          metres(h) + " each, the common sampling): neither arm resolves it");
-      continue;
-    }
-    scales.push_back(scale);
-    multiples.push_back(multiple);
-    metrics_.push_back({detail_name(multiple), MarginKind::Relative, c.margin_detail, scale, true,
-                        scale < kResolvedScaleInEdges * coarser});
-  }
-  for (size_t k = 1; k < multiples.size(); ++k) {
-    char name[48];
-    std::snprintf(name, sizeof name, "scale_band_%gd_%gd", multiples[k - 1], multiples[k]);
-    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true,
-                        scales[k - 1] < kResolvedScaleInEdges * coarser});
-  }
-  if (scales.empty()) return;
-  spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);
+  const SampledScales sampled = sampled_scales(*sampling_, std::vector<double>(std::begin(kDetailScales), std::end(kDetailScales)),
+                                               d, detail_name, left_out_);
+  for (size_t k = 0; k < sampled.scales.size(); ++k)
+    metrics_.push_back({detail_name(sampled.multiples[k]), MarginKind::Relative, c.margin_detail, sampled.scales[k], true,
+                        !coarser_arm_resolves(*sampling_, sampled.scales[k])});
+  const std::vector<MetricInfo> bands = scale_band_metrics(sampled, *sampling_, "d", c.margin_spectrum);
+  metrics_.insert(metrics_.end(), bands.begin(), bands.end());
+  if (sampled.scales.empty()) return;
+  spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), sampled.scales);
   scale_bands_ = true;
 }
 

@@ -31,6 +31,7 @@
 #include "common/simulation/simulation_backend.hpp"
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,6 +92,21 @@ constexpr double kResolvedScaleInEdges = 10.0;
 // that reason, whatever the coarser arm's facets happen to add up to there.
 constexpr double kRepresentableScaleInEdges = 3.0;
 constexpr double kPatternPowerFloor = 0.01;
+
+// The scales two triangulations are measured at on their common sampling: the multiples of `unit`
+// (increasing) whose scale the sampling resolves (kSampledScaleInEdges). Each other one is reported
+// in `left_out` as "<label(multiple)>: its scale ... neither arm resolves it".
+struct SampledScales {
+  std::vector<double> multiples, scales;  // scales = multiples x unit, metres
+};
+SampledScales sampled_scales(const CommonSampling& sampling, const std::vector<double>& multiples, double unit,
+                             const std::function<std::string(double multiple)>& label, std::vector<std::string>& left_out);
+// The scale bands between consecutive sampled scales, named scale_band_{a}<unit>_{b}<unit>; a band is
+// difference-only where the coarser arm does not resolve its finer end (kResolvedScaleInEdges).
+std::vector<MetricInfo> scale_band_metrics(const SampledScales& sampled, const CommonSampling& sampling,
+                                           const std::string& unit, double margin);
+// Whether the coarser arm of `sampling` resolves `scale` (kResolvedScaleInEdges of its edges).
+bool coarser_arm_resolves(const CommonSampling& sampling, double scale);
 
 class ComparisonMetrics {
  public:

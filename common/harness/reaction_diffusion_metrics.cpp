@@ -1,6 +1,7 @@
 #include "common/harness/reaction_diffusion_metrics.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/base/number_format.hpp"
 #include "common/harness/harmonic_bands.hpp"
 #include "common/reaction_diffusion/reaction_formula.hpp"
 #include "common/harness/spectral_metrics.hpp"
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 
 namespace physarum {
@@ -95,29 +97,12 @@ void ReactionDiffusionMetrics::add_scale_bands(const PreparedSurface& surface, c
   }
   sampling_ = share.sampling;
   to_samples_ = sampling_->from(surface);
-  const double h = sampling_->edge_length(), coarser = sampling_->coarser_edge_length();
-  std::vector<double> scales, multiples;
-  for (double multiple : kScaleBandEdges) {
-    const double scale = multiple * pattern_scale_;
-    if (scale < kSampledScaleInEdges * h) {
-      char text[256];
-      std::snprintf(text, sizeof text,
-                    "scale bands at %g pattern scales (%.3g m): fewer than %g edges of the finer arm's triangulation "
-                    "(%.3g m each, the common sampling): neither arm resolves it",
-                    multiple, scale, kSampledScaleInEdges, h);
-      left_out_.push_back(text);
-      continue;
-    }
-    scales.push_back(scale);
-    multiples.push_back(multiple);
-  }
-  for (size_t k = 1; k < scales.size(); ++k) {
-    char name[48];
-    std::snprintf(name, sizeof name, "scale_band_%gl_%gl", multiples[k - 1], multiples[k]);
-    metrics_.push_back({name, MarginKind::Relative, c.margin_spectrum, scales[k], true,
-                        scales[k - 1] < kResolvedScaleInEdges * coarser});
-  }
-  if (scales.size() >= 2) spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), scales);
+  const SampledScales sampled = sampled_scales(
+      *sampling_, std::vector<double>(std::begin(kScaleBandEdges), std::end(kScaleBandEdges)), pattern_scale_,
+      [](double multiple) { return "scale bands at " + format_number(multiple) + " pattern scales"; }, left_out_);
+  const std::vector<MetricInfo> bands = scale_band_metrics(sampled, *sampling_, "l", c.margin_spectrum);
+  metrics_.insert(metrics_.end(), bands.begin(), bands.end());
+  if (!bands.empty()) spectrum_ = std::make_unique<SmoothingSpectrum>(sampling_->domain(), sampled.scales);
 }
 
 ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surface, const Scene& scene,
