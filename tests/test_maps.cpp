@@ -12,6 +12,7 @@
 #include "common/output/texture_bake.hpp"
 #include "common/output/texture_image.hpp"
 #include "map_tool_meshes.hpp"
+#include "ply_formats.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -158,6 +159,26 @@ TEST(Maps, MapsMayNameEachOtherInAnyOrder) {
   EXPECT_EQ(order, (std::vector<std::string>{"a", "b", "c"}));
   const EvaluatedMaps m = evaluate_maps(set, surface_of("shape:square"), "s");
   EXPECT_DOUBLE_EQ(m.scalar_map("c")[0], 0.75);
+}
+
+// A map painted elsewhere and saved as ASCII (trimesh, Blender's exporter option) or big-endian PLY
+// gives the same values on the surface as the little-endian file physarum writes, so the same run.
+TEST(Maps, APlyMapReadsTheSameInEveryPlyFormat) {
+  TempDir dir;
+  const PreparedSurface square = surface_of("shape:square", 0.05);
+  std::vector<float> weight(square.input.positions.size());
+  for (size_t v = 0; v < weight.size(); ++v)
+    weight[v] = static_cast<float>(square.input.positions[v].x() * square.input.positions[v].x() + 0.1 * square.input.positions[v].y());
+  std::vector<IntrinsicVertexData<double>> maps;
+  for (const char* format : {"binary_little_endian", "ascii", "binary_big_endian"}) {
+    const std::string file = std::string(format) + ".ply";
+    testing::write_ply_in_format((dir.path / file).string(), format, square.input, "w", weight);
+    maps.push_back(evaluate({{"w", {{"ply", file}, {"property", "w"}}}}, square, dir.path.string()).scalar_map("w"));
+  }
+  const auto [low, high] = std::minmax_element(maps[0].begin(), maps[0].end());
+  EXPECT_GT(*high - *low, 0.1);  // the map is not constant
+  EXPECT_EQ(maps[1], maps[0]);
+  EXPECT_EQ(maps[2], maps[0]);
 }
 
 // ---- refusals ------------------------------------------------------------------------------------------

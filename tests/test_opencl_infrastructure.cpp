@@ -12,7 +12,9 @@
 #include "opencl/runtime/program_cache.hpp"
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -228,15 +230,31 @@ TEST(OpenCLDeposition, FixedPointRoundingIsNearestTiesToEven) {
 // The device triad sizes its arrays past the device's cache, computes what it claims, and on a CPU
 // device (host memory, as here) measures the same memory the host's triad does: within a factor of
 // three of it, whatever the other tenants of the machine are doing to both.
+// The triad's arrays are 4x the device's reported cache each where the device allows it. Devices of
+// our kind differ: PoCL on some Xeons reports a cache of hundreds of MiB beside a largest allocation
+// of 2 GiB and a memory a sixth of which is less than 4x that cache, and then each array is as large
+// as the device allows (DeviceTriad: its largest allocation, a sixth of its memory). The rates are
+// compared with the host's only when the three arrays together still stream past the cache (twice
+// its size); the test says what it measured either way.
 TEST(OpenCLMemoryBandwidth, DeviceTriadRunsOutsideTheCacheAndAgreesWithTheHosts) {
   const ComputeContext compute = make_compute_context("");
+  const DeviceInfo& d = compute.device;
   DeviceTriad device(compute);
-  EXPECT_GE(device.bytes_per_triad(), 3.0 * 4.0 * static_cast<double>(compute.device.global_cache_bytes));
+  const double per_array = device.bytes_per_triad() / 3.0, cache = static_cast<double>(d.global_cache_bytes);
+  const double allowed = static_cast<double>(std::min<std::uint64_t>(d.max_allocation_bytes, d.global_memory_bytes / 6));
+  std::cout << "triad: " << per_array / (1 << 20) << " MiB per array; cache " << cache / (1 << 20) << " MiB, allowed "
+            << allowed / (1 << 20) << " MiB per array\n";
+  EXPECT_TRUE(per_array >= 4.0 * cache || per_array >= allowed - 16.0)
+      << "the triad is smaller than both 4x the cache and what the device allows";
   const double device_rate = device.bytes_per_second(3);
   EXPECT_TRUE(device.result_is_correct());
-  if (!tuning_for(compute.device).host_triad) GTEST_SKIP() << "the device's memory is not the host's";
+  if (!tuning_for(d).host_triad) GTEST_SKIP() << "the device's memory is not the host's";
+  if (3.0 * per_array < 2.0 * cache)
+    GTEST_SKIP() << "the largest triad the device allows (" << 3.0 * per_array / (1 << 20) << " MiB) is not twice its cache ("
+                 << cache / (1 << 20) << " MiB): a rate from the cache says nothing of the host's memory";
   HostTriad host;
   const double host_rate = host.bytes_per_second(3);
+  std::cout << "triad: device " << device_rate / 1e9 << " GB/s, host " << host_rate / 1e9 << " GB/s\n";
   EXPECT_GT(device_rate, host_rate / 3.0);
   EXPECT_LT(device_rate, host_rate * 3.0);
 }

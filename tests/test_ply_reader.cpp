@@ -5,11 +5,14 @@
 #include "common/mesh/ply_reader.hpp"
 #include "common/output/ply_writer.hpp"
 #include "pheromone_test_meshes.hpp"
+#include "ply_formats.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <iterator>
 #include <fstream>
 
 namespace physarum {
@@ -85,9 +88,13 @@ TEST(PlyReader, RefusesMalformedFilesNamingThem) {
   std::string out_of_range = face;
   out_of_range[9] = 7;
   expect_refused(head + body + out_of_range, "out of range");
-  std::string ascii = head;
-  ascii.replace(ascii.find("binary_little_endian"), 20, "ascii");
-  expect_refused(ascii, "ascii");
+  std::string unknown = head;
+  unknown.replace(unknown.find("binary_little_endian"), 20, "binary_middle_endian");
+  expect_refused(unknown, "binary_middle_endian");
+  std::string ascii_head = head;
+  ascii_head.replace(ascii_head.find("binary_little_endian"), 20, "ascii");
+  expect_refused(ascii_head + "0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n", "'zero' at byte");
+  expect_refused(ascii_head + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "truncated");
   expect_refused("solid x\n", "not a PLY");
   try {
     (void)read_ply_fields((dir.path / "missing.ply").string());
@@ -95,6 +102,33 @@ TEST(PlyReader, RefusesMalformedFilesNamingThem) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
   }
+}
+
+// ASCII (trimesh, Blender's exporter option, scripts) and big-endian PLYs, written by the test, read
+// back to the same bits as the little-endian one; CR LF line ends too.
+TEST(PlyReader, ReadsAsciiAndBigEndianFilesAsTheLittleEndianOne) {
+  const InputMesh mesh = testing::make_icosphere(2);
+  std::vector<float> values(mesh.positions.size());
+  for (size_t v = 0; v < values.size(); ++v) values[v] = std::sin(0.37f * static_cast<float>(v)) * 3.0e-3f + 1.0f / 3.0f;
+  TempDir dir;
+  std::vector<PlyFields> read;
+  for (const char* format : {"binary_little_endian", "binary_big_endian", "ascii"}) {
+    const std::string path = (dir.path / (std::string(format) + ".ply")).string();
+    testing::write_ply_in_format(path, format, mesh, "w", values);
+    read.push_back(read_ply_fields(path));
+  }
+  ASSERT_EQ(read[0].property("w"), std::vector<double>(values.begin(), values.end()));
+  for (size_t k = 1; k < read.size(); ++k) {
+    EXPECT_EQ(read[k].mesh.positions, read[0].mesh.positions) << k;
+    EXPECT_EQ(read[k].mesh.triangles, mesh.triangles) << k;
+    EXPECT_EQ(read[k].property("w"), read[0].property("w")) << k;
+  }
+  // Windows line ends in an ASCII file.
+  std::ifstream in(dir.path / "ascii.ply", std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), crlf;
+  for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  write_bytes(dir.path / "crlf.ply", crlf);
+  EXPECT_EQ(read_ply_fields((dir.path / "crlf.ply").string()).property("w"), read[0].property("w"));
 }
 
 // Face properties (a map's per-face vectors, other tools' per-face values): scalars declared before

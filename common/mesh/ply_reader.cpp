@@ -3,8 +3,9 @@
 #include "common/base/errors.hpp"
 
 #include <bit>
+#include <cctype>
+#include <cstdlib>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -40,10 +41,13 @@ size_t type_size(PlyType t) {
   return 0;
 }
 
-// Little-endian bytes to a value, whatever the host's byte order.
-double decode(const unsigned char* p, PlyType t) {
+enum class PlyFormat { BinaryLittleEndian, BinaryBigEndian, Ascii };
+
+// Binary bytes in the file's byte order to a value, whatever the host's byte order.
+double decode(const unsigned char* p, PlyType t, bool big_endian) {
+  const size_t size = type_size(t);
   std::uint64_t bits = 0;
-  for (size_t b = 0; b < type_size(t); ++b) bits |= static_cast<std::uint64_t>(p[b]) << (8 * b);
+  for (size_t b = 0; b < size; ++b) bits |= static_cast<std::uint64_t>(p[big_endian ? size - 1 - b : b]) << (8 * b);
   switch (t) {
     case PlyType::Int8: return static_cast<std::int8_t>(bits);
     case PlyType::UInt8: return static_cast<std::uint8_t>(bits);
@@ -101,9 +105,15 @@ void parse_property(std::stringstream& words, Element& e, const std::string& pat
   }
 }
 
-// The elements the header (everything before "end_header") declares, with their properties.
-std::vector<Element> parse_header(const std::string& header_text, const std::string& path) {
+struct Header {
+  PlyFormat format = PlyFormat::BinaryLittleEndian;
   std::vector<Element> elements;
+};
+
+// The format and the elements the header (everything before "end_header") declares, with their properties.
+Header parse_header(const std::string& header_text, const std::string& path) {
+  Header parsed;
+  std::vector<Element>& elements = parsed.elements;
   std::stringstream header(header_text);
   for (std::string line; std::getline(header, line);) {
     std::stringstream words(line);
@@ -112,8 +122,10 @@ std::vector<Element> parse_header(const std::string& header_text, const std::str
     if (keyword == "format") {
       std::string format;
       words >> format;
-      if (format != "binary_little_endian")
-        throw InputError(path + ": PLY format '" + format + "' is not read (physarum writes binary_little_endian)");
+      if (format == "binary_little_endian") parsed.format = PlyFormat::BinaryLittleEndian;
+      else if (format == "binary_big_endian") parsed.format = PlyFormat::BinaryBigEndian;
+      else if (format == "ascii") parsed.format = PlyFormat::Ascii;
+      else throw InputError(path + ": PLY format '" + format + "' is not one of ascii, binary_little_endian, binary_big_endian");
     } else if (keyword == "element") {
       Element e;
       words >> e.name >> e.count;
@@ -124,18 +136,50 @@ std::vector<Element> parse_header(const std::string& header_text, const std::str
       parse_property(words, elements.back(), path);
     }
   }
-  return elements;
+  return parsed;
 }
 
-// The binary body being read: the file's bytes and the read position.
+// The body being read: the file's bytes, its format and the read position. next() reads one value
+// of a type: its bytes in a binary body, one whitespace-separated number in an ASCII one.
 struct Body {
   const std::string& path;
   const std::string& bytes;
-  const unsigned char* data;
+  PlyFormat format;
   size_t at;
 
-  void need(size_t n) const {
-    if (at + n > bytes.size()) throw InputError(path + ": file ends early (truncated body)");
+  double next(PlyType t) {
+    // A value declared float is a float whichever way it is written: an ASCII number is rounded to
+    // float as a binary file would have stored it.
+    if (format == PlyFormat::Ascii) return t == PlyType::Float32 ? static_cast<float>(next_word()) : next_word();
+    const size_t size = type_size(t);
+    if (at + size > bytes.size()) throw InputError(path + ": file ends early (truncated body)");
+    const double value = decode(reinterpret_cast<const unsigned char*>(bytes.data()) + at, t, format == PlyFormat::BinaryBigEndian);
+    at += size;
+    return value;
+  }
+
+  // Past the last element: nothing but (in ASCII) white space.
+  bool at_end() {
+    if (format == PlyFormat::Ascii) skip_space();
+    return at == bytes.size();
+  }
+
+ private:
+  void skip_space() {
+    while (at < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[at]))) ++at;
+  }
+
+  double next_word() {
+    skip_space();
+    const size_t start = at;
+    while (at < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[at]))) ++at;
+    if (start == at) throw InputError(path + ": file ends early (truncated body)");
+    const std::string word = bytes.substr(start, at - start);
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (end != word.c_str() + word.size())
+      throw InputError(path + ": '" + word + "' at byte " + std::to_string(start) + " is not a number");
+    return value;
   }
 };
 
@@ -160,10 +204,7 @@ void read_vertices(const Element& e, Body& body, PlyFields& result) {
     if (c) c->reserve(static_cast<size_t>(e.count));
   for (long long v = 0; v < e.count; ++v) {
     for (size_t p = 0; p < e.scalars.size(); ++p) {
-      const size_t size = type_size(e.scalars[p].type);
-      body.need(size);
-      const double value = decode(body.data + body.at, e.scalars[p].type);
-      body.at += size;
+      const double value = body.next(e.scalars[p].type);
       if (columns[p])
         columns[p]->push_back(value);
       else
@@ -175,16 +216,11 @@ void read_vertices(const Element& e, Body& body, PlyFields& result) {
 // One face's vertex-index list, which must be a triangle of existing vertices.
 std::array<int, 3> read_triangle(const Element& e, Body& body, long long f, size_t vertex_count) {
   const std::string& path = body.path;
-  const size_t count_size = type_size(e.list_count_type), item_size = type_size(e.list_item_type);
-  body.need(count_size);
-  const double corners = decode(body.data + body.at, e.list_count_type);
-  body.at += count_size;
+  const double corners = body.next(e.list_count_type);
   if (corners != 3) throw InputError(path + ": face " + std::to_string(f) + " is not a triangle");
   std::array<int, 3> t{};
   for (int c = 0; c < 3; ++c) {
-    body.need(item_size);
-    const double index = decode(body.data + body.at, e.list_item_type);
-    body.at += item_size;
+    const double index = body.next(e.list_item_type);
     if (index < 0 || index >= static_cast<double>(vertex_count))
       throw InputError(path + ": face " + std::to_string(f) + " has vertex index " +
                        std::to_string(static_cast<long long>(index)) + " out of range");
@@ -207,12 +243,7 @@ void read_faces(const Element& e, Body& body, PlyFields& result) {
   }
   result.mesh.triangles.reserve(static_cast<size_t>(e.count));
   auto read_scalars = [&](size_t from, size_t to) {
-    for (size_t p = from; p < to; ++p) {
-      const size_t size = type_size(e.scalars[p].type);
-      body.need(size);
-      columns[p]->push_back(decode(body.data + body.at, e.scalars[p].type));
-      body.at += size;
-    }
+    for (size_t p = from; p < to; ++p) columns[p]->push_back(body.next(e.scalars[p].type));
   };
   for (long long f = 0; f < e.count; ++f) {
     read_scalars(0, e.scalars_before_list);
@@ -235,14 +266,17 @@ PlyFields read_ply_fields(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t end = bytes.find("end_header\n");
-  if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos) throw InputError(path + ": not a PLY file");
-  const std::vector<Element> elements = parse_header(bytes.substr(0, end), path);
+  // Lines end in LF or CR LF (files written on Windows).
+  const size_t end = bytes.find("end_header");
+  const size_t body_start = end == std::string::npos ? end : bytes.find('\n', end);
+  if ((bytes.rfind("ply\n", 0) != 0 && bytes.rfind("ply\r\n", 0) != 0) || body_start == std::string::npos)
+    throw InputError(path + ": not a PLY file");
+  const Header header = parse_header(bytes.substr(0, end), path);
 
   PlyFields result;
   result.mesh.source = path;
-  Body body{path, bytes, reinterpret_cast<const unsigned char*>(bytes.data()), end + std::strlen("end_header\n")};
-  for (const Element& e : elements) {
+  Body body{path, bytes, header.format, body_start + 1};
+  for (const Element& e : header.elements) {
     if (e.name == "vertex") {
       read_vertices(e, body, result);
     } else if (e.name == "face") {
@@ -251,7 +285,7 @@ PlyFields read_ply_fields(const std::string& path) {
       throw InputError(path + ": element '" + e.name + "' is not read (only vertex and face)");
     }
   }
-  if (body.at != bytes.size()) throw InputError(path + ": unexpected bytes after the last element");
+  if (!body.at_end()) throw InputError(path + ": unexpected bytes after the last element");
   result.mesh.file_vertex.resize(result.mesh.positions.size());
   for (size_t v = 0; v < result.mesh.file_vertex.size(); ++v) result.mesh.file_vertex[v] = static_cast<int>(v);
   return result;

@@ -2,10 +2,11 @@
 // Reading a result back: the binary PLY files physarum writes (pheromone.ply, fields_full.ply,
 // maps.ply) as a triangle mesh plus every per-vertex and per-face scalar property by name, so
 // `physarum render` can re-colour a finished run without simulating again and a scene's maps can be
-// painted in another tool and read as {"ply": FILE, ...}. It reads any binary little-endian PLY whose
-// vertex element has scalar properties and whose face element has one list property of triangles
-// (plus any scalar face properties) — the layout of our writers and of most tools' exports — and
-// says clearly what it does not read.
+// painted in another tool and read as {"ply": FILE, ...}. It reads any PLY — ASCII (as trimesh,
+// Blender's exporter option and many scripts write it), binary little- or big-endian — whose vertex
+// element has scalar properties and whose face element has one list property of triangles (plus any
+// scalar face properties) — the layout of our writers and of most tools' exports — and says clearly
+// what it does not read.
 #include "common/mesh/input_mesh.hpp"
 
 #include <map>
@@ -30,8 +31,8 @@ struct PlyFields {
   const std::vector<double>& face_property(const std::string& name) const;
 };
 
-// Throws InputError naming `path` and the problem (missing file, ASCII or big-endian format, a face
-// that is not a triangle, an index out of range, a truncated body).
+// Throws InputError naming `path` and the problem (missing file, an unknown format, a face that is
+// not a triangle, an index out of range, a truncated body, a word of an ASCII body that is no number).
 PlyFields read_ply_fields(const std::string& path);
 
 }  // namespace physarum
