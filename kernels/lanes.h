@@ -14,8 +14,9 @@
 #ifndef PHYSARUM_WALK_LANES
 #define PHYSARUM_WALK_LANES 1
 #endif
-/* A hint to fetch the cache line at p. On CPU devices the host asks for clang's prefetch
- * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's. */
+/* A hint to fetch the cache line at p. On PoCL's CPU devices the host asks for clang's prefetch
+ * (PHYSARUM_CLANG_PREFETCH): PoCL's OpenCL prefetch() does nothing. Elsewhere OpenCL's (a driver
+ * that compiles through SPIR-V, as Mesa's rusticl, cannot take clang's). */
 #ifdef PHYSARUM_CLANG_PREFETCH
 #define PHYSARUM_PREFETCH(p) __builtin_prefetch(p)
 #else

@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
 # The README's pictures: runs each gallery scene on the OpenCL backend and keeps its preview.png
-# under docs/gallery/ (SCENE.png); for spot (needs ../shared/meshes) also its baked texture and a
+# under docs/gallery/ (SCENE.png); for spot also its baked texture and a
 # re-colouring with the colour map extracted from the shipped exemplar image; the flat sign and disk
 # of the control scenes are shown face-on (physarum render's front view), spot_scale from the side.
 # The map-tool scenes sea_fan and ginkgo (flat fans) are shown face-on too, and so are the three
 # systems of the appendix of 004 (turing_spots, meinhardt_spots, meinhardt_stripes: flat squares).
-# Reaction-diffusion: fandisk_gray_scott (needs ../shared/meshes) and petal_stripes keep their
+# Reaction-diffusion: fandisk_gray_scott and petal_stripes keep their
 # preview; cascade runs cascade_first, then cascade_second seeded from its fields_full.ply (both
 # pictures kept); pearson_map is a sweep of 6 x 6 (F, k) runs collected into one contact sheet
 # (about 2 minutes on two cores). sketch runs `physarum sketch` on tools/sketch/examples/four_sizes.png,
 # oriented.json, mixed_aspects.json and strokes.json and keeps each sketch as measured beside its grown
 # pattern (face-on), cube_orientations.json on shape:cube's UV layout, sphere_marks.json (marks on the
 # surface), then layer_big.json with --layer2 layer_small.json, with and without --rosettes,
-# each layer in its own colour set, and four_sizes.json on the cow (needs ../shared/meshes).
+# each layer in its own colour set, and four_sizes.json on the cow.
 # growth_ruffles runs twice, on a 4 mm sheet and on the scene's 1 mm (growth_ruffles_4mm.png,
 # growth_ruffles.png).
 # Usage: [PHYSARUM=path/to/physarum] tools/make_gallery.sh [SCENE ...] (default: all of them; the
@@ -67,15 +67,11 @@ for scene in "${scenes[@]}"; do
     for mode in layers rosettes; do cp "$work/$mode/view_front.png" "docs/gallery/sketch_${mode}_result.png"; done
     pictures="docs/gallery/sketch_layers_result.png docs/gallery/sketch_rosettes_result.png"
     # Spots of four sizes on a 3D mesh: the window's quadrants over the cow's x/y extent.
-    if [ -f ../shared/meshes/spot.obj ]; then
-      "$physarum" sketch tools/sketch/examples/four_sizes.json --mesh ../shared/meshes/spot.obj --area 3 --refine 1 \
-        --colors '#1a1a2e,#e94560,#ffd460' --backend opencl --out "$work/cow" > /dev/null
-      cp "$work/cow/preview.png" docs/gallery/sketch_cow_result.png
-      cp "$work/cow/sketch.png" docs/gallery/sketch_cow_input.png
-      pictures="$pictures docs/gallery/sketch_cow_input.png docs/gallery/sketch_cow_result.png"
-    else
-      echo "make_gallery.sh: ../shared/meshes/spot.obj is absent: no sketch on the cow" >&2
-    fi
+    "$physarum" sketch tools/sketch/examples/four_sizes.json --mesh tools/scenes/meshes/spot.obj --area 3 --refine 1 \
+      --colors '#1a1a2e,#e94560,#ffd460' --backend opencl --out "$work/cow" > /dev/null
+    cp "$work/cow/preview.png" docs/gallery/sketch_cow_result.png
+    cp "$work/cow/sketch.png" docs/gallery/sketch_cow_input.png
+    pictures="$pictures docs/gallery/sketch_cow_input.png docs/gallery/sketch_cow_result.png"
     cp "$work/layers/sketch.png" docs/gallery/sketch_layers_input.png
     cp "$work/layers/sketch_layer2.png" docs/gallery/sketch_layers_input2.png
     echo "docs/gallery/sketch_input.png docs/gallery/sketch_result.png docs/gallery/sketch_oriented_input.png docs/gallery/sketch_oriented_result.png docs/gallery/sketch_mixed_input.png docs/gallery/sketch_mixed_result.png docs/gallery/sketch_strokes_input.png docs/gallery/sketch_strokes_result.png docs/gallery/sketch_cube_input.png docs/gallery/sketch_cube_result.png docs/gallery/sketch_sphere_input.png docs/gallery/sketch_sphere_result.png docs/gallery/sketch_layers_input.png docs/gallery/sketch_layers_input2.png $pictures"

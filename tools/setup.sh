@@ -6,7 +6,8 @@
 #                                 pillow for tests/read_exports.py; nanobind, scikit-build-core and
 #                                 pytest for the Python module and its tests), the schedulers the sweep
 #                                 tests use (Slurm, munge, GNU parallel; no daemon is started or
-#                                 configured system-wide), Blender for tests/blender_exports.py, and
+#                                 configured system-wide), Blender for tests/blender_exports.py, Mesa's
+#                                 OpenCL (a second implementation the tests run on), and
 #                                 every target: the test program, the benchmarks, the device check,
 #                                 the Python module (the README's second command, CI)
 # Safe to run again: packages already present are not reinstalled, a .venv that already holds the
@@ -31,8 +32,10 @@ packages=(
 
 # Only the tests use these: the schedulers the sweep tests submit to (a private Slurm the tests start
 # and stop themselves, GNU parallel); Blender (headless, with the numpy its importers need) as the
-# independent reader of result.glb; the Python headers the Python module is built against.
-test_packages=(slurm-wlm munge parallel blender python3-numpy python3-dev)
+# independent reader of result.glb; the Python headers the Python module is built against; Mesa's
+# OpenCL (rusticl on llvmpipe: a second implementation beside PoCL, which
+# tests/test_other_opencl_implementations.cpp holds to the reference).
+test_packages=(slurm-wlm munge parallel blender python3-numpy python3-dev mesa-opencl-icd)
 if $with_tests; then packages+=("${test_packages[@]}"); fi
 
 missing=()

@@ -152,7 +152,14 @@ ReactionDiffusionMetrics::ReactionDiffusionMetrics(const PreparedSurface& surfac
                           std::to_string(lambda.size()) + " eigenpairs (shortest wavelength " + metres(shortest) +
                           ") lie at the pattern's scale " + metres(coarsest) + " or finer, fewer than the " +
                           std::to_string(kMinModesPerBand) + " a band needs (compare_eigenpairs of about " +
-                          std::to_string(static_cast<long long>(std::ceil(needed))) + " would give one)");
+                          std::to_string(static_cast<long long>(std::ceil(needed))) +
+                          " would give one); scale bands on the surface's own vertices take their place");
+      // The smoother needs no eigenbasis: the surface sampled at its own vertices (the agent model's
+      // detail energies are measured the same way). The surface outlives these metrics (domain_).
+      const std::shared_ptr<const PreparedSurface> own(std::shared_ptr<const PreparedSurface>(), &surface);
+      ArmsShare on_own_vertices = share;
+      on_own_vertices.sampling = std::make_shared<const CommonSampling>(own, own);
+      add_scale_bands(surface, on_own_vertices, c);
     } else {
       harmonic_band_of_mode_ = assignment.band_of_mode;
       harmonic_bands_ = assignment.bands;

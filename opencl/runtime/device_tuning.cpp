@@ -15,7 +15,7 @@ struct TuningEntry {
 
 // First match wins; the last row is the default.
 constexpr std::array kTable = {
-    // CPU devices (PoCL, and any other CPU driver):
+    // PoCL's CPU devices:
     //  - 4 agents per work-item: agents moving in the lanes of float4 vectors overlap their chains
     //    of dependent face reads, which a CPU's few threads would otherwise wait on one by one;
     //  - clang's prefetch: PoCL's OpenCL prefetch() compiles to nothing;
@@ -27,9 +27,19 @@ constexpr std::array kTable = {
     //  - implicit systems of every size on the host: the field is mapped in place, and one pair of
     //    triangular solves beats the CG's launches at 10^3 vertices and its tens of bandwidth-bound
     //    iterations at 10^6 (bench/README.md, "The implicit solve").
-    TuningEntry{"CPU", "",
+    TuningEntry{"CPU", "Portable Computing Language",
                 DeviceTuning{.agents_per_work_item = 4,
                              .clang_prefetch = true,
+                             .huge_page_random_access = true,
+                             .triad_launches = 1,
+                             .host_triad = true,
+                             .host_implicit_solve_max_vertices = std::numeric_limits<int>::max()}},
+    // Other CPU drivers (Mesa's rusticl on llvmpipe, Intel's CPU runtime): as PoCL's, but with
+    // OpenCL's own prefetch(). clang's __builtin_prefetch is a trick of PoCL's compiler; a driver
+    // that translates through SPIR-V (rusticl) aborts the process on its llvm.prefetch intrinsic.
+    TuningEntry{"CPU", "",
+                DeviceTuning{.agents_per_work_item = 1,
+                             .clang_prefetch = false,
                              .huge_page_random_access = true,
                              .triad_launches = 1,
                              .host_triad = true,
