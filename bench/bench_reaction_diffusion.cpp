@@ -5,7 +5,7 @@
 //
 //   BM_RdExplicitStep   one explicit sub-step; counters: vertices, bytes the step must move
 //                       (OpenCLReactionDiffusion::bytes_per_sub_step) per second, and that as a
-//                       fraction of the device's measured STREAM-triad bandwidth (opencl/memory_bandwidth):
+//                       fraction of the device's measured STREAM-triad bandwidth (opencl/runtime/memory_bandwidth):
 //                       the step is bandwidth-bound, so this is its roofline fraction.
 //   BM_RdExplicitStepReference  the same step on the reference backend.
 //   BM_RdExplicitStepFiveMorphogens(Reference)  the same with five morphogens (the float8 path).

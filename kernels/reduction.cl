@@ -1,4 +1,4 @@
-/* Field statistics on the device (mirrors common/field_statistics): the area-weighted mean and the
+/* Field statistics on the device (mirrors common/simulation/field_statistics): the area-weighted mean and the
  * coverage fractions need sum m_i u_i and sum over {u_i > t_k} of m_i. Pass 1 leaves one float4 per
  * work-group; pass 2 (one work-group) adds those in a fixed order. The host divides by the total
  * mass, itself summed by these kernels with thresholds of -infinity. */

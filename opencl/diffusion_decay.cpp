@@ -31,18 +31,15 @@ std::vector<float> to_float(const Values& v) {
   return std::vector<float>(v.begin(), v.end());
 }
 
-}  // namespace
+// The same input checks as ReferenceDiffusionDecay, and the per-vertex quantities they pass.
+struct CheckedInputs {
+  IntrinsicVertexData<double> diffuse_over_mass, inverse_mass;
+};
 
-OpenCLDiffusionDecay::~OpenCLDiffusionDecay() = default;
-
-OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const SurfaceDomain& domain,
-                                 const VertexParameters& params, Integrator integrator, double time_step,
-                                 const OpenCLDiffusionDecayOptions& options)
-    : compute_(compute), options_(options), integrator_(integrator), time_step_(time_step) {
+CheckedInputs checked_inputs(const SurfaceDomain& domain, const VertexParameters& params, double time_step,
+                             const OpenCLDiffusionDecayOptions& options) {
   const int n = domain.vertex_count;
   const size_t un = static_cast<size_t>(n);
-  vertex_count_ = n;
-  // ---- the same input checks as ReferenceDiffusionDecay ----
   if (!(time_step > 0.0) || !std::isfinite(time_step))
     throw InputError("opencl pheromone: time step " + std::to_string(time_step) + " must be > 0");
   if (n <= 0 || domain.vertex_mass.size() != un || domain.laplacian.rows != n || domain.laplacian.cols != n)
@@ -55,8 +52,7 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
   if (options.cg_max_iterations < 1 || options.cg_check_interval < 1 || !(options.cg_relative_tolerance > 0.0))
     throw InputError("opencl pheromone: conjugate-gradient options need max iterations >= 1, check interval >= 1 "
                      "and tolerance > 0");
-  const CsrMatrix& L = domain.laplacian;
-  IntrinsicVertexData<double> diffuse_over_mass(un), inverse_mass(un);
+  CheckedInputs in{IntrinsicVertexData<double>(un), IntrinsicVertexData<double>(un)};
   for (int i = 0; i < n; ++i) {
     const double m = domain.vertex_mass[i];
     if (!(m > 0.0))
@@ -64,24 +60,22 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
                        " (must be > 0)");
     if (!(params[Param::diffuse_rate][i] >= 0.0) || !(params[Param::decay_rate][i] >= 0.0))
       throw InputError("opencl pheromone: vertex " + std::to_string(i) + " has a negative diffuse or decay rate");
-    inverse_mass[i] = 1.0 / m;
-    diffuse_over_mass[i] = params[Param::diffuse_rate][i] / m;
+    in.inverse_mass[i] = 1.0 / m;
+    in.diffuse_over_mass[i] = params[Param::diffuse_rate][i] / m;
   }
+  return in;
+}
 
-  // ---- forward Euler step limit: the reference's bound (common/model/diffusion_decay.hpp), in double,
-  // so both backends take the same number of sub-steps ----
-  stable_time_step_ = forward_euler_stable_step(L, diffuse_over_mass, params[Param::decay_rate]);
-  if (integrator == Integrator::Forward) {
-    sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
-    sub_step_ = time_step / sub_steps_;
-  }
+}  // namespace
 
-  // ---- program and launch sizes ----
+OpenCLDiffusionDecay::~OpenCLDiffusionDecay() = default;
+
+void OpenCLDiffusionDecay::build_kernels() {
   kernels_ = std::make_unique<Kernels>();
   try {
-    const std::string deposit_cells = fixed_point_deposits(compute.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS";
-    const cl::Program program = build_program(compute.context, compute.device, "diffusion_decay.cl",
-                                              kernel_source("diffusion_decay.cl"), options.build_options + deposit_cells);
+    const std::string deposit_cells = fixed_point_deposits(compute_.device) ? "" : " -DPHYSARUM_FLOAT_DEPOSITS";
+    const cl::Program program = build_program(compute_.context, compute_.device, "diffusion_decay.cl",
+                                              kernel_source("diffusion_decay.cl"), options_.build_options + deposit_cells);
     Kernels& k = *kernels_;
     k.forward_substep = cl::Kernel(program, "pheromone_forward_substep");
     k.forward_overflow = cl::Kernel(program, "pheromone_forward_overflow");
@@ -91,77 +85,108 @@ OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const 
     // One local size for every per-vertex kernel; the smallest the kernels allow.
     group_ = common_work_group_size({&k.forward_substep, &k.forward_overflow, &k.add_deposits, &k.csr_multiply,
                                      &k.add_source},
-                                    compute.device, 256, sizeof(cl_float4));
+                                    compute_.device, 256, sizeof(cl_float4));
   } catch (const cl::Error& e) {
-    throw device_error("preparing the pheromone kernels (diffusion_decay.cl) on " + compute.device.device_name, e.err());
+    throw device_error("preparing the pheromone kernels (diffusion_decay.cl) on " + compute_.device.device_name, e.err());
   }
+}
+
+void OpenCLDiffusionDecay::upload_forward_matrix(const CsrMatrix& laplacian,
+                                                 const IntrinsicVertexData<double>& diffuse_over_mass,
+                                                 const IntrinsicVertexData<double>& decay_rate) {
+  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+  // The sub-step matrix (common/model/pheromone_operators.hpp), in double, then in hybrid form with one
+  // ELL row per work-item of the padded launch.
+  const CsrMatrix F = forward_substep_matrix(laplacian, diffuse_over_mass, decay_rate, sub_step_);
+  const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(static_cast<size_t>(vertex_count_), group_)));
+  forward_stride_ = hybrid.stride;
+  forward_overflow_rows_ = hybrid.overflow_rows();
+  // The ELL block and the overflow part once each, u in once, u out written once and the long
+  // rows' entries of it read and written again.
+  forward_bytes_per_sub_step_ =
+      4.0 * static_cast<double>(hybrid.column.size() + hybrid.value.size() + hybrid.overflow_row.size() +
+                                hybrid.overflow_start.size() + hybrid.overflow_column.size() +
+                                hybrid.overflow_value.size() + 2 * hybrid.overflow_row.size() + 2 * static_cast<size_t>(vertex_count_));
+  forward_column_ = upload_buffer(compute_, "forward Euler ELL columns", hybrid.column, kRead, false);
+  forward_value_ = upload_buffer(compute_, "forward Euler ELL values", hybrid.value, kRead, false);
+  forward_overflow_row_ = upload_buffer(compute_, "forward Euler overflow rows", hybrid.overflow_row, kRead, false);
+  forward_overflow_start_ =
+      upload_buffer(compute_, "forward Euler overflow row starts", hybrid.overflow_start, kRead, false);
+  forward_overflow_column_ =
+      upload_buffer(compute_, "forward Euler overflow columns", hybrid.overflow_column, kRead, false);
+  forward_overflow_value_ =
+      upload_buffer(compute_, "forward Euler overflow values", hybrid.overflow_value, kRead, false);
+  // Read only by the planted fault no-decay-substep (see pheromone_forward_substep).
+  decay_rate_ = upload_buffer(compute_, "decay rate", to_float(decay_rate), kRead, false);
+}
+
+void OpenCLDiffusionDecay::prepare_backward_euler(const SurfaceDomain& domain, const VertexParameters& params,
+                                                  double time_step) {
+  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
+  const int n = vertex_count_;
+  const size_t un = static_cast<size_t>(n);
+  const CsrMatrix& L = domain.laplacian;
+  const OpenCLDiffusionDecayOptions& options = options_;
+  // Eq. 7 as S u' = B u, S symmetric positive definite (common/model/pheromone_operators.hpp): B u on
+  // this program's csr_multiply, S by conjugate gradients.
+  const BackwardEulerSystem system =
+      backward_euler_system(L, domain.vertex_mass, params[Param::diffuse_rate], params[Param::decay_rate], time_step);
+  diagonal_only_ = system.diagonal_only;
+  const bool on_host = !diagonal_only_ && (options.implicit_solver == ImplicitSolver::HostCholesky ||
+                                           (options.implicit_solver == ImplicitSolver::Automatic &&
+                                            implicit_solve_on_host(compute_.device, n)));
+  if (on_host) {
+    // B u on the host too, beside the solve: the step then costs no launch at all.
+    host_solver_ = std::make_unique<HostCholeskySolve>(system.system, FactorPrecision::Single,
+                                                       "opencl pheromone (backward Euler)");
+    host_rhs_operator_ = system.rhs;
+    host_rhs_.resize(un);
+    if (options.host_solve_in_queue && runs_queued_host_tasks(compute_.device))
+      host_task_ = std::make_unique<QueuedHostTask>(
+          compute_, "opencl pheromone (backward Euler)",
+          [this](void* u) { host_backward_solve(static_cast<float*>(u)); });
+  } else {
+    rhs_row_start_ = upload_buffer(compute_, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
+    rhs_column_ = upload_buffer(compute_, "backward Euler rhs columns", system.rhs.column, kRead, false);
+    rhs_value_ = upload_buffer(compute_, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
+  }
+  if (!diagonal_only_ && !on_host) {
+    solver_ = std::make_unique<DeviceConjugateGradients>(
+        compute_, system.system, system.inverse_diagonal,
+        ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
+        options.build_options);
+  }
+}
+
+OpenCLDiffusionDecay::OpenCLDiffusionDecay(const ComputeContext& compute, const SurfaceDomain& domain,
+                                 const VertexParameters& params, Integrator integrator, double time_step,
+                                 const OpenCLDiffusionDecayOptions& options)
+    : compute_(compute), options_(options), integrator_(integrator), time_step_(time_step) {
+  const int n = domain.vertex_count;
+  const size_t un = static_cast<size_t>(n);
+  vertex_count_ = n;
+  const CheckedInputs in = checked_inputs(domain, params, time_step, options);
+  const CsrMatrix& L = domain.laplacian;
+
+  // ---- forward Euler step limit: the reference's bound (common/model/diffusion_decay.hpp), in double,
+  // so both backends take the same number of sub-steps ----
+  stable_time_step_ = forward_euler_stable_step(L, in.diffuse_over_mass, params[Param::decay_rate]);
+  if (integrator == Integrator::Forward) {
+    sub_steps_ = forward_euler_sub_steps(time_step, stable_time_step_);
+    sub_step_ = time_step / sub_steps_;
+  }
+
+  build_kernels();
   group_count_ = padded_global_size(un, group_) / group_;
 
-  // ---- buffers ----
-  constexpr cl_mem_flags kRead = CL_MEM_READ_ONLY;
-  if (integrator == Integrator::Forward) {
-    // The sub-step matrix (common/model/pheromone_operators.hpp), in double, then in hybrid form with one
-    // ELL row per work-item of the padded launch.
-    const CsrMatrix F = forward_substep_matrix(L, diffuse_over_mass, params[Param::decay_rate], sub_step_);
-    const HybridMatrix hybrid = to_hybrid(F, static_cast<int>(padded_global_size(un, group_)));
-    forward_stride_ = hybrid.stride;
-    forward_overflow_rows_ = hybrid.overflow_rows();
-    // The ELL block and the overflow part once each, u in once, u out written once and the long
-    // rows' entries of it read and written again.
-    forward_bytes_per_sub_step_ =
-        4.0 * static_cast<double>(hybrid.column.size() + hybrid.value.size() + hybrid.overflow_row.size() +
-                                  hybrid.overflow_start.size() + hybrid.overflow_column.size() +
-                                  hybrid.overflow_value.size() + 2 * hybrid.overflow_row.size() + 2 * un);
-    forward_column_ = upload_buffer(compute, "forward Euler ELL columns", hybrid.column, kRead, false);
-    forward_value_ = upload_buffer(compute, "forward Euler ELL values", hybrid.value, kRead, false);
-    forward_overflow_row_ = upload_buffer(compute, "forward Euler overflow rows", hybrid.overflow_row, kRead, false);
-    forward_overflow_start_ =
-        upload_buffer(compute, "forward Euler overflow row starts", hybrid.overflow_start, kRead, false);
-    forward_overflow_column_ =
-        upload_buffer(compute, "forward Euler overflow columns", hybrid.overflow_column, kRead, false);
-    forward_overflow_value_ =
-        upload_buffer(compute, "forward Euler overflow values", hybrid.overflow_value, kRead, false);
-    // Read only by the planted fault no-decay-substep (see pheromone_forward_substep).
-    decay_rate_ = upload_buffer(compute, "decay rate", to_float(params[Param::decay_rate]), kRead, false);
-  }
-  mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), kRead, false);
-  inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(inverse_mass), kRead, false);
+  if (integrator == Integrator::Forward) upload_forward_matrix(L, in.diffuse_over_mass, params[Param::decay_rate]);
+  mass_ = upload_buffer(compute, "vertex mass", to_float(domain.vertex_mass), CL_MEM_READ_ONLY, false);
+  inverse_mass_ = upload_buffer(compute, "inverse vertex mass", to_float(in.inverse_mass), CL_MEM_READ_ONLY, false);
   u_ = allocate_written<cl_float>(compute, "concentration", un);
   scratch_ = allocate_written<cl_float>(compute, "concentration scratch", un);
   fill(0.0);
 
-  if (integrator == Integrator::Backward) {
-    // Eq. 7 as S u' = B u, S symmetric positive definite (common/model/pheromone_operators.hpp): B u on
-    // this program's csr_multiply, S by conjugate gradients.
-    const BackwardEulerSystem system =
-        backward_euler_system(L, domain.vertex_mass, params[Param::diffuse_rate], params[Param::decay_rate], time_step);
-    diagonal_only_ = system.diagonal_only;
-    const bool on_host = !diagonal_only_ && (options.implicit_solver == ImplicitSolver::HostCholesky ||
-                                             (options.implicit_solver == ImplicitSolver::Automatic &&
-                                              implicit_solve_on_host(compute.device, n)));
-    if (on_host) {
-      // B u on the host too, beside the solve: the step then costs no launch at all.
-      host_solver_ = std::make_unique<HostCholeskySolve>(system.system, FactorPrecision::Single,
-                                                         "opencl pheromone (backward Euler)");
-      host_rhs_operator_ = system.rhs;
-      host_rhs_.resize(un);
-      if (options.host_solve_in_queue && runs_queued_host_tasks(compute.device))
-        host_task_ = std::make_unique<QueuedHostTask>(
-            compute, "opencl pheromone (backward Euler)",
-            [this](void* u) { host_backward_solve(static_cast<float*>(u)); });
-    } else {
-      rhs_row_start_ = upload_buffer(compute, "backward Euler rhs row starts", system.rhs.row_start, kRead, false);
-      rhs_column_ = upload_buffer(compute, "backward Euler rhs columns", system.rhs.column, kRead, false);
-      rhs_value_ = upload_buffer(compute, "backward Euler rhs values", to_float(system.rhs.value), kRead, false);
-    }
-    if (!diagonal_only_ && !on_host) {
-      solver_ = std::make_unique<DeviceConjugateGradients>(
-          compute, system.system, system.inverse_diagonal,
-          ConjugateGradientOptions{options.cg_relative_tolerance, options.cg_max_iterations, options.cg_check_interval},
-          options.build_options);
-    }
-  }
-
+  if (integrator == Integrator::Backward) prepare_backward_euler(domain, params, time_step);
   statistics_ = std::make_unique<DeviceFieldStatistics>(compute, mass_.buffer, n);
 }
 

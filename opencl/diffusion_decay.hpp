@@ -108,6 +108,12 @@ class OpenCLDiffusionDecay final : public OpenCLFieldLayer {
 
  private:
   struct Kernels;
+  // The constructor's parts: the programs and launch size; the forward sub-step matrix on the
+  // device; the backward-Euler system, solved on the host or by device conjugate gradients.
+  void build_kernels();
+  void upload_forward_matrix(const CsrMatrix& laplacian, const IntrinsicVertexData<double>& diffuse_over_mass,
+                             const IntrinsicVertexData<double>& decay_rate);
+  void prepare_backward_euler(const SurfaceDomain& domain, const VertexParameters& params, double time_step);
   void forward_step();
   void backward_step();
   void host_backward_step();

@@ -1,5 +1,5 @@
 #pragma once
-// Field statistics reduced on the device (mirrors common/field_statistics): the area-weighted mean
+// Field statistics reduced on the device (mirrors common/simulation/field_statistics): the area-weighted mean
 // and the coverage fractions above kCoverageMultiples x U, from a float field that stays on the
 // device. Only four floats come back per call. Sums run in a fixed order (work-group tree, then one
 // group over the partials), so repeated calls on one device give identical results.

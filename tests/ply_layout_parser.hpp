@@ -2,7 +2,7 @@
 // An independent reader, for the tests, of exactly the layout common/output/ply_writer.hpp documents
 // (binary little-endian; vertex: float x, y, z, one float per field, uchar red, green, blue; face:
 // list uchar int vertex_indices), parsed byte by byte from the header's own declarations. It shares
-// no code with the writer or with common/ply_reader, so a round trip checks the files themselves.
+// no code with the writer or with common/mesh/ply_reader, so a round trip checks the files themselves.
 #include "common/color/color_map.hpp"
 
 #include <gtest/gtest.h>

@@ -429,7 +429,7 @@ TEST(IsomapColorMap, ShippedExemplarMapIsWhatTheExemplarGives) {
   EXPECT_LT(delta_e(again.map.sample(0.0), again.background), delta_e(again.map.sample(1.0), again.background));
 }
 
-// Every colour-map file shipped in tools/color_maps/ reads without error.
+// Every colour-map file shipped in tools/colormaps/ reads without error.
 TEST(IsomapColorMap, ShippedColourMapFilesRead) {
   int files = 0;
   for (const auto& e : fs::directory_iterator(fs::path(PHYSARUM_SOURCE_DIR) / "tools" / "colormaps"))

@@ -1,5 +1,5 @@
 // Seed sets (common/map_tools/seed_set.hpp) and the geodesic_distance map source (common/map_tools/geodesic_distance.hpp
-// through common/map_definition + map_evaluation): points snap to the nearest vertex, regions are
+// through common/maps/map_definition + map_evaluation): points snap to the nearest vertex, regions are
 // their vertices >= 0.5, the boundary is every boundary vertex or one every `spacing` metres of the
 // scaled surface; a scene's geodesic_distance maps parse, order after the maps they read, and
 // evaluate to the known distances; every bad seed set is refused with a message saying what and where.

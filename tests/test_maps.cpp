@@ -1,4 +1,4 @@
-// Named surface maps (common/map_definition, common/map_evaluation): every source gives its known
+// Named surface maps (common/maps/map_definition, common/maps/map_evaluation): every source gives its known
 // answer on a known surface, maps authored on the input mesh (PLY properties, textures) reproduce a
 // linear function on spot.obj to interpolation accuracy, vector maps land in each face's frame at
 // the right angle and length, and every bad map is refused with a message naming the map.

@@ -1,4 +1,4 @@
-// Reading results back (common/ply_reader): what write_field_ply wrote comes back exactly (float
+// Reading results back (common/mesh/ply_reader): what write_field_ply wrote comes back exactly (float
 // values are stored as float, so the round trip is exact for float-representable inputs), and every
 // malformed file is refused with its name and the problem.
 #include "common/base/errors.hpp"

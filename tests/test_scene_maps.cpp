@@ -1,4 +1,4 @@
-// From a scene file to the arrays a backend reads (common/scene_maps): parameters given by maps take
+// From a scene file to the arrays a backend reads (common/setup/scene_maps): parameters given by maps take
 // the maps' values (remapped by their range, in file units), a scene without maps is exactly the
 // constant base model, the controls of Sec. 3.3 are the documented sums and conversions, every bad
 // reference is refused naming its key, and the command line runs such a scene on both backends and

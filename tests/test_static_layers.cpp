@@ -152,7 +152,7 @@ TEST(StaticLayers, OpenCLAddingAStaticLayerLeavesTheDynamicLayerBitIdentical) {
 // ---- statistics ----
 
 // The mass-weighted mean and the mass fraction strictly above a threshold, in double, from the
-// domain's masses (independent of common/field_statistics).
+// domain's masses (independent of common/simulation/field_statistics).
 double weighted_mean(const IntrinsicVertexData<double>& values) {
   const IntrinsicVertexData<double>& m = sphere().vertex_mass;
   double sum = 0.0, mass = 0.0;

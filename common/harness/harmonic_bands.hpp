@@ -1,7 +1,7 @@
 #pragma once
 // How the harness groups manifold harmonics (eigenpairs of L phi = lambda M phi) into bands whose
-// powers it compares between arms. Shared by the agent model's metrics (common/comparison_metrics)
-// and the reaction-diffusion ones (common/reaction_diffusion_metrics), which differ only in what
+// powers it compares between arms. Shared by the agent model's metrics (common/harness/comparison_metrics)
+// and the reaction-diffusion ones (common/harness/reaction_diffusion_metrics), which differ only in what
 // they call the pattern's scale.
 //
 // Bands hold equal NUMBERS of consecutive non-constant eigenpairs (not equal widths of

@@ -1,6 +1,6 @@
 #pragma once
 // The model's parameters (Table 1 of the paper), described ONCE. Everything else is derived from
-// parameter_table(): the scene file's keys, their checks and error messages (common/scene/scene.cpp),
+// kParameterTable: the scene file's keys, their checks and error messages (common/scene/scene.cpp),
 // the per-vertex storage (common/model/vertex_parameters.hpp), the record the OpenCL kernels read and its
 // interpolation (opencl/agent_parameters.cpp generates the kernels' struct from this table),
 // run.json's "parameters" (common/scene/scene_json.cpp) and the README's table of scene keys (checked

@@ -180,110 +180,97 @@ double srgb_to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-GltfExportSummary write_result_glb(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
-                                   const InputVertexData<Rgb8>& colors, const std::optional<GltfTexture>& texture) {
-  check_inputs(path, mesh, values, colors, texture);
-  const VertexLayout layout = split_uv_seams(mesh);
+namespace {
+
+// The per-vertex arrays of the file, in file order (one vertex per seam copy).
+struct FileVertexArrays {
+  std::vector<float> position, normal, uv, color, value;
+};
+
+FileVertexArrays file_vertex_arrays(const InputMesh& mesh, const VertexLayout& layout,
+                                    const InputVertexData<double>& values, const InputVertexData<Rgb8>& colors) {
   const std::vector<Eigen::Vector3d> normals = area_weighted_normals(mesh);
   const size_t count = layout.source.size();
-  const bool has_uvs = !layout.uv.empty();
-
-  // Per-vertex arrays in file order.
-  std::vector<float> position, normal, uv, color, value;
-  position.reserve(3 * count);
-  normal.reserve(3 * count);
-  color.reserve(3 * count);
-  value.reserve(count);
+  FileVertexArrays a;
+  a.position.reserve(3 * count);
+  a.normal.reserve(3 * count);
+  a.color.reserve(3 * count);
+  a.value.reserve(count);
   std::array<double, 256> linear{};  // the 256 possible bytes, converted once
   for (int b = 0; b < 256; ++b) linear[static_cast<size_t>(b)] = srgb_to_linear(b / 255.0);
   for (size_t i = 0; i < count; ++i) {
     const auto v = static_cast<size_t>(layout.source[i]);
     for (int c = 0; c < 3; ++c) {
-      position.push_back(static_cast<float>(mesh.positions[v][c]));
-      normal.push_back(static_cast<float>(normals[v][c]));
-      color.push_back(static_cast<float>(linear[colors[v][static_cast<size_t>(c)]]));
+      a.position.push_back(static_cast<float>(mesh.positions[v][c]));
+      a.normal.push_back(static_cast<float>(normals[v][c]));
+      a.color.push_back(static_cast<float>(linear[colors[v][static_cast<size_t>(c)]]));
     }
-    value.push_back(static_cast<float>(values[v]));
-    if (has_uvs) {
+    a.value.push_back(static_cast<float>(values[v]));
+    if (!layout.uv.empty()) {
       const Eigen::Vector2d& t = mesh.uvs[static_cast<size_t>(layout.uv[i])];
-      uv.push_back(static_cast<float>(t.x()));
-      uv.push_back(static_cast<float>(1.0 - t.y()));  // glTF: v = 0 is the top of the image
+      a.uv.push_back(static_cast<float>(t.x()));
+      a.uv.push_back(static_cast<float>(1.0 - t.y()));  // glTF: v = 0 is the top of the image
     }
   }
+  return a;
+}
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "physarum";
-  model.buffers.emplace_back();
-  BinaryChunk chunk(model);
-
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.attributes["POSITION"] = chunk.add_float_attribute(position, 3, TINYGLTF_TYPE_VEC3);
-  {
-    // The specification requires POSITION's bounds, of the float values as stored.
-    tinygltf::Accessor& a = model.accessors[static_cast<size_t>(primitive.attributes["POSITION"])];
-    a.minValues.assign(3, std::numeric_limits<double>::infinity());
-    a.maxValues.assign(3, -std::numeric_limits<double>::infinity());
-    for (size_t i = 0; i < position.size(); ++i) {
-      a.minValues[i % 3] = std::min<double>(a.minValues[i % 3], position[i]);
-      a.maxValues[i % 3] = std::max<double>(a.maxValues[i % 3], position[i]);
-    }
-    if (count == 0) {
-      a.minValues.assign(3, 0.0);
-      a.maxValues.assign(3, 0.0);
-    }
+// The specification requires POSITION's bounds, of the float values as stored.
+void set_position_bounds(tinygltf::Accessor& a, const std::vector<float>& position) {
+  a.minValues.assign(3, std::numeric_limits<double>::infinity());
+  a.maxValues.assign(3, -std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < position.size(); ++i) {
+    a.minValues[i % 3] = std::min<double>(a.minValues[i % 3], position[i]);
+    a.maxValues[i % 3] = std::max<double>(a.maxValues[i % 3], position[i]);
   }
-  primitive.attributes["NORMAL"] = chunk.add_float_attribute(normal, 3, TINYGLTF_TYPE_VEC3);
-  if (has_uvs) primitive.attributes["TEXCOORD_0"] = chunk.add_float_attribute(uv, 2, TINYGLTF_TYPE_VEC2);
-  // See the header: with a texture, viewers would multiply it by COLOR_0.
-  primitive.attributes[texture ? "_FIELD_COLOR" : "COLOR_0"] = chunk.add_float_attribute(color, 3, TINYGLTF_TYPE_VEC3);
-  primitive.attributes["_PHEROMONE"] = chunk.add_float_attribute(value, 1, TINYGLTF_TYPE_SCALAR);
-  {
-    tinygltf::Accessor indices;
-    indices.bufferView = chunk.add_view(layout.triangles.data(), layout.triangles.size() * sizeof(layout.triangles[0]),
-                                        kElementArrayBuffer);
-    indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    indices.count = 3 * layout.triangles.size();
-    indices.type = TINYGLTF_TYPE_SCALAR;
-    model.accessors.push_back(indices);
-    primitive.indices = static_cast<int>(model.accessors.size()) - 1;
+  if (position.empty()) {
+    a.minValues.assign(3, 0.0);
+    a.maxValues.assign(3, 0.0);
   }
+}
 
-  tinygltf::Material material;
-  material.name = "physarum";
-  material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
-  material.pbrMetallicRoughness.metallicFactor = 0.0;
-  material.pbrMetallicRoughness.roughnessFactor = 0.8;
-  material.doubleSided = true;  // open surfaces show their back faces
-  if (texture) {
-    const std::vector<unsigned char> png = encode_png(path, *texture);
-    tinygltf::Image image;
-    image.name = "field";
-    image.mimeType = "image/png";
-    image.bufferView = chunk.add_view(png.data(), png.size(), 0);
-    model.images.push_back(image);
-    tinygltf::Sampler sampler;
-    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    // A UV outside [0, 1] was baked where its wrapped value lies (texture_bake.hpp), so such a mesh
-    // needs REPEAT to find it; an atlas inside [0, 1] keeps CLAMP_TO_EDGE (see the header).
-    const bool tiled = std::any_of(mesh.uvs.begin(), mesh.uvs.end(), [](const Eigen::Vector2d& t) {
-      return t.x() < 0.0 || t.x() > 1.0 || t.y() < 0.0 || t.y() > 1.0;
-    });
-    sampler.wrapS = tiled ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    sampler.wrapT = sampler.wrapS;
-    model.samplers.push_back(sampler);
-    tinygltf::Texture gltf_texture;
-    gltf_texture.source = 0;
-    gltf_texture.sampler = 0;
-    model.textures.push_back(gltf_texture);
-    material.pbrMetallicRoughness.baseColorTexture.index = 0;
-    material.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
-  }
-  model.materials.push_back(material);
-  primitive.material = 0;
+// The triangles' vertex indices as the primitive's index accessor; returns its index.
+int add_indices(tinygltf::Model& model, BinaryChunk& chunk, const VertexLayout& layout) {
+  tinygltf::Accessor indices;
+  indices.bufferView = chunk.add_view(layout.triangles.data(), layout.triangles.size() * sizeof(layout.triangles[0]),
+                                      kElementArrayBuffer);
+  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  indices.count = 3 * layout.triangles.size();
+  indices.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(indices);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
 
+// The baked texture as the base colour of `material`: the PNG in the binary chunk, its sampler.
+void add_texture(tinygltf::Model& model, BinaryChunk& chunk, tinygltf::Material& material, const std::string& path,
+                 const InputMesh& mesh, const GltfTexture& texture) {
+  const std::vector<unsigned char> png = encode_png(path, texture);
+  tinygltf::Image image;
+  image.name = "field";
+  image.mimeType = "image/png";
+  image.bufferView = chunk.add_view(png.data(), png.size(), 0);
+  model.images.push_back(image);
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  // A UV outside [0, 1] was baked where its wrapped value lies (texture_bake.hpp), so such a mesh
+  // needs REPEAT to find it; an atlas inside [0, 1] keeps CLAMP_TO_EDGE (see the header).
+  const bool tiled = std::any_of(mesh.uvs.begin(), mesh.uvs.end(), [](const Eigen::Vector2d& t) {
+    return t.x() < 0.0 || t.x() > 1.0 || t.y() < 0.0 || t.y() > 1.0;
+  });
+  sampler.wrapS = tiled ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  sampler.wrapT = sampler.wrapS;
+  model.samplers.push_back(sampler);
+  tinygltf::Texture gltf_texture;
+  gltf_texture.source = 0;
+  gltf_texture.sampler = 0;
+  model.textures.push_back(gltf_texture);
+  material.pbrMetallicRoughness.baseColorTexture.index = 0;
+  material.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+}
+
+// One mesh of one primitive in one node of the default scene.
+void add_scene(tinygltf::Model& model, const tinygltf::Primitive& primitive) {
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = "result";
   gltf_mesh.primitives.push_back(primitive);
@@ -296,7 +283,9 @@ GltfExportSummary write_result_glb(const std::string& path, const InputMesh& mes
   scene.nodes.push_back(0);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+}
 
+void write_glb(const std::string& path, tinygltf::Model& model) {
   write_file_atomically(path, [&](const std::string& temporary) {
     std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
     if (!file) throw InputError(path + ": cannot write: " + std::strerror(errno));
@@ -308,6 +297,46 @@ GltfExportSummary write_result_glb(const std::string& path, const InputMesh& mes
     file.close();
     if (!file) throw InputError(path + ": cannot write: " + std::strerror(errno));
   });
+}
+
+}  // namespace
+
+GltfExportSummary write_result_glb(const std::string& path, const InputMesh& mesh, const InputVertexData<double>& values,
+                                   const InputVertexData<Rgb8>& colors, const std::optional<GltfTexture>& texture) {
+  check_inputs(path, mesh, values, colors, texture);
+  const VertexLayout layout = split_uv_seams(mesh);
+  const FileVertexArrays a = file_vertex_arrays(mesh, layout, values, colors);
+  const size_t count = layout.source.size();
+  const bool has_uvs = !layout.uv.empty();
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "physarum";
+  model.buffers.emplace_back();
+  BinaryChunk chunk(model);
+
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.attributes["POSITION"] = chunk.add_float_attribute(a.position, 3, TINYGLTF_TYPE_VEC3);
+  set_position_bounds(model.accessors[static_cast<size_t>(primitive.attributes["POSITION"])], a.position);
+  primitive.attributes["NORMAL"] = chunk.add_float_attribute(a.normal, 3, TINYGLTF_TYPE_VEC3);
+  if (has_uvs) primitive.attributes["TEXCOORD_0"] = chunk.add_float_attribute(a.uv, 2, TINYGLTF_TYPE_VEC2);
+  // See the header: with a texture, viewers would multiply it by COLOR_0.
+  primitive.attributes[texture ? "_FIELD_COLOR" : "COLOR_0"] = chunk.add_float_attribute(a.color, 3, TINYGLTF_TYPE_VEC3);
+  primitive.attributes["_PHEROMONE"] = chunk.add_float_attribute(a.value, 1, TINYGLTF_TYPE_SCALAR);
+  primitive.indices = add_indices(model, chunk, layout);
+
+  tinygltf::Material material;
+  material.name = "physarum";
+  material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 0.8;
+  material.doubleSided = true;  // open surfaces show their back faces
+  if (texture) add_texture(model, chunk, material, path, mesh, *texture);
+  model.materials.push_back(material);
+  primitive.material = 0;
+  add_scene(model, primitive);
+  write_glb(path, model);
 
   GltfExportSummary summary;
   summary.vertices = static_cast<int>(count);

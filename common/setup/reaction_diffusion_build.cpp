@@ -153,6 +153,48 @@ void add_parameter_noise(const ReactionDiffusionSpec& spec, std::uint32_t seed, 
   }
 }
 
+// Blends `values` (morphogen -> value) into the initial state at `vertex` with weight w: x <- (1 - w) x + w value.
+void blend_initial(const ReactionDiffusionSpec& spec, const MorphogenValues& values, size_t vertex, double weight,
+                   ReactionDiffusionSystem& system) {
+  for (const auto& [name, value] : values) {
+    double& x = system.initial[static_cast<size_t>(spec.morphogen_index(name))][vertex];
+    x = (1.0 - weight) * x + weight * value;
+  }
+}
+
+// Whether a Dirichlet region holds vertex v (noise and spots leave it alone).
+bool is_held(const ReactionDiffusionSystem& system, size_t v) { return !system.fixed.empty() && system.fixed[v] != 0; }
+
+// initial.spots: `count` centres drawn by area (one random stream per spot), each setting the spot's
+// values on the free vertices within `radius` (straight-line, on the simulated surface).
+void seed_spots(const ReactionDiffusionSpec& spec, std::uint32_t seed, const PreparedSurface& surface,
+                ReactionDiffusionSystem& system) {
+  const SurfaceDomain& domain = surface.domain;
+  const int n = domain.vertex_count;
+  // Positions of the intrinsic vertices on the simulated (scaled) surface, for the spot radius.
+  std::vector<Eigen::Vector3d> position(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v) {
+    const SurfacePoint& p = domain.vertex_location[static_cast<size_t>(v)];
+    const auto& t = surface.simulated.triangles[static_cast<size_t>(p.face)];
+    position[static_cast<size_t>(v)] = p.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
+                                       p.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
+                                       p.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])];
+  }
+  std::vector<double> cumulative(static_cast<size_t>(n));
+  double total = 0.0;
+  for (size_t v = 0; v < static_cast<size_t>(n); ++v) cumulative[v] = total += domain.vertex_mass[v];
+  const double r2 = spec.initial.spots->radius * spec.initial.spots->radius;
+  for (int s = 0; s < spec.initial.spots->count; ++s) {
+    const double u = first_uniform(random_words(seed, static_cast<std::uint32_t>(s), 0,
+                                                static_cast<std::uint32_t>(RandomPurpose::ReactionSpot)));
+    const size_t centre = static_cast<size_t>(
+        std::min<std::ptrdiff_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u * total) - cumulative.begin(), n - 1));
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v)
+      if (!is_held(system, v) && (position[v] - position[centre]).squaredNorm() <= r2)
+        blend_initial(spec, spec.initial.spots->values, v, 1.0, system);
+  }
+}
+
 }  // namespace
 
 ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, const PreparedSurface& surface,
@@ -191,10 +233,7 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
     system.minimum.push_back(m.minimum);
   }
   auto set_value = [&](const MorphogenValues& values, size_t vertex, double weight) {
-    for (const auto& [name, value] : values) {
-      double& x = system.initial[static_cast<size_t>(spec.morphogen_index(name))][vertex];
-      x = (1.0 - weight) * x + weight * value;
-    }
+    blend_initial(spec, values, vertex, weight, system);
   };
   // The held vertices first: noise skips them, so a held vertex keeps exactly its initial (or given)
   // value — a cascade's frozen layer is the earlier run's, bit for bit.
@@ -203,35 +242,13 @@ ReactionDiffusionSystem build_reaction_diffusion_system(const Scene& scene, cons
     system.fixed.assign(static_cast<size_t>(n), 0);
     for (size_t v = 0; v < static_cast<size_t>(n); ++v) system.fixed[v] = region[v] >= 0.5 ? 1 : 0;
   }
-  auto held = [&](size_t v) { return !system.fixed.empty() && system.fixed[v] != 0; };
+  auto held = [&](size_t v) { return is_held(system, v); };
   if (spec.initial.seed_region) {
     const IntrinsicVertexData<double>& w = maps.scalar_map(spec.initial.seed_region->map);
     for (size_t i = 0; i < static_cast<size_t>(n); ++i)
       if (!held(i)) set_value(spec.initial.seed_region->values, i, std::clamp(w[i], 0.0, 1.0));
   }
-  if (spec.initial.spots) {
-    // Positions of the intrinsic vertices on the simulated (scaled) surface, for the spot radius.
-    std::vector<Eigen::Vector3d> position(static_cast<size_t>(n));
-    for (int v = 0; v < n; ++v) {
-      const SurfacePoint& p = domain.vertex_location[static_cast<size_t>(v)];
-      const auto& t = surface.simulated.triangles[static_cast<size_t>(p.face)];
-      position[static_cast<size_t>(v)] = p.barycentric[0] * surface.simulated.positions[static_cast<size_t>(t[0])] +
-                                         p.barycentric[1] * surface.simulated.positions[static_cast<size_t>(t[1])] +
-                                         p.barycentric[2] * surface.simulated.positions[static_cast<size_t>(t[2])];
-    }
-    std::vector<double> cumulative(static_cast<size_t>(n));
-    double total = 0.0;
-    for (size_t v = 0; v < static_cast<size_t>(n); ++v) cumulative[v] = total += domain.vertex_mass[v];
-    const double r2 = spec.initial.spots->radius * spec.initial.spots->radius;
-    for (int s = 0; s < spec.initial.spots->count; ++s) {
-      const double u = first_uniform(random_words(scene.seed, static_cast<std::uint32_t>(s), 0,
-                                                  static_cast<std::uint32_t>(RandomPurpose::ReactionSpot)));
-      const size_t centre = static_cast<size_t>(
-          std::min<std::ptrdiff_t>(std::lower_bound(cumulative.begin(), cumulative.end(), u * total) - cumulative.begin(), n - 1));
-      for (size_t v = 0; v < static_cast<size_t>(n); ++v)
-        if (!held(v) && (position[v] - position[centre]).squaredNorm() <= r2) set_value(spec.initial.spots->values, v, 1.0);
-    }
-  }
+  if (spec.initial.spots) seed_spots(spec, scene.seed, surface, system);
   if (spec.initial.noise > 0.0)
     for (size_t m = 0; m < count; ++m)
       for (size_t v = 0; v < static_cast<size_t>(n); ++v)

@@ -45,6 +45,49 @@ Eigen::Vector2d clamp_into_face(const std::array<Eigen::Vector2d, 3>& c, const F
 // along an edge continues to the edge's end instead of grazing across it at every step.
 constexpr double kParallelTolerance = 1e-12;
 
+// Where a walk from barycentric coordinates b in direction db (their change per unit length) leaves
+// the face: the length to the exit and the coordinate that vanishes there (coordinate k vanishes on
+// edge (k+1)%3), or corner -1 when no edge lies ahead. The walk leaves where a decreasing coordinate
+// reaches zero; slightly negative coordinates (points on an edge) count as zero, and the edge it
+// came in through (entry_edge, -1 for none) is never an exit at length 0.
+struct FaceExit {
+  double length = std::numeric_limits<double>::infinity();
+  int corner = -1;
+};
+
+FaceExit face_exit(const std::array<double, 3>& b, const std::array<double, 3>& db, int entry_edge) {
+  const double parallel = -kParallelTolerance * (std::abs(db[0]) + std::abs(db[1]) + std::abs(db[2]));
+  FaceExit exit;
+  for (int k = 0; k < 3; ++k) {
+    if ((k + 1) % 3 == entry_edge || !(db[k] < parallel)) continue;
+    const double t = std::max(b[k], 0.0) / -db[k];
+    if (t < exit.length) {
+      exit.length = t;
+      exit.corner = k;
+    }
+  }
+  if (exit.corner < 0 && entry_edge >= 0) {
+    // Only the entry edge lies ahead: rounding made a heading parallel to it look like it points
+    // back. Crossing back is still a valid move (the step bound caps any ping-pong).
+    const int k = (entry_edge + 2) % 3;
+    if (db[k] < 0.0) {
+      exit.length = std::max(b[k], 0.0) / -db[k];
+      exit.corner = k;
+    }
+  }
+  return exit;
+}
+
+// The exit point on edge e (corner e to corner e+1) as a fraction along it, from the two coordinates
+// that survive there at length t: it lies exactly on the edge, whatever rounding did to the point.
+double fraction_along_edge(const std::array<double, 3>& b, const std::array<double, 3>& db, double t, int e) {
+  const int e_next = (e + 1) % 3;
+  const double weight_from = std::max(b[e] + t * db[e], 0.0);
+  const double weight_to = std::max(b[e_next] + t * db[e_next], 0.0);
+  const double total = weight_from + weight_to;
+  return total > 0.0 ? std::clamp(weight_to / total, 0.0, 1.0) : 0.5;
+}
+
 }  // namespace
 
 TraceResult trace(const SurfaceDomain& domain, int face, const Eigen::Vector2d& start, const Eigen::Vector2d& heading,
@@ -67,30 +110,8 @@ TraceResult trace(const SurfaceDomain& domain, int face, const Eigen::Vector2d& 
     const FaceCoordinates frame(c);
     const std::array<double, 3> b = frame.point(p);
     const std::array<double, 3> db = frame.direction(d);
-    const double parallel = -kParallelTolerance * (std::abs(db[0]) + std::abs(db[1]) + std::abs(db[2]));
 
-    // The walk leaves the face where a barycentric coordinate that is decreasing reaches zero;
-    // coordinate k vanishes on edge (k+1)%3. Slightly negative coordinates (points on an edge) count
-    // as zero.
-    double t_exit = std::numeric_limits<double>::infinity();
-    int corner_exit = -1;
-    for (int k = 0; k < 3; ++k) {
-      if ((k + 1) % 3 == entry_edge || !(db[k] < parallel)) continue;
-      const double t = std::max(b[k], 0.0) / -db[k];
-      if (t < t_exit) {
-        t_exit = t;
-        corner_exit = k;
-      }
-    }
-    if (corner_exit < 0 && entry_edge >= 0) {
-      // Only the entry edge lies ahead: rounding made a heading parallel to it look like it points
-      // back. Crossing back is still a valid move (the step bound caps any ping-pong).
-      const int k = (entry_edge + 2) % 3;
-      if (db[k] < 0.0) {
-        t_exit = std::max(b[k], 0.0) / -db[k];
-        corner_exit = k;
-      }
-    }
+    const auto [t_exit, corner_exit] = face_exit(b, db, entry_edge);
 
     if (corner_exit < 0 || t_exit >= remaining) {
       const Eigen::Vector2d end = clamp_into_face(c, frame, p + remaining * d);
@@ -103,14 +124,10 @@ TraceResult trace(const SurfaceDomain& domain, int face, const Eigen::Vector2d& 
       return result;
     }
 
-    // Exit point on edge e (corner e to corner e+1), as a fraction s along it: computing it from the
-    // two surviving coordinates puts it exactly on the edge, whatever rounding did to p.
+    // Exit point on edge e (corner e to corner e+1), as a fraction s along it.
     const int e = (corner_exit + 1) % 3;
     const int e_next = (e + 1) % 3;
-    const double weight_from = std::max(b[e] + t_exit * db[e], 0.0);
-    const double weight_to = std::max(b[e_next] + t_exit * db[e_next], 0.0);
-    const double total = weight_from + weight_to;
-    const double s = total > 0.0 ? std::clamp(weight_to / total, 0.0, 1.0) : 0.5;
+    const double s = fraction_along_edge(b, db, t_exit, e);
     const Eigen::Vector2d exit_point = (1.0 - s) * c[e] + s * c[e_next];
     if (segments && t_exit > 0.0) segments->push_back({f, p, exit_point});
     travelled += t_exit;

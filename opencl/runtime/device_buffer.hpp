@@ -1,7 +1,7 @@
 #pragma once
 // Device buffers that know their name (for messages), are checked against the device's largest
 // allocation before they are made, and, when written by kernels, carry a canary region after the
-// payload so a kernel that writes past its range is caught (tests ask canaries_intact()).
+// payload so a kernel that writes past its range is caught (tests ask damaged_canaries()).
 #include "opencl/runtime/compute_context.hpp"
 #include "opencl/runtime/opencl_api.hpp"
 

@@ -80,7 +80,7 @@ void u_metric(const ComputeContext& compute, const SurfaceDomain& domain, const 
 }
 
 // Three forward-Euler sub-steps from a varied field against the reference (relative 1e-5, as in
-// tests/test_opencl_pheromone.cpp), then the step's memory throughput; vertices numbered as a
+// tests/test_opencl_diffusion_decay.cpp), then the step's memory throughput; vertices numbered as a
 // simulation numbers them on the device.
 void pheromone_forward(const ComputeContext& compute, const SurfaceDomain& surface, const std::string& label,
                        double triad_bytes_per_second) {
