@@ -2,6 +2,7 @@
 
 #include "common/setup/agent_inputs.hpp"
 #include "common/base/errors.hpp"
+#include "common/base/overloaded.hpp"
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"
 #include "reference/agents.hpp"
@@ -94,12 +95,20 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const PreparedSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLBackendOptions& options) {
-  if (is_reaction_diffusion(scene)) {
-    const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
-    return make_reaction_diffusion_backend(backend, compute, surface.domain, build_reaction_diffusion_system(scene, surface, maps),
-                                           options);
-  }
-  return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
+  return std::visit(
+      overloaded{[&](const AgentModelSpec&) {
+                   return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
+                 },
+                 [&](const ReactionDiffusionSpec&) {
+                   const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
+                   return make_reaction_diffusion_backend(backend, compute, surface.domain,
+                                                          build_reaction_diffusion_system(scene, surface, maps), options);
+                 },
+                 [&](const GrowthSpec&) -> std::unique_ptr<SimulationBackend> {
+                   throw InputError(scene.source + ": a growth scene's backend grows its sheet between steps: build it "
+                                    "with Session (api/session.hpp), not make_backend");
+                 }},
+      scene.model);
 }
 
 std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,

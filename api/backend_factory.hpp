@@ -45,7 +45,8 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 // a scene, on `domain`): the reference (reference/reaction_diffusion.hpp) or the OpenCL backend
 // (opencl/reaction_diffusion.hpp, with `options`' planted faults), after the memory check. The
 // make_backend overload from a PreparedSurface takes a reaction-diffusion scene too (it evaluates the
-// scene's maps and builds the system); the one from SceneArrays refuses it (they are the agent model's).
+// scene's maps and builds the system) and refuses a growth scene with an InputError (its sheet changes
+// between steps: Session builds it); the one from SceneArrays refuses all but the agent model.
 std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,
                                                                    const opencl::ComputeContext* compute,
                                                                    const SurfaceDomain& domain,

@@ -5,7 +5,9 @@
 // touch the pattern), dilution's conservation, determinism and checkpoints bit for bit, a failed
 // solve stopping the run with the last converged sheet written, and both backends agreeing on a
 // grown sheet.
+#include "api/backend_factory.hpp"
 #include "api/session.hpp"
+#include "common/setup/scene_surface.hpp"
 #include "common/growth/face_growth.hpp"
 #include "common/mesh/ply_reader.hpp"
 #include "common/pattern/pattern_analysis.hpp"
@@ -401,6 +403,26 @@ TEST(GrowthRun, TheRunWritesTheGrownSheetAndItsRecords) {
   const CommandResult steps = run_physarum("run " + quoted(dir.path / "scene.json") + " --steps 5 --out " + quoted(dir.path / "x"));
   EXPECT_EQ(steps.exit_code, 2);
   EXPECT_NE(steps.err.find("schedule"), std::string::npos) << steps.err;
+}
+
+}  // namespace
+}  // namespace physarum::testing
+
+namespace physarum::testing {
+namespace {
+
+// What the library and the harness do with a growth scene they cannot take: one line naming it, not
+// the internal error of a model's settings asked of another model (issue 55).
+TEST(GrowthScene, CompareAndMakeBackendRefuseItInOneLine) {
+  const std::string scene = std::string(PHYSARUM_SOURCE_DIR) + "/tools/scenes/growth_cap.json";
+  const CommandResult r = run_physarum("compare " + quoted(std::filesystem::path(scene)));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("growth scene"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  const Scene loaded = load_scene(scene);
+  const PreparedSurface surface = prepare_scene_surface(loaded);
+  const std::string message = input_error_of([&] { make_backend(BackendChoice::Reference, nullptr, surface, loaded); });
+  EXPECT_NE(message.find("Session"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "api/compare/comparison_arms.hpp"
 
 #include "common/base/errors.hpp"
+#include "common/base/overloaded.hpp"
 #include "common/setup/agent_inputs.hpp"
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"
@@ -195,6 +196,17 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   if (request.arms.size() == 2 && request.arms[0].label == request.arms[1].label)
     throw UsageError("--arm: the two arms are the same ('" + request.arms[0].label + "')");
   const Scene base = load_scene(request.scene_path);
+  // The models the harness measures, chosen by a visit the compiler holds to every model: a model
+  // without metrics here is refused in one line before anything is built.
+  const auto prepare = std::visit(
+      overloaded{[](const AgentModelSpec&) { return &prepare_agent_model_arms; },
+                 [](const ReactionDiffusionSpec&) { return &prepare_reaction_diffusion_arms; },
+                 [&](const GrowthSpec&) -> void (*)(std::vector<Arm>&) {
+                   throw InputError(request.scene_path + ": physarum compare measures the agent model and "
+                                    "reaction-diffusion; a growth scene's sheet changes shape as it grows, and the "
+                                    "harness has no metrics for it (compare its reaction-diffusion as a scene of its own)");
+                 }},
+      base.model);
 
   // What each arm simulates.
   std::vector<Arm> arms;
@@ -236,8 +248,7 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
     if (request.keep_fields) arms[i].fields = std::make_shared<SeedFields>();
   }
 
-  if (is_reaction_diffusion(base)) prepare_reaction_diffusion_arms(arms);
-  else prepare_agent_model_arms(arms);
+  prepare(arms);
   if (arms.size() == 2 && names(arms[0].metrics) != names(arms[1].metrics))
     throw InputError("compare: the arms '" + arms[0].label + "' and '" + arms[1].label +
                      "' measure different metric sets (their flatness or spectral reach differs); compare arms "
