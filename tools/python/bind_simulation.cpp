@@ -1,11 +1,11 @@
-// _Simulation: a scene's run exactly as `physarum run` makes it (tools/run/prepared_run.hpp: the same
+// _Simulation: a scene's run exactly as `physarum run` makes it (api/run/prepared_run.hpp: the same
 // session, run loop and writers), stepped from Python. The GIL is released while stepping, and
 // Ctrl-C (SIGINT) stops a long step() between two steps, leaving a consistent state.
 #include "common/base/errors.hpp"
 #include "common/scene/scene.hpp"
 #include "tools/python/bindings.hpp"
 #include "tools/python/numpy_arrays.hpp"
-#include "tools/run/prepared_run.hpp"
+#include "api/run/prepared_run.hpp"
 
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
@@ -25,13 +25,30 @@ using Clock = std::chrono::steady_clock;
 // (plus one step), and progress callbacks come no more often.
 constexpr auto kCheckEvery = std::chrono::milliseconds(100);
 
+// The run's notes handed to `log` (a Python callable taking a line: the package's logger), from
+// whichever thread the engine is on; none: quiet. The callable lives as long as the run's options.
+SurfaceNote python_log(nb::object log) {
+  if (log.is_none()) return {};
+  auto callable = std::make_shared<nb::object>(std::move(log));
+  return [callable](const std::string& line) {
+    nb::gil_scoped_acquire locked;
+    try {
+      (*callable)(line);
+    } catch (nb::python_error& e) {
+      e.discard_as_unraisable("physarum's log");  // a failing log handler must not stop the run
+    }
+  };
+}
+
 class PythonSimulation {
  public:
   // `scene_file` when the scene is a file (loaded as `physarum run` loads it), else `scene_json`
   // (named `source` in messages; relative paths from the working directory).
   PythonSimulation(const std::string& scene_file, const std::string& scene_json, const std::string& backend,
-                   const std::string& device, std::optional<std::uint32_t> seed, std::optional<long long> steps) {
-    cli::RunOptions o;
+                   const std::string& device, std::optional<std::uint32_t> seed, std::optional<long long> steps,
+                   nb::object log) {
+    RunOptions o;
+    o.log = python_log(std::move(log));
     o.scene = scene_file;
     o.scene_text = scene_file.empty() ? scene_json : std::string();
     o.backend = backend;
@@ -45,11 +62,11 @@ class PythonSimulation {
     nb::gil_scoped_release unlocked;  // the surface and the maps can take seconds
     Scene scene = scene_file.empty() ? scene_from_json(nlohmann::json::parse(scene_json), "scene") : load_scene(scene_file);
     if (seed) scene.seed = *seed;
-    run_ = cli::prepare_run(scene, o, cli::run_length_in_steps(o, scene), std::nullopt);
+    run_ = prepare_run(scene, o, run_length_in_steps(o, scene), std::nullopt);
   }
 
   long long step(long long n, const nb::object& progress) {
-    cli::RunLoop& loop = run_->loop();
+    RunLoop& loop = run_->loop();
     if (n < 0) throw nb::value_error("n: must be >= 0");
     const long long left = loop.planned_steps() - loop.steps_taken();
     if (n > left)
@@ -92,7 +109,7 @@ class PythonSimulation {
 
   // stats.csv's columns now: the row the run loop would take at this step.
   nb::dict stats() {
-    const cli::ModelRun& model = run_->model();
+    const ModelRun& model = run_->model();
     std::string row;
     {
       nb::gil_scoped_release unlocked;
@@ -121,15 +138,21 @@ class PythonSimulation {
     run_->loop().restore_state(bytes, "state");
   }
 
-  int write(const std::string& out) {
-    nb::gil_scoped_release unlocked;
-    return run_->loop().write(out);
+  // The closing line (to the run's log) and why the run stopped early, if it did.
+  std::optional<std::string> write(const std::string& out) {
+    RunWritten written;
+    {
+      nb::gil_scoped_release unlocked;
+      written = run_->loop().write(out);
+    }
+    if (run_->options().log) run_->options().log(written.summary);
+    return written.stopped;
   }
 
-  cli::PreparedRun& run() { return *run_; }
+  PreparedRun& run() { return *run_; }
 
  private:
-  std::unique_ptr<cli::PreparedRun> run_;
+  std::unique_ptr<PreparedRun> run_;
 };
 
 }  // namespace
@@ -144,9 +167,9 @@ void bind_simulation(nb::module_& m) {
       nb::arg("scene_file"), nb::arg("scene_json"));
   nb::class_<PythonSimulation>(m, "_Simulation")
       .def(nb::init<const std::string&, const std::string&, const std::string&, const std::string&,
-                    std::optional<std::uint32_t>, std::optional<long long>>(),
+                    std::optional<std::uint32_t>, std::optional<long long>, nb::object>(),
            nb::arg("scene_file"), nb::arg("scene_json"), nb::arg("backend"), nb::arg("device"), nb::arg("seed").none(),
-           nb::arg("steps").none())
+           nb::arg("steps").none(), nb::arg("log").none())
       .def("step", &PythonSimulation::step, nb::arg("n"), nb::arg("progress").none())
       .def("fields", &PythonSimulation::fields, nb::arg("on"))
       .def("stats", &PythonSimulation::stats)
@@ -161,7 +184,7 @@ void bind_simulation(nb::module_& m) {
       .def_prop_ro("backend", [](PythonSimulation& s) { return s.run().session().backend().backend_name(); })
       .def_prop_ro("device", [](PythonSimulation& s) { return s.run().session().backend().device_name(); })
       .def_prop_ro("stopped", [](PythonSimulation& s) -> std::optional<std::string> {
-        const cli::ModelRun& model = s.run().model();
+        const ModelRun& model = s.run().model();
         return model.stopped ? model.stopped() : std::nullopt;
       })
       .def_prop_ro("intrinsic_vertex_count",

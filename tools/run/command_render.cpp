@@ -4,7 +4,7 @@
 // several views; the recoloured PLY files, texture.png and result.glb are written beside the
 // pictures. The texture needs the surface itself (which intrinsic face each texel lies in): the
 // surface is rebuilt from the recipe run.json records (the input mesh and the refinement keys),
-// checked against fields_full.ply, and baked as `physarum run` bakes (tools/run/surface_exports.hpp).
+// checked against fields_full.ply, and baked as `physarum run` bakes (api/run/surface_exports.hpp).
 //
 // Everything is read and checked before DIR is touched, and every file is written under a
 // temporary name and renamed (as `physarum run` does), so a bad run folder writes nothing.
@@ -18,7 +18,7 @@
 #include "common/surface/full_resolution_mesh.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "tools/commands.hpp"
-#include "tools/run/surface_exports.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 

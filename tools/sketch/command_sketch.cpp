@@ -17,7 +17,7 @@
 #include "common/pattern/pattern_analysis.hpp"
 #include "common/sketch/sketch_image.hpp"
 #include "tools/commands.hpp"
-#include "tools/run/run_options.hpp"
+#include "api/run/run_options.hpp"
 #include "tools/sketch/sketch_colours.hpp"
 #include "tools/sketch/sketch_picture.hpp"
 #include "tools/sketch/sketch_plan.hpp"

@@ -5,7 +5,7 @@
 #include "common/mesh/ply_reader.hpp"
 #include "common/output/camera_views.hpp"
 #include "common/output/preview_image.hpp"
-#include "tools/run/surface_exports.hpp"
+#include "api/run/surface_exports.hpp"
 #include "tools/sketch/sketch_layers.hpp"
 
 #include <fstream>

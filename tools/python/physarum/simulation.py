@@ -3,6 +3,7 @@ session, run loop and output writers), with its fields as numpy arrays between s
 from __future__ import annotations
 
 import io
+import logging
 import os
 from typing import Callable
 
@@ -10,6 +11,11 @@ import numpy as np
 
 from . import _physarum as _engine
 from .scene import Scene
+
+# The engine's notes (the backend chosen, the maps, sub-steps, a mesh without UVs) and each write's
+# closing line go here, at INFO; configure logging (e.g. logging.basicConfig(level=logging.INFO)) to
+# see them.
+logger = logging.getLogger("physarum")
 
 
 class Simulation:
@@ -35,7 +41,7 @@ class Simulation:
         scene_file, scene_json = scene._engine_arguments()
         self._simulation = _engine._Simulation(scene_file, scene_json, backend, "" if device is None else str(device),
                                                None if seed is None else int(seed),
-                                               None if steps is None else int(steps))
+                                               None if steps is None else int(steps), logger.info)
 
     def step(self, n: int = 1, progress: Callable[[int, int], object] | None = None) -> int:
         """Takes ``n`` steps (the GIL released; Ctrl-C stops between two steps with KeyboardInterrupt).
@@ -116,8 +122,9 @@ class Simulation:
         before its last step records the steps taken. RuntimeError when a growth run had stopped
         (its files are written first)."""
         out = os.fspath(out)
-        if self._simulation.write(out) != 0:
-            raise RuntimeError(f"{out}: written, but the run stopped early: {self.stopped}")
+        stopped = self._simulation.write(out)
+        if stopped is not None:
+            raise RuntimeError(f"{out}: written, but the run stopped early: {stopped}")
         return out
 
     def __repr__(self) -> str:

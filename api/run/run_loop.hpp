@@ -13,8 +13,8 @@
 #include "common/simulation/simulation_backend.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 #include "common/surface/prepared_surface.hpp"
-#include "tools/run/resume_point.hpp"
-#include "tools/run/run_options.hpp"
+#include "api/run/resume_point.hpp"
+#include "api/run/run_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // A model's layers at the end of a run, as the output files hold them.
 struct ModelResult {
@@ -78,9 +78,18 @@ struct RunSetup {
   TimeLapse& time_lapse;  // built (and its --frames checked) before the surface
 };
 
-class RunCheckpoints;  // tools/run/run_checkpoints.hpp
+class RunCheckpoints;  // api/run/run_checkpoints.hpp
 
-// The one run loop, a step at a time: `physarum run` runs it to the end (run_to_end_and_write); the Python
+// What RunLoop::write reports, for its caller to show: the closing line ("physarum run: 300 steps
+// ... ; wrote out/{...}") and, when the model stopped before the last step, why (the outputs hold
+// what it reached; `physarum run` prints it as an error and exits with 1).
+struct RunWritten {
+  std::string summary;
+  std::optional<std::string> stopped;
+  int exit_code() const { return stopped ? 1 : 0; }
+};
+
+// The one run loop, a step at a time: `physarum run` runs it to the end (tools/run/command_run.cpp); the Python
 // module's Simulation steps it as its caller asks and writes when asked. Both give the same
 // statistics rows, frames, checkpoints and files for the same steps.
 class RunLoop {
@@ -107,9 +116,8 @@ class RunLoop {
   std::string save_state() const;
   void restore_state(const std::string& bytes, const std::string& where);
   // Ends the run where it stands and writes every output into `folder` (options().out for the command
-  // line); returns the exit code (1: the model stopped early). A run written before its last step
-  // records the steps taken and closes stats.csv with a row.
-  int write(const std::string& folder);
+  // line). A run written before its last step records the steps taken and closes stats.csv with a row.
+  RunWritten write(const std::string& folder);
 
  private:
   SimulationBackend& simulation_;
@@ -122,8 +130,4 @@ class RunLoop {
   std::chrono::steady_clock::time_point returned_;
 };
 
-// `physarum run`'s way: steps `loop` to its end (a progress bar on a terminal) and writes the outputs;
-// returns the exit code.
-int run_to_end_and_write(RunLoop& loop);
-
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,5 +1,5 @@
 // `physarum run` for a growth scene (common/scene/scene_growth.hpp, paper 003; prepare_growth_run in
-// tools/run/prepared_run.hpp): the same command, flags, run loop (tools/run/run_loop.hpp) and file
+// api/run/prepared_run.hpp): the same command, flags, run loop (api/run/run_loop.hpp) and file
 // names as for a reaction–diffusion scene, on the sheet as it has grown (api/growth_simulation.hpp):
 //   DIR/morphogens.ply, DIR/fields_full.ply   the grown, deformed sheet (its own vertices: the two
 //                         files hold the same mesh) with every morphogen, "area_growth" (rest area
@@ -14,16 +14,16 @@
 //   with --frames K: DIR/frames/frame_NNNN.png and .ply (the sheet at that frame) and DIR/frames.gif.
 // A growth step whose equilibrium solve fails stops the run: the outputs are written for the last
 // converged sheet, the error says which step and what to change, and the exit status is 1.
-#include "tools/run/prepared_run.hpp"
+#include "api/run/prepared_run.hpp"
 
 #include "api/session.hpp"
 #include "common/base/errors.hpp"
 #include "common/output/ply_writer.hpp"
 #include "common/output/preview_image.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
-#include "tools/run/run_loop.hpp"
-#include "tools/run/run_reaction_diffusion.hpp"
-#include "tools/run/surface_exports.hpp"
+#include "api/run/run_loop.hpp"
+#include "api/run/run_reaction_diffusion.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -32,7 +32,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 std::vector<IntrinsicVertexData<double>> morphogen_layers(const SimulationBackend& simulation) {
@@ -214,4 +214,4 @@ std::unique_ptr<PreparedRun> prepare_growth_run(const Scene& scene, const RunOpt
   return std::make_unique<GrowthRun>(scene, options, steps, resume);
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

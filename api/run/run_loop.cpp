@@ -1,4 +1,4 @@
-#include "tools/run/run_loop.hpp"
+#include "api/run/run_loop.hpp"
 
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
@@ -7,48 +7,18 @@
 #include "common/output/ply_writer.hpp"
 #include "common/setup/scene_surface.hpp"
 #include "common/surface/field_transfer.hpp"
-#include "tools/run/run_checkpoints.hpp"
-#include "tools/run/surface_exports.hpp"
+#include "api/run/run_checkpoints.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
-#include <iostream>
-#include <unistd.h>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 // About this many rows go into stats.csv, evenly spaced in steps (plus the initial row).
 constexpr long long kStatsRows = 100;
-
-// A one-line progress bar with ETA on stderr, drawn only when stderr is a terminal.
-class ProgressBar {
- public:
-  explicit ProgressBar(long long total) : total_(total), enabled_(::isatty(STDERR_FILENO) == 1) {}
-  void update(long long done) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(200)) return;
-    last_draw_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
-    const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stderr, "\r[%s%s] %5.1f%%  step %lld/%lld  ETA %.0f s ", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction, done, total_, eta);
-    if (done >= total_) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  long long total_;
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_draw_{};
-};
 
 // The fields on the input mesh and at full resolution, preview.png, texture and result.glb; appends
 // the names written, in order, to `written`.
@@ -192,7 +162,7 @@ double RunLoop::simulation_seconds() const {
   return checkpoints_->simulation_seconds(side_seconds_ + since_last_step);
 }
 
-int RunLoop::write(const std::string& folder) {
+RunWritten RunLoop::write(const std::string& folder) {
   simulation_.finish();
   const double seconds = simulation_seconds();
   if (last_row_ != steps_taken()) {
@@ -223,19 +193,11 @@ int RunLoop::write(const std::string& folder) {
   std::string files;
   for (const std::string& name : written) files += (files.empty() ? "" : ", ") + name;
   const RunOptions& o = setup_.options;
-  std::cout << "physarum run: " << model_.summary(seconds) << "; wrote " << out.string() << "/{" << files << "}"
-            << (o.maps_out.empty() ? std::string() : " and " + o.maps_out) << "\n";
-  if (stopped) {
-    std::cerr << "physarum: error: " << *stopped << "\n";
-    return 1;
-  }
-  return 0;
+  RunWritten done;
+  done.summary = "physarum run: " + model_.summary(seconds) + "; wrote " + out.string() + "/{" + files + "}" +
+                 (o.maps_out.empty() ? std::string() : " and " + o.maps_out);
+  done.stopped = stopped;
+  return done;
 }
 
-int run_to_end_and_write(RunLoop& loop) {
-  ProgressBar progress(loop.planned_steps());
-  while (loop.step()) progress.update(loop.steps_taken());
-  return loop.write(loop.options().out);
-}
-
-}  // namespace physarum::cli
+}  // namespace physarum

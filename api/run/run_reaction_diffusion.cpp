@@ -1,13 +1,13 @@
-#include "tools/run/run_reaction_diffusion.hpp"
+#include "api/run/run_reaction_diffusion.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/surface/full_resolution_mesh.hpp"
 #include "common/output/preview_image.hpp"
 #include "common/output/texture_bake.hpp"
 #include "api/session.hpp"
-#include "tools/run/prepared_run.hpp"
-#include "tools/run/run_loop.hpp"
-#include "tools/run/surface_exports.hpp"
+#include "api/run/prepared_run.hpp"
+#include "api/run/run_loop.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@
 #include <iostream>
 #include <sstream>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 std::string number(double x) {
@@ -83,7 +83,7 @@ class ReactionDiffusionRun final : public PreparedRun {
     // The maps go through the map cache, as the agent model's: a geodesic distance or a direction
     // field is the slow part of a flower scene's start, and a sweep runs the same maps many times.
     std::optional<TexelLocations> texels =
-        texels_for_run(session_.surface().input, session_.surface().domain, o.texture, "physarum run");
+        texels_for_run(session_.surface().input, session_.surface().domain, o.texture, o.log);
     describe_outputs(steps);
     start(session_.surface(), full_, std::move(texels));
   }
@@ -166,4 +166,4 @@ std::unique_ptr<PreparedRun> prepare_reaction_diffusion_run(const Scene& scene, 
   return std::make_unique<ReactionDiffusionRun>(scene, options, steps, resume);
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,4 +1,4 @@
-#include "tools/run/surface_exports.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/output/preview_image.hpp"
@@ -7,9 +7,8 @@
 
 #include <algorithm>
 
-#include <iostream>
 
-namespace physarum::cli {
+namespace physarum {
 
 void TextureSettings::check() const {
   if (size < 1 || size > TexelLocations::kMaxSize)
@@ -168,10 +167,10 @@ SurfaceForExports rebuild_surface_for_exports(const SurfaceSpec& spec, const Tex
 }
 
 std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,
-                                             const TextureSettings& texture, const std::string& command) {
+                                             const TextureSettings& texture, const SurfaceNote& note) {
   if (!input.uvs.empty()) return locate_texels(input, domain, texture.size, texture.size);
-  std::cerr << command << ": note: " << input.source << " has no texture coordinates (UVs); no texture.png is written\n";
+  if (note) note("physarum run: note: " + input.source + " has no texture coordinates (UVs); no texture.png is written");
   return std::nullopt;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,7 +1,7 @@
 #pragma once
 // `physarum run` for a reaction-diffusion scene (common/scene/scene_reaction_diffusion.hpp; its
-// preparation is prepare_reaction_diffusion_run in tools/run/prepared_run.hpp): the same
-// command, flags, run loop (tools/run/run_loop.hpp) and output files as for the agent model, with the
+// preparation is prepare_reaction_diffusion_run in api/run/prepared_run.hpp): the same
+// command, flags, run loop (api/run/run_loop.hpp) and output files as for the agent model, with the
 // morphogens as the fields:
 //   DIR/morphogens.ply    the input mesh with every morphogen as a float vertex property of its name
 //                         (the preview morphogen first: the vertex colours are its),
@@ -21,15 +21,15 @@
 #include "common/base/element_data.hpp"
 #include "common/scene/scene.hpp"
 #include "common/simulation/simulation_backend.hpp"
-#include "tools/run/resume_point.hpp"
-#include "tools/run/run_options.hpp"
+#include "api/run/resume_point.hpp"
+#include "api/run/run_options.hpp"
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // The colours' unit of a layer: half its largest value (levels in multiples of it), so the picture
 // uses the whole colour map whatever the model's units; 1 for a layer with nothing above zero.
@@ -45,4 +45,4 @@ std::string morphogen_stats_header(const std::vector<std::string>& morphogens);
 std::string morphogen_stats_row(double time, const std::vector<IntrinsicVertexData<double>>& layers,
                                 const IntrinsicVertexData<double>& mass);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // --texture-size, --texture-margin, --texture-format of `physarum run`, as run.json records them.
 struct TextureSettings {
@@ -46,9 +46,9 @@ SurfaceSpec surface_spec_from_json(const nlohmann::json& j, const std::string& w
 
 // Where each texel of a --texture-size square lies on the triangulation, found before a run starts:
 // a UV map that cannot be baked is bad input, refused before anything is simulated or written. Without
-// UVs: nothing, and `command` tells the user on stderr that no texture.png will be written.
+// UVs: nothing, and `note` tells the user that no texture.png will be written.
 std::optional<TexelLocations> texels_for_run(const InputMesh& input, const SurfaceDomain& domain,
-                                             const TextureSettings& texture, const std::string& command);
+                                             const TextureSettings& texture, const SurfaceNote& note);
 
 struct SurfaceExportsWritten {
   std::vector<std::string> files;  // names inside the output folder, in the order written
@@ -97,4 +97,4 @@ struct SurfaceForExports {
 SurfaceForExports rebuild_surface_for_exports(const SurfaceSpec& spec, const TextureSettings& texture,
                                               const InputMesh& recorded_full, const std::string& full_file);
 
-}  // namespace physarum::cli
+}  // namespace physarum

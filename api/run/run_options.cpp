@@ -1,13 +1,12 @@
-#include "tools/run/run_options.hpp"
+#include "api/run/run_options.hpp"
 
 #include "common/base/content_hash.hpp"
 #include "common/base/errors.hpp"
 #include "common/scene/scene_overrides.hpp"
 
-#include <iostream>
 #include <filesystem>
 
-namespace physarum::cli {
+namespace physarum {
 
 nlohmann::json RunOptions::overrides() const {
   nlohmann::json j = nlohmann::json::object();
@@ -74,8 +73,8 @@ SessionOptions session_options(const RunOptions& options, long long steps) {
   s.backend = options.backend;
   s.device = options.device;
   s.planned_steps = steps;
-  s.log = [](const std::string& line) { std::cerr << line << "\n"; };
+  s.log = options.log;
   return s;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

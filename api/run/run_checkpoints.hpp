@@ -1,6 +1,6 @@
 #pragma once
-// The checkpoints of one `physarum run`, for both models' run loops (tools/run/command_run.cpp,
-// tools/run/run_reaction_diffusion.cpp): what identifies the run (build, backend, device, scene), where a
+// The checkpoints of one `physarum run`, for every model's run (api/run/agent_run.cpp,
+// api/run/run_reaction_diffusion.cpp): what identifies the run (build, backend, device, scene), where a
 // resumed run starts (its backend restored, its statistics text and simulated seconds so far taken
 // from the checkpoint's header), writing DIR/checkpoint.bin every `--checkpoint-every` seconds of
 // simulated time (atomically replaced), run.json's record of it, and removing it once the outputs are
@@ -8,8 +8,8 @@
 // anything else (statistics rows, frames), and the time spent writing checkpoints is left out here.
 #include "common/run/checkpoint.hpp"
 #include "common/simulation/simulation_backend.hpp"
-#include "tools/run/resume_point.hpp"
-#include "tools/run/run_options.hpp"
+#include "api/run/resume_point.hpp"
+#include "api/run/run_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-namespace physarum::cli {
+namespace physarum {
 
 class RunCheckpoints {
  public:
@@ -66,4 +66,4 @@ class RunCheckpoints {
   std::size_t bytes_ = 0;
 };
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -7,14 +7,14 @@
 #include "api/session.hpp"
 #include "common/output/texture_bake.hpp"
 #include "common/output/time_lapse.hpp"
-#include "tools/run/resume_point.hpp"
-#include "tools/run/run_loop.hpp"
-#include "tools/run/run_options.hpp"
+#include "api/run/resume_point.hpp"
+#include "api/run/run_loop.hpp"
+#include "api/run/run_options.hpp"
 
 #include <memory>
 #include <optional>
 
-namespace physarum::cli {
+namespace physarum {
 
 class PreparedRun {
  public:
@@ -29,8 +29,6 @@ class PreparedRun {
   const RunOptions& options() const { return options_; }
   long long steps() const { return steps_; }
   const ModelRun& model() const { return model_; }
-  // `physarum run`: the rest of the steps (a progress bar on a terminal), then every output; the exit code.
-  int finish_and_write() { return run_to_end_and_write(*loop_); }
 
  protected:
   // Builds the time-lapse and the session (everything that can refuse the scene happens here or in
@@ -58,7 +56,7 @@ class PreparedRun {
 long long run_length_in_steps(const RunOptions& options, const Scene& scene);
 
 // The run of `scene` (loaded, with the options' overrides and seed) for `steps` steps, by its model:
-// the agent model (tools/run/command_run.cpp), a reaction-diffusion system
+// the agent model (api/run/agent_run.cpp), a reaction-diffusion system
 // (run_reaction_diffusion.cpp) or the growth model (run_growth.cpp).
 std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& options, long long steps,
                                          const std::optional<ResumePoint>& resume);
@@ -71,4 +69,4 @@ std::unique_ptr<PreparedRun> prepare_reaction_diffusion_run(const Scene& scene, 
 std::unique_ptr<PreparedRun> prepare_growth_run(const Scene& scene, const RunOptions& options, long long steps,
                                                 const std::optional<ResumePoint>& resume);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,13 +1,12 @@
-#include "tools/run/run_checkpoints.hpp"
+#include "api/run/run_checkpoints.hpp"
 
 #include "common/base/atomic_write.hpp"
 #include "common/base/errors.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 
-namespace physarum::cli {
+namespace physarum {
 
 RunCheckpoints::RunCheckpoints(SimulationBackend& simulation, const RunOptions& o, const std::string& mesh, double time_step,
                                long long steps, const std::optional<ResumePoint>& resume)
@@ -29,7 +28,8 @@ RunCheckpoints::RunCheckpoints(SimulationBackend& simulation, const RunOptions& 
     seconds_before_ = header.run.at("seconds").get<double>();
     first_step_ = header.step + 1;
     resumed_from_ = header.step;
-    std::cerr << "physarum run: resuming " << o.out << " at step " << header.step << " of " << steps << "\n";
+    if (o.log)
+      o.log("physarum run: resuming " + o.out + " at step " + std::to_string(header.step) + " of " + std::to_string(steps));
   }
   if (interval_ > 0) create_output_folder(o.out);
 }
@@ -68,4 +68,4 @@ void RunCheckpoints::remove_file() const {
   std::filesystem::remove(path_, ignored);
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,4 +1,4 @@
-#include "tools/run/prepared_run.hpp"
+#include "api/run/prepared_run.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/base/overloaded.hpp"
@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace physarum::cli {
+namespace physarum {
 
 PreparedRun::PreparedRun(const Scene& scene, const RunOptions& options, long long steps,
                          const std::optional<ResumePoint>& resume)
@@ -63,4 +63,4 @@ std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& o
       scene.model);
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

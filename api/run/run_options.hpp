@@ -3,7 +3,7 @@
 // resumed run (`physarum run --resume DIR`) takes every option back from DIR/checkpoint.bin, so it
 // continues the very run that was stopped, and the scene's identity hash lets it refuse a scene
 // that changed in between.
-#include "tools/run/surface_exports.hpp"
+#include "api/run/surface_exports.hpp"
 
 #include "api/session.hpp"
 
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 struct RunOptions {
   std::string scene;
@@ -33,6 +33,10 @@ struct RunOptions {
   std::string maps_out;  // --maps-out FILE: the scene's named maps on the input mesh ("" = none)
   std::optional<double> checkpoint_every;  // --checkpoint-every T: simulated seconds between checkpoints
   std::string resume;  // --resume DIR: continue the run whose checkpoint is DIR/checkpoint.bin
+  // The run's notes for its user (the backend chosen, the maps, sub-steps, a resume, a mesh without
+  // UVs): `physarum run` prints them on stderr, Python hands them to `logging`; none: quiet. Not
+  // part of a checkpoint.
+  SurfaceNote log;
 
   // The --set assignments as one overrides object for load_scene (UsageError on a malformed one or
   // a key given twice).
@@ -50,11 +54,8 @@ RunOptions run_options_from_json(const nlohmann::json& j, const std::string& whe
 std::string scene_identity_hash(const RunOptions& o, const std::string& mesh);
 
 // The library session a run builds (api/session.hpp): the backend and device asked for, the run
-// length the feasibility checks judge, and the user's lines on stderr.
+// length the feasibility checks judge, and the run's notes (options.log).
 SessionOptions session_options(const RunOptions& options, long long steps);
 
-// `physarum run` of options.scene into options.out, as the command does (tools/run/command_run.cpp):
-// checks, the run, every output file. For the commands that generate a scene and run it (sketch).
-int run_scene(const RunOptions& options);
 
-}  // namespace physarum::cli
+}  // namespace physarum
