@@ -1,8 +1,9 @@
 #include "api/backend_factory.hpp"
 
+#include "api/models/model_table.hpp"
+
 #include "common/setup/agent_inputs.hpp"
 #include "common/base/errors.hpp"
-#include "common/base/overloaded.hpp"
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"
 #include "reference/agents.hpp"
@@ -70,9 +71,9 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLBackendOptions& options) {
-  if (is_reaction_diffusion(scene))
-    throw UsageError(scene.source + ": a reaction-diffusion scene's backend is built from its surface and maps "
-                     "(make_backend with a PreparedSurface, or make_reaction_diffusion_backend), not the agent arrays");
+  if (!is_agent_model(scene))
+    throw UsageError(scene.source + ": agent arrays build the agent model's backend, and this scene runs " +
+                     model_entry(scene).name + " (make_backend with a PreparedSurface builds any model's)");
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agent_model().agents);
   if (backend == BackendChoice::Reference) {
@@ -95,20 +96,9 @@ std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const ope
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const PreparedSurface& surface, const Scene& scene,
                                                 const opencl::OpenCLBackendOptions& options) {
-  return std::visit(
-      overloaded{[&](const AgentModelSpec&) {
-                   return make_backend(backend, compute, surface.domain, scene, scene_arrays(scene, surface), options);
-                 },
-                 [&](const ReactionDiffusionSpec&) {
-                   const EvaluatedMaps maps = evaluate_maps(scene.maps, surface, scene.source);
-                   return make_reaction_diffusion_backend(backend, compute, surface.domain,
-                                                          build_reaction_diffusion_system(scene, surface, maps), options);
-                 },
-                 [&](const GrowthSpec&) -> std::unique_ptr<SimulationBackend> {
-                   throw InputError(scene.source + ": a growth scene's backend grows its sheet between steps: build it "
-                                    "with Session (api/session.hpp), not make_backend");
-                 }},
-      scene.model);
+  const ModelEntry& model = model_entry(scene);
+  if (!model.backend_on) throw InputError(scene.source + ": " + model.why_no_backend_on);
+  return model.backend_on(backend, compute, surface, scene, options);
 }
 
 std::unique_ptr<SimulationBackend> make_reaction_diffusion_backend(BackendChoice backend,

@@ -10,6 +10,7 @@
 #include "opencl/planted_faults.hpp"
 #include "api/comparison.hpp"
 #include "api/compare/comparison_arms.hpp"
+#include "api/compare/comparison_model.hpp"
 #include "api/compare/comparison_plot.hpp"
 #include "api/compare/pattern_checks.hpp"
 #include "api/compare/seed_runner.hpp"
@@ -214,10 +215,7 @@ void refuse_what_cannot_be_compared(const ComparisonRequest& o) {
   if (!o.reference_stats.empty() && !o.arms.empty())
     throw UsageError("--reference-stats replaces the reference arm: it does not go with --arm");
   const Scene scene = load_scene(o.scene);
-  const bool rd = is_reaction_diffusion(scene);
-  if (rd && (!o.store_reference.empty() || !o.reference_stats.empty()))
-    throw UsageError(o.scene + ": stored reference statistics (--store-reference, --reference-stats) are for the agent "
-                     "model; a reaction-diffusion scene runs both arms here (its seeds are short)");
+  const ComparisonModel& model = comparison_model_of(scene, o.scene);
   // A planted fault of the other model would change nothing, and the harness would rightly call
   // the arms equivalent: a power check that proves nothing.
   if (o.fault == kHarnessFault) {
@@ -226,25 +224,10 @@ void refuse_what_cannot_be_compared(const ComparisonRequest& o) {
                        "give two --arm (it would change nothing)");
     return;
   }
-  const bool rd_fault = o.fault.rfind("rd-", 0) == 0;
-  if (!o.fault.empty() && rd != rd_fault)
-    throw UsageError("--fault " + o.fault + ": a fault of the " + (rd_fault ? "reaction-diffusion" : "agent") +
-                     " model, and " + o.scene + " is " + (rd ? "a reaction-diffusion scene" : "an agent-model scene") +
+  if (!o.fault.empty() && !model.owns_fault(o.fault))
+    throw UsageError("--fault " + o.fault + ": not a fault of this model, and " + o.scene + " is " + model.scenes +
                      " (it would change nothing)");
-  // rd-no-feed drops the coefficient F from the first formula (opencl/reaction_diffusion.cpp):
-  // a model without F (turing, ...) runs unchanged.
-  if (rd && o.fault == "rd-no-feed") {
-    bool has_feed = false;
-    for (const auto& [name, value] : scene.reaction_diffusion()->coefficients) has_feed = has_feed || name == "F";
-    if (!has_feed)
-      throw UsageError("--fault rd-no-feed: " + o.scene + "'s model (" + scene.reaction_diffusion()->model +
-                       ") has no feed coefficient F (it would change nothing)");
-  }
-  // rd-lane-mixup is a fault of the wide vector that only five or more morphogens use.
-  if (rd && o.fault == "rd-lane-mixup" && scene.reaction_diffusion()->morphogens.size() < 5)
-    throw UsageError("--fault rd-lane-mixup: " + o.scene + " has " +
-                     std::to_string(scene.reaction_diffusion()->morphogens.size()) +
-                     " morphogens; the fault is in the step of five or more (it would change nothing)");
+  if (model.refuse) model.refuse(o, scene);
 }
 
 // The seeds of both arms (the second stored, or run here batch by batch beside the first) and the
@@ -339,16 +322,8 @@ nlohmann::ordered_json arm_list(const std::vector<Arm>& arms) {
                                 {"backend", to_string(arm.backend)},
                                 {"device", arm.compute ? arm.compute->device.describe() : "host"},
                                 {"faces", arm.surface->domain.face_count},
-                                {"agents", agent_count(arm.scene)},
                                 {"time_step", arm.scene.time_step}};
-    if (arm.reaction_diffusion()) {
-      // The run length is the scene's, not the agent model's compare defaults, so the report says it.
-      const ReactionDiffusionSpec& rd = *arm.scene.reaction_diffusion();
-      a.erase("agents");
-      a["model"] = rd.model;
-      a["integrator"] = integrator_name(rd.integrator);
-      a["preview_morphogen"] = rd.preview_morphogen;
-    }
+    comparison_model_of(arm.scene, arm.scene.source).describe_arm(arm, a);
     list.push_back(a);
   }
   return list;
@@ -384,10 +359,7 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
   if (!r.reason.empty()) report["reason"] = r.reason;
   report["equivalent"] = r.verdict == Verdict::Equivalent && !drift;
   report["scene"] = o.scene;
-  if (A.reaction_diffusion()) {
-    const ComparisonSettings& c = A.scene.comparison;
-    report["run_length"] = {{"burn_in", c.burn_in}, {"duration", c.duration}, {"sample_interval", c.sample_interval}};
-  }
+  if (const ComparisonModel& model = comparison_model_of(A.scene, o.scene); model.describe_run) model.describe_run(A, report);
   report["arms"] = arm_list(arms);
   report["seeds"] = {{A.label, r.a_values.size()}, {B.label, r.b_values.size()}};
   report["fault"] = o.fault.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.fault);

@@ -84,7 +84,6 @@ struct Arm {
   // get no common sampling, so only mean and coverage compare them, as before the sampling existed.
   bool common_sampling_withheld = false;
 
-  bool reaction_diffusion() const { return is_reaction_diffusion(scene); }
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
   // Runs seed `index` from a fresh simulation and returns its time-averaged metrics; an OpenCL arm
   // runs it on `stream` (a queue of its context) when given, else on its context's own queue.
@@ -110,5 +109,14 @@ struct ArmsRequest {
 // without `deposit_rate` rescales the deposit so that U (Eq. 5) stays the scene's, as the paper's
 // agent-count study does (Fig. 10c). Throws InputError when the arms' metric sets differ.
 std::vector<Arm> make_arms(const ArmsRequest& request);
+
+// ---- shared by the models' arms (api/compare/comparison_model.hpp) ----
+// Steps of one seed (burn-in + duration): the run whose work the fail-fast checks estimate.
+long long steps_per_seed(const Scene& scene);
+// True when two arms' scenes ask for the same surface (built once then).
+bool same_surface_keys(const Scene& a, const Scene& b);
+// What the arms' metrics can share: one discretisation, or a common sampling of two triangulations
+// of one input surface (or why there is none).
+ArmsShare arms_share(const std::vector<Arm>& arms, bool same_discretisation);
 
 }  // namespace physarum

@@ -1,7 +1,7 @@
 #include "api/run/prepared_run.hpp"
 
 #include "common/base/errors.hpp"
-#include "common/base/overloaded.hpp"
+#include "api/models/model_table.hpp"
 #include "common/output/maps_ply.hpp"
 #include "common/setup/scene_maps.hpp"
 
@@ -38,15 +38,7 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
     // Nearest whole step: T / dt often lands a rounding error away from an integer.
     return std::max<long long>(1, std::llround(seconds / scene.time_step));
   };
-  if (const GrowthSpec* growth = scene.growth()) {
-    // --steps may only restate it (scripts that pass --steps to every run).
-    const long long schedule = growth->schedule.total_steps();
-    if ((o.steps && *o.steps != schedule) || o.sim_time)
-      throw UsageError(std::string(o.steps ? "--steps" : "--sim-time") + ": a growth scene's length is its schedule (" +
-                       std::to_string(schedule) + " steps here: --set schedule.growth_steps=G, "
-                       "--set schedule.reaction_steps=N)");
-    return schedule;
-  }
+  if (const ModelEntry& model = model_entry(scene); model.own_run_length) return model.own_run_length(o, scene);
   if (o.steps) return *o.steps;
   if (o.sim_time) return steps_for(*o.sim_time);
   if (scene.steps) return *scene.steps;
@@ -56,11 +48,7 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
 
 std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& options, long long steps,
                                          const std::optional<ResumePoint>& resume) {
-  return std::visit(
-      overloaded{[&](const AgentModelSpec&) { return prepare_agent_run(scene, options, steps, resume); },
-                 [&](const ReactionDiffusionSpec&) { return prepare_reaction_diffusion_run(scene, options, steps, resume); },
-                 [&](const GrowthSpec&) { return prepare_growth_run(scene, options, steps, resume); }},
-      scene.model);
+  return model_entry(scene).prepare_run(scene, options, steps, resume);
 }
 
 }  // namespace physarum
