@@ -35,6 +35,9 @@
 // writes its per-seed metrics; `--reference-stats FILE` then replaces the reference arm by them and
 // runs a few fresh reference seeds (--reference-seeds, default 3) to detect drift of the stored file
 // (a two-sided t test per metric at the Sidak level, see drift_p_value; drift is an error, exit 1).
+#include <nlohmann/json.hpp>
+
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,12 +61,27 @@ struct ComparisonRequest {
   std::string reference_stats;    // stored reference metrics instead of the reference arm
   int reference_seeds = 3;        // fresh reference seeds run against reference_stats (drift)
   std::string store_reference;    // run only the reference and store its per-seed metrics here
+  // The harness's lines for its user (the surfaces' notes, the theory check, what was not drawn,
+  // a stored file's seeds): `physarum compare` prints them on stderr; none: quiet. (The seed
+  // progress is drawn on a terminal's stderr only.)
+  std::function<void(const std::string&)> log;
 };
 
-// Runs the comparison: prints the verdict (JSON) on stdout and the theory lines and progress on
-// stderr, writes `out`; returns the exit code (0 equivalent, 3 different, 4 inconclusive; 0 after
-// storing reference statistics). InputError on bad input and on drift of stored statistics,
-// UsageError on a request that cannot be compared.
+// What a comparison found: the exit code `physarum compare` gives, verdict.json's content (null after
+// --store-reference), and, when fresh reference seeds drifted from stored statistics, the error.
+struct ComparisonResult {
+  int exit_code = 0;
+  nlohmann::ordered_json verdict;
+  std::optional<std::string> drift;
+};
+
+// The comparison, in-process: writes `out` when asked; InputError on bad input, UsageError on a
+// request that cannot be compared (nothing runs then).
+ComparisonResult compare(const ComparisonRequest& request);
+
+// `physarum compare`: compare(), with the verdict (JSON) printed on stdout; returns the exit code (0
+// equivalent, 3 different, 4 inconclusive; 0 after storing reference statistics). InputError on
+// drift of stored statistics, after the verdict.
 int run_comparison(const ComparisonRequest& request);
 
 }  // namespace physarum

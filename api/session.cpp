@@ -3,7 +3,6 @@
 #include "api/models/model_table.hpp"
 
 #include "common/base/content_hash.hpp"
-#include "common/base/overloaded.hpp"
 #include "common/maps/map_cache.hpp"
 #include "common/run/checkpoint.hpp"
 #include "common/scene/scene_json.hpp"
@@ -32,10 +31,7 @@ std::string scene_identity(const Scene& scene, const PreparedSurface& surface) {
   j["time_step"] = scene.time_step;
   j["seed"] = scene.seed;
   j["maps"] = scene.maps_given;
-  std::visit(overloaded{[&](const AgentModelSpec&) { j["model"] = scene_parameters_json(scene); },
-                        [&](const ReactionDiffusionSpec& system) { j["model"] = reaction_diffusion_json(system); },
-                        [&](const GrowthSpec& growth) { j["model"] = growth_json(growth); }},
-             scene.model);
+  j["model"] = model_json(scene);
   return hex64(content_hash(j.dump()));
 }
 

@@ -131,4 +131,18 @@ TEST(Layering, TheLibraryNeverIncludesTheCommandLine) {
   }
 }
 
+// The Python module binds the library (api/), not the command line: its C++ includes nothing of
+// tools/ outside its own folder.
+TEST(Layering, ThePythonModuleBindsTheLibraryNotTheCommandLine) {
+  static const std::regex include(R"re(^\s*#\s*include\s*"tools/(?!python/))re");
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(kSource / "tools" / "python")) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path());
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      EXPECT_FALSE(std::regex_search(line, include))
+          << fs::relative(e.path(), kSource).string() << ":" << n << " includes the command line: " << line;
+  }
+}
+
 }  // namespace

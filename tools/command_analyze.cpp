@@ -8,12 +8,9 @@
 // The field defaults to run.json's "preview_morphogen" (a reaction-diffusion run's shown morphogen)
 // when it records one, else "pheromone". Everything is read and analysed before DIR is touched, and
 // both files are written under temporary names and renamed, so a bad run folder writes nothing.
+#include "api/tools/run_analysis.hpp"
 #include "common/base/atomic_write.hpp"
-#include "common/base/errors.hpp"
-#include "common/pattern/face_direction_field.hpp"
-#include "common/pattern/pattern_analysis.hpp"
 #include "common/output/pattern_histograms.hpp"
-#include "common/mesh/ply_reader.hpp"
 #include "tools/commands.hpp"
 
 #include <nlohmann/json.hpp>
@@ -32,84 +29,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct AnalyzeOptions {
+struct AnalyzeOptions : PatternAnalysisRequest {
   std::string run_dir;
-  std::string field;                   // "" = run.json's preview_morphogen, else "pheromone"
-  std::optional<double> threshold;     // none: the area-weighted mean + 0.5 std (- 0.5 std with --below)
-  bool below = false;                  // segment where the field is below the threshold
-  double min_area = 0.0;               // leave out smaller regions
-  std::vector<std::string> direction;  // {MAP.ply, NAME} or empty
-  std::string out;                     // "" = RUN_DIR
+  std::string out;  // "" = RUN_DIR
 };
-
-// What run.json says of the files: the field the pictures show ("preview_morphogen" of
-// reaction-diffusion runs) and the name of the result on the input mesh ("fields_file": pheromone.ply
-// or morphogens.ply; runs before the key wrote pheromone.ply).
-struct RunHints {
-  std::optional<std::string> preview_morphogen;
-  std::string fields_file = "pheromone.ply";
-};
-
-RunHints run_hints(const fs::path& run_dir) {
-  const fs::path path = run_dir / "run.json";
-  std::ifstream in(path);
-  RunHints hints;
-  if (!in) return hints;  // the PLY files are what the analysis needs; run.json is optional
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path.string() + ": not valid JSON: " + e.what());
-  }
-  if (j.contains("preview_morphogen") && j["preview_morphogen"].is_string())
-    hints.preview_morphogen = j["preview_morphogen"].get<std::string>();
-  if (j.contains("fields_file") && j["fields_file"].is_string()) hints.fields_file = j["fields_file"].get<std::string>();
-  return hints;
-}
-
-// The direction map: face properties NAME_x, NAME_y, NAME_z (as `physarum map` writes vector maps).
-FaceDirectionField read_direction_field(const std::string& path, const std::string& name) {
-  PlyFields ply = read_ply_fields(path);
-  FaceDirectionField field;
-  const std::vector<double>& x = ply.face_property(name + "_x");
-  const std::vector<double>& y = ply.face_property(name + "_y");
-  const std::vector<double>& z = ply.face_property(name + "_z");
-  for (size_t f = 0; f < x.size(); ++f) {
-    field.directions.emplace_back(x[f], y[f], z[f]);
-    if (!field.directions.back().allFinite())
-      throw InputError(path + ": direction " + name + " is not finite at face " + std::to_string(f));
-  }
-  field.mesh = std::move(ply.mesh);
-  return field;
-}
 
 int run_analyze(const AnalyzeOptions& o) {
-  if (o.threshold && !std::isfinite(*o.threshold)) throw UsageError("--threshold must be a finite number");
-  if (!o.direction.empty() && o.direction.size() != 2) throw UsageError("--direction takes two values: MAP.ply NAME");
-
-  // ---- read everything first ----
+  // ---- read and analyse everything first ----
+  const RunAnalysis run = analyze_run_folder(o.run_dir, o);
+  const PatternAnalysis& analysis = run.analysis;
+  const nlohmann::json& j = run.json;
   const fs::path run_dir(o.run_dir);
-  if (!fs::is_directory(run_dir)) throw InputError(run_dir.string() + ": no such folder (give a `physarum run` output folder)");
-  const RunHints hints = run_hints(run_dir);
-  fs::path source = run_dir / "fields_full.ply";
-  if (!fs::exists(source)) source = run_dir / hints.fields_file;
-  if (!fs::exists(source)) throw InputError(run_dir.string() + ": has neither fields_full.ply nor " + hints.fields_file);
-  const PlyFields ply = read_ply_fields(source.string());
-  std::string field_name = o.field;
-  if (field_name.empty()) field_name = hints.preview_morphogen.value_or("pheromone");
-  const InputVertexData<double> field(ply.property(field_name));
-
-  std::optional<FaceDirectionField> direction;
-  if (!o.direction.empty()) direction = read_direction_field(o.direction[0], o.direction[1]);
-  PatternAnalysisOptions options;
-  options.threshold = o.threshold;
-  options.below = o.below;
-  options.min_area = o.min_area;
-  options.direction = direction ? &*direction : nullptr;
-  const PatternAnalysis analysis = analyze_pattern(ply.mesh, field, options);
-  nlohmann::json j = pattern_analysis_json(analysis, field_name);
-  j["source"] = source.filename().string();
-  if (direction) j["direction"] = {{"map", o.direction[0]}, {"name", o.direction[1]}};
 
   std::vector<HistogramPanel> panels(3);
   panels[0] = {"spot area (" + std::to_string(j["spot_count"].get<int>()) + " spots)", "area", {}};
@@ -129,7 +59,7 @@ int run_analyze(const AnalyzeOptions& o) {
 
   const auto& spacing = j["spacing"];
   const auto& width = j["stripe_width"];
-  std::cout << "analyze: " << field_name << " from " << source.filename().string() << ", threshold " << analysis.threshold
+  std::cout << "analyze: " << run.field << " from " << run.source << ", threshold " << analysis.threshold
             << ": " << j["spot_count"] << " spots, " << j["stripe_count"] << " stripes; spacing "
             << (spacing["mean"].is_null() ? std::string("-") : spacing["mean"].dump()) << " (" << spacing["count"]
             << " pairs), stripe width " << (width["mean"].is_null() ? std::string("-") : width["mean"].dump())

@@ -1,8 +1,6 @@
 #pragma once
 // Each subcommand of the `physarum` program lives in its own file and registers itself here.
 // A registered command parses into its own options and returns its exit code when run.
-#include "api/run/run_options.hpp"
-
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -38,10 +36,5 @@ std::vector<Command> add_all_commands(CLI::App& parent);
 // message, and the command's own exceptions (InputError, DeviceError, ...) pass through. --help
 // prints the help and returns 0.
 int run_command_line(const std::vector<std::string>& args);
-
-// `physarum run` of options.scene into options.out, as the command does (tools/run/command_run.cpp):
-// checks, the run with its progress bar and notes, every output file; the exit code. For the commands
-// that generate a scene and run it (sketch).
-int run_scene(const RunOptions& options);
 
 }  // namespace physarum::cli

@@ -9,7 +9,6 @@
 #include "common/maps/map_cache.hpp"
 #include "common/setup/agent_inputs.hpp"
 
-#include <iostream>
 
 namespace physarum {
 namespace {
@@ -27,7 +26,7 @@ void prepare_agent_model_arms(std::vector<Arm>& arms) {
       if (same_surface_keys(arms[j].scene, a.scene)) a.surface = arms[j].surface;
     std::optional<EvaluatedMaps> maps;
     if (!a.surface) {
-      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache, [](const std::string& line) { std::cerr << line << "\n"; });
+      FeasibleSurface feasible = prepare_feasible_surface(a.scene, steps_per_seed(a.scene), cache, a.log);
       a.surface = std::make_shared<const PreparedSurface>(std::move(feasible.surface));
       maps = std::move(feasible.maps);
     } else {

@@ -254,8 +254,9 @@ SequentialRun run_sequential_test(const ComparisonRequest& o, const std::vector<
     // The looks count the smaller arm: past the stored seeds more OpenCL seeds add no information.
     if (r.max_seeds > static_cast<int>(r.b_values.size())) {
       r.max_seeds = static_cast<int>(r.b_values.size());
-      std::cerr << "physarum compare: at most " << r.max_seeds << " seeds per arm, as many as " << o.reference_stats
-                << " holds\n";
+      if (o.log)
+        o.log("physarum compare: at most " + std::to_string(r.max_seeds) + " seeds per arm, as many as " +
+              o.reference_stats + " holds");
     }
   }
   r.test = SequentialEquivalence(static_cast<int>(r.names.size()), kFamilyAlpha, r.max_seeds);
@@ -387,7 +388,7 @@ nlohmann::ordered_json verdict_report(const ComparisonRequest& o, const std::vec
 
 // DIR/verdict.json, DIR/seed_metrics.csv, DIR/fields.png (api/compare/comparison_fields.hpp) and, when
 // there are spectral bands to draw, DIR/spectra.png.
-void write_compare_folder(const std::string& folder, const std::string& verdict_text, const std::vector<Arm>& arms,
+void write_compare_folder(const std::string& folder, const ComparisonRequest& o, const std::string& verdict_text, const std::vector<Arm>& arms,
                           const SequentialRun& r) {
   const Arm &A = arms[0], &B = arms[1];
   create_output_folder(folder);
@@ -406,19 +407,19 @@ void write_compare_folder(const std::string& folder, const std::string& verdict_
     }
   write_text_file_atomically((out / "seed_metrics.csv").string(), csv.str());
   // The two patterns the verdict is about, side by side.
-  if (!write_comparison_fields((out / "fields.png").string(), arms))
-    std::cerr << "physarum compare: the arms' fields are uniform; " << (out / "fields.png").string() << " not written\n";
+  if (!write_comparison_fields((out / "fields.png").string(), arms) && o.log)
+    o.log("physarum compare: the arms' fields are uniform; " + (out / "fields.png").string() + " not written");
   // A verdict never turns into bad input: a scene without drawable bands gets no picture, and says so.
   const std::filesystem::path plot = out / "spectra.png";
   if (!write_comparison_plot(plot.string(), metric_names(A.metrics), r.b_values, r.a_values)) {
     std::filesystem::remove(plot);
-    std::cerr << "physarum compare: no spectral band power to draw on this scene; " << plot.string() << " not written\n";
+    if (o.log) o.log("physarum compare: no spectral band power to draw on this scene; " + plot.string() + " not written");
   }
 }
 
 }  // namespace
 
-int run_comparison(const ComparisonRequest& o) {
+ComparisonResult compare(const ComparisonRequest& o) {
   refuse_what_cannot_be_compared(o);
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
@@ -431,6 +432,7 @@ int run_comparison(const ComparisonRequest& o) {
   if (!request.withhold_common_sampling)
     request.fault_build_option = opencl::fault_build_option(o.fault);  // UsageError on an unknown name
   request.reference_only = !o.store_reference.empty();
+  request.log = o.log;
   const std::vector<Arm> arms = make_arms(request);
 
   if (!o.store_reference.empty()) {
@@ -439,28 +441,40 @@ int run_comparison(const ComparisonRequest& o) {
     run_batch(arms, tasks_for(0, 0, seeds), jobs, {&values}, "reference");
     if (show_progress()) std::cerr << "\n";
     store_reference(o.store_reference, arms[0].scene, arms[0].metrics, values);
-    std::cout << "physarum compare: stored " << seeds << " reference seeds of " << o.scene << " in "
-              << o.store_reference << "\n";
-    return 0;
+    if (o.log) o.log("physarum compare: stored " + std::to_string(seeds) + " reference seeds of " + o.scene + " in " +
+                     o.store_reference);
+    return ComparisonResult{};
   }
 
   const auto start = std::chrono::steady_clock::now();
   const SequentialRun r = run_sequential_test(o, arms, jobs);
   const std::vector<TheoryRow> theory = check_against_theory({&arms[0], &arms[1]}, {&r.a_values, &r.b_values}, kFamilyAlpha);
-  for (const TheoryRow& row : theory) std::cerr << theory_line(row) << "\n";
+  auto say = [&](const std::string& line) {
+    if (o.log) o.log(line);
+  };
+  for (const TheoryRow& row : theory) say(theory_line(row));
   for (const UnrepresentedScale& u : r.unrepresented)
-    if (u.decides) std::cerr << "physarum compare: different: " << u.reason << "\n";
-  if (!r.reason.empty() && r.verdict == Verdict::Inconclusive) std::cerr << "physarum compare: inconclusive: " << r.reason << "\n";
+    if (u.decides) say("physarum compare: different: " + u.reason);
+  if (!r.reason.empty() && r.verdict == Verdict::Inconclusive) say("physarum compare: inconclusive: " + r.reason);
   bool drift = false;
-  const nlohmann::ordered_json report =
+  ComparisonResult result;
+  result.verdict =
       verdict_report(o, arms, r, theory, jobs, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), drift);
-  const std::string text = report.dump(2) + "\n";
-  std::cout << text;
-  if (!o.out.empty()) write_compare_folder(o.out, text, arms, r);
+  if (!o.out.empty()) write_compare_folder(o.out, o, result.verdict.dump(2) + "\n", arms, r);
   if (drift)
-    throw InputError(o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "
-                     "above); the reference changed: regenerate the file with --store-reference");
-  return exit_code(r.verdict);
+    result.drift = o.reference_stats + ": the fresh reference seeds differ from the stored statistics (see \"drift\" "
+                   "above); the reference changed: regenerate the file with --store-reference";
+  result.exit_code = exit_code(r.verdict);
+  return result;
+}
+
+int run_comparison(const ComparisonRequest& request) {
+  ComparisonRequest o = request;
+  if (!o.log) o.log = [](const std::string& line) { std::cerr << line << "\n"; };
+  const ComparisonResult result = compare(o);
+  if (!result.verdict.is_null()) std::cout << result.verdict.dump(2) << "\n";
+  if (result.drift) throw InputError(*result.drift);
+  return result.exit_code;
 }
 
 }  // namespace physarum

@@ -125,6 +125,7 @@ std::vector<Arm> make_arms(const ArmsRequest& request) {
   for (size_t i = 0; i < arms.size(); ++i) {
     arms[i].seed_offset = i == 1 || request.reference_only ? kSecondArmSeedOffset : 0;
     arms[i].common_sampling_withheld = request.withhold_common_sampling;
+    arms[i].log = request.log;
     if (request.keep_fields) arms[i].fields = std::make_shared<SeedFields>();
   }
 

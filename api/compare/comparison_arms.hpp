@@ -83,6 +83,8 @@ struct Arm {
   // The harness's own planted fault (kHarnessFault): this arm and the other, on two triangulations,
   // get no common sampling, so only mean and coverage compare them, as before the sampling existed.
   bool common_sampling_withheld = false;
+  // Where the arm's preparation tells its user about the surface (its refinement, warnings); none: quiet.
+  SurfaceNote log;
 
   std::uint32_t seed(int index) const { return scene.seed + seed_offset + static_cast<std::uint32_t>(index); }
   // Runs seed `index` from a fresh simulation and returns its time-averaged metrics; an OpenCL arm
@@ -98,6 +100,7 @@ struct ArmsRequest {
   bool reference_only = false;     // --store-reference: only the reference arm is built
   bool withhold_common_sampling = false;  // the harness's planted fault (Arm::common_sampling_withheld)
   bool keep_fields = false;               // keep every seed's final field (Arm::fields), for --out
+  SurfaceNote log;                        // the surfaces' notes (Arm::log); none: quiet
 };
 
 // The arms in order (0: the arm judged, 1: the arm it is judged against, whose means set relative

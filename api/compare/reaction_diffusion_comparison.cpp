@@ -9,7 +9,6 @@
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"
 
-#include <iostream>
 
 namespace physarum {
 namespace {
@@ -25,8 +24,7 @@ void prepare_reaction_diffusion_arms(std::vector<Arm>& arms) {
     for (size_t j = 0; j < i; ++j)
       if (same_surface_keys(arms[j].scene, a.scene)) a.surface = arms[j].surface;
     if (!a.surface)
-      a.surface = std::make_shared<const PreparedSurface>(
-          prepare_scene_surface(a.scene, [](const std::string& line) { std::cerr << line << "\n"; }));
+      a.surface = std::make_shared<const PreparedSurface>(prepare_scene_surface(a.scene, a.log));
     maps[i] = std::make_shared<const EvaluatedMaps>(evaluate_maps(a.scene.maps, *a.surface, a.scene.source));
   }
   const Arm& baseline = arms.back();

@@ -46,6 +46,19 @@ long long run_length_in_steps(const RunOptions& o, const Scene& scene) {
   throw UsageError("no run length: give --steps N or --sim-time T (or 'steps' / 'sim_time' in " + o.scene + ")");
 }
 
+RunWritten run_to_files(const RunOptions& o, const std::optional<ResumePoint>& resume,
+                        const std::function<void(long long done, long long total)>& progress) {
+  // ---- everything that can reject the input, before any output exists ----
+  Scene scene = load_scene(o.scene, o.overrides());
+  if (o.seed) scene.seed = *o.seed;
+  if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
+  const std::unique_ptr<PreparedRun> run = prepare_run(scene, o, run_length_in_steps(o, scene), resume);
+  RunLoop& loop = run->loop();
+  while (loop.step())
+    if (progress) progress(loop.steps_taken(), loop.planned_steps());
+  return loop.write(o.out);
+}
+
 std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& options, long long steps,
                                          const std::optional<ResumePoint>& resume) {
   return model_entry(scene).prepare_run(scene, options, steps, resume);

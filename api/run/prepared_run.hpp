@@ -11,6 +11,7 @@
 #include "api/run/run_loop.hpp"
 #include "api/run/run_options.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -60,6 +61,12 @@ long long run_length_in_steps(const RunOptions& options, const Scene& scene);
 // (run_reaction_diffusion.cpp) or the growth model (run_growth.cpp).
 std::unique_ptr<PreparedRun> prepare_run(const Scene& scene, const RunOptions& options, long long steps,
                                          const std::optional<ResumePoint>& resume);
+
+// A run from its options to its files, as `physarum run` makes it: the scene (options.scene) loaded
+// with the options' overrides and seed, every check, every step (`progress(done, total)` after each;
+// may be empty), every output into options.out. `resume` continues a stopped run from its checkpoint.
+RunWritten run_to_files(const RunOptions& options, const std::optional<ResumePoint>& resume = std::nullopt,
+                        const std::function<void(long long done, long long total)>& progress = {});
 
 // One model's preparation (each in its model's file).
 std::unique_ptr<PreparedRun> prepare_agent_run(const Scene& scene, const RunOptions& options, long long steps,

@@ -1,7 +1,6 @@
 #include "common/scene/scene.hpp"
 
 #include "common/base/errors.hpp"
-#include "common/base/overloaded.hpp"
 #include "common/scene/scene_fields.hpp"
 #include "common/scene/scene_keys.hpp"
 #include "common/scene/scene_overrides.hpp"
@@ -101,11 +100,11 @@ ComparisonSettings read_comparison(const SceneReader& read) {
   return c;
 }
 
-// A reaction-diffusion scene's run is its own time scale: by default the comparison discards the
+// A reaction-diffusion scene's run is its own time scale (a growth scene's reaction's too): by default the comparison discards the
 // first half of the run (the pattern forming from its initial state) and averages the second half,
 // sampled 20 times (enough samples that the time average is smooth, few enough that the snapshots'
 // spectra cost little beside the run). Keys given in the file win.
-void reaction_diffusion_comparison_defaults(const json& j, Scene& scene) {
+void comparison_defaults_from_run_length(const json& j, Scene& scene) {
   ComparisonSettings& c = scene.comparison;
   std::optional<double> run_time = scene.sim_time;
   if (!run_time && scene.steps) run_time = static_cast<double>(*scene.steps) * scene.time_step;
@@ -124,25 +123,22 @@ void reaction_diffusion_comparison_defaults(const json& j, Scene& scene) {
   if (!j.contains("compare_sample_interval")) c.sample_interval = std::max(scene.time_step, c.duration / 20.0);
 }
 
-// The one place a scene's model is chosen: a reaction–diffusion system when "model" names one (or
-// "reaction" is given), else the agent model. The other model's keys are refused rather than
-// silently ignored, so a half-converted scene does not run as something it is not.
+// The one place a scene's model is chosen: each model of SceneModel, from the last to the first,
+// reads the scene if it is of that model; the first (the agent model) takes what no other claimed.
+// The agent model's keys in a scene of another model are refused rather than silently ignored, so
+// a half-converted scene does not run as something it is not.
+template <size_t I = std::variant_size_v<SceneModel> - 1>
 SceneModel read_model(const json& j, const std::string& path) {
-  if (std::optional<GrowthSpec> growth = read_growth(j, path)) {
+  using Spec = std::variant_alternative_t<I, SceneModel>;
+  std::optional<Spec> spec = read_model(ModelTag<Spec>{}, j, path);
+  if constexpr (I > 0) {
+    if (!spec) return read_model<I - 1>(j, path);
     for (const std::string& key : agent_model_keys())
       if (j.contains(key))
         throw InputError(path + ": key '" + key + "' belongs to the agent model (\"physarum\"), and this scene's " +
-                         "\"model\" is \"growth\"");
-    return std::move(*growth);
+                         "\"model\" is \"" + model_key(*spec) + "\"");
   }
-  if (std::optional<ReactionDiffusionSpec> system = read_reaction_diffusion(j, path)) {
-    for (const std::string& key : agent_model_keys())
-      if (j.contains(key))
-        throw InputError(path + ": key '" + key + "' belongs to the agent model (\"physarum\"), and this scene's " +
-                         "\"model\" is \"" + system->model + "\"");
-    return std::move(*system);
-  }
-  return read_agent_model(j, path);
+  return std::move(*spec);
 }
 
 }  // namespace
@@ -190,10 +186,13 @@ Scene scene_from_json(nlohmann::json j, const std::string& source, const nlohman
 
   // The model's own keys.
   scene.model = read_model(j, path);
-  if (is_reaction_diffusion(scene)) reaction_diffusion_comparison_defaults(j, scene);
+  // A model that runs on its own time scale (a reaction's) compares over its own run length.
+  if (!is_agent_model(scene)) comparison_defaults_from_run_length(j, scene);
 
+  // (A duration of 0 is no file's: compare_duration > 0. It is a reaction's scene without a run
+  // length, which compare refuses saying so.)
   const ComparisonSettings& c = scene.comparison;
-  if (c.sample_interval > c.duration && !(is_reaction_diffusion(scene) && c.duration == 0.0))
+  if (c.sample_interval > c.duration && c.duration != 0.0)
     throw InputError(path + ": key 'compare_sample_interval' = " + std::to_string(c.sample_interval) +
                      " is longer than 'compare_duration' = " + std::to_string(c.duration) + " (no sample would be taken)");
   validate_scene(scene);
@@ -211,10 +210,7 @@ void validate_scene(const Scene& scene) {
   if (scene.sim_time) check_range(s, "sim_time", *scene.sim_time);
   if (scene.steps && scene.sim_time)
     throw InputError(scene_where(s) + ": keys 'steps' and 'sim_time' are both given (give at most one run length)");
-  std::visit(overloaded{[&](const AgentModelSpec& agents) { validate_agent_model(agents, scene.maps, s); },
-                        [&](const ReactionDiffusionSpec& system) { validate_reaction_diffusion(system, scene.maps, s); },
-                        [&](const GrowthSpec& growth) { validate_growth(growth, scene.maps, s); }},
-             scene.model);
+  std::visit([&](const auto& model) { validate_model(model, scene.maps, s); }, scene.model);
 }
 
 Scene reaction_diffusion_scene(const Scene& growth_scene) {
@@ -222,6 +218,14 @@ Scene reaction_diffusion_scene(const Scene& growth_scene) {
   Scene scene = growth_scene;
   scene.model = growth_scene.growth()->reaction;
   return scene;
+}
+
+std::string model_key(const Scene& scene) {
+  return std::visit([](const auto& model) { return model_key(model); }, scene.model);
+}
+
+nlohmann::ordered_json model_json(const Scene& scene) {
+  return std::visit([&](const auto& model) { return model_json(model, scene); }, scene.model);
 }
 
 bool has_parameter_maps(const Scene& scene) {

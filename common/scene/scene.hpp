@@ -6,9 +6,7 @@
 // and an unknown key is an error too.
 #include "common/color/color_map_json.hpp"
 #include "common/maps/map_definition.hpp"
-#include "common/scene/scene_agents.hpp"
-#include "common/scene/scene_growth.hpp"
-#include "common/scene/scene_reaction_diffusion.hpp"
+#include "common/scene/scene_models.hpp"
 
 #include <array>
 #include <cstdint>
@@ -39,16 +37,13 @@ struct ComparisonSettings {
   int eigenpairs = 48;            // manifold harmonics computed for the bands
 };
 
-// The model a scene runs: the agent model (paper 000, "model": "physarum", the default), a
-// reaction–diffusion system (paper 002) or a reaction–diffusion system on a growing sheet (paper 003). Each alternative is read, validated and evaluated on a
-// surface by its own files (scene_agents, scene_reaction_diffusion; common/setup/); a new model is
-// one more alternative here and one branch in load_scene.
-using SceneModel = std::variant<AgentModelSpec, ReactionDiffusionSpec, GrowthSpec>;
-
 struct Scene {
   std::string source;  // the scene file, for messages ("" when built in code)
 
-  SceneModel model;  // default: the agent model
+  // The model it runs (common/scene/scene_models.hpp): the agent model (paper 000, "model":
+  // "physarum", the default), a reaction–diffusion system (paper 002) or one on a growing sheet
+  // (paper 003). What the library does with each is its entry in api/models/model_table.cpp.
+  SceneModel model;
 
   // ---- surface ----
   std::string mesh;                        // resolved file path, or "shape:NAME"
@@ -71,8 +66,8 @@ struct Scene {
   // ---- pictures ----
   ColorMapSettings color_map;  // how the result file and preview.png are coloured (default viridis, 0 .. 2U)
 
-  // The agent model's part; std::logic_error on a scene of another model (callers branch on the
-  // model first: is_reaction_diffusion, or std::visit on `model`).
+  // The agent model's part; std::logic_error on a scene of another model (for the model's own code:
+  // everything else asks the table of models).
   AgentModelSpec& agent_model();
   const AgentModelSpec& agent_model() const;
   // The reaction–diffusion system, or nullptr for a scene of another model.
@@ -102,11 +97,14 @@ Scene scene_from_json(nlohmann::json scene, const std::string& source = "",
 // parameter or control names exists in scene.maps and is of the kind needed.
 void validate_scene(const Scene& scene);
 
-// Which model a scene runs (the places that must handle every model std::visit scene.model with
-// common/base/overloaded.hpp instead, so a new model does not compile until each says what it does).
+// True for a scene of the agent model (for its own code and guards; the places that handle every
+// model ask the table of models, api/models/model_table.hpp).
 inline bool is_agent_model(const Scene& scene) { return std::holds_alternative<AgentModelSpec>(scene.model); }
-inline bool is_reaction_diffusion(const Scene& scene) { return scene.reaction_diffusion() != nullptr; }
-inline bool is_growth(const Scene& scene) { return scene.growth() != nullptr; }
+
+// The model's "model" value ("physarum", "gray_scott", "growth", ...) and its whole description as
+// JSON (what a checkpoint's identity covers).
+std::string model_key(const Scene& scene);
+nlohmann::ordered_json model_json(const Scene& scene);
 
 // The agent model's agent count, 0 for a model without agents (memory estimates, run.json).
 inline int agent_count(const Scene& scene) { return is_agent_model(scene) ? scene.agent_model().agents : 0; }

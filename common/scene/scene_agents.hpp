@@ -4,6 +4,7 @@
 // integrator. Read by read_agent_model from the scene's keys; common/setup/ evaluates it on a
 // surface into the backends' inputs.
 #include "common/maps/map_definition.hpp"
+#include "common/scene/model_tag.hpp"
 #include "common/model/diffusion_decay.hpp"
 #include "common/model/model_parameters.hpp"
 #include "common/scene/scene_controls.hpp"
@@ -41,6 +42,19 @@ AgentModelSpec read_agent_model(const nlohmann::json& scene, const std::string& 
 // The values in range, every map a parameter, control or species names in `maps` with the kind
 // needed, the species adding up to the agent count.
 void validate_agent_model(const AgentModelSpec& model, const MapSet& maps, const std::string& source);
+
+// The scene layer's names for the above (common/scene/scene_models.hpp). The agent model is the
+// default: it reads any scene no other model claimed.
+struct Scene;
+inline std::optional<AgentModelSpec> read_model(ModelTag<AgentModelSpec>, const nlohmann::json& scene,
+                                                const std::string& source) {
+  return read_agent_model(scene, source);
+}
+inline std::string model_key(const AgentModelSpec&) { return "physarum"; }
+inline void validate_model(const AgentModelSpec& model, const MapSet& maps, const std::string& source) {
+  validate_agent_model(model, maps, source);
+}
+nlohmann::ordered_json model_json(const AgentModelSpec& model, const Scene& scene);  // scene_parameters_json
 
 // True when some model parameter is given by a map.
 bool has_parameter_maps(const AgentModelSpec& model);

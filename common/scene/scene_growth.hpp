@@ -17,6 +17,7 @@
 //   "dilute": false               concentrations scaled by old / new rest mass after each growth step
 #include "common/growth/growth_law.hpp"
 #include "common/maps/map_definition.hpp"
+#include "common/scene/model_tag.hpp"
 #include "common/scene/scene_reaction_diffusion.hpp"
 #include "common/shell/shell_equilibrium.hpp"
 #include "common/shell/shell_material.hpp"
@@ -93,5 +94,16 @@ void validate_growth(const GrowthSpec& spec, const MapSet& maps, const std::stri
 
 // The spec as run.json shows it.
 nlohmann::ordered_json growth_json(const GrowthSpec& spec);
+
+// The scene layer's names for the above (common/scene/scene_models.hpp).
+struct Scene;
+inline std::optional<GrowthSpec> read_model(ModelTag<GrowthSpec>, const nlohmann::json& scene, const std::string& source) {
+  return read_growth(scene, source);
+}
+inline std::string model_key(const GrowthSpec&) { return "growth"; }
+inline void validate_model(const GrowthSpec& spec, const MapSet& maps, const std::string& source) {
+  validate_growth(spec, maps, source);
+}
+inline nlohmann::ordered_json model_json(const GrowthSpec& spec, const Scene&) { return growth_json(spec); }
 
 }  // namespace physarum

@@ -4,6 +4,8 @@
 
 namespace physarum {
 
+nlohmann::ordered_json model_json(const AgentModelSpec&, const Scene& scene) { return scene_parameters_json(scene); }
+
 nlohmann::ordered_json scene_parameters_json(const Scene& s) {
   const AgentModelSpec& a = s.agent_model();
   nlohmann::ordered_json j;

@@ -31,6 +31,7 @@
 // first layer stays frozen while the next grows between its spots.
 //   "preview_morphogen": "v"                                   default: the second morphogen
 #include "common/maps/map_definition.hpp"
+#include "common/scene/model_tag.hpp"
 #include "common/reaction_diffusion/reaction_diffusion_system.hpp"
 
 #include <nlohmann/json.hpp>
@@ -112,5 +113,19 @@ void validate_reaction_diffusion(const ReactionDiffusionSpec& spec, const MapSet
 
 // The spec as run.json shows it.
 nlohmann::ordered_json reaction_diffusion_json(const ReactionDiffusionSpec& spec);
+
+// The scene layer's names for the above (common/scene/scene_models.hpp).
+struct Scene;
+inline std::optional<ReactionDiffusionSpec> read_model(ModelTag<ReactionDiffusionSpec>, const nlohmann::json& scene,
+                                                       const std::string& source) {
+  return read_reaction_diffusion(scene, source);
+}
+inline std::string model_key(const ReactionDiffusionSpec& spec) { return spec.model; }
+inline void validate_model(const ReactionDiffusionSpec& spec, const MapSet& maps, const std::string& source) {
+  validate_reaction_diffusion(spec, maps, source);
+}
+inline nlohmann::ordered_json model_json(const ReactionDiffusionSpec& spec, const Scene&) {
+  return reaction_diffusion_json(spec);
+}
 
 }  // namespace physarum

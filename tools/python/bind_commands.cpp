@@ -1,8 +1,5 @@
-// devices() and the command line run in-process (_run_command): the Python tools that are whole
-// commands (analyze, compare, colormap) run them as `physarum` does, into a temporary folder, and
-// read back what they wrote, so a result from Python is the command's own.
+// devices(): the OpenCL devices as `physarum devices` lists them.
 #include "opencl/runtime/device_selection.hpp"
-#include "tools/commands.hpp"
 #include "tools/python/bindings.hpp"
 
 #include <nanobind/stl/string.h>
@@ -31,13 +28,6 @@ void bind_commands(nb::module_& m) {
         return out;
       },
       "The OpenCL devices, as `physarum devices` lists them: a list of dicts (index: what device= takes).");
-  m.def(
-      "_run_command",
-      [](const std::vector<std::string>& args) {
-        nb::gil_scoped_release unlocked;
-        return cli::run_command_line(args);
-      },
-      nb::arg("args"));
 }
 
 }  // namespace physarum::python

@@ -1,7 +1,9 @@
 // _Simulation: a scene's run exactly as `physarum run` makes it (api/run/prepared_run.hpp: the same
 // session, run loop and writers), stepped from Python. The GIL is released while stepping, and
 // Ctrl-C (SIGINT) stops a long step() between two steps, leaving a consistent state.
+#include "api/growth_simulation.hpp"
 #include "common/base/errors.hpp"
+#include "common/surface/full_resolution_mesh.hpp"
 #include "common/scene/scene.hpp"
 #include "tools/python/bindings.hpp"
 #include "tools/python/numpy_arrays.hpp"
@@ -12,6 +14,7 @@
 #include <nanobind/stl/vector.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -24,21 +27,6 @@ using Clock = std::chrono::steady_clock;
 // How long the module steps without looking at Python: a Ctrl-C is seen within about this much
 // (plus one step), and progress callbacks come no more often.
 constexpr auto kCheckEvery = std::chrono::milliseconds(100);
-
-// The run's notes handed to `log` (a Python callable taking a line: the package's logger), from
-// whichever thread the engine is on; none: quiet. The callable lives as long as the run's options.
-SurfaceNote python_log(nb::object log) {
-  if (log.is_none()) return {};
-  auto callable = std::make_shared<nb::object>(std::move(log));
-  return [callable](const std::string& line) {
-    nb::gil_scoped_acquire locked;
-    try {
-      (*callable)(line);
-    } catch (nb::python_error& e) {
-      e.discard_as_unraisable("physarum's log");  // a failing log handler must not stop the run
-    }
-  };
-}
 
 class PythonSimulation {
  public:
@@ -107,6 +95,72 @@ class PythonSimulation {
     return out;
   }
 
+  // Replaces the layer named `name` by `values`: per input vertex ("input", interpolated onto the
+  // intrinsic vertices) or per intrinsic vertex ("intrinsic"; a growth run's: per vertex of its sheet
+  // now). The sizes are checked here, so a wrong one names what was expected.
+  void set_field(const std::string& name, std::vector<double> values, const std::string& on) {
+    Session& session = run_->session();
+    const std::vector<std::string>& names = session.layer_names();
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found == names.end()) {
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw nb::value_error(("set_field: no layer '" + name + "' (the layers: " + known + ")").c_str());
+    }
+    const int layer = static_cast<int>(found - names.begin());
+    if (on != "input" && on != "intrinsic")
+      throw nb::value_error(("on: '" + on + "' is not input or intrinsic").c_str());
+    const GrowthSimulation* growth = session.growth();
+    const size_t input = static_cast<size_t>(session.surface().input.vertex_count());
+    const size_t intrinsic = static_cast<size_t>(growth ? growth->surface().domain.vertex_count
+                                                        : session.surface().domain.vertex_count);
+    if (on == "input" && growth && intrinsic != input)
+      throw nb::value_error(("set_field: the growing sheet has been refined since the start (" + std::to_string(intrinsic) +
+                             " vertices now, the input has " + std::to_string(input) +
+                             "): give values per sheet vertex with on=\"intrinsic\"")
+                                .c_str());
+    const size_t expected = on == "input" ? input : intrinsic;
+    if (values.size() != expected)
+      throw nb::value_error(("set_field: " + std::to_string(values.size()) + " values for '" + name + "', expected " +
+                             std::to_string(expected) + " (one per " + (on == "input" ? "input" : "intrinsic") + " vertex)")
+                                .c_str());
+    nb::gil_scoped_release unlocked;
+    if (on == "input") session.set_field_on_input(InputVertexData<double>(std::move(values)), layer);
+    else session.set_field(IntrinsicVertexData<double>(std::move(values)), layer);
+  }
+
+  // A growth run's sheet now: its vertices (deformed), its triangles and its fields per vertex (every
+  // morphogen, "area_growth"); None for another model.
+  nb::object sheet() {
+    const GrowthSimulation* growth = run_->session().growth();
+    if (!growth) return nb::none();
+    const Session& session = run_->session();
+    const InputMesh& mesh = growth->surface().input;
+    nb::dict fields;
+    for (int layer = 0; layer < static_cast<int>(session.layer_names().size()); ++layer)
+      fields[session.layer_names()[static_cast<size_t>(layer)].c_str()] = to_numpy(std::move(growth->field_values(layer).values()));
+    fields["area_growth"] = to_numpy(std::move(growth->area_growth().values()));
+    const nb::tuple arrays = mesh_arrays(mesh);
+    return nb::make_tuple(arrays[0], arrays[1], fields);
+  }
+
+  // The pattern analysis of a layer now (`physarum analyze`'s analysis.json), on the full-resolution
+  // mesh of the surface (a growth run's: its sheet now), as the command reads it from fields_full.ply.
+  std::string analyze(const std::string& field, std::optional<double> threshold, bool below, double min_area) {
+    Session& session = run_->session();
+    const std::vector<std::string>& names = session.layer_names();
+    const std::string name = field.empty() ? names[static_cast<size_t>(session.preview_layer())] : field;
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found == names.end()) throw nb::value_error(("analyze: no layer '" + name + "'").c_str());
+    nb::gil_scoped_release unlocked;
+    session.backend().finish();
+    const PreparedSurface& surface = session.growth() ? session.growth()->surface() : session.surface();
+    const FullResolutionMesh full = build_full_resolution_mesh(surface.input, surface.domain);
+    const IntrinsicVertexData<double> values = session.field(static_cast<int>(found - names.begin()));
+    return analyze_field(full.mesh, full.vertex_values(values), name, analysis_request(field, threshold, below, min_area))
+        .json.dump();
+  }
+
   // stats.csv's columns now: the row the run loop would take at this step.
   nb::dict stats() {
     const ModelRun& model = run_->model();
@@ -172,6 +226,10 @@ void bind_simulation(nb::module_& m) {
            nb::arg("steps").none(), nb::arg("log").none())
       .def("step", &PythonSimulation::step, nb::arg("n"), nb::arg("progress").none())
       .def("fields", &PythonSimulation::fields, nb::arg("on"))
+      .def("set_field", &PythonSimulation::set_field, nb::arg("name"), nb::arg("values"), nb::arg("on"))
+      .def("sheet", &PythonSimulation::sheet)
+      .def("analyze", &PythonSimulation::analyze, nb::arg("field"), nb::arg("threshold").none(), nb::arg("below"),
+           nb::arg("min_area"))
       .def("stats", &PythonSimulation::stats)
       .def("statistics_text", [](PythonSimulation& s) { return s.run().loop().statistics(); })
       .def("save_state", &PythonSimulation::save_state)

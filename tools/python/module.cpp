@@ -25,4 +25,5 @@ NB_MODULE(_physarum, m) {
   physarum::python::bind_surface(m);
   physarum::python::bind_simulation(m);
   physarum::python::bind_commands(m);
+  physarum::python::bind_tools(m);
 }

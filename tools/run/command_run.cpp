@@ -79,20 +79,15 @@ void check_run_options(const RunOptions& o) {
   o.texture.check();
 }
 
-// Reads the scene (with the options' overrides and seed) and dispatches once, on its model.
+// The run with a progress bar on a terminal, its notes on stderr and its closing line on stdout.
 int run_simulation(RunOptions o, const std::optional<ResumePoint>& resume) {
   check_run_options(o);
   o.log = [](const std::string& line) { std::cerr << line << "\n"; };
-  // ---- everything that can reject the input, before any output exists ----
-  Scene scene = load_scene(o.scene, o.overrides());
-  if (o.seed) scene.seed = *o.seed;
-  if (!o.maps_out.empty() && scene.maps.empty()) throw UsageError("--maps-out: " + o.scene + " defines no maps (key 'maps')");
-  const long long steps = run_length_in_steps(o, scene);
-  std::unique_ptr<PreparedRun> run = prepare_run(scene, o, steps, resume);
-  RunLoop& loop = run->loop();
-  ProgressBar progress(loop.planned_steps());
-  while (loop.step()) progress.update(loop.steps_taken());
-  const RunWritten written = loop.write(o.out);
+  std::optional<ProgressBar> progress;
+  const RunWritten written = run_to_files(o, resume, [&](long long done, long long total) {
+    if (!progress) progress.emplace(total);
+    progress->update(done);
+  });
   std::cout << written.summary << "\n";
   if (written.stopped) std::cerr << "physarum: error: " << *written.stopped << "\n";
   return written.exit_code();
@@ -122,8 +117,6 @@ int run_run(const RunOptions& given) {
 }
 
 }  // namespace
-
-int run_scene(const RunOptions& options) { return run_simulation(options, std::nullopt); }
 
 Command add_run_command(CLI::App& parent) {
   auto options = std::make_shared<RunOptions>();

@@ -92,6 +92,23 @@ class Simulation:
         "intrinsic", in ``Surface.full_mesh()``'s order). A growth run's are on its sheet as it is now."""
         return self._simulation.fields(on)
 
+    def set_field(self, name: str, values, *, on: str = "input") -> None:
+        """Replaces the layer ``name`` (one of ``layer_names``) by ``values``, from the next step on:
+        per input vertex (``on="input"``, interpolated onto the intrinsic vertices) or per intrinsic
+        vertex (``"intrinsic"``; a growth run's: per vertex of its sheet as it is now). ValueError for
+        an unknown layer or a wrong number of values, naming what was expected."""
+        self._simulation.set_field(str(name), np.ascontiguousarray(values, dtype=np.float64).ravel(), on)
+
+    def sheet(self) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        """A growth run's sheet as it is now: ``(V, F, fields)`` with V (n, 3) float64 the deformed
+        vertices, F (m, 3) int64 its triangles, and per vertex every morphogen and "area_growth" (rest
+        area now / at the start). ValueError for a scene of another model."""
+        sheet = self._simulation.sheet()
+        if sheet is None:
+            raise ValueError("sheet(): only a growth scene (\"model\": \"growth\") has a growing sheet; this "
+                             "simulation's surface is fixed (fields() gives its layers)")
+        return sheet
+
     def stats(self) -> dict[str, float]:
         """stats.csv's columns for the state now (time, mean, coverage, ... or each morphogen's mean
         and variance)."""

@@ -1,7 +1,7 @@
 """Tools on a Surface (geodesic distance, Laplace interpolation, diffusion, gradient, slope,
 elevation), each the scene's map tool of that name evaluated in-process (docs/maps.md says what
-each computes), and the commands whose results are whole files (analyze, compare, colormap), run
-in-process as ``physarum`` runs them and read back."""
+each computes), and the commands whose results are whole files (analyze, compare, colormap, sketch), run
+in-process on the library as ``physarum`` runs them."""
 from __future__ import annotations
 
 import json
@@ -104,68 +104,48 @@ def _evaluate(surface: Surface, maps: dict, on: str, arrays: dict | None = None)
 
 # ---- whole commands ----
 
-def _command(*args: str) -> int:
-    return _engine._run_command([str(a) for a in args])
-
-
 def analyze(run, *, field: str | None = None, threshold: float | None = None, below: bool = False,
             min_area: float | None = None) -> dict:
-    """``physarum analyze`` of a finished run (its folder, or a Simulation, written first): the dict of
-    analysis.json (spots and stripes, their areas, aspect ratios, orientations, spacing)."""
+    """``physarum analyze``: the pattern analysis of a run, as analysis.json holds it (spots and
+    stripes, their areas, aspect ratios, orientations, spacing). ``run`` is a finished run's folder or
+    a Simulation, analysed as it is now, in memory (its field on the full-resolution mesh, as the
+    command reads fields_full.ply). ``field`` defaults to the layer the pictures show."""
     from .simulation import Simulation
-    with tempfile.TemporaryDirectory(prefix="physarum-analyze-") as folder:
-        if isinstance(run, Simulation):
-            run = run.write(os.path.join(folder, "run"))
-        args = ["analyze", os.fspath(run), "--out", folder]
-        if field is not None:
-            args += ["--field", field]
-        if threshold is not None:
-            args += ["--threshold", repr(float(threshold))]
-        if below:
-            args.append("--below")
-        if min_area is not None:
-            args += ["--min-area", repr(float(min_area))]
-        if _command(*args) != 0:
-            raise ValueError(f"analyze: {run} could not be analysed (the message is above)")
-        with open(os.path.join(folder, "analysis.json")) as f:
-            return json.load(f)
+    threshold = None if threshold is None else float(threshold)
+    min_area = 0.0 if min_area is None else float(min_area)
+    if isinstance(run, Simulation):
+        text = run._simulation.analyze(field or "", threshold, bool(below), min_area)
+    else:
+        text = _engine._analyze_folder(os.fspath(run), field or "", threshold, bool(below), min_area)
+    return json.loads(text)
 
 
 def compare(scene: Scene | dict | str | os.PathLike, arms: list[str] | None = None, *, seeds: int | None = None,
             jobs: int | None = None, device: int | str | None = None, fault: str | None = None,
             out: str | os.PathLike | None = None) -> dict:
-    """``physarum compare``: do two arms simulate the same thing? ``arms`` are two override strings
-    ("key=value,key=value", plus backend=... / device=...); none: the OpenCL backend against the
-    reference. Returns the verdict dict (verdict.json: "verdict" is "equivalent", "different" or
-    "inconclusive", with every metric's test). ``out`` keeps the command's files."""
+    """``physarum compare``, in-process: do two arms simulate the same thing? ``arms`` are two override
+    strings ("key=value,key=value", plus backend=... / device=...); none: the OpenCL backend against
+    the reference. Returns the verdict dict (verdict.json: "verdict" is "equivalent", "different" or
+    "inconclusive", with every metric's test). ``out`` also writes the command's files there. The
+    harness reads its scene from a file (each arm re-reads it with its overrides), so a scene built
+    in Python is written to a temporary file first."""
+    from .simulation import logger
     if not isinstance(scene, Scene):
         scene = Scene(scene)
     with tempfile.TemporaryDirectory(prefix="physarum-compare-") as folder:
         scene_file = scene.file or _scene_file(scene, folder)
-        target = os.fspath(out) if out is not None else os.path.join(folder, "out")
-        args = ["compare", scene_file, "--out", target]
-        for arm in arms or []:
-            args += ["--arm", arm]
-        if seeds is not None:
-            args += ["--max-seeds", int(seeds)]
-        if jobs is not None:
-            args += ["--jobs", int(jobs)]
-        if device is not None:
-            args += ["--device", device]
-        if fault is not None:
-            args += ["--fault", fault]
-        code = _command(*args)
-        if code not in (0, 3, 4):
-            raise ValueError(f"compare: the command failed with exit code {code} (the message is above)")
-        with open(os.path.join(target, "verdict.json")) as f:
-            return json.load(f)
+        _, verdict = _engine._compare(scene_file, list(arms or []), None if seeds is None else int(seeds),
+                                      0 if jobs is None else int(jobs), "" if device is None else str(device),
+                                      fault or "", "" if out is None else os.fspath(out), logger.info)
+    return json.loads(verdict)
 
 
 def colormap(image: str | os.PathLike, out: str | os.PathLike, *, stops: int = 256) -> dict:
-    """``physarum colormap``: a colour map extracted from an exemplar image, written to ``out`` (JSON,
-    for a scene's "colormap" key) with its strip picture beside it; returns the map's JSON."""
-    if _command("colormap", os.fspath(image), "--out", os.fspath(out), "--stops", int(stops)) != 0:
-        raise ValueError(f"colormap: {image} could not be read (the message is above)")
+    """``physarum colormap``, in-process: a colour map extracted from an exemplar image, written to
+    ``out`` (JSON, for a scene's "colormap" key) with its strip picture beside it; returns the map's
+    JSON. ValueError with the engine's message for an unreadable image."""
+    from .simulation import logger
+    logger.info(_engine._colormap(os.fspath(image), os.fspath(out), int(stops)))
     with open(out) as f:
         return json.load(f)
 
@@ -175,13 +155,15 @@ def sketch(sketch, out: str | os.PathLike | None = None, *, mesh: str | os.PathL
            max_circumradius: float | None = None, refine: int | None = None, seed: int | None = None,
            backend: str | None = None, device: int | str | None = None, layer2=None, rosettes: bool = False,
            colors: list[str] | None = None) -> dict:
-    """``physarum sketch`` (paper 004): a reaction-diffusion texture grown from drawn spots and
-    strokes, measured against them. ``sketch`` (and ``layer2``) is a PNG or JSON sketch's path or a
-    JSON sketch as a dict ({"window": [w, h], "marks": [{"ellipse": ...}, {"stroke": ...}]},
-    docs/commands.md). Returns report.json's dict: per region the sketched and the generated area,
-    aspect, orientation, spacing (stripes: orientation and width) with a verdict each. ``out`` keeps
-    the command's files (the generated scene, the run's outputs, sketch.json); without it they go
-    with a temporary folder. Bad sketches raise ValueError with the command's message, before any run."""
+    """``physarum sketch`` (paper 004), in-process: a reaction-diffusion texture grown from drawn spots
+    and strokes, measured against them. ``sketch`` (and ``layer2``) is a PNG or JSON sketch's path or
+    a JSON sketch as a dict ({"window": [w, h], "marks": [{"ellipse": ...}, {"stroke": ...}]},
+    docs/commands.md; a dict is written to a file first: the sketch reader takes files). Returns
+    report.json's dict: per region the sketched and the generated area, aspect, orientation, spacing
+    (stripes: orientation and width) with a verdict each. ``out`` keeps the files (the generated
+    scene, the run's outputs, sketch.json); without it they go with a temporary folder. Bad sketches
+    raise ValueError with the engine's message, before any run."""
+    from .simulation import logger
     with tempfile.TemporaryDirectory(prefix="physarum-sketch-") as folder:
         def sketch_file(value, name):
             if isinstance(value, dict):
@@ -192,23 +174,16 @@ def sketch(sketch, out: str | os.PathLike | None = None, *, mesh: str | os.PathL
             return os.fspath(value)
 
         target = os.fspath(out) if out is not None else os.path.join(folder, "out")
-        args = ["sketch", sketch_file(sketch, "sketch.json"), "--out", target]
-        options = {"--mesh": mesh, "--model": model, "--regions": regions, "--area": area,
-                   "--max-circumradius": max_circumradius, "--refine": refine, "--seed": seed,
-                   "--backend": backend, "--device": device}
-        for flag, value in options.items():
-            if value is not None:
-                args += [flag, value]  # _command writes every argument with str(), paths included
-        if uv:
-            args.append("--uv")
-        if layer2 is not None:
-            args += ["--layer2", sketch_file(layer2, "layer2.json")]
-        if rosettes:
-            args.append("--rosettes")
-        if colors:
-            args += ["--colors", *colors]
-        if _command(*args) != 0:
-            raise ValueError("sketch: the sketch was refused or could not be grown (the message is above)")
+        given = {"mesh": None if mesh is None else os.fspath(mesh), "model": model,
+                 "regions": None if regions is None else int(regions), "area": None if area is None else float(area),
+                 "max_circumradius": None if max_circumradius is None else float(max_circumradius),
+                 "refine": None if refine is None else int(refine), "seed": None if seed is None else int(seed),
+                 "backend": backend, "device": None if device is None else str(device),
+                 "layer2": None if layer2 is None else sketch_file(layer2, "layer2.json"),
+                 "colors": None if not colors else [str(c) for c in colors]}
+        options = {key: value for key, value in given.items() if value is not None}
+        options.update(uv=bool(uv), rosettes=bool(rosettes))
+        logger.info(_engine._sketch(sketch_file(sketch, "sketch.json"), target, options, logger.info))
         with open(os.path.join(target, "report.json")) as f:
             return json.load(f)
 

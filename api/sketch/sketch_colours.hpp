@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // The sets of --colors, parsed: InputError naming the option and the set for a bad one; UsageError
 // for more than two.
@@ -35,4 +35,4 @@ std::vector<std::string> write_layer_colours(const std::filesystem::path& folder
                                              const std::optional<FirstLayerColours>& first = std::nullopt,
                                              const ColorMapSettings& first_set = {});
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 struct Cascade {
   std::string first_fields;  // the first layer's fields_full.ply, as the second scene names it
@@ -58,4 +58,4 @@ CascadeMeasure measure_cascade(const InputMesh& mesh, const std::vector<double>&
 // the near shares and the verdict (cascade: no overlap; rosettes: more spots near than surface).
 nlohmann::ordered_json cascade_json(const CascadeMeasure& m, bool rosettes);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -8,7 +8,7 @@
 #include "common/sketch/sketch.hpp"
 #include "common/sketch/surface_marks.hpp"
 
-namespace physarum::cli {
+namespace physarum {
 
 // `size` pixels along the window's longer side; `uv_layout`: the mesh whose UV charts lie under the
 // marks, or nullptr.
@@ -18,4 +18,4 @@ RgbImage draw_sketch(const Sketch& sketch, const InputMesh* uv_layout = nullptr,
 // a run's fields_full.ply: fine enough to show small marks) in the preview's three-quarter view.
 RgbImage draw_surface_marks(const SurfaceMarks& marks, const InputMesh& surface);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,8 +1,8 @@
-#include "tools/sketch/sketch_models.hpp"
+#include "api/sketch/sketch_models.hpp"
 
 #include "common/base/errors.hpp"
 
-namespace physarum::cli {
+namespace physarum {
 
 const std::vector<SketchModel>& sketch_models() {
   // rate_time: the gallery scenes' runs (tools/scenes/turing_spots.json, meinhardt_spots.json) at the
@@ -33,4 +33,4 @@ std::vector<TrainingRun> training_runs(const SketchModel& model) {
                    "tools/sketch/make_training_data.sh " + model.name + " and rebuild)");
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

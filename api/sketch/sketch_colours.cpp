@@ -1,4 +1,4 @@
-#include "tools/sketch/sketch_colours.hpp"
+#include "api/sketch/sketch_colours.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/color/layer_colours.hpp"
@@ -6,11 +6,11 @@
 #include "common/output/camera_views.hpp"
 #include "common/output/preview_image.hpp"
 #include "api/run/surface_exports.hpp"
-#include "tools/sketch/sketch_layers.hpp"
+#include "api/sketch/sketch_layers.hpp"
 
 #include <fstream>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 namespace fs = std::filesystem;
@@ -100,4 +100,4 @@ std::vector<std::string> write_layer_colours(const fs::path& folder, const std::
   return written;
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

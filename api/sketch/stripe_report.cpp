@@ -1,14 +1,14 @@
-#include "tools/sketch/stripe_report.hpp"
+#include "api/sketch/stripe_report.hpp"
 
 #include "common/sketch/median.hpp"
-#include "tools/sketch/sketch_report.hpp"
+#include "api/sketch/sketch_report.hpp"
 
 #include <Eigen/Geometry>
 
 #include <cmath>
 #include <limits>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 // The gradient of the linear interpolant of f over a triangle, and the triangle's area.
@@ -81,4 +81,4 @@ nlohmann::ordered_json stripe_region_report(const RegionAttributes& sketched, do
             {"width", generated.stripes == 0 ? "no stripes" : std::abs(miss) <= kWidthTolerance ? "pass" : "miss"}}}};
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,4 +1,4 @@
-#include "tools/sketch/sketch_layers.hpp"
+#include "api/sketch/sketch_layers.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/intrinsic/intrinsic_mesh.hpp"
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <limits>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 // Each vertex's neighbours along the triangles' edges.
@@ -156,4 +156,4 @@ nlohmann::ordered_json cascade_json(const CascadeMeasure& m, bool rosettes) {
           {"verdict", (rosettes ? near_spots > near_free : m.overlapping == 0) ? "pass" : "miss"}};
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,4 +1,4 @@
-#include "tools/sketch/sketch_plan.hpp"
+#include "api/sketch/sketch_plan.hpp"
 
 #include "common/base/errors.hpp"
 #include "common/base/value_range.hpp"
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <random>
 
-namespace physarum::cli {
+namespace physarum {
 
 double region_area_factor(const SketchRegions& regions, size_t k, const SketchDomain& domain) {
   return regions.marks ? domain.scale() * domain.scale() : domain.frame_at(regions.regions[k].center).area_factor();
@@ -297,4 +297,4 @@ nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::stri
           {"steps", plan.steps}};
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -20,7 +20,7 @@
 
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // The width within this relative error, the orientation within this many degrees (the issue's
 // round trip asks 15).
@@ -49,4 +49,4 @@ double width_miss(const StripeMeasure& generated, double sketched_width);
 nlohmann::ordered_json stripe_region_report(const RegionAttributes& sketched, double sketched_width_m,
                                             const StripeMeasure& generated, const SketchDomain& domain);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -21,14 +21,14 @@
 #include "common/sketch/inverse_map.hpp"
 #include "common/sketch/sketch_domain.hpp"
 #include "common/sketch/sketch_regions.hpp"
-#include "tools/sketch/sketch_models.hpp"
+#include "api/sketch/sketch_models.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // The max_circumradius of the training scenes (tools/sketch/training/*.json): what a trained spot's
 // size is in mesh cells.
@@ -122,4 +122,4 @@ std::vector<Eigen::Vector3d> direction_map(const SketchRegions& regions, const S
 nlohmann::ordered_json sketch_scene_json(const SketchPlan& plan, const std::string& mesh, double area,
                                          double max_circumradius, std::uint32_t seed, const std::string& map_file);
 
-}  // namespace physarum::cli
+}  // namespace physarum

@@ -1,4 +1,4 @@
-#include "tools/sketch/sketch_report.hpp"
+#include "api/sketch/sketch_report.hpp"
 
 #include "common/sketch/median.hpp"
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 const char* within(double miss, double tolerance) { return std::abs(miss) <= tolerance ? "pass" : "miss"; }
@@ -119,4 +119,4 @@ nlohmann::ordered_json region_report(const RegionAttributes& sketched, double sk
           {"verdict", verdict}};
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum

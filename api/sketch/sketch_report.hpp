@@ -12,7 +12,7 @@
 
 #include <vector>
 
-namespace physarum::cli {
+namespace physarum {
 
 // What a region's spots must match: the area and the spacing within this relative error (the
 // issue's round trip asks 25 % of the median area).
@@ -60,4 +60,4 @@ nlohmann::ordered_json center_json(const SketchDomain& domain, const Eigen::Vect
 // The difference of two axes' angles in degrees, in [0, 90].
 double axis_difference(double a, double b);
 
-}  // namespace physarum::cli
+}  // namespace physarum

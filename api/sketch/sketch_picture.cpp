@@ -1,9 +1,9 @@
-#include "tools/sketch/sketch_picture.hpp"
+#include "api/sketch/sketch_picture.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace physarum::cli {
+namespace physarum {
 namespace {
 
 bool inside_ellipse(const SketchSpot& s, const Eigen::Vector2d& p) {
@@ -79,4 +79,4 @@ RgbImage draw_surface_marks(const SurfaceMarks& marks, const InputMesh& surface)
   return render_preview(surface, ink, options);
 }
 
-}  // namespace physarum::cli
+}  // namespace physarum
