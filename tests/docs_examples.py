@@ -44,9 +44,12 @@ LEFT_OUT = {
     ("docs/harness.md", "./build/physarum compare tools/scenes/resolved.json --arm max_circumradius=0.03 --arm max_circumradius=0.02  # equivalent"):
         "four whole comparisons at 50,000 agents, minutes each (the validation suite runs them: "
         "ValidationCompareResolution, ctest -L validation)",
-    ("docs/python.md", ".venv/bin/pip install --no-build-isolation ."):
+    ("docs/python.md", ".venv/bin/pip install --no-build-isolation -C build-dir=build ."):
         "builds and installs the package into the .venv the tests use (minutes); the tests import the module "
         "built in build/python",
+    ("docs/python.md", "python3 -m venv env && env/bin/pip install .        # or: pip wheel . -w dist, then pip install dist/physarum-*.whl"):
+        "builds the engine from scratch with packages from PyPI (half an hour on two cores): the validation "
+        "test python_wheel runs it (ctest -L validation)",
     ("docs/python.md", "import polyscope as ps                     # any viewer that takes numpy arrays (pip install polyscope)"):
         "opens a window in a viewer that is not installed here",
     ("docs/library.md", "bash tools/setup.sh                       # the Debian packages the library depends on, and build/"):

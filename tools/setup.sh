@@ -28,14 +28,15 @@ packages=(
   libeigen3-dev libopenmesh-dev libopenimageio-dev libgtest-dev libbenchmark-dev
   librandom123-dev libspectra-dev nlohmann-json3-dev libcli11-dev fonts-dejavu-core libboost-math-dev
   libtinygltf-dev libsuitesparse-dev libopenblas0-pthread libxxhash-dev libmuparser-dev python3-venv
+  python3-dev
 )
 
 # Only the tests use these: the schedulers the sweep tests submit to (a private Slurm the tests start
 # and stop themselves, GNU parallel); Blender (headless, with the numpy its importers need) as the
-# independent reader of result.glb; the Python headers the Python module is built against; Mesa's
+# independent reader of result.glb; Mesa's
 # OpenCL (rusticl on llvmpipe: a second implementation beside PoCL, which
 # tests/test_other_opencl_implementations.cpp holds to the reference).
-test_packages=(slurm-wlm munge parallel blender python3-numpy python3-dev mesa-opencl-icd)
+test_packages=(slurm-wlm munge parallel blender python3-numpy mesa-opencl-icd)
 if $with_tests; then packages+=("${test_packages[@]}"); fi
 
 missing=()
@@ -56,7 +57,7 @@ fi
 # The tests' own Python (not the system's: Debian's pip refuses to install into it, and the versions
 # must be the ones the tests were written against): the reader test's trimesh, numpy and pillow, and
 # the Python module's nanobind (CMake builds the module when .venv has it), scikit-build-core (for
-# `.venv/bin/pip install --no-build-isolation .`) and pytest (its tests).
+# `.venv/bin/pip install --no-build-isolation -C build-dir=build .`) and pytest (its tests).
 python_packages=(trimesh==5.2.0 numpy==2.4.6 pillow==13.0.0 nanobind==2.9.2 scikit-build-core==0.11.6 pytest==8.4.2)
 venv=.venv
 venv_is_current() {
