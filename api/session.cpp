@@ -1,6 +1,8 @@
 #include "api/session.hpp"
 
+#include "api/live_backend.hpp"
 #include "api/models/model_table.hpp"
+#include "common/base/errors.hpp"
 
 #include "common/base/content_hash.hpp"
 #include "common/maps/map_cache.hpp"
@@ -13,9 +15,12 @@
 namespace physarum {
 
 struct SessionParts {
+  Scene given;  // the scene as given (live changes apply to it)
+  SessionOptions options;
   FeasibleSurface feasible;
   ChosenBackend chosen;  // owns the compute context the backend uses: kept before it (destroyed after)
-  ModelBackend model;    // the scene as simulated, the backend, its layers
+  ModelBackend model;    // the scene as simulated, its layers (its backend is in `live`)
+  std::unique_ptr<LiveBackend> live;
   std::string scene_hash;
 };
 
@@ -48,7 +53,10 @@ Session::Session(const Scene& scene, const SessionOptions& options) : parts_(std
   p.chosen = choose_backend(options.backend, options.device);
   if (options.backend == "auto" && options.log)
     options.log("physarum: " + std::string(to_string(p.chosen.backend)) + " backend (auto: " + p.chosen.why + ")");
+  p.given = scene;
+  p.options = options;
   p.model = model_entry(scene).build(scene, p.feasible, p.chosen, options);
+  p.live = std::make_unique<LiveBackend>(std::move(p.model.backend));
   p.scene_hash = scene_identity(p.model.scene, p.feasible.surface);
 }
 
@@ -63,19 +71,19 @@ const MapEvaluationReport& Session::maps_report() const { return parts_->feasibl
 const SceneArrays* Session::agent_arrays() const { return parts_->model.arrays ? &*parts_->model.arrays : nullptr; }
 BackendChoice Session::backend_choice() const { return parts_->chosen.backend; }
 const std::string& Session::backend_reason() const { return parts_->chosen.why; }
-SimulationBackend& Session::backend() { return *parts_->model.backend; }
-const SimulationBackend& Session::backend() const { return *parts_->model.backend; }
+SimulationBackend& Session::backend() { return *parts_->live; }
+const SimulationBackend& Session::backend() const { return *parts_->live; }
 const std::vector<std::string>& Session::layer_names() const { return parts_->model.layer_names; }
 int Session::preview_layer() const { return parts_->model.preview_layer; }
 int Session::substeps() const { return parts_->model.substeps; }
 GrowthSimulation* Session::growth() { return parts_->model.growth; }
 const GrowthSimulation* Session::growth() const { return parts_->model.growth; }
 
-void Session::step(long long steps) { parts_->model.backend->run(steps); }
-double Session::time() const { return parts_->model.backend->time(); }
-long long Session::steps_taken() const { return parts_->model.backend->steps_taken(); }
+void Session::step(long long steps) { parts_->live->run(steps); }
+double Session::time() const { return parts_->live->time(); }
+long long Session::steps_taken() const { return parts_->live->steps_taken(); }
 
-IntrinsicVertexData<double> Session::field(int layer) const { return parts_->model.backend->field_values(layer); }
+IntrinsicVertexData<double> Session::field(int layer) const { return parts_->live->field_values(layer); }
 
 InputVertexData<double> Session::field_on_input(int layer) const {
   const PreparedSurface& s = surface();
@@ -86,7 +94,7 @@ InputVertexData<double> Session::field_on_input(int layer) const {
   return intrinsic_to_input(s.input, s.domain.vertex_location, field(layer));
 }
 
-void Session::set_field(const IntrinsicVertexData<double>& values, int layer) { parts_->model.backend->set_field(values, layer); }
+void Session::set_field(const IntrinsicVertexData<double>& values, int layer) { parts_->live->set_field(values, layer); }
 
 void Session::set_field_on_input(const InputVertexData<double>& values, int layer) {
   const PreparedSurface& s = surface();
@@ -95,6 +103,29 @@ void Session::set_field_on_input(const InputVertexData<double>& values, int laye
     return;
   }
   set_field(input_to_intrinsic(s.input, s.domain.vertex_location, values), layer);
+}
+
+long long Session::set(const std::string& key, const nlohmann::json& value) {
+  SessionParts& p = *parts_;
+  const ModelEntry& model = model_entry(p.given);
+  const std::string where = (p.given.source.empty() ? std::string("scene") : p.given.source) + ": ";
+  if (!model.set_on_the_fly)
+    throw InputError(where + key + ": needs a new run (" + model.name + " takes no key on the fly; --set " + key +
+                     "=... starts one)");
+  Scene changed = p.given;
+  try {
+    model.set_on_the_fly(changed, key, value);
+  } catch (const InputError& e) {
+    throw InputError(where + e.what());
+  }
+  validate_scene(changed);  // its messages name the scene and the key themselves
+  // A backend of the changed scene, continuing from the state now (nothing changes if building fails).
+  ModelBackend next = model.build(changed, p.feasible, p.chosen, p.options);
+  p.live->replace(std::move(next.backend));
+  p.model = std::move(next);
+  p.given = std::move(changed);
+  p.scene_hash = scene_identity(p.model.scene, p.feasible.surface);
+  return steps_taken();
 }
 
 void Session::save(const std::string& path) const {

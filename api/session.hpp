@@ -12,6 +12,8 @@
 #include "common/simulation/simulation_backend.hpp"
 #include "common/surface/prepared_surface.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -75,6 +77,13 @@ class Session {
   void set_field(const IntrinsicVertexData<double>& values, int layer = 0);
   // Per input vertex, interpolated onto the intrinsic vertices (input_to_intrinsic).
   void set_field_on_input(const InputVertexData<double>& values, int layer = 0);
+
+  // A live change: `key` (a --set path: "sensor_angle", "parameters.F") takes `value` from the next
+  // step on when the model takes it on the fly (its entry's set_on_the_fly, api/models/model_table.hpp:
+  // the agent model's Table 1 parameters, a reaction's coefficients); returns the steps taken, the
+  // step after which it applies. InputError naming the key when it needs a new run, or for a bad
+  // value: nothing changes then. The scene() afterwards is the changed one.
+  long long set(const std::string& key, const nlohmann::json& value);
 
   // A checkpoint file (common/run/checkpoint.hpp); restore refuses one of another build, backend,
   // device or scene, and changes nothing then.

@@ -115,34 +115,34 @@ TEST(Layering, BackendsSeeOnlyTheModelAndGeometryLayers) {
   }
 }
 
+// Every line of the files under `folder` that matches `pattern`, as "file:line: text".
+std::vector<std::string> lines_matching(const fs::path& folder, const std::regex& pattern) {
+  std::vector<std::string> found;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path());
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      if (std::regex_search(line, pattern))
+        found.push_back(fs::relative(e.path(), kSource).string() + ":" + std::to_string(n) + ": " + line);
+  }
+  return found;
+}
+
 // The command line is a client of the library (api/physarum.hpp): neither the library nor anything
 // below it includes a header of tools/.
 TEST(Layering, TheLibraryNeverIncludesTheCommandLine) {
   static const std::regex include(R"re(^\s*#\s*include\s*"tools/)re");
-  for (const char* folder : {"api", "common", "reference", "opencl"}) {
-    for (const fs::directory_entry& e : fs::recursive_directory_iterator(kSource / folder)) {
-      if (!e.is_regular_file()) continue;
-      std::ifstream in(e.path());
-      std::string line;
-      for (int n = 1; std::getline(in, line); ++n)
-        EXPECT_FALSE(std::regex_search(line, include))
-            << fs::relative(e.path(), kSource).string() << ":" << n << " includes the command line: " << line;
-    }
-  }
+  for (const char* folder : {"api", "common", "reference", "opencl"})
+    for (const std::string& line : lines_matching(kSource / folder, include)) ADD_FAILURE() << line << " includes the command line";
 }
 
 // The Python module binds the library (api/), not the command line: its C++ includes nothing of
 // tools/ outside its own folder.
 TEST(Layering, ThePythonModuleBindsTheLibraryNotTheCommandLine) {
   static const std::regex include(R"re(^\s*#\s*include\s*"tools/(?!python/))re");
-  for (const fs::directory_entry& e : fs::recursive_directory_iterator(kSource / "tools" / "python")) {
-    if (!e.is_regular_file()) continue;
-    std::ifstream in(e.path());
-    std::string line;
-    for (int n = 1; std::getline(in, line); ++n)
-      EXPECT_FALSE(std::regex_search(line, include))
-          << fs::relative(e.path(), kSource).string() << ":" << n << " includes the command line: " << line;
-  }
+  for (const std::string& line : lines_matching(kSource / "tools" / "python", include))
+    ADD_FAILURE() << line << " includes the command line";
 }
 
 }  // namespace

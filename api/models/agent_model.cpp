@@ -6,10 +6,12 @@
 #include "api/compare/comparison_model.hpp"
 #include "api/run/prepared_run.hpp"
 #include "api/session.hpp"
+#include "common/base/errors.hpp"
 #include "common/model/agent_model.hpp"
 #include "common/setup/run_feasibility.hpp"
 #include "common/setup/scene_maps.hpp"
 
+#include <limits>
 #include <unistd.h>
 
 namespace physarum {
@@ -57,6 +59,27 @@ ModelBackend build(const Scene& given, const FeasibleSurface& feasible, const Ch
   return built;
 }
 
+// A parameter of Table 1 as a number (null: +infinity where the key allows it), for the whole
+// surface: a map it was given is replaced. Everything else (the agent count, species, controls, the
+// surface, the time step) places or sizes what the run started with.
+void set_parameter(Scene& scene, const std::string& key, const nlohmann::json& value) {
+  const ParameterSpec* spec = nullptr;
+  for (const ParameterSpec& p : kParameterTable)
+    if (p.key == key) spec = &p;
+  AgentModelSpec& model = scene.agent_model();
+  if (!spec)
+    throw InputError(key + ": needs a new run (the agent model takes its Table 1 parameters on the fly: "
+                     "sensor_angle, deposit_rate, ...; this key places or sizes what the run started with)");
+  if (!model.species.species.empty())
+    throw InputError(key + ": needs a new run (a competing-species scene's parameters are its species')");
+  double file_value = 0.0;
+  if (value.is_number()) file_value = value.get<double>();
+  else if (value.is_null() && spec->null_means_infinite) file_value = std::numeric_limits<double>::infinity();
+  else throw InputError(key + ": expected a number" + (spec->null_means_infinite ? " or null" : "") + ", got " + value.dump());
+  model.parameters[spec->id] = file_value * spec->file_to_si;
+  model.parameter_maps[static_cast<size_t>(spec->id)].reset();
+}
+
 std::unique_ptr<SimulationBackend> backend_on(BackendChoice backend, const opencl::ComputeContext* compute,
                                               const PreparedSurface& surface, const Scene& scene,
                                               const opencl::OpenCLBackendOptions& options) {
@@ -73,6 +96,7 @@ ModelEntry agent_model_entry() {
   e.check_on_surface = &check_on_surface;
   e.build = &build;
   e.backend_on = &backend_on;
+  e.set_on_the_fly = &set_parameter;
   e.prepare_run = &prepare_agent_run;
   e.comparison = &agent_comparison();
   return e;

@@ -13,6 +13,8 @@
 #include "common/setup/agent_inputs.hpp"
 #include "common/simulation/simulation_backend.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,6 +64,12 @@ struct ModelEntry {
                                                    const PreparedSurface& surface, const Scene& scene,
                                                    const opencl::OpenCLBackendOptions& options) = nullptr;
   std::string why_no_backend_on;
+
+  // ---- live changes (Session::set, Python's Simulation.set, the studio) ----
+  // Applies `key` = `value` (a --set path) to the scene a running session was built from, when the
+  // model takes that key on the fly; InputError naming the key when it needs a new run, or for a bad
+  // value. Null: the model takes no key on the fly.
+  void (*set_on_the_fly)(Scene& scene, const std::string& key, const nlohmann::json& value) = nullptr;
 
   // ---- `physarum run` (api/run/) ----
   std::unique_ptr<PreparedRun> (*prepare_run)(const Scene& scene, const RunOptions& options, long long steps,

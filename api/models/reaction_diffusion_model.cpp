@@ -7,8 +7,11 @@
 #include "api/compare/comparison_model.hpp"
 #include "api/run/prepared_run.hpp"
 #include "api/session.hpp"
+#include "common/base/errors.hpp"
 #include "common/maps/map_evaluation.hpp"
 #include "common/setup/reaction_diffusion_build.hpp"
+
+#include <algorithm>
 
 namespace physarum {
 namespace {
@@ -31,6 +34,22 @@ ModelBackend build(const Scene& given, const FeasibleSurface& feasible, const Ch
   return built;
 }
 
+// A coefficient of the kinetics ("parameters.F") as a number over the whole surface: the formulas
+// read it at every step. Everything else (morphogens, their diffusion and initial state, the
+// integrator, the surface) sets up the system the run started with.
+void set_coefficient(Scene& scene, const std::string& key, const nlohmann::json& value) {
+  ReactionDiffusionSpec& spec = *scene.reaction_diffusion();
+  const std::string prefix = "parameters.";
+  if (key.rfind(prefix, 0) != 0)
+    throw InputError(key + ": needs a new run (a reaction-diffusion system takes its coefficients on the fly, "
+                     "parameters.NAME; this key sets up the system the run started with)");
+  const std::string name = key.substr(prefix.size());
+  auto it = std::find_if(spec.coefficients.begin(), spec.coefficients.end(), [&](const auto& c) { return c.first == name; });
+  if (it == spec.coefficients.end()) throw InputError(key + ": " + spec.model + " has no coefficient '" + name + "'");
+  if (!value.is_number()) throw InputError(key + ": expected a number, got " + value.dump());
+  it->second = value.get<double>();
+}
+
 std::unique_ptr<SimulationBackend> backend_on(BackendChoice backend, const opencl::ComputeContext* compute,
                                               const PreparedSurface& surface, const Scene& scene,
                                               const opencl::OpenCLBackendOptions& options) {
@@ -47,6 +66,7 @@ ModelEntry reaction_diffusion_model_entry() {
   e.surface = [](const Scene& scene, const Say& say) { return prepare_scene_surface(scene, say); };
   e.build = &build;
   e.backend_on = &backend_on;
+  e.set_on_the_fly = &set_coefficient;
   e.prepare_run = &prepare_reaction_diffusion_run;
   e.comparison = &reaction_diffusion_comparison();
   return e;

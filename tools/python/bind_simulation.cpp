@@ -228,6 +228,13 @@ void bind_simulation(nb::module_& m) {
       .def("fields", &PythonSimulation::fields, nb::arg("on"))
       .def("set_field", &PythonSimulation::set_field, nb::arg("name"), nb::arg("values"), nb::arg("on"))
       .def("sheet", &PythonSimulation::sheet)
+      .def(
+          "set",
+          [](PythonSimulation& s, const std::string& key, const std::string& value_json) {
+            nb::gil_scoped_release unlocked;  // a changed backend is built (an OpenCL one's buffers)
+            return s.run().session().set(key, nlohmann::json::parse(value_json));
+          },
+          nb::arg("key"), nb::arg("value_json"))
       .def("analyze", &PythonSimulation::analyze, nb::arg("field"), nb::arg("threshold").none(), nb::arg("below"),
            nb::arg("min_area"))
       .def("stats", &PythonSimulation::stats)

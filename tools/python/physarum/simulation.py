@@ -3,6 +3,7 @@ session, run loop and output writers), with its fields as numpy arrays between s
 from __future__ import annotations
 
 import io
+import json
 import logging
 import os
 from typing import Callable
@@ -91,6 +92,21 @@ class Simulation:
         (``"intrinsic"``), or per vertex of the full-resolution mesh (``"full"``: the same numbers as
         "intrinsic", in ``Surface.full_mesh()``'s order). A growth run's are on its sheet as it is now."""
         return self._simulation.fields(on)
+
+    def set(self, key: str, value) -> int:
+        """A live change: ``key`` (a path as ``physarum run --set`` takes it: "sensor_angle",
+        "parameters.F") takes ``value`` from the next step on, for a key the running model takes on
+        the fly (the agent model's Table 1 parameters, a reaction's coefficients; the studio and the
+        library's Session::set use the same rule). Returns the step after which it applies.
+        ValueError naming the key for one that needs a new run, or for a bad value; nothing changes
+        then. The statistics columns measured against U (coverage) keep the U the run started with."""
+        if isinstance(value, np.generic):
+            value = value.item()
+        try:
+            text = json.dumps(value)
+        except TypeError as e:
+            raise ValueError(f"{key}: the value {value!r} is not a JSON value") from e
+        return self._simulation.set(str(key), text)
 
     def set_field(self, name: str, values, *, on: str = "input") -> None:
         """Replaces the layer ``name`` (one of ``layer_names``) by ``values``, from the next step on:
