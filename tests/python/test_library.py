@@ -81,3 +81,24 @@ def test_the_engines_lines_go_through_logging_not_stdout(tmp_path, caplog, capfd
     assert any(line.startswith("physarum run: 5 steps") and "wrote" in line for line in lines), lines
     out, err = capfd.readouterr()
     assert "physarum run:" not in out and "physarum run:" not in err
+
+
+def test_set_applies_from_the_next_step_and_refuses_what_needs_a_new_run():
+    changed = physarum.Simulation(AGENT_SCENE, backend="reference", steps=30)
+    plain = physarum.Simulation(AGENT_SCENE, backend="reference", steps=30)
+    changed.step(10)
+    plain.step(10)
+    assert changed.set("sensor_angle", np.float64(22.5)) == 10  # the scene's own value: nothing may change
+    changed.step(10)
+    plain.step(10)
+    assert np.array_equal(changed.fields()["pheromone"], plain.fields()["pheromone"])
+    changed.set("sensor_angle", 60.0)
+    changed.step(10)
+    plain.step(10)
+    assert not np.array_equal(changed.fields()["pheromone"], plain.fields()["pheromone"])
+    before = changed.fields()["pheromone"]
+    with pytest.raises(ValueError, match="agents: needs a new run"):
+        changed.set("agents", 10)
+    with pytest.raises(ValueError, match="sensor_angle: expected a number"):
+        changed.set("sensor_angle", "wide")
+    assert np.array_equal(changed.fields()["pheromone"], before)
