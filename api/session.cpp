@@ -66,6 +66,9 @@ Session& Session::operator=(Session&&) noexcept = default;
 
 const Scene& Session::scene() const { return parts_->model.scene; }
 const PreparedSurface& Session::surface() const { return parts_->feasible.surface; }
+const PreparedSurface& Session::surface_now() const {
+  return parts_->model.growth ? parts_->model.growth->surface() : parts_->feasible.surface;
+}
 const EvaluatedMaps& Session::maps() const { return parts_->feasible.maps; }
 const MapEvaluationReport& Session::maps_report() const { return parts_->feasible.maps_report; }
 const SceneArrays* Session::agent_arrays() const { return parts_->model.arrays ? &*parts_->model.arrays : nullptr; }

@@ -45,6 +45,8 @@ class Session {
   // The scene as simulated: a mapped agent parameter holds its area mean (what U and run.json use).
   const Scene& scene() const;
   const PreparedSurface& surface() const;
+  // The surface the layers lie on now: surface(), or a growth scene's sheet as it has grown.
+  const PreparedSurface& surface_now() const;
   const EvaluatedMaps& maps() const;
   const MapEvaluationReport& maps_report() const;
   // The agent model's per-vertex inputs; nullptr for a reaction–diffusion scene.

@@ -110,11 +110,9 @@ class PythonSimulation {
     const int layer = static_cast<int>(found - names.begin());
     if (on != "input" && on != "intrinsic")
       throw nb::value_error(("on: '" + on + "' is not input or intrinsic").c_str());
-    const GrowthSimulation* growth = session.growth();
     const size_t input = static_cast<size_t>(session.surface().input.vertex_count());
-    const size_t intrinsic = static_cast<size_t>(growth ? growth->surface().domain.vertex_count
-                                                        : session.surface().domain.vertex_count);
-    if (on == "input" && growth && intrinsic != input)
+    const size_t intrinsic = static_cast<size_t>(session.surface_now().domain.vertex_count);
+    if (on == "input" && session.growth() && intrinsic != input)
       throw nb::value_error(("set_field: the growing sheet has been refined since the start (" + std::to_string(intrinsic) +
                              " vertices now, the input has " + std::to_string(input) +
                              "): give values per sheet vertex with on=\"intrinsic\"")
@@ -154,7 +152,7 @@ class PythonSimulation {
     if (found == names.end()) throw nb::value_error(("analyze: no layer '" + name + "'").c_str());
     nb::gil_scoped_release unlocked;
     session.backend().finish();
-    const PreparedSurface& surface = session.growth() ? session.growth()->surface() : session.surface();
+    const PreparedSurface& surface = session.surface_now();
     const FullResolutionMesh full = build_full_resolution_mesh(surface.input, surface.domain);
     const IntrinsicVertexData<double> values = session.field(static_cast<int>(found - names.begin()));
     return analyze_field(full.mesh, full.vertex_values(values), name, analysis_request(field, threshold, below, min_area))
