@@ -71,9 +71,7 @@ MemoryNeed estimate_memory(BackendChoice backend, const SurfaceDomain& domain, i
 std::unique_ptr<SimulationBackend> make_backend(BackendChoice backend, const opencl::ComputeContext* compute,
                                                 const SurfaceDomain& domain, const Scene& scene, const SceneArrays& arrays,
                                                 const opencl::OpenCLBackendOptions& options) {
-  if (!is_agent_model(scene))
-    throw UsageError(scene.source + ": agent arrays build the agent model's backend, and this scene runs " +
-                     model_entry(scene).name + " (make_backend with a PreparedSurface builds any model's)");
+  // scene.agent_model() refuses a scene of another model (make_backend with a PreparedSurface builds any model's).
   const bool competing_species = !arrays.species.species.empty() && !arrays.species.is_single();
   const MemoryNeed need = estimate_memory(backend, domain, scene.agent_model().agents);
   if (backend == BackendChoice::Reference) {

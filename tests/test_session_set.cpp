@@ -7,6 +7,7 @@
 #include "api/session.hpp"
 #include "common/base/errors.hpp"
 #include "common/scene/scene.hpp"
+#include "session_scenes.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -20,18 +21,8 @@ namespace {
 
 using nlohmann::json;
 
-json agent_scene_json() {
-  return {{"mesh", "shape:octagonal-prism"}, {"scale_to_area", 1.0}, {"max_circumradius", 0.03}, {"agents", 400},
-          {"time_step", 0.01}, {"seed", 3}, {"sensor_distance", 0.05}, {"sensor_angle", 22.5}, {"move_rate", 0.5},
-          {"turn_rate", 180.0}, {"turn_frequency", 20.0}, {"deposit_rate", 1.0}, {"decay_rate", 1.0},
-          {"diffuse_rate", 0.0002}, {"mean_lifetime", 1.0}, {"activation_time", 0.2}};
-}
-
-json reaction_scene_json() {
-  return {{"mesh", "shape:octagonal-prism"}, {"scale_to_area", 1.0}, {"max_circumradius", 0.03}, {"model", "gray-scott"},
-          {"time_step", 1.0}, {"seed", 5}, {"initial", {{"noise", 0.01}, {"spots", {{"count", 3}, {"radius", 0.1},
-          {"values", {{"u", 0.5}, {"v", 0.25}}}}}}}};
-}
+using testing::agent_scene_json;
+using testing::reaction_scene_json;
 
 SessionOptions on(const std::string& backend) {
   SessionOptions o;

@@ -187,7 +187,8 @@ Scene scene_from_json(nlohmann::json j, const std::string& source, const nlohman
   // The model's own keys.
   scene.model = read_model(j, path);
   // A model that runs on its own time scale (a reaction's) compares over its own run length.
-  if (!is_agent_model(scene)) comparison_defaults_from_run_length(j, scene);
+  if (std::visit([](const auto& model) { return compares_over_its_run_length(model); }, scene.model))
+    comparison_defaults_from_run_length(j, scene);
 
   // (A duration of 0 is no file's: compare_duration > 0. It is a reaction's scene without a run
   // length, which compare refuses saying so.)

@@ -51,6 +51,8 @@ inline std::optional<AgentModelSpec> read_model(ModelTag<AgentModelSpec>, const 
   return read_agent_model(scene, source);
 }
 inline std::string model_key(const AgentModelSpec&) { return "physarum"; }
+// The harness's default run length is seconds of the agents' own dynamics (ComparisonSettings).
+inline bool compares_over_its_run_length(const AgentModelSpec&) { return false; }
 inline void validate_model(const AgentModelSpec& model, const MapSet& maps, const std::string& source) {
   validate_agent_model(model, maps, source);
 }

@@ -101,6 +101,7 @@ inline std::optional<GrowthSpec> read_model(ModelTag<GrowthSpec>, const nlohmann
   return read_growth(scene, source);
 }
 inline std::string model_key(const GrowthSpec&) { return "growth"; }
+inline bool compares_over_its_run_length(const GrowthSpec&) { return true; }  // its reaction's time scale
 inline void validate_model(const GrowthSpec& spec, const MapSet& maps, const std::string& source) {
   validate_growth(spec, maps, source);
 }

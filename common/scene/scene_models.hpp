@@ -8,6 +8,8 @@
 //       from the last alternative to the first; the first, the agent model, is the default and
 //       always answers);
 //   std::string model_key(const Spec&)                    the scene's "model" value, for messages;
+//   bool compares_over_its_run_length(const Spec&)        compare's default burn-in and duration are
+//       halves of the scene's run (a reaction's time scale) rather than the agent model's seconds;
 //   void validate_model(const Spec&, const MapSet&, const std::string& source)   its checks;
 //   nlohmann::ordered_json model_json(const Spec&, const Scene&)   its whole description (what a
 //       checkpoint's identity and run.json record).

@@ -112,7 +112,8 @@ class PythonSimulation {
       throw nb::value_error(("on: '" + on + "' is not input or intrinsic").c_str());
     const size_t input = static_cast<size_t>(session.surface().input.vertex_count());
     const size_t intrinsic = static_cast<size_t>(session.surface_now().domain.vertex_count);
-    if (on == "input" && session.growth() && intrinsic != input)
+    const bool surface_changed = &session.surface_now() != &session.surface();  // a growing sheet
+    if (on == "input" && surface_changed && intrinsic != input)
       throw nb::value_error(("set_field: the growing sheet has been refined since the start (" + std::to_string(intrinsic) +
                              " vertices now, the input has " + std::to_string(input) +
                              "): give values per sheet vertex with on=\"intrinsic\"")
